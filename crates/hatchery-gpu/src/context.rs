@@ -1,0 +1,297 @@
+use std::sync::{Arc, Mutex};
+use wgpu::util::DeviceExt;
+
+/// Errors of the GPU layer. Messages are one line and say what to do.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error(
+        "no GPU adapter found (tried {tried}). On a machine without a GPU install Mesa's software \
+         Vulkan driver: `apt-get install mesa-vulkan-drivers` (or run scripts/install-deps.sh)"
+    )]
+    NoAdapter { tried: String },
+    #[error("cannot open the GPU device on {adapter}: {message}")]
+    Device { adapter: String, message: String },
+    #[error("{what}: {message}")]
+    Validation { what: String, message: String },
+    #[error("reading back {what} from the GPU failed: {message}")]
+    Readback { what: String, message: String },
+    #[error("{what} is {size} but this GPU allows at most {limit}")]
+    TooLarge {
+        what: String,
+        size: String,
+        limit: String,
+    },
+}
+
+/// The one device hatchery renders with.
+pub struct GpuContext {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter_info: wgpu::AdapterInfo,
+    /// Errors that escaped an error scope; kept so that they surface as node errors, not panics.
+    uncaptured: Arc<Mutex<Vec<String>>>,
+}
+
+fn backends_from_env() -> Option<wgpu::Backends> {
+    match std::env::var("HATCHERY_BACKEND")
+        .ok()?
+        .to_ascii_lowercase()
+        .as_str()
+    {
+        "vulkan" => Some(wgpu::Backends::VULKAN),
+        "gl" | "gles" => Some(wgpu::Backends::GL),
+        "metal" => Some(wgpu::Backends::METAL),
+        "dx12" => Some(wgpu::Backends::DX12),
+        _ => None,
+    }
+}
+
+impl GpuContext {
+    /// Opens the best adapter: a real GPU if there is one, else lavapipe (Vulkan) or llvmpipe (GL).
+    /// `HATCHERY_BACKEND=vulkan|gl` restricts the choice.
+    pub fn new() -> Result<Self, GpuError> {
+        // Vulkan (or Metal/DX12) first; GL only if that finds nothing, since probing EGL on a
+        // headless machine prints driver noise.
+        let attempts = match backends_from_env() {
+            Some(chosen) => vec![chosen],
+            None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL],
+        };
+        for &backends in &attempts {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+            desc.backends = backends;
+            let instance = wgpu::Instance::new(desc);
+            let adapter =
+                pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::HighPerformance,
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    apply_limit_buckets: false,
+                }));
+            if let Ok(adapter) = adapter {
+                return Self::from_adapter(&adapter);
+            }
+        }
+        Err(GpuError::NoAdapter {
+            tried: format!("{attempts:?}"),
+        })
+    }
+
+    /// Opens a device on a chosen adapter (the editor shares its adapter this way).
+    pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
+        let adapter_info = adapter.get_info();
+        // Timestamps are optional: used for per-node GPU times where the adapter has them.
+        let wanted = wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
+            | wgpu::Features::FLOAT32_FILTERABLE;
+        let required_features = adapter.features() & wanted;
+        let adapter_limits = adapter.limits();
+        let required_limits = wgpu::Limits {
+            max_texture_dimension_3d: adapter_limits.max_texture_dimension_3d,
+            max_texture_dimension_2d: adapter_limits.max_texture_dimension_2d,
+            max_buffer_size: adapter_limits.max_buffer_size,
+            max_storage_buffer_binding_size: adapter_limits.max_storage_buffer_binding_size,
+            ..wgpu::Limits::downlevel_defaults()
+        }
+        .using_resolution(adapter_limits.clone());
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("hatchery"),
+            required_features,
+            required_limits,
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| GpuError::Device {
+            adapter: adapter_info.name.clone(),
+            message: e.to_string(),
+        })?;
+        let uncaptured = Arc::new(Mutex::new(Vec::new()));
+        let sink = uncaptured.clone();
+        device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
+            tracing::error!("GPU error: {error}");
+            if let Ok(mut errors) = sink.lock() {
+                errors.push(error.to_string());
+            }
+        }));
+        Ok(Self {
+            device,
+            queue,
+            adapter_info,
+            uncaptured,
+        })
+    }
+
+    /// One line naming the adapter, driver and backend (for logs and benchmark reports).
+    pub fn describe(&self) -> String {
+        let i = &self.adapter_info;
+        format!(
+            "{} ({:?}, {} {}, {:?})",
+            i.name, i.device_type, i.driver, i.driver_info, i.backend
+        )
+    }
+
+    /// True on CPU drivers (lavapipe, llvmpipe): timings then are CPU timings.
+    pub fn is_software(&self) -> bool {
+        self.adapter_info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    pub fn has_timestamps(&self) -> bool {
+        self.device.features().contains(
+            wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS,
+        )
+    }
+
+    /// Runs `f` inside a validation error scope and turns any validation error into a
+    /// [`GpuError::Validation`] naming `what` (a shader, a pipeline) instead of a panic.
+    pub fn checked<T>(
+        &self,
+        what: &str,
+        f: impl FnOnce(&wgpu::Device) -> T,
+    ) -> Result<T, GpuError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let value = f(&self.device);
+        match pollster::block_on(scope.pop()) {
+            None => Ok(value),
+            Some(error) => Err(GpuError::Validation {
+                what: what.to_owned(),
+                message: first_line(&error.to_string()),
+            }),
+        }
+    }
+
+    /// Compiles a WGSL shader; errors name the shader and carry naga's message.
+    pub fn shader(&self, name: &str, source: &str) -> Result<wgpu::ShaderModule, GpuError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(name),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        match pollster::block_on(scope.pop()) {
+            None => Ok(module),
+            Some(error) => Err(GpuError::Validation {
+                what: format!("shader {name}"),
+                message: error
+                    .to_string()
+                    .lines()
+                    .filter(|l| !l.trim().is_empty())
+                    .collect::<Vec<_>>()
+                    .join(" | "),
+            }),
+        }
+    }
+
+    /// Errors that escaped every scope since the last call.
+    pub fn take_uncaptured_errors(&self) -> Vec<String> {
+        self.uncaptured
+            .lock()
+            .map(|mut e| std::mem::take(&mut *e))
+            .unwrap_or_default()
+    }
+
+    /// A 2-D texture usable as render target, shader input and copy source.
+    pub fn render_target(
+        &self,
+        label: &str,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+    ) -> wgpu::Texture {
+        self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        })
+    }
+
+    /// Checks a 2-D size against the device's limit.
+    pub fn check_2d_size(&self, what: &str, width: u32, height: u32) -> Result<(), GpuError> {
+        let limit = self.device.limits().max_texture_dimension_2d;
+        if width == 0 || height == 0 || width > limit || height > limit {
+            return Err(GpuError::TooLarge {
+                what: what.to_owned(),
+                size: format!("{width}×{height}"),
+                limit: format!("{limit}×{limit} and at least 1×1"),
+            });
+        }
+        Ok(())
+    }
+
+    /// Uploads a scalar volume (x fastest) as an R32Float 3-D texture.
+    pub fn upload_volume(
+        &self,
+        label: &str,
+        dims: [u32; 3],
+        values: &[f32],
+    ) -> Result<wgpu::Texture, GpuError> {
+        let limit = self.device.limits().max_texture_dimension_3d;
+        if dims.iter().any(|&d| d == 0 || d > limit) {
+            return Err(GpuError::TooLarge {
+                what: format!("volume {label}"),
+                size: format!("{}×{}×{}", dims[0], dims[1], dims[2]),
+                limit: format!("{limit} voxels per axis"),
+            });
+        }
+        let desc = wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: dims[0],
+                height: dims[1],
+                depth_or_array_layers: dims[2],
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D3,
+            format: wgpu::TextureFormat::R32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        };
+        let bytes: &[u8] = bytemuck::cast_slice(values);
+        self.checked(&format!("uploading volume {label}"), |device| {
+            device.create_texture_with_data(
+                &self.queue,
+                &desc,
+                wgpu::util::TextureDataOrder::LayerMajor,
+                bytes,
+            )
+        })
+    }
+
+    /// A buffer initialised with `data`.
+    pub fn buffer_init(&self, label: &str, data: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        self.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: data,
+                usage,
+            })
+    }
+
+    /// Blocks until the GPU has finished everything submitted so far.
+    pub fn wait_idle(&self) {
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+}
+
+fn first_line(s: &str) -> String {
+    s.lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" | ")
+}

@@ -1,0 +1,11 @@
+//! hatchery's GPU layer: one headless wgpu device (a real GPU, or Mesa's software drivers on a
+//! machine without one), render-target and upload helpers, read-back, and per-node GPU timing.
+
+mod context;
+mod readback;
+mod timing;
+
+pub use context::{GpuContext, GpuError};
+pub use readback::TextureData;
+pub use timing::GpuTimer;
+pub use wgpu;

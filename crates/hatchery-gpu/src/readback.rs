@@ -1,0 +1,143 @@
+//! Reading textures back to the CPU: for tests, `--dump`, and saving images.
+
+use crate::context::{GpuContext, GpuError};
+
+/// Texels of a 2-D texture as f32, row-major from the top row, `channels` per texel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureData {
+    pub width: u32,
+    pub height: u32,
+    pub channels: u32,
+    pub data: Vec<f32>,
+}
+
+impl TextureData {
+    pub fn texel(&self, x: u32, y: u32) -> &[f32] {
+        let c = self.channels as usize;
+        let i = (y as usize * self.width as usize + x as usize) * c;
+        &self.data[i..i + c]
+    }
+}
+
+/// Bytes per texel and channel count of the formats hatchery reads back.
+fn layout(format: wgpu::TextureFormat) -> Option<(u32, u32)> {
+    use wgpu::TextureFormat::*;
+    Some(match format {
+        R32Float | Depth32Float => (4, 1),
+        Rg32Float => (8, 2),
+        Rgba32Float => (16, 4),
+        Rgba16Float => (8, 4),
+        R16Float => (2, 1),
+        Rgba8Unorm | Rgba8UnormSrgb | Bgra8Unorm => (4, 4),
+        R8Unorm => (1, 1),
+        _ => return None,
+    })
+}
+
+impl GpuContext {
+    /// Copies a 2-D texture to the CPU and converts its texels to f32.
+    pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<TextureData, GpuError> {
+        let format = texture.format();
+        let what = format!("a {format:?} texture");
+        let (bytes_per_texel, channels) = layout(format).ok_or_else(|| GpuError::Readback {
+            what: what.clone(),
+            message: "format not supported".into(),
+        })?;
+        let (width, height) = (texture.width(), texture.height());
+        let unpadded = width * bytes_per_texel;
+        let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: padded as u64 * height as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let aspect = if format.is_depth_stencil_format() {
+            wgpu::TextureAspect::DepthOnly
+        } else {
+            wgpu::TextureAspect::All
+        };
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([encoder.finish()]);
+        let bytes = self
+            .map_buffer(&buffer)
+            .map_err(|message| GpuError::Readback {
+                what: what.clone(),
+                message,
+            })?;
+
+        let mut data = Vec::with_capacity((width * height * channels) as usize);
+        for row in 0..height as usize {
+            let line = &bytes[row * padded as usize..row * padded as usize + unpadded as usize];
+            convert_row(format, line, &mut data);
+        }
+        Ok(TextureData {
+            width,
+            height,
+            channels,
+            data,
+        })
+    }
+
+    /// Maps a MAP_READ buffer and returns a copy of its contents, waiting for the GPU.
+    pub fn map_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
+        let (tx, rx) = std::sync::mpsc::channel();
+        buffer.map_async(wgpu::MapMode::Read, .., move |result| {
+            let _ = tx.send(result);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| e.to_string())?;
+        rx.recv()
+            .map_err(|e| e.to_string())?
+            .map_err(|e| e.to_string())?;
+        let bytes = buffer
+            .get_mapped_range(..)
+            .map_err(|e| e.to_string())?
+            .to_vec();
+        buffer.unmap();
+        Ok(bytes)
+    }
+}
+
+fn convert_row(format: wgpu::TextureFormat, line: &[u8], out: &mut Vec<f32>) {
+    use wgpu::TextureFormat::*;
+    match format {
+        R32Float | Depth32Float | Rg32Float | Rgba32Float => out.extend(
+            line.chunks_exact(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+        ),
+        Rgba16Float | R16Float => out.extend(
+            line.chunks_exact(2)
+                .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32()),
+        ),
+        Bgra8Unorm => {
+            for px in line.chunks_exact(4) {
+                out.extend([px[2], px[1], px[0], px[3]].map(|v| v as f32 / 255.0));
+            }
+        }
+        _ => out.extend(line.iter().map(|&v| v as f32 / 255.0)),
+    }
+}

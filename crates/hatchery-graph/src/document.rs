@@ -1,0 +1,359 @@
+//! The stored model: exactly what a graph file says, and its RON format (version 1).
+//!
+//! The document is written in one canonical layout (nodes sorted by id, parameters sorted by
+//! name, edges sorted), so that load → save reproduces a saved file byte for byte.
+
+use crate::error::{ErrorKind, GraphError};
+use crate::locate;
+use serde::Deserialize;
+use serde::de::{Deserializer, Error as _, MapAccess, Visitor};
+use std::collections::BTreeMap;
+use std::fmt::{self, Write as _};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The newest graph file format version this build reads and writes.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// A graph as stored in a file.
+#[derive(Clone, Debug, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GraphDocument {
+    pub version: u32,
+    #[serde(default)]
+    pub nodes: Vec<NodeDoc>,
+    #[serde(default)]
+    pub edges: Vec<EdgeDoc>,
+}
+
+/// One node: a stable human-readable id, its kind, the parameters that differ from or restate
+/// the defaults, and optionally where the editor shows it.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeDoc {
+    pub id: String,
+    pub kind: String,
+    #[serde(default, deserialize_with = "unique_params")]
+    pub params: BTreeMap<String, ron::Value>,
+    #[serde(default)]
+    pub editor: Option<EditorPos>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EditorPos {
+    pub x: f32,
+    pub y: f32,
+}
+
+/// An edge from an output port to an input port, both by node id and port *name*.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeDoc {
+    pub from: (String, String),
+    pub to: (String, String),
+}
+
+/// Only the version, read first so that a file of another version is reported as such and not
+/// as a confusing syntax error.
+#[derive(Deserialize)]
+struct VersionProbe {
+    version: u32,
+}
+
+fn unique_params<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<BTreeMap<String, ron::Value>, D::Error> {
+    struct UniqueMap;
+    impl<'de> Visitor<'de> for UniqueMap {
+        type Value = BTreeMap<String, ron::Value>;
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("a map from parameter names to values")
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+            let mut out = BTreeMap::new();
+            while let Some((key, value)) = map.next_entry::<String, ron::Value>()? {
+                if out.contains_key(&key) {
+                    return Err(A::Error::custom(format!("duplicate parameter `{key}`")));
+                }
+                out.insert(key, value);
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_map(UniqueMap)
+}
+
+/// Where a document came from: needed to point errors at file:line:col.
+#[derive(Clone, Debug, Default)]
+pub struct Source {
+    pub path: Option<PathBuf>,
+    pub text: String,
+}
+
+impl Source {
+    pub fn error(&self, offset: Option<usize>, kind: ErrorKind) -> GraphError {
+        GraphError {
+            file: self.path.clone(),
+            position: offset.map(|o| locate::line_col(&self.text, o)),
+            kind,
+        }
+    }
+    pub fn node_offset(&self, node: &str) -> Option<usize> {
+        locate::node_offset(&self.text, node)
+    }
+    pub fn param_offset(&self, node: &str, param: &str) -> Option<usize> {
+        locate::param_offset(&self.text, node, param).or_else(|| self.node_offset(node))
+    }
+    pub fn edge_offset(&self, edge: &EdgeDoc, side: &str) -> Option<usize> {
+        let (node, port) = if side == "from" { &edge.from } else { &edge.to };
+        locate::edge_end_offset(&self.text, side, node, port)
+    }
+}
+
+impl GraphDocument {
+    /// Parses graph text. `path` is only used in error messages.
+    pub fn parse(text: &str, path: Option<&Path>) -> Result<(GraphDocument, Source), GraphError> {
+        let source = Source {
+            path: path.map(Path::to_path_buf),
+            text: text.to_owned(),
+        };
+        let syntax = |e: ron::error::SpannedError| GraphError {
+            file: source.path.clone(),
+            position: Some((e.span.start.line, e.span.start.col)),
+            kind: ErrorKind::Syntax {
+                message: e.code.to_string(),
+            },
+        };
+        let probe: VersionProbe = ron::from_str(text).map_err(syntax)?;
+        if probe.version == 0 || probe.version > FORMAT_VERSION {
+            let offset = text.find("version");
+            return Err(source.error(
+                offset,
+                ErrorKind::UnsupportedVersion {
+                    found: probe.version,
+                    supported: FORMAT_VERSION,
+                },
+            ));
+        }
+        // Version 1 is the first format; later versions add explicit migrations here.
+        let doc: GraphDocument = ron::from_str(text).map_err(syntax)?;
+        Ok((doc, source))
+    }
+
+    /// Reads and parses a graph file.
+    pub fn load(path: &Path) -> Result<(GraphDocument, Source), GraphError> {
+        let text = std::fs::read_to_string(path).map_err(|e| GraphError {
+            file: Some(path.to_path_buf()),
+            position: None,
+            kind: ErrorKind::Io {
+                message: format!("cannot read graph file: {e}"),
+            },
+        })?;
+        Self::parse(&text, Some(path))
+    }
+
+    /// The canonical RON text of this document.
+    pub fn to_ron_string(&self) -> String {
+        let mut nodes: Vec<&NodeDoc> = self.nodes.iter().collect();
+        nodes.sort_by(|a, b| a.id.cmp(&b.id));
+        let mut edges: Vec<&EdgeDoc> = self.edges.iter().collect();
+        edges.sort();
+
+        let mut out = String::new();
+        out.push_str("(\n");
+        let _ = writeln!(out, "    version: {},", self.version);
+        out.push_str("    nodes: [\n");
+        for node in nodes {
+            out.push_str("        (\n");
+            let _ = writeln!(out, "            id: {},", string_literal(&node.id));
+            let _ = writeln!(out, "            kind: {},", string_literal(&node.kind));
+            if node.params.is_empty() {
+                out.push_str("            params: {},\n");
+            } else {
+                out.push_str("            params: {\n");
+                for (name, value) in &node.params {
+                    let _ = writeln!(
+                        out,
+                        "                {}: {},",
+                        string_literal(name),
+                        value_literal(value)
+                    );
+                }
+                out.push_str("            },\n");
+            }
+            if let Some(pos) = node.editor {
+                let _ = writeln!(
+                    out,
+                    "            editor: Some((x: {}, y: {})),",
+                    float_literal(pos.x as f64),
+                    float_literal(pos.y as f64)
+                );
+            }
+            out.push_str("        ),\n");
+        }
+        out.push_str("    ],\n");
+        out.push_str("    edges: [\n");
+        for edge in edges {
+            let _ = writeln!(
+                out,
+                "        (from: ({}, {}), to: ({}, {})),",
+                string_literal(&edge.from.0),
+                string_literal(&edge.from.1),
+                string_literal(&edge.to.0),
+                string_literal(&edge.to.1)
+            );
+        }
+        out.push_str("    ],\n");
+        out.push_str(")\n");
+        out
+    }
+
+    /// Writes the canonical text atomically: a temporary file in the same folder, flushed to
+    /// disk, then renamed over the target, so a crash never leaves a half-written graph.
+    pub fn save(&self, path: &Path) -> std::io::Result<()> {
+        let text = self.to_ron_string();
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("graph.ron");
+        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+        let result = (|| {
+            let mut file = std::fs::File::create(&tmp)?;
+            file.write_all(text.as_bytes())?;
+            file.sync_all()?;
+            std::fs::rename(&tmp, path)
+        })();
+        if result.is_err() {
+            let _ = std::fs::remove_file(&tmp);
+        }
+        result
+    }
+}
+
+fn string_literal(s: &str) -> String {
+    ron::to_string(s).unwrap_or_else(|_| format!("{s:?}"))
+}
+
+fn float_literal(x: f64) -> String {
+    ron::to_string(&x).unwrap_or_else(|_| format!("{x:?}"))
+}
+
+/// Parameter values inline: lists as `[a, b, c]`, everything else as RON writes it.
+fn value_literal(value: &ron::Value) -> String {
+    match value {
+        ron::Value::Seq(items) => {
+            format!(
+                "[{}]",
+                items
+                    .iter()
+                    .map(value_literal)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+        ron::Value::String(s) => string_literal(s),
+        other => ron::to_string(other).unwrap_or_else(|_| "()".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn canonical_text_round_trips_byte_for_byte() {
+        let text = r#"(
+    version: 1,
+    nodes: [
+        (
+            id: "a",
+            kind: "Camera",
+            params: {
+                "color": [1.0, 0.5, 0.0, 1.0],
+                "count": 3,
+                "name": "quote \" inside",
+                "x": 0.1,
+            },
+            editor: Some((x: 10.5, y: -3.0)),
+        ),
+        (
+            id: "b",
+            kind: "Light",
+            params: {},
+        ),
+    ],
+    edges: [
+        (from: ("a", "camera"), to: ("b", "camera")),
+    ],
+)
+"#;
+        let (doc, _) = GraphDocument::parse(text, None).unwrap();
+        assert_eq!(doc.nodes.len(), 2);
+        assert_eq!(doc.to_ron_string(), text);
+    }
+
+    #[test]
+    fn saving_sorts_nodes_and_edges() {
+        let text = r#"(version: 1, nodes: [(id: "z", kind: "K"), (id: "a", kind: "K")],
+            edges: [(from: ("z", "o"), to: ("a", "i")), (from: ("a", "o"), to: ("z", "i"))])"#;
+        let (doc, _) = GraphDocument::parse(text, None).unwrap();
+        let saved = doc.to_ron_string();
+        assert!(saved.find("\"a\"").unwrap() < saved.find("\"z\"").unwrap());
+        let (again, _) = GraphDocument::parse(&saved, None).unwrap();
+        assert_eq!(again.to_ron_string(), saved);
+    }
+
+    #[test]
+    fn syntax_errors_have_line_and_column() {
+        let err = GraphDocument::parse(
+            "(\n version: 1,\n nodes: [ (id: \"a\" kind: \"K\") ],\n)",
+            Some(Path::new("g.ron")),
+        )
+        .unwrap_err();
+        assert_eq!(err.position.map(|p| p.0), Some(3), "{err}");
+        assert!(err.to_string().starts_with("g.ron:3:"), "{err}");
+    }
+
+    #[test]
+    fn duplicate_parameters_are_refused() {
+        let err = GraphDocument::parse(
+            "(version: 1, nodes: [(id: \"a\", kind: \"K\", params: {\"x\": 1, \"x\": 2})])",
+            None,
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("duplicate parameter `x`"), "{err}");
+    }
+
+    #[test]
+    fn future_versions_are_refused_by_name() {
+        let err =
+            GraphDocument::parse("(version: 7, nodes: [], something_new: 3)", None).unwrap_err();
+        assert!(
+            matches!(err.kind, ErrorKind::UnsupportedVersion { found: 7, .. }),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn save_is_atomic_and_leaves_no_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("g.ron");
+        let doc = GraphDocument {
+            version: 1,
+            ..Default::default()
+        };
+        doc.save(&path).unwrap();
+        doc.save(&path).unwrap();
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("g.ron")]);
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), doc.to_ron_string());
+    }
+}

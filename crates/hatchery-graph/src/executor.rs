@@ -1,0 +1,321 @@
+//! The caching executor: pulls from target nodes in topological order and re-runs a node only
+//! when its parameters or its inputs' versions changed.
+
+use crate::graph::Graph;
+use crate::param::Params;
+use crate::schema::{NodeError, NodeSchema, SchemaLookup};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::fmt;
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::time::{Duration, Instant};
+
+/// A node kind's behaviour. `V` is the value type flowing along edges, `C` the context
+/// (the GPU) a node runs in.
+pub trait Node<V, C>: Send + Sync {
+    fn schema(&self) -> NodeSchema;
+    /// Turns inputs into one value per output port, in the schema's order.
+    fn execute(
+        &self,
+        ctx: &mut C,
+        inputs: &NodeInputs<V>,
+        params: &Params,
+    ) -> Result<Vec<V>, NodeError>;
+}
+
+/// Hooks the executor calls around each node; the GPU context uses them for timestamps.
+pub trait ExecContext {
+    /// Anything outside parameters and inputs that frame-dependent nodes read (the frame size).
+    fn frame_key(&self) -> u64 {
+        0
+    }
+    fn begin_node(&mut self, _node: &str) {}
+    fn end_node(&mut self, _node: &str) {}
+    /// Called at the end of a pass: GPU time per node, where the device could measure it.
+    fn finish_pass(&mut self) -> Vec<(String, Duration)> {
+        Vec::new()
+    }
+}
+
+/// All node kinds, by name.
+pub struct Registry<V, C> {
+    kinds: BTreeMap<&'static str, (NodeSchema, Box<dyn Node<V, C>>)>,
+}
+
+impl<V, C> Default for Registry<V, C> {
+    fn default() -> Self {
+        Self {
+            kinds: BTreeMap::new(),
+        }
+    }
+}
+
+impl<V, C> Registry<V, C> {
+    pub fn register(&mut self, node: impl Node<V, C> + 'static) {
+        let schema = node.schema();
+        self.kinds.insert(schema.kind, (schema, Box::new(node)));
+    }
+    pub fn node(&self, kind: &str) -> Option<&dyn Node<V, C>> {
+        self.kinds.get(kind).map(|(_, n)| n.as_ref())
+    }
+    pub fn schemas(&self) -> impl Iterator<Item = &NodeSchema> {
+        self.kinds.values().map(|(s, _)| s)
+    }
+}
+
+impl<V, C> SchemaLookup for Registry<V, C> {
+    fn schema(&self, kind: &str) -> Option<&NodeSchema> {
+        self.kinds.get(kind).map(|(s, _)| s)
+    }
+    fn kinds(&self) -> Vec<&'static str> {
+        self.kinds.keys().copied().collect()
+    }
+}
+
+/// The values on a node's input ports, by the schema's port names.
+pub struct NodeInputs<V> {
+    names: Vec<&'static str>,
+    values: Vec<Option<V>>,
+}
+
+impl<V> NodeInputs<V> {
+    pub fn new(names: Vec<&'static str>, values: Vec<Option<V>>) -> Self {
+        Self { names, values }
+    }
+    /// An optional input: `None` when nothing is connected.
+    pub fn get(&self, name: &str) -> Option<&V> {
+        let i = self.names.iter().position(|n| *n == name)?;
+        self.values[i].as_ref()
+    }
+    /// A required input; an error naming the port when it is missing.
+    pub fn require(&self, name: &str) -> Result<&V, NodeError> {
+        self.get(name)
+            .ok_or_else(|| NodeError::at_port(name, "input is not connected"))
+    }
+}
+
+/// An execution error, naming the node and, where known, the port.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExecError {
+    pub node: String,
+    pub kind: String,
+    pub port: Option<String>,
+    pub message: String,
+}
+
+impl fmt::Display for ExecError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "node `{}` ({})", self.node, self.kind)?;
+        if let Some(port) = &self.port {
+            write!(f, ", port `{port}`")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for ExecError {}
+
+/// What the executor measured for one node.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NodeStats {
+    /// How many times `execute` ran.
+    pub executions: u64,
+    /// How many passes reused the cached output.
+    pub cache_hits: u64,
+    /// CPU time of the last execution (encoding GPU work, or the CPU work itself).
+    pub cpu_time: Duration,
+    /// GPU time of the last execution, where the adapter has timestamp queries.
+    pub gpu_time: Option<Duration>,
+}
+
+struct CacheEntry<V> {
+    key: u64,
+    version: u64,
+    outputs: Vec<V>,
+}
+
+/// What one pass did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PassReport {
+    /// Nodes that ran, in order.
+    pub executed: Vec<String>,
+    /// Nodes whose cached output was reused.
+    pub cached: Vec<String>,
+}
+
+/// Runs graphs, keeping every node's outputs between passes.
+pub struct Executor<V> {
+    cache: HashMap<String, CacheEntry<V>>,
+    next_version: u64,
+    stats: BTreeMap<String, NodeStats>,
+}
+
+impl<V> Default for Executor<V> {
+    fn default() -> Self {
+        Self {
+            cache: HashMap::new(),
+            next_version: 1,
+            stats: BTreeMap::new(),
+        }
+    }
+}
+
+impl<V: Clone> Executor<V> {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Runs what is needed for `targets` (node ids); with no targets, every sink node (or, if the
+    /// graph has none, every node whose outputs go nowhere).
+    pub fn run<C: ExecContext>(
+        &mut self,
+        graph: &Graph,
+        registry: &Registry<V, C>,
+        ctx: &mut C,
+        targets: &[&str],
+    ) -> Result<PassReport, ExecError> {
+        let wanted = self.needed_nodes(graph, registry, targets)?;
+        // Forget nodes that left the graph.
+        self.cache.retain(|id, _| graph.node(id).is_some());
+        self.stats.retain(|id, _| graph.node(id).is_some());
+
+        let mut report = PassReport::default();
+        for id in graph.topological_order() {
+            if !wanted.contains(id) {
+                continue;
+            }
+            let node = graph.node(id).expect("id from the graph");
+            let (schema, behaviour) = registry
+                .kinds
+                .get(node.kind.as_str())
+                .expect("validated kind");
+            let fail = |port: Option<String>, message: String| ExecError {
+                node: id.to_owned(),
+                kind: node.kind.clone(),
+                port,
+                message,
+            };
+
+            let mut hasher = DefaultHasher::new();
+            node.kind.hash(&mut hasher);
+            node.params.values().hash(&mut hasher);
+            if schema.frame_dependent {
+                ctx.frame_key().hash(&mut hasher);
+            }
+            let sources = graph.input_sources(id);
+            let mut values = Vec::with_capacity(schema.inputs.len());
+            for port in 0..schema.inputs.len() {
+                let value = match sources.get(&port) {
+                    Some(&(source, out_port)) => {
+                        let entry = self.cache.get(source).expect("inputs run first");
+                        (port, source, entry.version, out_port).hash(&mut hasher);
+                        Some(entry.outputs[out_port].clone())
+                    }
+                    None => None,
+                };
+                values.push(value);
+            }
+            let key = hasher.finish();
+
+            let stats = self.stats.entry(id.to_owned()).or_default();
+            if !schema.sink && self.cache.get(id).is_some_and(|e| e.key == key) {
+                stats.cache_hits += 1;
+                report.cached.push(id.to_owned());
+                continue;
+            }
+
+            let inputs = NodeInputs::new(schema.inputs.iter().map(|p| p.name).collect(), values);
+            tracing::debug!(node = id, kind = node.kind, "executing");
+            ctx.begin_node(id);
+            let start = Instant::now();
+            let result = behaviour.execute(ctx, &inputs, &node.params);
+            let elapsed = start.elapsed();
+            ctx.end_node(id);
+            let outputs = result.map_err(|e| fail(e.port, e.message))?;
+            if outputs.len() != schema.outputs.len() {
+                return Err(fail(
+                    None,
+                    format!(
+                        "produced {} outputs, its schema declares {}",
+                        outputs.len(),
+                        schema.outputs.len()
+                    ),
+                ));
+            }
+            stats.executions += 1;
+            stats.cpu_time = elapsed;
+            stats.gpu_time = None;
+            let version = self.next_version;
+            self.next_version += 1;
+            self.cache.insert(
+                id.to_owned(),
+                CacheEntry {
+                    key,
+                    version,
+                    outputs,
+                },
+            );
+            report.executed.push(id.to_owned());
+        }
+        for (node, gpu) in ctx.finish_pass() {
+            if let Some(stats) = self.stats.get_mut(&node) {
+                stats.gpu_time = Some(gpu);
+            }
+        }
+        Ok(report)
+    }
+
+    fn needed_nodes<'g, C>(
+        &self,
+        graph: &'g Graph,
+        registry: &Registry<V, C>,
+        targets: &[&str],
+    ) -> Result<BTreeSet<&'g str>, ExecError> {
+        let mut stack: Vec<&str> = Vec::new();
+        for &target in targets {
+            let node = graph.node(target).ok_or_else(|| ExecError {
+                node: target.to_owned(),
+                kind: String::new(),
+                port: None,
+                message: "no node with this id in the graph".into(),
+            })?;
+            stack.push(node.id.as_str());
+        }
+        if targets.is_empty() {
+            let sinks: Vec<&str> = graph
+                .nodes()
+                .filter(|n| registry.schema(&n.kind).is_some_and(|s| s.sink))
+                .map(|n| n.id.as_str())
+                .collect();
+            stack = if sinks.is_empty() {
+                graph
+                    .nodes()
+                    .filter(|n| !graph.has_consumers(&n.id))
+                    .map(|n| n.id.as_str())
+                    .collect()
+            } else {
+                sinks
+            };
+        }
+        let mut needed = BTreeSet::new();
+        while let Some(id) = stack.pop() {
+            if needed.insert(id) {
+                stack.extend(graph.input_sources(id).values().map(|(source, _)| *source));
+            }
+        }
+        Ok(needed)
+    }
+
+    /// A node's output from the last pass that ran it.
+    pub fn output(&self, node: &str, port: usize) -> Option<&V> {
+        self.cache.get(node).and_then(|e| e.outputs.get(port))
+    }
+
+    pub fn stats(&self) -> &BTreeMap<String, NodeStats> {
+        &self.stats
+    }
+
+    /// Drops every cached output (the next pass re-runs everything).
+    pub fn clear(&mut self) {
+        self.cache.clear();
+    }
+}

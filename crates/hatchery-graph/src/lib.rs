@@ -1,0 +1,24 @@
+//! The graph model of hatchery.
+//!
+//! Two models, converted both ways:
+//! - [`document::GraphDocument`] is what a `.ron` file says: nodes by id, ports by *name*,
+//!   sorted, with the raw parameter values as written. It is stable on disk.
+//! - [`graph::Graph`] is the validated runtime graph (petgraph) the [`executor::Executor`] runs:
+//!   ports by index, typed parameters. Reordering a node's ports never breaks saved files.
+
+pub mod document;
+pub mod error;
+pub mod executor;
+pub mod graph;
+mod locate;
+pub mod param;
+pub mod port;
+pub mod schema;
+
+pub use document::{EdgeDoc, EditorPos, FORMAT_VERSION, GraphDocument, NodeDoc};
+pub use error::{ErrorKind, GraphError, GraphErrors};
+pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Registry};
+pub use graph::{Graph, NodeInstance};
+pub use param::{ParamKind, ParamSpec, ParamValue, Params};
+pub use port::PortType;
+pub use schema::{NodeError, NodeSchema, PortSpec, SchemaLookup};

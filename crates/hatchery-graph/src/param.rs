@@ -1,0 +1,437 @@
+//! Typed node parameters: kinds with defaults and ranges, values, and their conversion
+//! from and to the raw RON values of a graph file.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// What a parameter holds, with its range where it has one.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamKind {
+    Float {
+        min: f64,
+        max: f64,
+    },
+    Int {
+        min: i64,
+        max: i64,
+    },
+    Bool,
+    /// One of a fixed set of names.
+    Choice(&'static [&'static str]),
+    /// RGBA, each channel in 0..=1.
+    Color,
+    Vec3,
+    /// A file path; relative paths in a graph file are relative to that file's folder.
+    Path,
+    Text,
+}
+
+impl ParamKind {
+    /// Short description of the expected value, for error messages and docs.
+    pub fn describe(&self) -> String {
+        match self {
+            ParamKind::Float { min, max } => format!("a number in [{min}, {max}]"),
+            ParamKind::Int { min, max } => format!("an integer in [{min}, {max}]"),
+            ParamKind::Bool => "true or false".into(),
+            ParamKind::Choice(names) => format!("one of {}", quote_list(names)),
+            ParamKind::Color => "a colour [r, g, b, a] with channels in [0, 1]".into(),
+            ParamKind::Vec3 => "a vector [x, y, z]".into(),
+            ParamKind::Path => "a file path string".into(),
+            ParamKind::Text => "a string".into(),
+        }
+    }
+
+    /// Name of the kind in the node catalogue.
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            ParamKind::Float { .. } => "float",
+            ParamKind::Int { .. } => "int",
+            ParamKind::Bool => "bool",
+            ParamKind::Choice(_) => "choice",
+            ParamKind::Color => "color",
+            ParamKind::Vec3 => "vec3",
+            ParamKind::Path => "path",
+            ParamKind::Text => "text",
+        }
+    }
+}
+
+pub(crate) fn quote_list(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// One parameter of a node kind: name, kind, default and a one-line doc.
+#[derive(Clone, Debug)]
+pub struct ParamSpec {
+    pub name: &'static str,
+    pub kind: ParamKind,
+    pub default: ParamValue,
+    pub doc: &'static str,
+}
+
+impl ParamSpec {
+    pub fn float(name: &'static str, default: f64, min: f64, max: f64, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Float { min, max },
+            default: ParamValue::Float(default),
+            doc,
+        }
+    }
+    pub fn int(name: &'static str, default: i64, min: i64, max: i64, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Int { min, max },
+            default: ParamValue::Int(default),
+            doc,
+        }
+    }
+    pub fn bool(name: &'static str, default: bool, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Bool,
+            default: ParamValue::Bool(default),
+            doc,
+        }
+    }
+    pub fn choice(
+        name: &'static str,
+        default: &'static str,
+        choices: &'static [&'static str],
+        doc: &'static str,
+    ) -> Self {
+        debug_assert!(choices.contains(&default));
+        Self {
+            name,
+            kind: ParamKind::Choice(choices),
+            default: ParamValue::Choice(default.into()),
+            doc,
+        }
+    }
+    pub fn color(name: &'static str, default: [f64; 4], doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Color,
+            default: ParamValue::Color(default),
+            doc,
+        }
+    }
+    pub fn vec3(name: &'static str, default: [f64; 3], doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Vec3,
+            default: ParamValue::Vec3(default),
+            doc,
+        }
+    }
+    pub fn path(name: &'static str, default: &'static str, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Path,
+            default: ParamValue::Path(default.into()),
+            doc,
+        }
+    }
+    pub fn text(name: &'static str, default: &'static str, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Text,
+            default: ParamValue::Text(default.into()),
+            doc,
+        }
+    }
+
+    /// Converts a raw value from a graph file, checking type and range.
+    pub fn convert(&self, raw: &ron::Value) -> Result<ParamValue, String> {
+        let found = describe_raw(raw);
+        let wrong = || format!("expected {}, found {found}", self.kind.describe());
+        let value = match &self.kind {
+            ParamKind::Float { .. } => ParamValue::Float(as_f64(raw).ok_or_else(wrong)?),
+            ParamKind::Int { .. } => ParamValue::Int(as_i64(raw).ok_or_else(wrong)?),
+            ParamKind::Bool => match raw {
+                ron::Value::Bool(b) => ParamValue::Bool(*b),
+                _ => return Err(wrong()),
+            },
+            ParamKind::Choice(_) => ParamValue::Choice(as_str(raw).ok_or_else(wrong)?.to_owned()),
+            ParamKind::Path => ParamValue::Path(as_str(raw).ok_or_else(wrong)?.to_owned()),
+            ParamKind::Text => ParamValue::Text(as_str(raw).ok_or_else(wrong)?.to_owned()),
+            ParamKind::Color => {
+                let v = as_floats(raw)
+                    .filter(|v| v.len() == 4 || v.len() == 3)
+                    .ok_or_else(wrong)?;
+                ParamValue::Color([v[0], v[1], v[2], v.get(3).copied().unwrap_or(1.0)])
+            }
+            ParamKind::Vec3 => {
+                let v = as_floats(raw).filter(|v| v.len() == 3).ok_or_else(wrong)?;
+                ParamValue::Vec3([v[0], v[1], v[2]])
+            }
+        };
+        self.check(&value)?;
+        Ok(value)
+    }
+
+    /// Checks a typed value against this spec's kind and range.
+    pub fn check(&self, value: &ParamValue) -> Result<(), String> {
+        match (&self.kind, value) {
+            (ParamKind::Float { min, max }, ParamValue::Float(v)) => {
+                if !v.is_finite() || v < min || v > max {
+                    return Err(format!("value {v} is out of range [{min}, {max}]"));
+                }
+            }
+            (ParamKind::Int { min, max }, ParamValue::Int(v)) => {
+                if v < min || v > max {
+                    return Err(format!("value {v} is out of range [{min}, {max}]"));
+                }
+            }
+            (ParamKind::Choice(names), ParamValue::Choice(c)) => {
+                if !names.contains(&c.as_str()) {
+                    return Err(format!("\"{c}\" is not one of {}", quote_list(names)));
+                }
+            }
+            (ParamKind::Color, ParamValue::Color(c)) => {
+                if c.iter().any(|x| !x.is_finite() || *x < 0.0 || *x > 1.0) {
+                    return Err(format!("colour {c:?} has a channel outside [0, 1]"));
+                }
+            }
+            (ParamKind::Vec3, ParamValue::Vec3(v)) => {
+                if v.iter().any(|x| !x.is_finite()) {
+                    return Err(format!("vector {v:?} is not finite"));
+                }
+            }
+            (ParamKind::Bool, ParamValue::Bool(_))
+            | (ParamKind::Path, ParamValue::Path(_))
+            | (ParamKind::Text, ParamValue::Text(_)) => {}
+            (kind, v) => return Err(format!("expected {}, found {}", kind.describe(), v)),
+        }
+        Ok(())
+    }
+
+    /// Parses a value typed on the command line (`--set node.param=value`).
+    pub fn parse_cli(&self, text: &str) -> Result<ParamValue, String> {
+        let text = text.trim();
+        let value = match &self.kind {
+            ParamKind::Path => ParamValue::Path(text.to_owned()),
+            ParamKind::Text => ParamValue::Text(text.to_owned()),
+            ParamKind::Choice(_) => ParamValue::Choice(text.trim_matches('"').to_owned()),
+            _ => {
+                // Numbers, bools and lists: RON syntax, plus bare comma lists ("1,0,0").
+                let wrapped = if text.contains(',') && !text.starts_with(['[', '(']) {
+                    format!("[{text}]")
+                } else {
+                    text.to_owned()
+                };
+                let raw: ron::Value = ron::from_str(&wrapped)
+                    .map_err(|_| format!("cannot read `{text}` as {}", self.kind.describe()))?;
+                return self.convert(&raw);
+            }
+        };
+        self.check(&value)?;
+        Ok(value)
+    }
+}
+
+/// A typed parameter value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamValue {
+    Float(f64),
+    Int(i64),
+    Bool(bool),
+    Choice(String),
+    Color([f64; 4]),
+    Vec3([f64; 3]),
+    Path(String),
+    Text(String),
+}
+
+impl ParamValue {
+    /// The raw RON value written to a graph file.
+    pub fn to_ron(&self) -> ron::Value {
+        let num = |x: f64| ron::Value::Number(ron::Number::new(x));
+        match self {
+            ParamValue::Float(x) => num(*x),
+            ParamValue::Int(i) => ron::Value::Number(ron::Number::new(*i)),
+            ParamValue::Bool(b) => ron::Value::Bool(*b),
+            ParamValue::Choice(s) | ParamValue::Path(s) | ParamValue::Text(s) => {
+                ron::Value::String(s.clone())
+            }
+            ParamValue::Color(c) => ron::Value::Seq(c.iter().map(|x| num(*x)).collect()),
+            ParamValue::Vec3(v) => ron::Value::Seq(v.iter().map(|x| num(*x)).collect()),
+        }
+    }
+}
+
+impl fmt::Display for ParamValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParamValue::Float(x) => write!(f, "{x}"),
+            ParamValue::Int(i) => write!(f, "{i}"),
+            ParamValue::Bool(b) => write!(f, "{b}"),
+            ParamValue::Choice(s) | ParamValue::Path(s) | ParamValue::Text(s) => {
+                write!(f, "\"{s}\"")
+            }
+            ParamValue::Color(c) => write!(f, "[{}, {}, {}, {}]", c[0], c[1], c[2], c[3]),
+            ParamValue::Vec3(v) => write!(f, "[{}, {}, {}]", v[0], v[1], v[2]),
+        }
+    }
+}
+
+impl Hash for ParamValue {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        std::mem::discriminant(self).hash(state);
+        match self {
+            ParamValue::Float(x) => x.to_bits().hash(state),
+            ParamValue::Int(i) => i.hash(state),
+            ParamValue::Bool(b) => b.hash(state),
+            ParamValue::Choice(s) | ParamValue::Path(s) | ParamValue::Text(s) => s.hash(state),
+            ParamValue::Color(c) => c.iter().for_each(|x| x.to_bits().hash(state)),
+            ParamValue::Vec3(v) => v.iter().for_each(|x| x.to_bits().hash(state)),
+        }
+    }
+}
+
+fn as_f64(raw: &ron::Value) -> Option<f64> {
+    match raw {
+        ron::Value::Number(n) => Some(n.into_f64()),
+        _ => None,
+    }
+}
+
+fn as_i64(raw: &ron::Value) -> Option<i64> {
+    match raw {
+        ron::Value::Number(n) => {
+            let f = n.into_f64();
+            // Integers only; 3.0 is accepted, 3.5 is not.
+            (f.fract() == 0.0 && f.abs() < 9.0e15).then_some(f as i64)
+        }
+        _ => None,
+    }
+}
+
+fn as_str(raw: &ron::Value) -> Option<&str> {
+    match raw {
+        ron::Value::String(s) => Some(s),
+        _ => None,
+    }
+}
+
+fn as_floats(raw: &ron::Value) -> Option<Vec<f64>> {
+    match raw {
+        ron::Value::Seq(items) => items.iter().map(as_f64).collect(),
+        _ => None,
+    }
+}
+
+fn describe_raw(raw: &ron::Value) -> String {
+    match raw {
+        ron::Value::Bool(b) => format!("{b}"),
+        ron::Value::Number(n) => format!("{}", n.into_f64()),
+        ron::Value::String(s) => format!("the string \"{s}\""),
+        ron::Value::Seq(items) => format!("a list of {} items", items.len()),
+        ron::Value::Map(_) => "a map".into(),
+        ron::Value::Option(_) => "an option".into(),
+        ron::Value::Char(c) => format!("the character '{c}'"),
+        ron::Value::Bytes(_) => "bytes".into(),
+        ron::Value::Unit => "()".into(),
+    }
+}
+
+/// The validated parameters of one node instance, as handed to `execute`.
+#[derive(Clone, Debug, Default)]
+pub struct Params {
+    values: BTreeMap<String, ParamValue>,
+    /// Folder that relative paths are resolved against (the graph file's folder).
+    base_dir: Option<Arc<Path>>,
+}
+
+impl Params {
+    pub fn new(values: BTreeMap<String, ParamValue>, base_dir: Option<Arc<Path>>) -> Self {
+        Self { values, base_dir }
+    }
+
+    pub fn values(&self) -> &BTreeMap<String, ParamValue> {
+        &self.values
+    }
+
+    pub fn get(&self, name: &str) -> Option<&ParamValue> {
+        self.values.get(name)
+    }
+
+    pub(crate) fn set(&mut self, name: &str, value: ParamValue) {
+        self.values.insert(name.to_owned(), value);
+    }
+
+    pub fn base_dir(&self) -> Option<&Path> {
+        self.base_dir.as_deref()
+    }
+
+    // The typed getters below are called by node code with names from its own schema, whose
+    // values the loader has already checked; a miss is a bug in that node, not bad user input.
+    fn expect(&self, name: &str) -> &ParamValue {
+        self.values.get(name).unwrap_or_else(|| {
+            panic!("node code asked for parameter `{name}` missing from its schema")
+        })
+    }
+
+    pub fn float(&self, name: &str) -> f64 {
+        match self.expect(name) {
+            ParamValue::Float(x) => *x,
+            ParamValue::Int(i) => *i as f64,
+            other => panic!("parameter `{name}` is {other}, not a float"),
+        }
+    }
+    pub fn f32(&self, name: &str) -> f32 {
+        self.float(name) as f32
+    }
+    pub fn int(&self, name: &str) -> i64 {
+        match self.expect(name) {
+            ParamValue::Int(i) => *i,
+            other => panic!("parameter `{name}` is {other}, not an int"),
+        }
+    }
+    pub fn bool(&self, name: &str) -> bool {
+        match self.expect(name) {
+            ParamValue::Bool(b) => *b,
+            other => panic!("parameter `{name}` is {other}, not a bool"),
+        }
+    }
+    pub fn choice(&self, name: &str) -> &str {
+        match self.expect(name) {
+            ParamValue::Choice(s) => s,
+            other => panic!("parameter `{name}` is {other}, not a choice"),
+        }
+    }
+    pub fn color(&self, name: &str) -> [f32; 4] {
+        match self.expect(name) {
+            ParamValue::Color(c) => c.map(|x| x as f32),
+            other => panic!("parameter `{name}` is {other}, not a colour"),
+        }
+    }
+    pub fn vec3(&self, name: &str) -> [f32; 3] {
+        match self.expect(name) {
+            ParamValue::Vec3(v) => v.map(|x| x as f32),
+            other => panic!("parameter `{name}` is {other}, not a vector"),
+        }
+    }
+    pub fn text(&self, name: &str) -> &str {
+        match self.expect(name) {
+            ParamValue::Text(s) | ParamValue::Path(s) => s,
+            other => panic!("parameter `{name}` is {other}, not text"),
+        }
+    }
+    /// A path parameter resolved against the graph file's folder. Empty stays empty.
+    pub fn path(&self, name: &str) -> PathBuf {
+        let raw = self.text(name);
+        let path = PathBuf::from(raw);
+        match &self.base_dir {
+            Some(base) if !raw.is_empty() && path.is_relative() => base.join(path),
+            _ => path,
+        }
+    }
+}

@@ -1,0 +1,200 @@
+//! `Camera`: an orbit camera, perspective or orthographic.
+
+use crate::{Ctx, Value};
+// wgpu's clip space: right-handed view, NDC y up, depth in [0, 1] (the Direct3D convention).
+use glam::camera::rh::{proj::directx, view::look_at_mat4};
+use glam::{Mat4, Vec3};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+/// View and projection for one frame size. Depth range is wgpu's [0, 1].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub view: Mat4,
+    pub proj: Mat4,
+    pub eye: Vec3,
+    pub orthographic: bool,
+    pub near: f32,
+    pub far: f32,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Camera {
+    /// Orbit camera looking at `target` from `distance`, angles in degrees. With `up_z`, elevation
+    /// is measured from the xy plane and azimuth 0 looks along -y (medical RAS data); otherwise
+    /// azimuth 0, elevation 0 looks along -z with +y up, so view space equals world space shifted.
+    #[allow(clippy::too_many_arguments)]
+    pub fn orbit(
+        target: Vec3,
+        azimuth_deg: f32,
+        elevation_deg: f32,
+        distance: f32,
+        fov_y_deg: f32,
+        orthographic: bool,
+        near: f32,
+        far: f32,
+        up_z: bool,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
+        let (offset, up) = if up_z {
+            (
+                Vec3::new(az.sin() * el.cos(), -az.cos() * el.cos(), el.sin()),
+                Vec3::Z,
+            )
+        } else {
+            (
+                Vec3::new(az.sin() * el.cos(), el.sin(), az.cos() * el.cos()),
+                Vec3::Y,
+            )
+        };
+        let eye = target + offset * distance;
+        // Looking straight along the up axis: pick another up so the view stays defined.
+        let up = if offset.cross(up).length_squared() < 1e-8 {
+            if up_z { Vec3::Y } else { -Vec3::Z }
+        } else {
+            up
+        };
+        let view = look_at_mat4(eye, target, up);
+        let aspect = width as f32 / height as f32;
+        let fov = fov_y_deg.to_radians();
+        let proj = if orthographic {
+            let half_h = distance * (fov / 2.0).tan();
+            let half_w = half_h * aspect;
+            directx::orthographic(-half_w, half_w, -half_h, half_h, near, far)
+        } else {
+            directx::perspective(fov, aspect, near, far)
+        };
+        Camera {
+            view,
+            proj,
+            eye,
+            orthographic,
+            near,
+            far,
+            width,
+            height,
+        }
+    }
+
+    pub fn view_proj(&self) -> Mat4 {
+        self.proj * self.view
+    }
+
+    /// The uniform block shared by mesh shaders (`CameraUniform` in WGSL).
+    pub fn uniform(&self) -> CameraUniform {
+        CameraUniform {
+            view: self.view.to_cols_array_2d(),
+            proj: self.proj.to_cols_array_2d(),
+            eye: [
+                self.eye.x,
+                self.eye.y,
+                self.eye.z,
+                if self.orthographic { 1.0 } else { 0.0 },
+            ],
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CameraUniform {
+    pub view: [[f32; 4]; 4],
+    pub proj: [[f32; 4]; 4],
+    /// World eye position; w = 1 for orthographic.
+    pub eye: [f32; 4],
+}
+
+pub struct CameraNode;
+
+impl Node<Value, Ctx> for CameraNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "Camera",
+            category: "Scene",
+            doc: "Orbit camera around a target point, perspective or orthographic. Orthographic views \
+                  show a height of 2·distance·tan(fov/2); azimuth 0, elevation 0 with up \"y\" looks \
+                  along -z (axis-aligned).",
+            inputs: vec![],
+            outputs: vec![PortSpec::output(
+                "camera",
+                PortType::Camera,
+                "view and projection for the frame",
+            )],
+            params: vec![
+                ParamSpec::float(
+                    "azimuth",
+                    30.0,
+                    -360.0,
+                    360.0,
+                    "rotation around the up axis, degrees",
+                ),
+                ParamSpec::float(
+                    "elevation",
+                    20.0,
+                    -90.0,
+                    90.0,
+                    "angle above the horizontal plane, degrees",
+                ),
+                ParamSpec::float(
+                    "distance",
+                    3.5,
+                    1e-4,
+                    1e6,
+                    "distance from the target, world units",
+                ),
+                ParamSpec::vec3("target", [0.0, 0.0, 0.0], "point looked at, world units"),
+                ParamSpec::float("fov", 40.0, 1.0, 170.0, "vertical field of view, degrees"),
+                ParamSpec::choice(
+                    "projection",
+                    "perspective",
+                    &["perspective", "orthographic"],
+                    "projection type",
+                ),
+                ParamSpec::choice(
+                    "up",
+                    "y",
+                    &["y", "z"],
+                    "world axis that points up on screen",
+                ),
+                ParamSpec::float("near", 0.05, 1e-5, 1e6, "near clipping distance"),
+                ParamSpec::float("far", 100.0, 1e-4, 1e7, "far clipping distance"),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        _inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let (near, far) = (p.f32("near"), p.f32("far"));
+        if near >= far {
+            return Err(NodeError::new(format!(
+                "near ({near}) must be less than far ({far})"
+            )));
+        }
+        let (width, height) = ctx.size();
+        let camera = Camera::orbit(
+            Vec3::from(p.vec3("target")),
+            p.f32("azimuth"),
+            p.f32("elevation"),
+            p.f32("distance"),
+            p.f32("fov"),
+            p.choice("projection") == "orthographic",
+            near,
+            far,
+            p.choice("up") == "z",
+            width,
+            height,
+        );
+        Ok(vec![Value::Camera(Arc::new(camera))])
+    }
+}

@@ -1,0 +1,92 @@
+//! The context nodes execute in: the GPU, the frame size, cached pipelines, GPU timing.
+
+use hatchery_gpu::{GpuContext, GpuError, GpuTimer};
+use hatchery_graph::ExecContext;
+use std::any::Any;
+use std::collections::HashMap;
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::sync::Arc;
+use std::time::Duration;
+
+pub struct RenderContext {
+    pub gpu: GpuContext,
+    width: u32,
+    height: u32,
+    timer: Option<GpuTimer>,
+    /// Pipelines and other static GPU objects, built once per kind (not per execution).
+    statics: HashMap<&'static str, Arc<dyn Any + Send + Sync>>,
+}
+
+impl RenderContext {
+    pub fn new(gpu: GpuContext, width: u32, height: u32) -> Result<Self, GpuError> {
+        gpu.check_2d_size("the frame", width, height)?;
+        Ok(Self {
+            gpu,
+            width,
+            height,
+            timer: None,
+            statics: HashMap::new(),
+        })
+    }
+
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    pub fn set_size(&mut self, width: u32, height: u32) -> Result<(), GpuError> {
+        self.gpu.check_2d_size("the frame", width, height)?;
+        self.width = width;
+        self.height = height;
+        Ok(())
+    }
+
+    /// Turns per-node GPU timestamps on (where the adapter has them). Returns whether they are on.
+    pub fn enable_gpu_timing(&mut self) -> bool {
+        if self.timer.is_none() {
+            self.timer = GpuTimer::new(&self.gpu, 512);
+        }
+        self.timer.is_some()
+    }
+
+    /// A static GPU object (pipeline, layout, sampler) built once under `key`.
+    pub fn cached<T: Any + Send + Sync>(
+        &mut self,
+        key: &'static str,
+        build: impl FnOnce(&GpuContext) -> Result<T, GpuError>,
+    ) -> Result<Arc<T>, GpuError> {
+        if let Some(existing) = self
+            .statics
+            .get(key)
+            .and_then(|v| v.clone().downcast::<T>().ok())
+        {
+            return Ok(existing);
+        }
+        let built = Arc::new(build(&self.gpu)?);
+        self.statics.insert(key, built.clone());
+        Ok(built)
+    }
+}
+
+impl ExecContext for RenderContext {
+    fn frame_key(&self) -> u64 {
+        let mut h = DefaultHasher::new();
+        (self.width, self.height).hash(&mut h);
+        h.finish()
+    }
+    fn begin_node(&mut self, node: &str) {
+        if let Some(timer) = &mut self.timer {
+            timer.begin(&self.gpu, node);
+        }
+    }
+    fn end_node(&mut self, node: &str) {
+        if let Some(timer) = &mut self.timer {
+            timer.end(&self.gpu, node);
+        }
+    }
+    fn finish_pass(&mut self) -> Vec<(String, Duration)> {
+        match &mut self.timer {
+            Some(timer) => timer.finish(&self.gpu),
+            None => Vec::new(),
+        }
+    }
+}

@@ -1,0 +1,188 @@
+//! Getting values out of the graph: raw float arrays (`.npy`, for numpy) and viewable pictures
+//! (`.png`), used by `--dump`, by `SaveImage` and by tests.
+
+use crate::value::Value;
+use hatchery_gpu::{GpuContext, TextureData};
+use std::io::Write;
+use std::path::Path;
+
+/// A C-order float array.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Array {
+    pub shape: Vec<usize>,
+    pub data: Vec<f32>,
+}
+
+fn read(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<TextureData, String> {
+    gpu.read_texture(texture).map_err(|e| e.to_string())
+}
+
+/// The raw data of a value: Image H×W×4 (premultiplied RGBA), Mask H×W, GBuffer H×W×4
+/// (depth, nx, ny, nz), Volume D×H×W, Mesh N×6 (position, normal per vertex).
+pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
+    Ok(match value {
+        Value::Image(image) => texture_array(read(gpu, &image.texture)?),
+        Value::Mask(mask) => {
+            let t = read(gpu, &mask.texture)?;
+            Array {
+                shape: vec![t.height as usize, t.width as usize],
+                data: t.data,
+            }
+        }
+        Value::GBuffer(g) => {
+            let depth = read(gpu, &g.depth)?;
+            let normal = read(gpu, &g.normal)?;
+            let mut data = Vec::with_capacity(depth.data.len() * 4);
+            for (d, n) in depth.data.iter().zip(normal.data.chunks_exact(4)) {
+                data.extend_from_slice(&[*d, n[0], n[1], n[2]]);
+            }
+            Array {
+                shape: vec![depth.height as usize, depth.width as usize, 4],
+                data,
+            }
+        }
+        Value::Volume(v) => {
+            let [x, y, z] = v.data.dims.map(|d| d as usize);
+            Array {
+                shape: vec![z, y, x],
+                data: v.data.values.clone(),
+            }
+        }
+        Value::Mesh(m) => {
+            let mut data = Vec::with_capacity(m.data.positions.len() * 6);
+            for (p, n) in m.data.positions.iter().zip(&m.data.normals) {
+                data.extend_from_slice(p);
+                data.extend_from_slice(n);
+            }
+            Array {
+                shape: vec![m.data.positions.len(), 6],
+                data,
+            }
+        }
+        Value::Camera(_) | Value::Light(_) => {
+            return Err(format!(
+                "a {} value holds no array to dump",
+                value.port_type()
+            ));
+        }
+    })
+}
+
+fn texture_array(t: TextureData) -> Array {
+    Array {
+        shape: vec![t.height as usize, t.width as usize, t.channels as usize],
+        data: t.data,
+    }
+}
+
+fn to_u8(x: f32) -> u8 {
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// Premultiplied RGBA texels → straight-alpha 8-bit picture.
+pub fn image_to_rgba8(t: &TextureData) -> image::RgbaImage {
+    image::RgbaImage::from_fn(t.width, t.height, |x, y| {
+        let p = t.texel(x, y);
+        let a = p[3];
+        let un = |c: f32| if a > 1e-6 { c / a } else { 0.0 };
+        image::Rgba([to_u8(un(p[0])), to_u8(un(p[1])), to_u8(un(p[2])), to_u8(a)])
+    })
+}
+
+/// A picture of a value: images as they are, masks in grey, G-buffer normals as colours
+/// (n·0.5 + 0.5), the middle z-slice of a volume scaled to its value range.
+pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, String> {
+    Ok(match value {
+        Value::Image(image) => image_to_rgba8(&read(gpu, &image.texture)?),
+        Value::Mask(mask) => {
+            let t = read(gpu, &mask.texture)?;
+            image::RgbaImage::from_fn(t.width, t.height, |x, y| {
+                let g = to_u8(t.texel(x, y)[0]);
+                image::Rgba([g, g, g, 255])
+            })
+        }
+        Value::GBuffer(g) => {
+            let t = read(gpu, &g.normal)?;
+            image::RgbaImage::from_fn(t.width, t.height, |x, y| {
+                let n = t.texel(x, y);
+                let c = |v: f32| to_u8(v * 0.5 + 0.5);
+                image::Rgba([c(n[0]), c(n[1]), c(n[2]), to_u8(n[3])])
+            })
+        }
+        Value::Volume(v) => {
+            let [w, h, d] = v.data.dims;
+            let [lo, hi] = v.data.value_range;
+            let scale = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
+            let z = d / 2;
+            // Row 0 of the picture is the largest y, so anatomy is upright.
+            image::RgbaImage::from_fn(w, h, |x, y| {
+                let g = to_u8((v.data.value(x, h - 1 - y, z) - lo) * scale);
+                image::Rgba([g, g, g, 255])
+            })
+        }
+        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) => {
+            return Err(format!(
+                "a {} value has no picture; dump it to .npy instead",
+                value.port_type()
+            ));
+        }
+    })
+}
+
+/// Writes a little-endian f32 `.npy` file (format version 1.0), readable by `numpy.load`.
+pub fn write_npy(path: &Path, array: &Array) -> std::io::Result<()> {
+    let shape = match array.shape.as_slice() {
+        [one] => format!("({one},)"),
+        dims => format!(
+            "({})",
+            dims.iter()
+                .map(|d| d.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    let mut header = format!("{{'descr': '<f4', 'fortran_order': False, 'shape': {shape}, }}");
+    // Magic (6) + version (2) + length (2) + header + '\n' must be a multiple of 64.
+    let total = 10 + header.len() + 1;
+    header.push_str(&" ".repeat(total.next_multiple_of(64) - total));
+    header.push('\n');
+    let mut out = Vec::with_capacity(10 + header.len() + array.data.len() * 4);
+    out.extend_from_slice(b"\x93NUMPY\x01\x00");
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    for v in &array.data {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    std::fs::File::create(path)?.write_all(&out)
+}
+
+/// Reads back what [`write_npy`] wrote (shape and data); used by tests.
+pub fn read_npy(path: &Path) -> Result<Array, String> {
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    if bytes.len() < 10 || &bytes[..8] != b"\x93NUMPY\x01\x00" {
+        return Err("not a version 1.0 .npy file".into());
+    }
+    let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + len]).map_err(|e| e.to_string())?;
+    if !header.contains("'descr': '<f4'") {
+        return Err("only little-endian f32 arrays are read".into());
+    }
+    let shape_text = header
+        .split("'shape': (")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .ok_or("no shape")?;
+    let shape: Vec<usize> = shape_text
+        .split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| s.trim().parse().map_err(|_| "bad shape"))
+        .collect::<Result<_, _>>()?;
+    let data: Vec<f32> = bytes[10 + len..]
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    if data.len() != shape.iter().product::<usize>() {
+        return Err("data length does not match the shape".into());
+    }
+    Ok(Array { shape, data })
+}

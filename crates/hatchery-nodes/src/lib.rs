@@ -1,0 +1,41 @@
+//! hatchery's node catalogue. One module per node kind; [`registry`] lists them all.
+
+pub mod camera;
+pub mod context;
+pub mod export;
+pub mod gbuffer;
+pub mod light;
+pub mod marching_cubes;
+pub mod mesh_file;
+pub mod mesh_pass;
+pub mod procedural_volume;
+pub mod save_image;
+mod session;
+pub mod shaded_surface;
+pub mod shaders;
+pub mod value;
+pub mod volume_file;
+
+pub use context::RenderContext;
+pub use session::{Session, SessionError};
+pub use value::Value;
+
+/// The context every node executes in.
+pub type Ctx = RenderContext;
+/// The registry of every node kind.
+pub type Registry = hatchery_graph::Registry<Value, Ctx>;
+
+/// Every node kind hatchery has.
+pub fn registry() -> Registry {
+    let mut r = Registry::default();
+    r.register(procedural_volume::ProceduralVolumeNode);
+    r.register(volume_file::VolumeFileNode);
+    r.register(mesh_file::MeshFileNode);
+    r.register(marching_cubes::MarchingCubesNode);
+    r.register(camera::CameraNode);
+    r.register(light::LightNode);
+    r.register(gbuffer::GBufferNode);
+    r.register(shaded_surface::ShadedSurfaceNode);
+    r.register(save_image::SaveImageNode);
+    r
+}

@@ -1,0 +1,61 @@
+//! `MarchingCubes`: extracts an iso-surface mesh from a volume on the CPU (in parallel).
+
+use crate::value::Mesh;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct MarchingCubesNode;
+
+impl Node<Value, Ctx> for MarchingCubesNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "MarchingCubes",
+            category: "Geometry",
+            doc: "Lorensen–Cline marching cubes on the CPU, parallel over slabs. Vertices are shared \
+                  between cells; normals are the negated, normalised volume gradient (pointing towards \
+                  lower values).",
+            inputs: vec![PortSpec::input(
+                "volume",
+                PortType::Volume,
+                "the scalar field",
+            )],
+            outputs: vec![PortSpec::output(
+                "mesh",
+                PortType::Mesh,
+                "the iso-surface in world units",
+            )],
+            params: vec![ParamSpec::float(
+                "iso",
+                0.0,
+                -1e12,
+                1e12,
+                "iso value, in the volume's units",
+            )],
+            frame_dependent: false,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        _ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let volume = inputs.require("volume")?.volume("volume")?;
+        let iso = p.f32("iso");
+        let range = volume.data.value_range;
+        if !(range[0]..=range[1]).contains(&iso) {
+            return Err(NodeError::new(format!(
+                "iso value {iso} is outside the volume's value range [{}, {}]: no surface",
+                range[0], range[1]
+            )));
+        }
+        let mesh = hatchery_data::marching_cubes::marching_cubes(&volume.data, iso);
+        tracing::info!(iso, triangles = mesh.triangle_count(), "marching cubes");
+        Ok(vec![Value::Mesh(Arc::new(Mesh::new(mesh)))])
+    }
+}

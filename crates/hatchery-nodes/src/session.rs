@@ -1,0 +1,130 @@
+//! A graph with its executor and GPU context: what the command line, the editor and the tests run.
+
+use crate::{Ctx, Registry, RenderContext, Value, registry};
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::executor::PassReport;
+use hatchery_graph::{ExecError, Executor, Graph, GraphErrors, ParamValue, SchemaLookup};
+use std::path::Path;
+
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    #[error("{0}")]
+    Graph(#[from] GraphErrors),
+    #[error("{0}")]
+    Gpu(#[from] GpuError),
+    #[error("{0}")]
+    Exec(#[from] ExecError),
+    #[error("{0}")]
+    Other(String),
+}
+
+pub struct Session {
+    pub registry: Registry,
+    pub graph: Graph,
+    pub executor: Executor<Value>,
+    pub ctx: Ctx,
+}
+
+impl Session {
+    /// Loads and validates a graph file and opens the GPU.
+    pub fn open(path: &Path, width: u32, height: u32) -> Result<Session, SessionError> {
+        let registry = registry();
+        let graph = Graph::load_file(path, &registry)?;
+        Session::with_graph(registry, graph, width, height)
+    }
+
+    pub fn with_graph(
+        registry: Registry,
+        graph: Graph,
+        width: u32,
+        height: u32,
+    ) -> Result<Session, SessionError> {
+        let ctx = RenderContext::new(GpuContext::new()?, width, height)?;
+        Ok(Session {
+            registry,
+            graph,
+            executor: Executor::new(),
+            ctx,
+        })
+    }
+
+    /// Runs the graph for `targets` (all sinks when empty).
+    pub fn run(&mut self, targets: &[&str]) -> Result<PassReport, SessionError> {
+        let report = self
+            .executor
+            .run(&self.graph, &self.registry, &mut self.ctx, targets)?;
+        let errors = self.ctx.gpu.take_uncaptured_errors();
+        if let Some(first) = errors.first() {
+            return Err(SessionError::Other(format!(
+                "GPU error during the pass: {first}"
+            )));
+        }
+        Ok(report)
+    }
+
+    /// Sets `node.param` from command-line text.
+    pub fn set_param_text(
+        &mut self,
+        node: &str,
+        param: &str,
+        text: &str,
+    ) -> Result<(), SessionError> {
+        let value = self.parse_param(node, param, text)?;
+        self.graph
+            .set_param(&self.registry, node, param, value)
+            .map_err(|e| SessionError::Graph(e.into()))
+    }
+
+    fn parse_param(&self, node: &str, param: &str, text: &str) -> Result<ParamValue, SessionError> {
+        let instance = self
+            .graph
+            .node(node)
+            .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
+        let schema = self
+            .registry
+            .schema(&instance.kind)
+            .expect("validated kind");
+        let spec = schema.param(param).ok_or_else(|| {
+            let names: Vec<_> = schema.params.iter().map(|p| p.name).collect();
+            SessionError::Other(format!(
+                "node `{node}` ({}) has no parameter `{param}` (its parameters are: {})",
+                instance.kind,
+                names.join(", ")
+            ))
+        })?;
+        spec.parse_cli(text)
+            .map_err(|m| SessionError::Other(format!("node `{node}`, parameter `{param}`: {m}")))
+    }
+
+    /// The value on an output port from the last pass (run the node first).
+    pub fn output(&self, node: &str, port: &str) -> Result<&Value, SessionError> {
+        let instance = self
+            .graph
+            .node(node)
+            .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
+        let schema = self
+            .registry
+            .schema(&instance.kind)
+            .expect("validated kind");
+        let index = schema.output_index(port).ok_or_else(|| {
+            SessionError::Other(format!(
+                "node `{node}` ({}) has no output port `{port}` (its outputs are: {})",
+                instance.kind,
+                schema.output_names().join(", ")
+            ))
+        })?;
+        self.executor
+            .output(node, index)
+            .ok_or_else(|| SessionError::Other(format!("node `{node}` has not run yet")))
+    }
+
+    /// Runs just what `node.port` needs and returns its value.
+    pub fn evaluate(&mut self, node: &str, port: &str) -> Result<Value, SessionError> {
+        self.output(node, port)
+            .err()
+            .filter(|_| self.graph.node(node).is_none())
+            .map_or(Ok(()), Err)?;
+        self.run(&[node])?;
+        self.output(node, port).cloned()
+    }
+}

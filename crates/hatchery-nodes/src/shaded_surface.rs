@@ -1,0 +1,146 @@
+//! `ShadedSurface`: Blinn–Phong shaded mesh, the standard rendering illustrations are compared with.
+
+use crate::value::Image;
+use crate::{Ctx, Value, mesh_pass};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ShadingUniform {
+    base_color: [f32; 4],
+    light_dir: [f32; 4],
+    light_color: [f32; 4],
+    params: [f32; 4],
+}
+
+pub struct ShadedSurfaceNode;
+
+impl Node<Value, Ctx> for ShadedSurfaceNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "ShadedSurface",
+            category: "Rendering",
+            doc: "Blinn–Phong shaded mesh over a background colour: ambient + diffuse max(n·l, 0) + \
+                  specular max(n·h, 0)^shininess, lit from the Light input. Output is premultiplied RGBA.",
+            inputs: vec![
+                PortSpec::input("mesh", PortType::Mesh, "the surface"),
+                PortSpec::input("camera", PortType::Camera, "the view"),
+                PortSpec::input("light", PortType::Light, "the light"),
+            ],
+            outputs: vec![PortSpec::output(
+                "image",
+                PortType::Image,
+                "the shaded picture",
+            )],
+            params: vec![
+                ParamSpec::color(
+                    "color",
+                    [0.85, 0.78, 0.7, 1.0],
+                    "surface colour (alpha = opacity)",
+                ),
+                ParamSpec::color(
+                    "background",
+                    [1.0, 1.0, 1.0, 1.0],
+                    "colour where there is no surface",
+                ),
+                ParamSpec::float(
+                    "specular",
+                    0.25,
+                    0.0,
+                    10.0,
+                    "strength of the specular highlight",
+                ),
+                ParamSpec::float("shininess", 32.0, 1.0, 1024.0, "Blinn–Phong exponent"),
+                ParamSpec::bool(
+                    "two_sided",
+                    true,
+                    "light back faces with the flipped normal",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let mesh = inputs.require("mesh")?.mesh("mesh")?.clone();
+        let camera = inputs.require("camera")?.camera("camera")?.clone();
+        let light = inputs.require("light")?.light("light")?.clone();
+        let pipeline = ctx
+            .cached("shaded_surface.pipeline", |gpu| {
+                mesh_pass::mesh_pipeline(
+                    gpu,
+                    "shaded_surface",
+                    IMAGE_FORMAT,
+                    Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                )
+            })
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let gpu = &ctx.gpu;
+        let l = light.view_direction(&camera);
+        let shading = ShadingUniform {
+            base_color: p.color("color"),
+            light_dir: [l.x, l.y, l.z, 0.0],
+            light_color: [
+                light.color[0],
+                light.color[1],
+                light.color[2],
+                light.intensity,
+            ],
+            params: [
+                light.ambient,
+                p.f32("specular"),
+                p.f32("shininess"),
+                if p.bool("two_sided") { 1.0 } else { 0.0 },
+            ],
+        };
+        let camera_buf = gpu.buffer_init(
+            "camera",
+            bytemuck::bytes_of(&camera.uniform()),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let shading_buf = gpu.buffer_init(
+            "shading",
+            bytemuck::bytes_of(&shading),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shaded surface"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: camera_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: shading_buf.as_entire_binding(),
+                },
+            ],
+        });
+        let bg = p.color("background").map(f64::from);
+        // Premultiplied background.
+        let clear = wgpu::Color {
+            r: bg[0] * bg[3],
+            g: bg[1] * bg[3],
+            b: bg[2] * bg[3],
+            a: bg[3],
+        };
+        let texture =
+            gpu.render_target("shaded surface", camera.width, camera.height, IMAGE_FORMAT);
+        let depth =
+            mesh_pass::depth_target(gpu, "shaded surface depth", camera.width, camera.height);
+        mesh_pass::draw_mesh(gpu, &pipeline, &bind_group, &mesh, &texture, clear, &depth);
+        Ok(vec![Value::Image(Arc::new(Image { texture }))])
+    }
+}

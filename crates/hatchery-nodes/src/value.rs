@@ -1,0 +1,159 @@
+//! The data flowing along edges: one variant per [`PortType`], cheap to clone (shared handles).
+
+use hatchery_data::{MeshData, VolumeData};
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::PortType;
+use std::sync::{Arc, OnceLock};
+
+/// A scalar volume: CPU data for CPU nodes (marching cubes), uploaded to a 3-D texture the first
+/// time a GPU node asks for it.
+pub struct Volume {
+    pub data: Arc<VolumeData>,
+    texture: OnceLock<wgpu::Texture>,
+}
+
+impl Volume {
+    pub fn new(data: VolumeData) -> Self {
+        Self {
+            data: Arc::new(data),
+            texture: OnceLock::new(),
+        }
+    }
+    /// The R32Float 3-D texture, uploaded on first use.
+    pub fn texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
+        if let Some(t) = self.texture.get() {
+            return Ok(t);
+        }
+        let t = gpu.upload_volume("volume", self.data.dims, &self.data.values)?;
+        Ok(self.texture.get_or_init(|| t))
+    }
+}
+
+/// A triangle mesh: CPU data plus vertex (position, normal) and index buffers uploaded on first use.
+pub struct Mesh {
+    pub data: Arc<MeshData>,
+    buffers: OnceLock<MeshBuffers>,
+}
+
+pub struct MeshBuffers {
+    /// Interleaved position (xyz) and normal (xyz), 24 bytes per vertex.
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub index_count: u32,
+}
+
+impl Mesh {
+    pub fn new(data: MeshData) -> Self {
+        Self {
+            data: Arc::new(data),
+            buffers: OnceLock::new(),
+        }
+    }
+    pub fn buffers(&self, gpu: &GpuContext) -> &MeshBuffers {
+        self.buffers.get_or_init(|| {
+            let d = &self.data;
+            let mut interleaved = Vec::with_capacity(d.positions.len() * 6);
+            for (p, n) in d.positions.iter().zip(&d.normals) {
+                interleaved.extend_from_slice(p);
+                interleaved.extend_from_slice(n);
+            }
+            // Empty meshes still get (tiny) buffers so that drawing them is a no-op.
+            if interleaved.is_empty() {
+                interleaved.resize(6, 0.0);
+            }
+            let indices: Vec<u32> = if d.indices.is_empty() {
+                vec![0, 0, 0]
+            } else {
+                d.indices.clone()
+            };
+            MeshBuffers {
+                vertices: gpu.buffer_init(
+                    "mesh vertices",
+                    bytemuck::cast_slice(&interleaved),
+                    wgpu::BufferUsages::VERTEX,
+                ),
+                indices: gpu.buffer_init(
+                    "mesh indices",
+                    bytemuck::cast_slice(&indices),
+                    wgpu::BufferUsages::INDEX,
+                ),
+                index_count: d.indices.len() as u32,
+            }
+        })
+    }
+}
+
+/// Screen-space surface data of one layer.
+pub struct GBuffer {
+    /// Window-space depth in [0, 1] (Depth32Float); 1 where no surface.
+    pub depth: wgpu::Texture,
+    /// View-space unit normal in xyz, coverage (1 or 0) in w (Rgba16Float).
+    pub normal: wgpu::Texture,
+    /// The camera the layer was rendered with (to unproject depth).
+    pub camera: crate::camera::Camera,
+}
+
+/// RGBA colour, premultiplied alpha (Rgba16Float).
+pub struct Image {
+    pub texture: wgpu::Texture,
+}
+
+/// One-channel float image (R32Float).
+pub struct Mask {
+    pub texture: wgpu::Texture,
+}
+
+/// A value on an edge.
+#[derive(Clone)]
+pub enum Value {
+    Volume(Arc<Volume>),
+    Mesh(Arc<Mesh>),
+    Camera(Arc<crate::camera::Camera>),
+    Light(Arc<crate::light::Light>),
+    GBuffer(Arc<GBuffer>),
+    Image(Arc<Image>),
+    Mask(Arc<Mask>),
+}
+
+impl Value {
+    pub fn port_type(&self) -> PortType {
+        match self {
+            Value::Volume(_) => PortType::Volume,
+            Value::Mesh(_) => PortType::Mesh,
+            Value::Camera(_) => PortType::Camera,
+            Value::Light(_) => PortType::Light,
+            Value::GBuffer(_) => PortType::GBuffer,
+            Value::Image(_) => PortType::Image,
+            Value::Mask(_) => PortType::Mask,
+        }
+    }
+}
+
+/// Typed access to inputs: `inputs.require(..)?.volume(..)?`. A wrong variant means a node and
+/// its schema disagree (validation checked the edge types), reported as a node error.
+macro_rules! accessor {
+    ($fn:ident, $variant:ident, $ty:ty) => {
+        impl Value {
+            pub fn $fn(&self, port: &str) -> Result<&$ty, hatchery_graph::NodeError> {
+                match self {
+                    Value::$variant(v) => Ok(v),
+                    other => Err(hatchery_graph::NodeError::at_port(
+                        port,
+                        format!(
+                            "expected {}, got {}",
+                            stringify!($variant),
+                            other.port_type()
+                        ),
+                    )),
+                }
+            }
+        }
+    };
+}
+accessor!(volume, Volume, Arc<Volume>);
+accessor!(mesh, Mesh, Arc<Mesh>);
+accessor!(camera, Camera, Arc<crate::camera::Camera>);
+accessor!(light, Light, Arc<crate::light::Light>);
+accessor!(gbuffer, GBuffer, Arc<GBuffer>);
+accessor!(image, Image, Arc<Image>);
+accessor!(mask, Mask, Arc<Mask>);

@@ -1,0 +1,325 @@
+//! `hatchery`: render, validate, benchmark and document illustration graphs.
+
+mod bench;
+mod catalogue;
+
+use anyhow::{Context, Result, bail};
+use clap::{Parser, Subcommand};
+use hatchery_graph::{Graph, GraphDocument, ParamKind, SchemaLookup};
+use hatchery_nodes::{Session, export};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "hatchery",
+    version,
+    about = "Illustrative visualization as typed node graphs on the GPU"
+)]
+struct Cli {
+    /// Log more (repeat for more detail); RUST_LOG overrides.
+    #[arg(short, long, global = true, action = clap::ArgAction::Count)]
+    verbose: u8,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a graph: run its SaveImage nodes (and any --dump ports).
+    Render {
+        graph: PathBuf,
+        /// Output PNG; replaces the path of the graph's single SaveImage node.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        frame: FrameArgs,
+        /// Write a port's data: `node.port=file.npy` (raw floats) or `=file.png` (a picture).
+        #[arg(long, value_name = "NODE.PORT=PATH")]
+        dump: Vec<String>,
+    },
+    /// Load and validate a graph without running it.
+    Validate { graph: PathBuf },
+    /// List every node kind with its ports, parameters and docs.
+    Nodes {
+        /// Markdown, as committed in docs/nodes.md.
+        #[arg(long)]
+        markdown: bool,
+    },
+    /// Run a graph N times and report per-node median times.
+    Bench {
+        graph: PathBuf,
+        #[arg(long, default_value_t = 10)]
+        frames: usize,
+        #[command(flatten)]
+        frame: FrameArgs,
+    },
+    /// Rewrite a graph file in the canonical layout (what saving writes).
+    Fmt {
+        graph: PathBuf,
+        /// Only check: exit non-zero if the file is not canonical.
+        #[arg(long)]
+        check: bool,
+    },
+}
+
+#[derive(clap::Args)]
+struct FrameArgs {
+    /// Frame size in pixels.
+    #[arg(long, default_value = "1024x768", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Override a parameter: `node.param=value` (paths relative to the current folder).
+    #[arg(long, value_name = "NODE.PARAM=VALUE")]
+    set: Vec<String>,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("`{text}` is not a size like 1024x768"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|v| (1..=16384).contains(v))
+    };
+    match (parse(w), parse(h)) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => Err(format!(
+            "`{text}` is not a size like 1024x768 (1 to 16384 pixels per side)"
+        )),
+    }
+}
+
+/// Splits `node.name=value`.
+fn split_assignment<'a>(text: &'a str, what: &str) -> Result<(&'a str, &'a str, &'a str)> {
+    let (target, value) = text
+        .split_once('=')
+        .with_context(|| format!("`{text}`: expected {what}=VALUE"))?;
+    let (node, name) = target
+        .split_once('.')
+        .with_context(|| format!("`{text}`: expected {what}=VALUE"))?;
+    Ok((node.trim(), name.trim(), value))
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let default_level = match cli.verbose {
+        0 => "warn",
+        1 => "info",
+        _ => "debug",
+    };
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| {
+        tracing_subscriber::EnvFilter::new(format!(
+            "{default_level},wgpu_hal=error,wgpu_core=error,naga=warn"
+        ))
+    });
+    tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .init();
+
+    if let Err(error) = run(cli) {
+        // One line: the chain of causes joined.
+        let message = error
+            .chain()
+            .map(|c| c.to_string())
+            .collect::<Vec<_>>()
+            .join(": ");
+        eprintln!("error: {}", message.replace('\n', " "));
+        std::process::exit(1);
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render {
+            graph,
+            output,
+            frame,
+            dump,
+        } => render(&graph, output.as_deref(), &frame, &dump),
+        Command::Validate { graph } => {
+            let registry = hatchery_nodes::registry();
+            let g = Graph::load_file(&graph, &registry)?;
+            println!("{}: valid ({} nodes)", graph.display(), g.nodes().count());
+            Ok(())
+        }
+        Command::Nodes { markdown } => {
+            let registry = hatchery_nodes::registry();
+            print!(
+                "{}",
+                if markdown {
+                    catalogue::markdown(&registry)
+                } else {
+                    catalogue::text(&registry)
+                }
+            );
+            Ok(())
+        }
+        Command::Bench {
+            graph,
+            frames,
+            frame,
+        } => {
+            let mut session = open(&graph, &frame)?;
+            bench::run(&mut session, &graph, frames.max(1))
+        }
+        Command::Fmt { graph, check } => {
+            let (doc, _) = GraphDocument::load(&graph)?;
+            let text = std::fs::read_to_string(&graph)?;
+            let canonical = doc.to_ron_string();
+            if check {
+                if canonical != text {
+                    bail!(
+                        "{}: not in canonical layout (run `hatchery fmt {}`)",
+                        graph.display(),
+                        graph.display()
+                    );
+                }
+            } else if canonical != text {
+                doc.save(&graph)
+                    .with_context(|| format!("cannot write {}", graph.display()))?;
+                println!("{}: rewritten", graph.display());
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Opens a session and applies `--set` overrides.
+fn open(graph: &Path, frame: &FrameArgs) -> Result<Session> {
+    let (width, height) = frame.size;
+    let mut session = Session::open(graph, width, height)?;
+    for assignment in &frame.set {
+        let (node, param, value) = split_assignment(assignment, "NODE.PARAM")?;
+        let value = resolve_cli_path(&session, node, param, value);
+        session.set_param_text(node, param, &value)?;
+    }
+    Ok(session)
+}
+
+/// Paths typed on the command line are relative to the current folder, not the graph's.
+fn resolve_cli_path(session: &Session, node: &str, param: &str, value: &str) -> String {
+    let is_path = session
+        .graph
+        .node(node)
+        .and_then(|n| session.registry.schema(&n.kind))
+        .and_then(|s| s.param(param))
+        .is_some_and(|p| p.kind == ParamKind::Path);
+    if is_path && !value.is_empty() {
+        if let Ok(abs) = std::path::absolute(value) {
+            return abs.to_string_lossy().into_owned();
+        }
+    }
+    value.to_owned()
+}
+
+fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[String]) -> Result<()> {
+    let start = Instant::now();
+    let mut session = open(graph, frame)?;
+    let sinks: Vec<String> = session
+        .graph
+        .nodes()
+        .filter(|n| session.registry.schema(&n.kind).is_some_and(|s| s.sink))
+        .map(|n| n.id.clone())
+        .collect();
+    if let Some(output) = output {
+        let savers: Vec<&String> = sinks
+            .iter()
+            .filter(|id| {
+                session
+                    .graph
+                    .node(id)
+                    .is_some_and(|n| n.kind == "SaveImage")
+            })
+            .collect();
+        match savers.as_slice() {
+            [one] => {
+                let one = (*one).clone();
+                let abs = std::path::absolute(output)?;
+                session.set_param_text(&one, "path", &abs.to_string_lossy())?;
+            }
+            [] => bail!(
+                "{}: -o needs a SaveImage node in the graph (or use --dump NODE.PORT=FILE)",
+                graph.display()
+            ),
+            many => bail!(
+                "{}: -o is ambiguous with {} SaveImage nodes ({}); set each with --set NODE.path=FILE",
+                graph.display(),
+                many.len(),
+                many.iter()
+                    .map(|s| s.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }
+    }
+    let mut requests = Vec::new();
+    for dump in dumps {
+        let (node, port, path) = split_assignment(dump, "NODE.PORT")?;
+        // Check the port exists before running anything.
+        let kind = &session
+            .graph
+            .node(node)
+            .with_context(|| format!("--dump {dump}: no node `{node}` in the graph"))?
+            .kind;
+        let schema = session.registry.schema(kind).expect("validated kind");
+        if schema.output_index(port).is_none() {
+            bail!(
+                "--dump {dump}: node `{node}` ({kind}) has no output port `{port}` (its outputs are: {})",
+                schema.output_names().join(", ")
+            );
+        }
+        requests.push((node.to_owned(), port.to_owned(), PathBuf::from(path)));
+    }
+    let mut targets: Vec<&str> = sinks.iter().map(String::as_str).collect();
+    targets.extend(requests.iter().map(|(n, _, _)| n.as_str()));
+    if targets.is_empty() {
+        bail!(
+            "{}: nothing to render: the graph has no SaveImage node and no --dump was given",
+            graph.display()
+        );
+    }
+    session.run(&targets)?;
+    for (node, port, path) in &requests {
+        let value = session.output(node, port)?;
+        let gpu = &session.ctx.gpu;
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        let what = format!("--dump {node}.{port}={}", path.display());
+        match ext.as_str() {
+            "npy" => {
+                let array =
+                    export::to_array(value, gpu).map_err(|e| anyhow::anyhow!("{what}: {e}"))?;
+                export::write_npy(path, &array)
+                    .with_context(|| format!("{what}: cannot write the file"))?;
+            }
+            "png" => {
+                let picture =
+                    export::to_rgba8(value, gpu).map_err(|e| anyhow::anyhow!("{what}: {e}"))?;
+                picture
+                    .save(path)
+                    .with_context(|| format!("{what}: cannot write the file"))?;
+            }
+            _ => bail!("{what}: the file must end in .npy (raw data) or .png (a picture)"),
+        }
+        println!("dumped {node}.{port} to {}", path.display());
+    }
+    for sink in &sinks {
+        if let Some(node) = session.graph.node(sink).filter(|n| n.kind == "SaveImage") {
+            println!("wrote {}", node.params.path("path").display());
+        }
+    }
+    let (w, h) = session.ctx.size();
+    println!(
+        "rendered {} at {w}×{h} in {:.2} s on {}",
+        graph.display(),
+        start.elapsed().as_secs_f64(),
+        session.ctx.gpu.describe()
+    );
+    Ok(())
+}
