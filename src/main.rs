@@ -102,7 +102,27 @@ fn split_assignment<'a>(text: &'a str, what: &str) -> Result<(&'a str, &'a str, 
     Ok((node.trim(), name.trim(), value))
 }
 
+/// Mesa's drivers print "XDG_RUNTIME_DIR is invalid" on stderr when it is unset (headless
+/// machines, CI); give them a private folder so that a successful run prints no false errors.
+fn ensure_runtime_dir() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some() {
+        return;
+    }
+    let user = std::env::var("USER").unwrap_or_else(|_| "user".into());
+    let dir = std::env::temp_dir().join(format!("hatchery-runtime-{user}"));
+    if std::fs::create_dir_all(&dir).is_ok() {
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let _ = std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700));
+        }
+        // SAFETY: called first thing in main, before any other thread exists.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
+}
+
 fn main() {
+    ensure_runtime_dir();
     let cli = Cli::parse();
     let default_level = match cli.verbose {
         0 => "warn",

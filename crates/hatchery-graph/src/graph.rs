@@ -176,6 +176,8 @@ impl Graph {
 
         // Edges: endpoints, port names, types.
         let mut into_input: BTreeMap<(String, String), Vec<(String, String)>> = BTreeMap::new();
+        // Inputs some edge tried to reach: a broken edge is reported once, not also as "missing".
+        let attempted: BTreeSet<&(String, String)> = doc.edges.iter().map(|e| &e.to).collect();
         for edge in &doc.edges {
             let at_to = source.edge_offset(edge, "to");
             let at_from = source.edge_offset(edge, "from");
@@ -265,7 +267,8 @@ impl Graph {
                 .map(|e| e.weight().to_port)
                 .collect();
             for (i, port) in schema.inputs.iter().enumerate() {
-                if port.required && !connected.contains(&i) {
+                let tried = attempted.contains(&(node.id.clone(), port.name.to_owned()));
+                if port.required && !connected.contains(&i) && !tried {
                     errors.push(source.error(
                         source.node_offset(&node.id),
                         ErrorKind::MissingInput {

@@ -8,6 +8,7 @@ pub mod light;
 pub mod marching_cubes;
 pub mod mesh_file;
 pub mod mesh_pass;
+pub mod mesh_transform;
 pub mod procedural_volume;
 pub mod save_image;
 mod session;
@@ -32,6 +33,7 @@ pub fn registry() -> Registry {
     r.register(volume_file::VolumeFileNode);
     r.register(mesh_file::MeshFileNode);
     r.register(marching_cubes::MarchingCubesNode);
+    r.register(mesh_transform::MeshTransformNode);
     r.register(camera::CameraNode);
     r.register(light::LightNode);
     r.register(gbuffer::GBufferNode);

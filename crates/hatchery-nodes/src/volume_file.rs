@@ -43,7 +43,15 @@ impl Node<Value, Ctx> for VolumeFileNode {
         }
         let data = hatchery_data::nifti_file::load_nifti(&path)
             .map_err(|e| NodeError::new(e.to_string()))?;
-        tracing::info!(path = %path.display(), dims = ?data.dims, range = ?data.value_range, "volume loaded");
+        tracing::info!(
+            path = %path.display(),
+            dims = ?data.dims,
+            spacing = ?data.spacing,
+            range = ?data.value_range,
+            world_min = ?data.world_min(),
+            world_max = ?data.world_max(),
+            "volume loaded"
+        );
         Ok(vec![Value::Volume(Arc::new(Volume::new(data)))])
     }
 }

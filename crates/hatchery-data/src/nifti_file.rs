@@ -1,0 +1,266 @@
+//! NIfTI-1 volumes (`.nii`, `.nii.gz`).
+
+use std::fs::File;
+use std::io::{self, BufRead, BufReader, Read};
+use std::path::Path;
+
+use nifti::{InMemNiftiVolume, IntoNdArray, NiftiError, NiftiHeader, NiftiType};
+
+use crate::{DataError, VolumeData};
+
+/// Volumes claiming more voxels than this are refused before anything is allocated.
+pub const MAX_VOXELS: u64 = 1 << 30;
+
+/// Size of the NIfTI-1 header proper; voxel data starts at `vox_offset` (>= 352) after it.
+const HEADER_SIZE: u64 = 348;
+
+/// Loads a single-file NIfTI-1 volume, gzip-compressed or not (detected from the content).
+///
+/// * Every integer and float datatype is read (u/i 8, 16, 32, 64, f32, f64) and converted to
+///   f32 with `scl_slope`/`scl_inter` applied (slope 0 means no scaling, per the standard).
+/// * Spacing is `|pixdim[1..4]|` (0 or non-finite -> 1). The origin is the translation of the
+///   sform if set, else of the qform, else 0; rotations and axis flips are not applied, the
+///   grid is kept axis-aligned in voxel order.
+/// * Of 4-D (and higher) files only the first 3-D volume is read.
+/// * Non-finite voxel values (NaN is common as "no data" in float maps) are replaced by the
+///   smallest finite value, since [`VolumeData`] holds finite values only.
+pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
+    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let mut buffered = BufReader::new(file);
+    let head = buffered.fill_buf().map_err(|e| DataError::io(path, e))?;
+    let gzip = head.starts_with(&[0x1f, 0x8b]);
+    let mut source: Box<dyn Read> = if gzip {
+        Box::new(flate2::bufread::MultiGzDecoder::new(buffered))
+    } else {
+        Box::new(buffered)
+    };
+    let read_error = |e: io::Error| stream_error(path, gzip, e);
+
+    // Header first: everything is validated before any voxel memory is allocated.
+    let header = NiftiHeader::from_reader(&mut source).map_err(|e| match e {
+        NiftiError::Io(e) => read_error(e),
+        NiftiError::InvalidFormat => {
+            DataError::format(path, "not a NIfTI-1 file (bad header size or magic)")
+        }
+        other => DataError::format(path, format!("bad NIfTI header: {other}")),
+    })?;
+    let layout = check_header(path, &header)?;
+
+    // Skip the extensions between the header and the voxel data.
+    let skip = layout.data_offset - HEADER_SIZE;
+    let skipped = io::copy(&mut (&mut source).take(skip), &mut io::sink()).map_err(read_error)?;
+    if skipped < skip {
+        return Err(truncated(path, gzip));
+    }
+
+    let byte_count = layout.voxels as usize * layout.datatype.size_of();
+    let mut raw = Vec::new();
+    raw.try_reserve_exact(byte_count).map_err(|_| {
+        DataError::format(
+            path,
+            format!("cannot allocate {byte_count} bytes for the voxel data"),
+        )
+    })?;
+    (&mut source)
+        .take(byte_count as u64)
+        .read_to_end(&mut raw)
+        .map_err(read_error)?;
+    if raw.len() < byte_count {
+        return Err(DataError::format(
+            path,
+            format!(
+                "{}: voxel data has {} of the {byte_count} bytes the header promises",
+                if gzip {
+                    "truncated gzip stream"
+                } else {
+                    "truncated file"
+                },
+                raw.len()
+            ),
+        ));
+    }
+
+    let [nx, ny, nz] = layout.dims;
+    let raw_dim = [3, nx as u16, ny as u16, nz as u16, 1, 1, 1, 1];
+    let volume = InMemNiftiVolume::from_raw_fields(
+        raw_dim,
+        layout.datatype,
+        layout.slope,
+        layout.intercept,
+        raw,
+        header.endianness,
+    )
+    .map_err(|e| DataError::format(path, format!("bad voxel data: {e}")))?;
+    // Fortran order: x varies fastest in memory, which is our layout. Reversing the axes makes
+    // that the logical (row-major) order too, so iteration is in our order either way.
+    let array = volume
+        .into_ndarray::<f32>()
+        .map_err(|e| DataError::format(path, format!("cannot convert voxel data: {e}")))?
+        .reversed_axes();
+    let mut values: Vec<f32> = match array.as_slice() {
+        Some(slice) => slice.to_vec(),
+        None => array.iter().copied().collect(),
+    };
+    replace_non_finite(path, &mut values)?;
+
+    VolumeData::new(layout.dims, layout.spacing, layout.origin, values).map_err(|e| e.in_file(path))
+}
+
+/// What the header tells us, validated.
+struct Layout {
+    dims: [u32; 3],
+    voxels: u64,
+    datatype: NiftiType,
+    slope: f32,
+    intercept: f32,
+    spacing: [f32; 3],
+    origin: [f32; 3],
+    data_offset: u64,
+}
+
+fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
+    if &h.magic == nifti::header::MAGIC_CODE_NI1 {
+        return Err(DataError::unsupported(
+            path,
+            "separate .hdr/.img NIfTI pairs are not supported, use a single .nii or .nii.gz file",
+        ));
+    }
+    let rank = h.dim[0];
+    if !(1..=7).contains(&rank) {
+        return Err(DataError::format(
+            path,
+            format!("invalid dimension count dim[0] = {rank}"),
+        ));
+    }
+    // dims are signed 16-bit in the file; the nifti crate reads them unsigned, so negative ones
+    // show up as values above i16::MAX.
+    let dims: [u32; 3] = std::array::from_fn(|i| {
+        let d = if i < rank as usize { h.dim[i + 1] } else { 1 };
+        d as u32
+    });
+    if let Some(d) = dims.iter().find(|&&d| d > i16::MAX as u32) {
+        return Err(DataError::format(
+            path,
+            format!("negative dimension {} in header", *d as u16 as i16),
+        ));
+    }
+    if dims.iter().any(|&d| d < 2) {
+        return Err(DataError::unsupported(
+            path,
+            format!(
+                "only 3-D volumes with at least 2 voxels per axis are supported, dims are {dims:?}"
+            ),
+        ));
+    }
+    let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
+    if voxels > MAX_VOXELS {
+        return Err(DataError::TooLarge {
+            path: path.to_path_buf(),
+            voxels,
+            limit: MAX_VOXELS,
+        });
+    }
+
+    let datatype = h
+        .data_type()
+        .map_err(|_| DataError::format(path, format!("unknown datatype code {}", h.datatype)))?;
+    use NiftiType::*;
+    if !matches!(
+        datatype,
+        Uint8 | Int8 | Uint16 | Int16 | Uint32 | Int32 | Uint64 | Int64 | Float32 | Float64
+    ) {
+        return Err(DataError::unsupported(
+            path,
+            format!("datatype {datatype:?} is not supported, only integer and float scalars are"),
+        ));
+    }
+
+    // Per the standard a zero slope means "no scaling"; we treat a non-finite one the same way.
+    let (slope, intercept) = if h.scl_slope.is_finite() && h.scl_slope != 0.0 {
+        (
+            h.scl_slope,
+            if h.scl_inter.is_finite() {
+                h.scl_inter
+            } else {
+                0.0
+            },
+        )
+    } else {
+        (0.0, 0.0)
+    };
+
+    let spacing = std::array::from_fn(|i| {
+        let s = h.pixdim[i + 1].abs();
+        if s.is_finite() && s > 0.0 { s } else { 1.0 }
+    });
+
+    let translation = if h.sform_code > 0 {
+        [h.srow_x[3], h.srow_y[3], h.srow_z[3]]
+    } else if h.qform_code > 0 {
+        [h.quatern_x, h.quatern_y, h.quatern_z]
+    } else {
+        [0.0; 3]
+    };
+    let origin = translation.map(|t| if t.is_finite() { t } else { 0.0 });
+
+    // vox_offset is a float in the format; it must leave room for the 4-byte extender. Some
+    // writers leave it 0 for single files, meaning "right after the extender".
+    let offset = h.vox_offset;
+    if !offset.is_finite() || offset < 0.0 || offset > (1u64 << 31) as f32 {
+        return Err(DataError::format(
+            path,
+            format!("invalid vox_offset {offset}"),
+        ));
+    }
+    let data_offset = (offset as u64).max(HEADER_SIZE + 4);
+
+    Ok(Layout {
+        dims,
+        voxels,
+        datatype,
+        slope,
+        intercept,
+        spacing,
+        origin,
+        data_offset,
+    })
+}
+
+fn replace_non_finite(path: &Path, values: &mut [f32]) -> Result<(), DataError> {
+    if values.iter().all(|v| v.is_finite()) {
+        return Ok(());
+    }
+    let min = values
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .reduce(f32::min)
+        .ok_or_else(|| DataError::format(path, "no voxel has a finite value"))?;
+    for v in values.iter_mut().filter(|v| !v.is_finite()) {
+        *v = min;
+    }
+    Ok(())
+}
+
+fn truncated(path: &Path, gzip: bool) -> DataError {
+    DataError::format(
+        path,
+        if gzip {
+            "truncated gzip stream"
+        } else {
+            "truncated file"
+        },
+    )
+}
+
+/// Reading errors from a (possibly gzip) stream: end-of-file and decoder errors are format
+/// problems of the file, the rest are I/O errors.
+fn stream_error(path: &Path, gzip: bool, e: io::Error) -> DataError {
+    match e.kind() {
+        io::ErrorKind::UnexpectedEof => truncated(path, gzip),
+        io::ErrorKind::InvalidInput | io::ErrorKind::InvalidData if gzip => {
+            DataError::format(path, format!("corrupt gzip stream: {e}"))
+        }
+        _ => DataError::io(path, e),
+    }
+}

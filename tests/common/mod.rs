@@ -1,0 +1,84 @@
+//! Helpers shared by the integration tests: graph sessions and tolerant comparisons that report
+//! the worst sample and save the offending image.
+
+#![allow(dead_code)]
+
+use hatchery_graph::{Graph, GraphDocument};
+use hatchery_nodes::Session;
+use std::path::{Path, PathBuf};
+
+pub fn repo_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+pub fn shared_data(relative: &str) -> PathBuf {
+    repo_root().join("../shared/data").join(relative)
+}
+
+/// A session on graph text (relative paths resolve against the repository root).
+pub fn session_from_text(text: &str, width: u32, height: u32) -> Session {
+    let registry = hatchery_nodes::registry();
+    let (doc, source) = GraphDocument::parse(text, None).expect("test graph parses");
+    let graph = Graph::from_document(&doc, &source, &registry, Some(&repo_root()))
+        .expect("test graph is valid");
+    Session::with_graph(registry, graph, width, height).expect("GPU available")
+}
+
+/// One compared sample.
+pub struct Sample {
+    pub x: u32,
+    pub y: u32,
+    pub what: String,
+    pub error: f64,
+}
+
+/// Fails if any sample's error exceeds `tolerance`, naming the worst one and writing `picture`
+/// (if given) to a temporary folder for inspection.
+pub fn assert_samples(
+    name: &str,
+    samples: &[Sample],
+    tolerance: f64,
+    picture: Option<&image::RgbaImage>,
+) {
+    assert!(!samples.is_empty(), "{name}: no samples compared");
+    let worst = samples
+        .iter()
+        .max_by(|a, b| a.error.total_cmp(&b.error))
+        .expect("non-empty");
+    let failing = samples.iter().filter(|s| s.error > tolerance).count();
+    if failing > 0 {
+        let saved = picture
+            .map(|p| save_failure(name, p))
+            .map(|p| format!("; image written to {}", p.display()));
+        panic!(
+            "{name}: {failing} of {} samples exceed tolerance {tolerance}; worst at pixel ({}, {}): {} (error {}){}",
+            samples.len(),
+            worst.x,
+            worst.y,
+            worst.what,
+            worst.error,
+            saved.unwrap_or_default()
+        );
+    }
+}
+
+pub fn save_failure(name: &str, picture: &image::RgbaImage) -> PathBuf {
+    let dir = std::env::temp_dir().join("hatchery-test-failures");
+    let _ = std::fs::create_dir_all(&dir);
+    let path = dir.join(format!("{name}.png"));
+    let _ = picture.save(&path);
+    path
+}
+
+/// Fraction of pixels whose colour differs from the first pixel's (a blank picture gives 0).
+pub fn non_background_fraction(picture: &image::RgbaImage) -> f64 {
+    let background = *picture.get_pixel(0, 0);
+    let differing = picture.pixels().filter(|p| **p != background).count();
+    differing as f64 / (picture.width() * picture.height()) as f64
+}
+
+pub fn read_png(path: &Path) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+        .to_rgba8()
+}
