@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use hatchery_graph::SchemaLookup;
-use hatchery_nodes::Session;
+use hatchery_nodes::{Session, Value};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -117,4 +117,16 @@ pub fn run(session: &mut Session, graph: &Path, frames: usize) -> Result<()> {
         ms(sorted[sorted.len() - 1])
     );
     Ok(())
+}
+
+/// A short note on a node's first output (mesh size, volume size) for the report.
+fn describe_output(session: &Session, id: &str) -> String {
+    match session.executor.output(id, 0) {
+        Some(Value::Mesh(mesh)) => format!("{} triangles", mesh.data.triangle_count()),
+        Some(Value::Volume(volume)) => {
+            let [x, y, z] = volume.data.dims;
+            format!("{x}x{y}x{z} voxels")
+        }
+        _ => String::new(),
+    }
 }

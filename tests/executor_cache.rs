@@ -110,3 +110,31 @@ fn execution_errors_name_the_node() {
     assert!(err.starts_with("node `surface` (MarchingCubes)"), "{err}");
     assert!(err.contains("outside the volume's value range"), "{err}");
 }
+
+#[test]
+fn per_node_times_are_recorded_and_gpu_time_only_for_gpu_work() {
+    let mut session = common::session_from_text(GRAPH, 64, 48);
+    let timed = session.ctx.enable_gpu_timing();
+    session.run(&["shaded", "gbuffer"]).unwrap();
+    let stats = session.executor.stats();
+    assert!(stats["surface"].cpu_time > std::time::Duration::ZERO);
+    // CPU-only nodes submit nothing, so they have no GPU time even when timing is on.
+    assert_eq!(stats["surface"].gpu_time, None);
+    assert_eq!(stats["shells"].gpu_time, None);
+    if timed {
+        assert!(
+            stats["shaded"]
+                .gpu_time
+                .is_some_and(|t| t > std::time::Duration::ZERO),
+            "{:?}",
+            stats["shaded"]
+        );
+        assert!(
+            stats["gbuffer"].gpu_time.is_some(),
+            "{:?}",
+            stats["gbuffer"]
+        );
+    } else {
+        eprintln!("adapter has no timestamp queries: GPU times not checked");
+    }
+}

@@ -1,60 +1,63 @@
-//! Per-node GPU time from timestamp queries written before and after each node's work.
+//! Per-node GPU time from timestamp queries written around each of a node's submissions.
+//!
+//! Timestamps bracket the command buffers themselves, not the node's whole `execute`: a node that
+//! works on the CPU first (loading, marching cubes) would otherwise count that time as GPU time.
 
 use crate::context::GpuContext;
+use std::collections::BTreeMap;
 use std::time::Duration;
 
-/// Brackets each node's submissions with two timestamps; resolves them at the end of a pass.
 pub struct GpuTimer {
     queries: wgpu::QuerySet,
+    /// Number of timestamp pairs the query set holds.
     capacity: u32,
     /// Node id per pair of queries written in this pass.
-    nodes: Vec<String>,
+    pairs: Vec<String>,
 }
 
 impl GpuTimer {
     /// `None` when the device has no timestamp queries inside encoders.
-    pub fn new(ctx: &GpuContext, max_nodes: u32) -> Option<Self> {
+    pub fn new(ctx: &GpuContext, capacity: u32) -> Option<Self> {
         if !ctx.has_timestamps() {
             return None;
         }
         let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
             label: Some("node timestamps"),
             ty: wgpu::QueryType::Timestamp,
-            count: max_nodes * 2,
+            count: capacity * 2,
         });
         Some(Self {
             queries,
-            capacity: max_nodes,
-            nodes: Vec::new(),
+            capacity,
+            pairs: Vec::new(),
         })
     }
 
-    fn write(&self, ctx: &GpuContext, index: u32) {
+    fn stamp(&self, ctx: &GpuContext, index: u32) -> wgpu::CommandBuffer {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         encoder.write_timestamp(&self.queries, index);
-        ctx.queue.submit([encoder.finish()]);
+        encoder.finish()
     }
 
-    pub fn begin(&mut self, ctx: &GpuContext, node: &str) {
-        if (self.nodes.len() as u32) < self.capacity {
-            self.write(ctx, self.nodes.len() as u32 * 2);
-            self.nodes.push(node.to_owned());
+    /// Submits `work` for `node`, between two timestamps (untimed once the query set is full).
+    pub fn submit(&mut self, ctx: &GpuContext, node: &str, work: wgpu::CommandBuffer) {
+        let pair = self.pairs.len() as u32;
+        if pair >= self.capacity {
+            ctx.queue.submit([work]);
+            return;
         }
+        let (begin, end) = (self.stamp(ctx, pair * 2), self.stamp(ctx, pair * 2 + 1));
+        ctx.queue.submit([begin, work, end]);
+        self.pairs.push(node.to_owned());
     }
 
-    pub fn end(&mut self, ctx: &GpuContext, node: &str) {
-        if self.nodes.last().map(String::as_str) == Some(node) {
-            self.write(ctx, self.nodes.len() as u32 * 2 - 1);
-        }
-    }
-
-    /// Waits for the pass's GPU work and returns each node's GPU time.
+    /// Waits for the pass's GPU work and returns each node's summed GPU time.
     pub fn finish(&mut self, ctx: &GpuContext) -> Vec<(String, Duration)> {
-        let nodes = std::mem::take(&mut self.nodes);
-        if nodes.is_empty() {
+        let pairs = std::mem::take(&mut self.pairs);
+        if pairs.is_empty() {
             return Vec::new();
         }
-        let count = nodes.len() as u32 * 2;
+        let count = pairs.len() as u32 * 2;
         let size = count as u64 * 8;
         let resolve = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("timestamps resolve"),
@@ -75,15 +78,19 @@ impl GpuTimer {
         let Ok(bytes) = ctx.map_buffer(&read) else {
             return Vec::new();
         };
-        let ticks: &[u64] = bytemuck::cast_slice(&bytes);
+        let ticks: Vec<u64> = bytes
+            .chunks_exact(8)
+            .map(|b| u64::from_le_bytes(b.try_into().expect("8 bytes")))
+            .collect();
         let period = ctx.queue.get_timestamp_period() as f64;
-        nodes
+        let mut per_node: BTreeMap<String, f64> = BTreeMap::new();
+        for (i, node) in pairs.into_iter().enumerate() {
+            let ns = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period;
+            *per_node.entry(node).or_default() += ns;
+        }
+        per_node
             .into_iter()
-            .enumerate()
-            .map(|(i, node)| {
-                let ns = ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period;
-                (node, Duration::from_nanos(ns as u64))
-            })
+            .map(|(node, ns)| (node, Duration::from_nanos(ns as u64)))
             .collect()
     }
 }

@@ -227,8 +227,12 @@ impl ParamSpec {
                 } else {
                     text.to_owned()
                 };
-                let raw: ron::Value = ron::from_str(&wrapped)
-                    .map_err(|_| format!("cannot read `{text}` as {}", self.kind.describe()))?;
+                let unreadable = || format!("cannot read `{text}` as {}", self.kind.describe());
+                let raw: ron::Value = ron::from_str(&wrapped).map_err(|_| unreadable())?;
+                // Bare words parse as RON unit values; report them as the text typed.
+                if matches!(raw, ron::Value::Unit | ron::Value::Map(_)) {
+                    return Err(unreadable());
+                }
                 return self.convert(&raw);
             }
         };

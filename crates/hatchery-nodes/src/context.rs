@@ -13,6 +13,8 @@ pub struct RenderContext {
     width: u32,
     height: u32,
     timer: Option<GpuTimer>,
+    /// The node executing now (its submissions are timed under its id).
+    current_node: Option<String>,
     /// Pipelines and other static GPU objects, built once per kind (not per execution).
     statics: HashMap<&'static str, Arc<dyn Any + Send + Sync>>,
 }
@@ -25,6 +27,7 @@ impl RenderContext {
             width,
             height,
             timer: None,
+            current_node: None,
             statics: HashMap::new(),
         })
     }
@@ -46,6 +49,16 @@ impl RenderContext {
             self.timer = GpuTimer::new(&self.gpu, 512);
         }
         self.timer.is_some()
+    }
+
+    /// Submits a node's GPU work (timed when GPU timing is on). Nodes submit through this.
+    pub fn submit(&mut self, work: wgpu::CommandBuffer) {
+        match (&mut self.timer, &self.current_node) {
+            (Some(timer), Some(node)) => timer.submit(&self.gpu, node, work),
+            _ => {
+                self.gpu.queue.submit([work]);
+            }
+        }
     }
 
     /// A static GPU object (pipeline, layout, sampler) built once under `key`.
@@ -74,14 +87,10 @@ impl ExecContext for RenderContext {
         h.finish()
     }
     fn begin_node(&mut self, node: &str) {
-        if let Some(timer) = &mut self.timer {
-            timer.begin(&self.gpu, node);
-        }
+        self.current_node = Some(node.to_owned());
     }
-    fn end_node(&mut self, node: &str) {
-        if let Some(timer) = &mut self.timer {
-            timer.end(&self.gpu, node);
-        }
+    fn end_node(&mut self, _node: &str) {
+        self.current_node = None;
     }
     fn finish_pass(&mut self) -> Vec<(String, Duration)> {
         match &mut self.timer {

@@ -63,7 +63,7 @@ impl Node<Value, Ctx> for GBufferNode {
         });
         let normal = gpu.render_target("gbuffer normal", w, h, NORMAL_FORMAT);
         let depth = mesh_pass::depth_target(gpu, "gbuffer depth", w, h);
-        mesh_pass::draw_mesh(
+        let work = mesh_pass::draw_mesh(
             gpu,
             &pipeline,
             &bind_group,
@@ -72,6 +72,7 @@ impl Node<Value, Ctx> for GBufferNode {
             wgpu::Color::TRANSPARENT,
             &depth,
         );
+        ctx.submit(work);
         let camera = (*camera).clone();
         Ok(vec![Value::GBuffer(Arc::new(GBuffer {
             depth,

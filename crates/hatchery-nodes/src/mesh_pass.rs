@@ -69,7 +69,8 @@ pub fn depth_target(gpu: &GpuContext, label: &str, width: u32, height: u32) -> w
     gpu.render_target(label, width, height, DEPTH_FORMAT)
 }
 
-/// Clears `color` and `depth` and draws the mesh into them.
+/// Clears `color` and `depth` and draws the mesh into them; submit the returned commands.
+#[must_use]
 pub fn draw_mesh(
     gpu: &GpuContext,
     pipeline: &wgpu::RenderPipeline,
@@ -78,7 +79,7 @@ pub fn draw_mesh(
     color: &wgpu::Texture,
     clear: wgpu::Color,
     depth: &wgpu::Texture,
-) {
+) -> wgpu::CommandBuffer {
     let buffers = mesh.buffers(gpu);
     let color_view = color.create_view(&Default::default());
     let depth_view = depth.create_view(&Default::default());
@@ -113,5 +114,5 @@ pub fn draw_mesh(
             pass.draw_indexed(0..buffers.index_count, 0, 0..1);
         }
     }
-    gpu.queue.submit([encoder.finish()]);
+    encoder.finish()
 }

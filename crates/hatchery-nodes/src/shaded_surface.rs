@@ -140,7 +140,9 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
             gpu.render_target("shaded surface", camera.width, camera.height, IMAGE_FORMAT);
         let depth =
             mesh_pass::depth_target(gpu, "shaded surface depth", camera.width, camera.height);
-        mesh_pass::draw_mesh(gpu, &pipeline, &bind_group, &mesh, &texture, clear, &depth);
+        let work =
+            mesh_pass::draw_mesh(gpu, &pipeline, &bind_group, &mesh, &texture, clear, &depth);
+        ctx.submit(work);
         Ok(vec![Value::Image(Arc::new(Image { texture }))])
     }
 }

@@ -1,0 +1,214 @@
+//! The `hatchery` command line: exit codes, one-line errors without panics, dumps, the catalogue.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn hatchery(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hatchery"))
+        .args(args)
+        .current_dir(common::repo_root())
+        .output()
+        .expect("hatchery runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// A failed command: non-zero exit and exactly one error line, no panic.
+fn assert_clean_failure(output: &Output, needles: &[&str]) {
+    let err = stderr(output);
+    assert!(
+        !output.status.success(),
+        "expected failure, got success; stderr: {err}"
+    );
+    assert!(
+        !err.contains("panicked") && !err.contains("RUST_BACKTRACE"),
+        "panic text in: {err}"
+    );
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(lines.len(), 1, "expected one error line, got: {err}");
+    for needle in needles {
+        assert!(
+            lines[0].contains(needle),
+            "`{needle}` missing from: {}",
+            lines[0]
+        );
+    }
+}
+
+#[test]
+fn validate_accepts_presets_and_rejects_every_bad_fixture_without_panicking() {
+    let ok = hatchery(&["validate", "graphs/shaded_surface.ron"]);
+    assert!(ok.status.success(), "{}", stderr(&ok));
+    let dir = common::repo_root().join("tests/fixtures/bad");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let relative = format!(
+            "tests/fixtures/bad/{}",
+            path.file_name().unwrap().to_string_lossy()
+        );
+        let output = hatchery(&["validate", &relative]);
+        assert_clean_failure(&output, &[&format!("error: {relative}:")]);
+        count += 1;
+    }
+    assert!(count >= 10);
+}
+
+#[test]
+fn render_writes_the_picture_and_every_requested_dump() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).to_string_lossy().into_owned();
+    let output = hatchery(&[
+        "render",
+        "graphs/shaded_surface.ron",
+        "-o",
+        &p("out.png"),
+        "--size",
+        "200x150",
+        "--set",
+        "shells.resolution=40",
+        "--set",
+        "camera.azimuth=90",
+        "--dump",
+        &format!("shaded.image={}", p("image.npy")),
+        "--dump",
+        &format!("shaded.image={}", p("image.png")),
+        "--dump",
+        &format!("surface.mesh={}", p("mesh.npy")),
+        "--dump",
+        &format!("shells.volume={}", p("volume.npy")),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let picture = common::read_png(Path::new(&p("out.png")));
+    assert_eq!(picture.dimensions(), (200, 150));
+    assert!(
+        common::non_background_fraction(&picture) > 0.1,
+        "the render is blank"
+    );
+
+    let image = hatchery_nodes::export::read_npy(Path::new(&p("image.npy"))).unwrap();
+    assert_eq!(image.shape, vec![150, 200, 4]);
+    // The dumped PNG and the saved picture are the same pixels.
+    assert_eq!(common::read_png(Path::new(&p("image.png"))), picture);
+    let mesh = hatchery_nodes::export::read_npy(Path::new(&p("mesh.npy"))).unwrap();
+    assert_eq!(mesh.shape[1], 6);
+    assert!(mesh.shape[0] > 1000);
+    let volume = hatchery_nodes::export::read_npy(Path::new(&p("volume.npy"))).unwrap();
+    assert_eq!(volume.shape, vec![40, 40, 40]);
+}
+
+#[test]
+fn bad_command_line_input_is_one_clean_error() {
+    let cases: &[(&[&str], &[&str])] = &[
+        (
+            &[
+                "render",
+                "graphs/shaded_surface.ron",
+                "--set",
+                "camera.zoom=2",
+            ],
+            &["node `camera`", "no parameter `zoom`"],
+        ),
+        (
+            &[
+                "render",
+                "graphs/shaded_surface.ron",
+                "--set",
+                "camera.azimuth=far",
+            ],
+            &["parameter `azimuth`", "far"],
+        ),
+        (
+            &["render", "graphs/shaded_surface.ron", "--set", "ghost.x=1"],
+            &["no node `ghost`"],
+        ),
+        (
+            &[
+                "render",
+                "graphs/shaded_surface.ron",
+                "--dump",
+                "shaded.picture=x.npy",
+            ],
+            &["no output port `picture`", "image"],
+        ),
+        (
+            &[
+                "render",
+                "graphs/shaded_surface.ron",
+                "--dump",
+                "camera.camera=x.npy",
+            ],
+            &["Camera value holds no array"],
+        ),
+        (
+            &[
+                "render",
+                "graphs/shaded_surface.ron",
+                "--set",
+                "surface.iso=3",
+            ],
+            &["node `surface`", "outside the volume's value range"],
+        ),
+        (
+            &[
+                "render",
+                "graphs/brain_surface.ron",
+                "--set",
+                "mri.path=Cargo.toml",
+            ],
+            &["node `mri` (VolumeFile)", "Cargo.toml"],
+        ),
+        (
+            &["render", "graphs/shaded_surface.ron", "--size", "0x10"],
+            &["0x10"],
+        ),
+        (
+            &["validate", "graphs/nope.ron"],
+            &["graphs/nope.ron", "cannot read graph file"],
+        ),
+    ];
+    for (args, needles) in cases {
+        let output = hatchery(args);
+        assert_clean_failure(&output, needles);
+    }
+}
+
+#[test]
+fn the_committed_node_catalogue_is_current() {
+    let output = hatchery(&["nodes", "--markdown"]);
+    assert!(output.status.success());
+    let generated = String::from_utf8(output.stdout).unwrap();
+    let committed = std::fs::read_to_string(common::repo_root().join("docs/nodes.md")).unwrap();
+    assert!(
+        generated == committed,
+        "docs/nodes.md is stale: run `cargo run --release -- nodes --markdown > docs/nodes.md`"
+    );
+    for kind in [
+        "ProceduralVolume",
+        "VolumeFile",
+        "MeshFile",
+        "MarchingCubes",
+        "Camera",
+        "Light",
+        "GBuffer",
+        "ShadedSurface",
+        "SaveImage",
+    ] {
+        assert!(
+            generated.contains(&format!("### {kind}")),
+            "{kind} missing from the catalogue"
+        );
+    }
+}
+
+#[test]
+fn fmt_check_accepts_canonical_presets() {
+    for preset in ["graphs/shaded_surface.ron", "graphs/brain_surface.ron"] {
+        let output = hatchery(&["fmt", "--check", preset]);
+        assert!(output.status.success(), "{preset}: {}", stderr(&output));
+    }
+}
