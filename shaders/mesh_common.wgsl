@@ -1,5 +1,5 @@
 // Shared by every shader that draws a triangle mesh: the camera block and the vertex stage.
-// Prepended to gbuffer.wgsl and shaded_surface.wgsl when they are compiled.
+// Prepended to every mesh shader (gbuffer, depth_peel, secondary_geometry, shaded_surface).
 
 struct Camera {
     view: mat4x4<f32>,
@@ -16,7 +16,8 @@ struct VertexIn {
 };
 
 struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: every pass computes bit-identical depth, so depth peeling can compare exactly.
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) view_pos: vec3<f32>,
     @location(1) view_normal: vec3<f32>,
 };

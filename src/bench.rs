@@ -1,29 +1,103 @@
-//! `hatchery bench`: runs a graph's nodes N times from scratch and reports per-node medians.
+//! `hatchery bench`: measures graphs frame by frame, side by side in one run.
+//!
+//! Every (graph, scenario) pair is measured in turn inside each frame, so that the machine's
+//! load drifts equally over all of them and their ratios are fair. Scenarios:
+//! - `full`: every node from scratch (loading and geometry included);
+//! - `orbit:CAMERA`: the camera's azimuth advances each frame (an animation, as in the papers'
+//!   frame-rate tables): the camera and everything below it re-run, geometry stays cached;
+//! - `vary:NODE.PARAM=a,b,…`: the parameter cycles through the values: the cached re-render after
+//!   changing one parameter.
 
-use anyhow::Result;
+use anyhow::{Context, Result, bail};
 use hatchery_graph::SchemaLookup;
 use hatchery_nodes::{Session, Value};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-fn median(values: &mut [Duration]) -> Duration {
-    values.sort();
-    values[values.len() / 2]
+#[derive(Clone, Debug)]
+pub enum Scenario {
+    Full,
+    Orbit {
+        camera: String,
+    },
+    Vary {
+        node: String,
+        param: String,
+        values: Vec<String>,
+    },
 }
 
-fn ms(d: Duration) -> String {
-    format!("{:.2}", d.as_secs_f64() * 1000.0)
+impl Scenario {
+    pub fn parse(text: &str) -> Result<Scenario> {
+        if text == "full" {
+            return Ok(Scenario::Full);
+        }
+        if let Some(camera) = text.strip_prefix("orbit:") {
+            return Ok(Scenario::Orbit {
+                camera: camera.to_owned(),
+            });
+        }
+        if let Some(rest) = text.strip_prefix("vary:") {
+            let (target, values) = rest
+                .split_once('=')
+                .context("vary:NODE.PARAM=a,b,… expected")?;
+            let (node, param) = target
+                .split_once('.')
+                .context("vary:NODE.PARAM=a,b,… expected")?;
+            let values: Vec<String> = values.split(',').map(|v| v.trim().to_owned()).collect();
+            if values.len() < 2 {
+                bail!("--scenario {text}: give at least two values to alternate");
+            }
+            return Ok(Scenario::Vary {
+                node: node.to_owned(),
+                param: param.to_owned(),
+                values,
+            });
+        }
+        bail!("--scenario {text}: expected `full`, `orbit:CAMERA` or `vary:NODE.PARAM=a,b,…`")
+    }
+
+    fn name(&self) -> String {
+        match self {
+            Scenario::Full => "full".into(),
+            Scenario::Orbit { camera } => format!("orbit:{camera}"),
+            Scenario::Vary { node, param, .. } => format!("vary:{node}.{param}"),
+        }
+    }
+
+    /// Makes the change this scenario measures, before frame `frame` of `frames`.
+    fn apply(&self, session: &mut Session, frame: usize, frames: usize) -> Result<()> {
+        match self {
+            Scenario::Full => session.executor.clear(),
+            Scenario::Orbit { camera } => {
+                let start = session
+                    .graph
+                    .node(camera)
+                    .map(|n| n.params.float("azimuth"))
+                    .unwrap_or(0.0);
+                let step = 360.0 / (frames + 1) as f64;
+                let azimuth = (start + step + 180.0).rem_euclid(360.0) - 180.0;
+                session.set_param_text(camera, "azimuth", &azimuth.to_string())?;
+            }
+            Scenario::Vary {
+                node,
+                param,
+                values,
+            } => {
+                session.set_param_text(node, param, &values[frame % values.len()])?;
+            }
+        }
+        Ok(())
+    }
 }
 
-pub fn run(session: &mut Session, graph: &Path, frames: usize) -> Result<()> {
-    let gpu_timing = session.ctx.enable_gpu_timing();
-    // Benchmark what the sinks need, without writing files every frame.
+/// What the sinks of a graph need, without writing files every frame.
+fn targets(session: &Session) -> Vec<String> {
     let mut targets: Vec<String> = Vec::new();
     for node in session.graph.nodes() {
-        let sink = session.registry.schema(&node.kind).is_some_and(|s| s.sink);
-        if sink {
+        if session.registry.schema(&node.kind).is_some_and(|s| s.sink) {
             targets.extend(
                 session
                     .graph
@@ -41,85 +115,178 @@ pub fn run(session: &mut Session, graph: &Path, frames: usize) -> Result<()> {
             .map(|n| n.id.clone())
             .collect();
     }
-    let targets: Vec<&str> = targets.iter().map(String::as_str).collect();
+    targets.sort();
+    targets.dedup();
+    targets
+}
 
-    let mut cpu: BTreeMap<String, Vec<Duration>> = BTreeMap::new();
-    let mut gpu: BTreeMap<String, Vec<Duration>> = BTreeMap::new();
-    let mut frame_times = Vec::new();
-    let bar = ProgressBar::new(frames as u64 + 1);
+fn median(values: &[Duration]) -> Duration {
+    let mut sorted = values.to_vec();
+    sorted.sort();
+    sorted[sorted.len() / 2]
+}
+
+fn ms(d: Duration) -> String {
+    format!("{:.2}", d.as_secs_f64() * 1000.0)
+}
+
+/// Measurements of one (graph, scenario) at one size.
+#[derive(Default)]
+struct Series {
+    frames: Vec<Duration>,
+    cpu: BTreeMap<String, Vec<Duration>>,
+    gpu: BTreeMap<String, Vec<Duration>>,
+}
+
+pub fn run(
+    graphs: &[PathBuf],
+    sessions: &mut [Session],
+    scenarios: &[Scenario],
+    sizes: &[(u32, u32)],
+    frames: usize,
+) -> Result<()> {
+    let mut gpu_timing = true;
+    for session in sessions.iter_mut() {
+        gpu_timing &= session.ctx.enable_gpu_timing();
+    }
+    let all_targets: Vec<Vec<String>> = sessions.iter().map(targets).collect();
+    let pairs: Vec<(usize, usize)> = (0..sessions.len())
+        .flat_map(|g| (0..scenarios.len()).map(move |s| (g, s)))
+        .collect();
+
+    let bar = ProgressBar::new((sizes.len() * (frames + 1) * pairs.len()) as u64);
     bar.set_style(
-        ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} frames").expect("valid template"),
+        ProgressStyle::with_template("bench {bar:30} {pos}/{len} runs {msg}")
+            .expect("valid template"),
     );
-    bar.set_message("bench");
-    for frame in 0..=frames {
-        session.executor.clear();
-        let start = Instant::now();
-        session.run(&targets)?;
-        session.ctx.gpu.wait_idle();
-        let elapsed = start.elapsed();
-        bar.inc(1);
-        if frame == 0 {
-            continue; // warm-up: pipeline compilation, uploads
+    let mut results: BTreeMap<((u32, u32), usize, usize), Series> = BTreeMap::new();
+    for &(width, height) in sizes {
+        bar.set_message(format!("{width}x{height}"));
+        for session in sessions.iter_mut() {
+            session.ctx.set_size(width, height)?;
         }
-        frame_times.push(elapsed);
-        for (id, stats) in session.executor.stats() {
-            cpu.entry(id.clone()).or_default().push(stats.cpu_time);
-            if let Some(g) = stats.gpu_time {
-                gpu.entry(id.clone()).or_default().push(g);
+        for frame in 0..=frames {
+            for &(g, s) in &pairs {
+                let session = &mut sessions[g];
+                scenarios[s].apply(session, frame, frames)?;
+                let targets: Vec<&str> = all_targets[g].iter().map(String::as_str).collect();
+                let start = Instant::now();
+                let report = session.run(&targets)?;
+                session.ctx.gpu.wait_idle();
+                let elapsed = start.elapsed();
+                bar.inc(1);
+                if frame == 0 {
+                    continue; // warm-up: pipelines, uploads, first loads
+                }
+                let series = results.entry(((width, height), g, s)).or_default();
+                series.frames.push(elapsed);
+                for id in &report.executed {
+                    let stats = &session.executor.stats()[id];
+                    series
+                        .cpu
+                        .entry(id.clone())
+                        .or_default()
+                        .push(stats.cpu_time);
+                    if let Some(t) = stats.gpu_time {
+                        series.gpu.entry(id.clone()).or_default().push(t);
+                    }
+                }
             }
         }
     }
     bar.finish_and_clear();
 
-    let (w, h) = session.ctx.size();
-    println!(
-        "graph: {}  size: {w}x{h}  frames: {frames} (+1 warm-up, not counted)",
-        graph.display()
-    );
-    println!("adapter: {}", session.ctx.gpu.describe());
-    if session.ctx.gpu.is_software() {
-        println!("note: a CPU (software) driver: GPU times below are CPU timings of the driver");
+    let gpu = &sessions[0].ctx.gpu;
+    println!("adapter: {}", gpu.describe());
+    if gpu.is_software() {
+        println!(
+            "note: a CPU (software) driver: every time below, GPU times included, is CPU time"
+        );
     }
     if !gpu_timing {
         println!("note: this adapter has no timestamp queries inside encoders: no GPU times");
     }
     println!(
-        "{:<24} {:<18} {:>14} {:>14}",
-        "node", "kind", "cpu median ms", "gpu median ms"
+        "frames: {frames} per (graph, scenario, size), after 1 warm-up; medians; interleaved in one run"
     );
-    for id in session.graph.topological_order() {
-        let Some(times) = cpu.get_mut(id) else {
-            continue;
-        };
-        let kind = session
-            .graph
-            .node(id)
-            .map(|n| n.kind.as_str())
-            .unwrap_or("");
-        let g = gpu
-            .get_mut(id)
-            .map(|t| ms(median(t)))
-            .unwrap_or_else(|| "-".into());
+    for ((size, g, s), series) in &results {
+        let session = &sessions[*g];
+        println!();
         println!(
-            "{:<24} {:<18} {:>14} {:>14}",
-            id,
-            kind,
-            ms(median(times)),
-            g
+            "{} — {} — {}x{}",
+            graphs[*g].display(),
+            scenarios[*s].name(),
+            size.0,
+            size.1
+        );
+        println!(
+            "  {:<22} {:<18} {:>12} {:>12}  output",
+            "node", "kind", "cpu ms", "gpu ms"
+        );
+        for id in session.graph.topological_order() {
+            let Some(times) = series.cpu.get(id) else {
+                continue;
+            };
+            let kind = session
+                .graph
+                .node(id)
+                .map(|n| n.kind.as_str())
+                .unwrap_or("");
+            let g = series
+                .gpu
+                .get(id)
+                .map(|t| ms(median(t)))
+                .unwrap_or_else(|| "-".into());
+            println!(
+                "  {:<22} {:<18} {:>12} {:>12}  {}",
+                id,
+                kind,
+                ms(median(times)),
+                g,
+                describe_output(session, id)
+            );
+        }
+        println!(
+            "  frame (wall, incl. GPU wait): median {} ms",
+            ms(median(&series.frames))
         );
     }
-    let mut sorted = frame_times.clone();
-    sorted.sort();
-    println!(
-        "frame (wall, all nodes from scratch, incl. GPU wait): median {} ms, min {} ms, max {} ms",
-        ms(median(&mut frame_times)),
-        ms(sorted[0]),
-        ms(sorted[sorted.len() - 1])
-    );
+
+    println!();
+    println!("summary: median frame time in ms (ratio to the first column)");
+    let columns: Vec<String> = pairs
+        .iter()
+        .map(|&(g, s)| format!("{} [{}]", file_name(&graphs[g]), scenarios[s].name()))
+        .collect();
+    println!("| size | {} |", columns.join(" | "));
+    println!("|---|{}", "---|".repeat(columns.len()));
+    for &size in sizes {
+        let base = results
+            .get(&(size, pairs[0].0, pairs[0].1))
+            .map(|s| median(&s.frames));
+        let cells: Vec<String> = pairs
+            .iter()
+            .map(
+                |&(g, s)| match (results.get(&(size, g, s)).map(|r| median(&r.frames)), base) {
+                    (Some(t), Some(b)) => {
+                        format!("{} ({:.2}×)", ms(t), t.as_secs_f64() / b.as_secs_f64())
+                    }
+                    _ => "-".into(),
+                },
+            )
+            .collect();
+        println!("| {}x{} | {} |", size.0, size.1, cells.join(" | "));
+    }
     Ok(())
 }
 
-/// A short note on a node's first output (mesh size, volume size) for the report.
+fn file_name(path: &std::path::Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// A short note on a node's first output (mesh or volume size) for the report.
 fn describe_output(session: &Session, id: &str) -> String {
     match session.executor.output(id, 0) {
         Some(Value::Mesh(mesh)) => format!("{} triangles", mesh.data.triangle_count()),

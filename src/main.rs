@@ -46,13 +46,22 @@ enum Command {
         #[arg(long)]
         markdown: bool,
     },
-    /// Run a graph N times and report per-node median times.
+    /// Measure graphs frame by frame, side by side: per-node medians and frame-time ratios.
     Bench {
-        graph: PathBuf,
+        /// One or more graphs, measured interleaved.
+        #[arg(required = true)]
+        graphs: Vec<PathBuf>,
         #[arg(long, default_value_t = 10)]
         frames: usize,
-        #[command(flatten)]
-        frame: FrameArgs,
+        /// Frame sizes (repeat for several).
+        #[arg(long, value_parser = parse_size, default_value = "1024x768")]
+        size: Vec<(u32, u32)>,
+        /// What changes between frames: `full`, `orbit:CAMERA`, `vary:NODE.PARAM=a,b` (repeatable).
+        #[arg(long, default_value = "full")]
+        scenario: Vec<String>,
+        /// Override a parameter in every graph that has the node: `node.param=value`.
+        #[arg(long, value_name = "NODE.PARAM=VALUE")]
+        set: Vec<String>,
     },
     /// Rewrite a graph file in the canonical layout (what saving writes).
     Fmt {
@@ -178,12 +187,36 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Bench {
-            graph,
+            graphs,
             frames,
-            frame,
+            size,
+            scenario,
+            set,
         } => {
-            let mut session = open(&graph, &frame)?;
-            bench::run(&mut session, &graph, frames.max(1))
+            let scenarios = scenario
+                .iter()
+                .map(|s| bench::Scenario::parse(s))
+                .collect::<Result<Vec<_>>>()?;
+            let mut sessions = Vec::new();
+            for graph in &graphs {
+                let mut session = open(
+                    graph,
+                    &FrameArgs {
+                        size: size[0],
+                        set: Vec::new(),
+                    },
+                )?;
+                // Each override applies to the graphs that have its node.
+                for assignment in &set {
+                    let (node, param, value) = split_assignment(assignment, "NODE.PARAM")?;
+                    if session.graph.node(node).is_some() {
+                        let value = resolve_cli_path(&session, node, param, value);
+                        session.set_param_text(node, param, &value)?;
+                    }
+                }
+                sessions.push(session);
+            }
+            bench::run(&graphs, &mut sessions, &scenarios, &size, frames.max(1))
         }
         Command::Fmt { graph, check } => {
             let (doc, _) = GraphDocument::load(&graph)?;

@@ -212,3 +212,25 @@ fn fmt_check_accepts_canonical_presets() {
         assert!(output.status.success(), "{preset}: {}", stderr(&output));
     }
 }
+
+#[test]
+fn no_gpu_adapter_is_a_clear_error_saying_what_to_install() {
+    // Metal does not exist on this platform, so restricting wgpu to it finds no adapter at all.
+    if cfg!(target_os = "macos") {
+        return;
+    }
+    let output = Command::new(env!("CARGO_BIN_EXE_hatchery"))
+        .args([
+            "render",
+            "graphs/shaded_surface.ron",
+            "--size",
+            "32x32",
+            "-o",
+        ])
+        .arg(std::env::temp_dir().join("hatchery-no-adapter.png"))
+        .env("HATCHERY_BACKEND", "metal")
+        .current_dir(common::repo_root())
+        .output()
+        .unwrap();
+    assert_clean_failure(&output, &["no GPU adapter found", "mesa-vulkan-drivers"]);
+}

@@ -41,6 +41,44 @@ pub fn torus(resolution: u32, major: f32, minor: f32) -> Result<VolumeData, Data
     })
 }
 
+/// Centres (x) of the two vertical bores of [`engine_block`] and the pistons in them.
+pub const BORE_X: [f32; 2] = [-0.4, 0.4];
+/// Radius of the vertical bores of [`engine_block`].
+pub const BORE_RADIUS: f32 = 0.25;
+
+/// An engine-like block for hidden-structure illustration: the box |x| ≤ 0.85, |y| ≤ 0.55,
+/// |z| ≤ 0.5 with two vertical bores (radius [`BORE_RADIUS`], axes along y at x = ±0.4, z = 0)
+/// and one horizontal bore (radius 0.12 along x at y = -0.3, z = 0). Value = signed distance to
+/// the material, positive inside (the minimum of the box's and the bores' complements).
+pub fn engine_block(resolution: u32) -> Result<VolumeData, DataError> {
+    field(resolution, |p| {
+        let half = Vec3::new(0.85, 0.55, 0.5);
+        let q = p.abs() - half;
+        let box_outside = q.max(Vec3::ZERO).length() + q.max_element().min(0.0);
+        let mut inside = -box_outside;
+        for x in BORE_X {
+            let bore = BORE_RADIUS - ((p.x - x).powi(2) + p.z * p.z).sqrt();
+            inside = inside.min(-bore);
+        }
+        let crank = 0.12 - ((p.y + 0.3).powi(2) + p.z * p.z).sqrt();
+        inside.min(-crank)
+    })
+}
+
+/// Two pistons that sit inside the bores of [`engine_block`]: capped cylinders of radius 0.17
+/// around x = ±0.4, z = 0, spanning y ∈ [-0.05, 0.35] (left) and [-0.2, 0.2] (right).
+/// Value = signed distance, positive inside.
+pub fn pistons(resolution: u32) -> Result<VolumeData, DataError> {
+    field(resolution, |p| {
+        let piston = |x: f32, y_centre: f32| {
+            let radial = 0.17 - ((p.x - x).powi(2) + p.z * p.z).sqrt();
+            let axial = 0.2 - (p.y - y_centre).abs();
+            radial.min(axial)
+        };
+        piston(BORE_X[0], 0.15).max(piston(BORE_X[1], 0.0))
+    })
+}
+
 fn check_finite(what: &str, v: f32) -> Result<(), DataError> {
     if v.is_finite() {
         Ok(())
@@ -129,5 +167,35 @@ mod tests {
     #[test]
     fn deterministic() {
         assert_eq!(shells(17).unwrap(), shells(17).unwrap());
+    }
+
+    #[test]
+    fn engine_block_is_material_outside_the_bores_and_pistons_sit_inside_them() {
+        let block = engine_block(41).unwrap();
+        let pistons = pistons(41).unwrap();
+        // Index 20 is the origin, spacing 0.05: x = 0.4 is index 28, x = 0.65 index 33.
+        assert!(block.value(28, 20, 20) < 0.0, "bore axis must be empty");
+        assert!(
+            block.value(20, 30, 20) > 0.0,
+            "between the bores is material"
+        );
+        assert!(
+            (block.value(20, 30, 20) - 0.15).abs() < 1e-5,
+            "0.15 to the nearest bore wall"
+        );
+        assert!(block.value(2, 20, 20) < 0.0, "outside the box");
+        assert!(
+            pistons.value(28, 20, 20) > 0.0,
+            "right piston on its bore axis"
+        );
+        assert!(pistons.value(12, 23, 20) > 0.0, "left piston (y = 0.15)");
+        assert!(
+            pistons.value(20, 20, 20) < 0.0,
+            "nothing between the pistons"
+        );
+        // Pistons never intersect the block's material.
+        for (b, p) in block.values.iter().zip(&pistons.values) {
+            assert!(!(*b > 0.01 && *p > 0.01));
+        }
     }
 }

@@ -5,6 +5,7 @@ use hatchery_graph::ExecContext;
 use std::any::Any;
 use std::collections::HashMap;
 use std::hash::{DefaultHasher, Hash, Hasher};
+use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -16,7 +17,7 @@ pub struct RenderContext {
     /// The node executing now (its submissions are timed under its id).
     current_node: Option<String>,
     /// Pipelines and other static GPU objects, built once per kind (not per execution).
-    statics: HashMap<&'static str, Arc<dyn Any + Send + Sync>>,
+    statics: HashMap<String, Arc<dyn Any + Send + Sync>>,
 }
 
 impl RenderContext {
@@ -61,10 +62,73 @@ impl RenderContext {
         }
     }
 
+    /// A 1×1 white texture, bound where a shader's optional texture is unused.
+    pub fn blank_texture(&mut self) -> wgpu::Texture {
+        let texture = self
+            .cached("blank_texture", |gpu| {
+                let texture = gpu.render_target("blank", 1, 1, wgpu::TextureFormat::Rgba8Unorm);
+                gpu.queue.write_texture(
+                    texture.as_image_copy(),
+                    &[255, 255, 255, 255],
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(4),
+                        rows_per_image: None,
+                    },
+                    wgpu::Extent3d {
+                        width: 1,
+                        height: 1,
+                        depth_or_array_layers: 1,
+                    },
+                );
+                Ok(texture)
+            })
+            .expect("creating a 1×1 texture cannot fail validation");
+        (*texture).clone()
+    }
+
+    /// An image file as an Rgba8Unorm texture, read once per path and modification time.
+    pub fn file_texture(&mut self, path: &Path) -> Result<wgpu::Texture, String> {
+        let modified = std::fs::metadata(path)
+            .and_then(|m| m.modified())
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let key = format!("file_texture:{}:{modified:?}", path.display());
+        let texture = self
+            .cached(&key, |gpu| {
+                let picture = image::open(path)
+                    .map_err(|e| GpuError::Validation {
+                        what: format!("{}", path.display()),
+                        message: e.to_string(),
+                    })?
+                    .to_rgba8();
+                let (w, h) = picture.dimensions();
+                gpu.check_2d_size(&path.display().to_string(), w, h)?;
+                let texture =
+                    gpu.render_target("file texture", w, h, wgpu::TextureFormat::Rgba8Unorm);
+                gpu.queue.write_texture(
+                    texture.as_image_copy(),
+                    picture.as_raw(),
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(4 * w),
+                        rows_per_image: None,
+                    },
+                    wgpu::Extent3d {
+                        width: w,
+                        height: h,
+                        depth_or_array_layers: 1,
+                    },
+                );
+                Ok(texture)
+            })
+            .map_err(|e| e.to_string())?;
+        Ok((*texture).clone())
+    }
+
     /// A static GPU object (pipeline, layout, sampler) built once under `key`.
     pub fn cached<T: Any + Send + Sync>(
         &mut self,
-        key: &'static str,
+        key: &str,
         build: impl FnOnce(&GpuContext) -> Result<T, GpuError>,
     ) -> Result<Arc<T>, GpuError> {
         if let Some(existing) = self
@@ -75,7 +139,7 @@ impl RenderContext {
             return Ok(existing);
         }
         let built = Arc::new(build(&self.gpu)?);
-        self.statics.insert(key, built.clone());
+        self.statics.insert(key.to_owned(), built.clone());
         Ok(built)
     }
 }

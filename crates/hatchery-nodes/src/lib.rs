@@ -2,18 +2,29 @@
 
 pub mod camera;
 pub mod context;
+pub mod depth_peel;
+pub mod depth_test_mask;
+pub mod diffuse_intensity;
 pub mod export;
+pub mod fill;
 pub mod gbuffer;
+pub mod halftone;
 pub mod light;
 pub mod marching_cubes;
+pub mod mask_combine;
 pub mod mesh_file;
 pub mod mesh_pass;
 pub mod mesh_transform;
+pub mod mix_by_mask;
+pub mod multiply_by_mask;
 pub mod procedural_volume;
 pub mod save_image;
+pub mod screen_pass;
+pub mod secondary_geometry;
 mod session;
 pub mod shaded_surface;
 pub mod shaders;
+pub mod silhouette;
 pub mod value;
 pub mod volume_file;
 
@@ -38,6 +49,16 @@ pub fn registry() -> Registry {
     r.register(light::LightNode);
     r.register(gbuffer::GBufferNode);
     r.register(shaded_surface::ShadedSurfaceNode);
+    r.register(depth_peel::DepthPeelNode);
+    r.register(diffuse_intensity::DiffuseIntensityNode);
+    r.register(secondary_geometry::SecondaryGeometryNode);
+    r.register(silhouette::SilhouetteNode);
+    r.register(halftone::HalftoneNode);
+    r.register(fill::FillNode);
+    r.register(mix_by_mask::MixByMaskNode);
+    r.register(multiply_by_mask::MultiplyByMaskNode);
+    r.register(depth_test_mask::DepthTestMaskNode);
+    r.register(mask_combine::MaskCombineNode);
     r.register(save_image::SaveImageNode);
     r
 }

@@ -9,6 +9,26 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
 
+/// Interleaved position + normal, as [`crate::value::Mesh`] uploads them.
+pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: 24,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &VERTEX_ATTRIBUTES,
+    }
+}
+
+/// The ordinary depth test, writing depth.
+pub fn depth_state() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Less),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
 /// A render pipeline drawing meshes with `program` (a name from [`crate::shaders::programs`]).
 pub fn mesh_pipeline(
     gpu: &GpuContext,
@@ -29,24 +49,14 @@ pub fn mesh_pipeline(
                 module: &module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 24,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &VERTEX_ATTRIBUTES,
-                })],
+                buffers: &[Some(vertex_layout())],
             },
             // No culling: illustration shows inner and back faces (peeled layers, open meshes).
             primitive: wgpu::PrimitiveState {
                 cull_mode: None,
                 ..Default::default()
             },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
+            depth_stencil: Some(depth_state()),
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
@@ -69,7 +79,7 @@ pub fn depth_target(gpu: &GpuContext, label: &str, width: u32, height: u32) -> w
     gpu.render_target(label, width, height, DEPTH_FORMAT)
 }
 
-/// Clears `color` and `depth` and draws the mesh into them; submit the returned commands.
+/// Clears `color` (to `clear`) and `depth` and draws the mesh into them; submit the commands.
 #[must_use]
 pub fn draw_mesh(
     gpu: &GpuContext,
@@ -80,22 +90,60 @@ pub fn draw_mesh(
     clear: wgpu::Color,
     depth: &wgpu::Texture,
 ) -> wgpu::CommandBuffer {
+    draw(gpu, pipeline, bind_group, mesh, &[(color, clear)], depth)
+}
+
+/// Like [`draw_mesh`] with several colour targets, all cleared to zero.
+#[must_use]
+pub fn draw_mesh_targets(
+    gpu: &GpuContext,
+    pipeline: &wgpu::RenderPipeline,
+    bind_group: &wgpu::BindGroup,
+    mesh: &Mesh,
+    colors: &[&wgpu::Texture],
+    depth: &wgpu::Texture,
+) -> wgpu::CommandBuffer {
+    let targets: Vec<(&wgpu::Texture, wgpu::Color)> = colors
+        .iter()
+        .map(|t| (*t, wgpu::Color::TRANSPARENT))
+        .collect();
+    draw(gpu, pipeline, bind_group, mesh, &targets, depth)
+}
+
+fn draw(
+    gpu: &GpuContext,
+    pipeline: &wgpu::RenderPipeline,
+    bind_group: &wgpu::BindGroup,
+    mesh: &Mesh,
+    colors: &[(&wgpu::Texture, wgpu::Color)],
+    depth: &wgpu::Texture,
+) -> wgpu::CommandBuffer {
     let buffers = mesh.buffers(gpu);
-    let color_view = color.create_view(&Default::default());
+    let views: Vec<wgpu::TextureView> = colors
+        .iter()
+        .map(|(t, _)| t.create_view(&Default::default()))
+        .collect();
+    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
+        .iter()
+        .zip(colors)
+        .map(|(view, (_, clear))| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(*clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect();
     let depth_view = depth.create_view(&Default::default());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh pass"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &color_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
+            color_attachments: &attachments,
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &depth_view,
                 depth_ops: Some(wgpu::Operations {

@@ -17,7 +17,8 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
             category: "Data",
             doc: "Analytic distance fields on a resolution³ grid over [-1, 1]³ (positive inside, iso 0 \
                   is the surface): three nested spherical shells (centre radii 0.8, 0.5, 0.2, \
-                  half-thickness 0.05), a sphere, or a torus in the xy plane.",
+                  half-thickness 0.05), a sphere, a torus in the xy plane, an engine-like block (a box with \
+                  two vertical bores and a horizontal one) and the two pistons that sit in its bores.",
             inputs: vec![],
             outputs: vec![PortSpec::output(
                 "volume",
@@ -28,7 +29,7 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
                 ParamSpec::choice(
                     "shape",
                     "shells",
-                    &["shells", "sphere", "torus"],
+                    &["shells", "sphere", "torus", "engine_block", "pistons"],
                     "which field to generate",
                 ),
                 ParamSpec::int("resolution", 96, 4, 512, "voxels along each axis"),
@@ -56,6 +57,8 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
         let data = match p.choice("shape") {
             "sphere" => procedural::sphere(res, p.f32("radius")),
             "torus" => procedural::torus(res, p.f32("radius"), p.f32("minor_radius")),
+            "engine_block" => procedural::engine_block(res),
+            "pistons" => procedural::pistons(res),
             _ => procedural::shells(res),
         }
         .map_err(|e| NodeError::new(e.to_string()))?;

@@ -8,11 +8,11 @@ use std::path::Path;
 
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
-    #[error("{0}")]
+    #[error(transparent)]
     Graph(#[from] GraphErrors),
-    #[error("{0}")]
+    #[error(transparent)]
     Gpu(#[from] GpuError),
-    #[error("{0}")]
+    #[error(transparent)]
     Exec(#[from] ExecError),
     #[error("{0}")]
     Other(String),

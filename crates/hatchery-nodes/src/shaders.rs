@@ -1,5 +1,6 @@
 //! Every WGSL shader, embedded at build time. Some are assembled from shared parts
-//! (`mesh_common.wgsl` is prepended to the mesh shaders): WGSL has no includes.
+//! (`mesh_common.wgsl` is prepended to the mesh shaders, `fullscreen.wgsl` to the
+//! image-space ones): WGSL has no includes.
 
 macro_rules! shader_file {
     ($name:literal) => {
@@ -14,21 +15,50 @@ macro_rules! shader_file {
 pub const MESH_COMMON: &str = shader_file!("mesh_common.wgsl");
 pub const GBUFFER: &str = shader_file!("gbuffer.wgsl");
 pub const SHADED_SURFACE: &str = shader_file!("shaded_surface.wgsl");
+pub const DEPTH_PEEL: &str = shader_file!("depth_peel.wgsl");
+pub const SECONDARY_GEOMETRY: &str = shader_file!("secondary_geometry.wgsl");
+pub const FULLSCREEN: &str = shader_file!("fullscreen.wgsl");
+pub const DIFFUSE_INTENSITY: &str = shader_file!("diffuse_intensity.wgsl");
+pub const SILHOUETTE: &str = shader_file!("silhouette.wgsl");
+pub const HALFTONE: &str = shader_file!("halftone.wgsl");
+pub const FILL: &str = shader_file!("fill.wgsl");
+pub const MIX_BY_MASK: &str = shader_file!("mix_by_mask.wgsl");
+pub const MULTIPLY_BY_MASK: &str = shader_file!("multiply_by_mask.wgsl");
+pub const DEPTH_TEST_MASK: &str = shader_file!("depth_test_mask.wgsl");
+pub const MASK_COMBINE: &str = shader_file!("mask_combine.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
+    let mesh = |file, source| vec![("mesh_common.wgsl", MESH_COMMON), (file, source)];
+    let screen = |file, source| vec![("fullscreen.wgsl", FULLSCREEN), (file, source)];
     vec![
-        (
-            "gbuffer",
-            vec![("mesh_common.wgsl", MESH_COMMON), ("gbuffer.wgsl", GBUFFER)],
-        ),
+        ("gbuffer", mesh("gbuffer.wgsl", GBUFFER)),
         (
             "shaded_surface",
-            vec![
-                ("mesh_common.wgsl", MESH_COMMON),
-                ("shaded_surface.wgsl", SHADED_SURFACE),
-            ],
+            mesh("shaded_surface.wgsl", SHADED_SURFACE),
         ),
+        ("depth_peel", mesh("depth_peel.wgsl", DEPTH_PEEL)),
+        (
+            "secondary_geometry",
+            mesh("secondary_geometry.wgsl", SECONDARY_GEOMETRY),
+        ),
+        (
+            "diffuse_intensity",
+            screen("diffuse_intensity.wgsl", DIFFUSE_INTENSITY),
+        ),
+        ("silhouette", screen("silhouette.wgsl", SILHOUETTE)),
+        ("halftone", screen("halftone.wgsl", HALFTONE)),
+        ("fill", screen("fill.wgsl", FILL)),
+        ("mix_by_mask", screen("mix_by_mask.wgsl", MIX_BY_MASK)),
+        (
+            "multiply_by_mask",
+            screen("multiply_by_mask.wgsl", MULTIPLY_BY_MASK),
+        ),
+        (
+            "depth_test_mask",
+            screen("depth_test_mask.wgsl", DEPTH_TEST_MASK),
+        ),
+        ("mask_combine", screen("mask_combine.wgsl", MASK_COMBINE)),
     ]
 }
 

@@ -1,0 +1,65 @@
+//! `DepthTestMask`: where one layer lies in front of another (Fischer et al. 2005, eq. 10).
+
+use crate::screen_pass::{self, MASK_FORMAT};
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+const COMPARISONS: &[&str] = &["a<=b", "a<b", "a>=b", "a>b"];
+
+pub struct DepthTestMaskNode;
+
+impl Node<Value, Ctx> for DepthTestMaskNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "DepthTestMask",
+            category: "Compositing",
+            doc: "1 where the window-space depths of layers a and b compare true, else 0. With a = layer 2 \
+                  and b = the secondary geometry, `a<=b` is the depth test of Fischer et al. 2005, eq. 10. \
+                  Empty pixels have depth 1.",
+            inputs: vec![
+                PortSpec::input("a", PortType::GBuffer, "first layer"),
+                PortSpec::input("b", PortType::GBuffer, "second layer"),
+            ],
+            outputs: vec![PortSpec::output(
+                "mask",
+                PortType::Mask,
+                "the test result, 0 or 1",
+            )],
+            params: vec![ParamSpec::choice(
+                "compare",
+                "a<=b",
+                COMPARISONS,
+                "the comparison",
+            )],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let a = inputs.require("a")?.gbuffer("a")?.clone();
+        let b = inputs.require("b")?.gbuffer("b")?.clone();
+        let op = COMPARISONS
+            .iter()
+            .position(|c| *c == p.choice("compare"))
+            .unwrap_or(0);
+        let texture = screen_pass::run(
+            ctx,
+            "depth_test_mask",
+            MASK_FORMAT,
+            &[("a", &a.depth), ("b", &b.depth)],
+            &[],
+            Some(&screen_pass::uniform_bytes(&[op as f32])),
+        )?;
+        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+    }
+}

@@ -1,0 +1,90 @@
+//! `DiffuseIntensity`: max(n · l, 0) of a G-buffer layer (Fischer et al. 2005, eq. 1 and 6).
+
+use crate::screen_pass::{self, MASK_FORMAT};
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct DiffuseIntensityNode;
+
+impl Node<Value, Ctx> for DiffuseIntensityNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "DiffuseIntensity",
+            category: "Illustration",
+            doc: "Diffuse intensity I = max(n · lightDir, 0) per pixel of a G-buffer layer (Fischer et al. \
+                  2005, eq. 1/6), with the light's direction in view space. Pixels without surface get \
+                  `empty` (1 = paper stays white under halftoning).",
+            inputs: vec![
+                PortSpec::input("gbuffer", PortType::GBuffer, "the layer"),
+                PortSpec::input("light", PortType::Light, "the light"),
+            ],
+            outputs: vec![PortSpec::output(
+                "intensity",
+                PortType::Mask,
+                "intensity in [0, 1]",
+            )],
+            params: vec![
+                ParamSpec::float(
+                    "empty",
+                    1.0,
+                    0.0,
+                    1.0,
+                    "value where the layer has no surface",
+                ),
+                ParamSpec::bool(
+                    "two_sided",
+                    false,
+                    "light back faces with the flipped normal",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        let light = inputs.require("light")?.light("light")?.clone();
+        let l = light.view_direction(&gbuffer.camera);
+        let (w, h) = ctx.size();
+        let mut values = vec![
+            l.x,
+            l.y,
+            l.z,
+            0.0,
+            p.f32("empty"),
+            if p.bool("two_sided") { 1.0 } else { 0.0 },
+            0.0,
+            0.0,
+        ];
+        values.extend_from_slice(&gbuffer.camera.proj.inverse().to_cols_array());
+        values.extend_from_slice(&[
+            w as f32,
+            h as f32,
+            if gbuffer.camera.orthographic {
+                1.0
+            } else {
+                0.0
+            },
+            0.0,
+        ]);
+        let texture = screen_pass::run(
+            ctx,
+            "diffuse_intensity",
+            MASK_FORMAT,
+            &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
+            &[],
+            Some(&screen_pass::uniform_bytes(&values)),
+        )?;
+        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+    }
+}

@@ -1,0 +1,52 @@
+//! `Fill`: a frame of one colour (the paper of an illustration).
+
+use crate::screen_pass::{self, IMAGE_FORMAT};
+use crate::value::Image;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct FillNode;
+
+impl Node<Value, Ctx> for FillNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "Fill",
+            category: "Compositing",
+            doc: "An image of the frame size filled with one colour (e.g. paperColor of Fischer et al. \
+                  2005, §3.3.4).",
+            inputs: vec![],
+            outputs: vec![PortSpec::output(
+                "image",
+                PortType::Image,
+                "the filled frame",
+            )],
+            params: vec![ParamSpec::color(
+                "color",
+                [1.0, 1.0, 1.0, 1.0],
+                "the colour",
+            )],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        _inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let texture = screen_pass::run(
+            ctx,
+            "fill",
+            IMAGE_FORMAT,
+            &[],
+            &[],
+            Some(&screen_pass::uniform_bytes(&p.color("color"))),
+        )?;
+        Ok(vec![Value::Image(Arc::new(Image { texture }))])
+    }
+}

@@ -1,0 +1,72 @@
+//! `Halftone`: procedural screening of an intensity mask (Fischer et al. 2005, §3.3.2, eq. 7–9).
+
+use crate::screen_pass::{self, MASK_FORMAT};
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct HalftoneNode;
+
+impl Node<Value, Ctx> for HalftoneNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "Halftone",
+            category: "Illustration",
+            doc: "Black-and-white hatching by procedural screening (Fischer et al. 2005, eq. 7–9): the \
+                  pixel (x, y) is rotated by θ, (s, t) = ((x' mod n)/n, (y' mod n)/n), τ = c_cross·t if \
+                  s ≤ c_cross else (1 − c_cross)·s + c_cross, output 1 where intensity ≥ τ, else 0 \
+                  (ink). Pattern in screen pixels.",
+            inputs: vec![PortSpec::input(
+                "intensity",
+                PortType::Mask,
+                "intensity in [0, 1]",
+            )],
+            outputs: vec![PortSpec::output(
+                "mask",
+                PortType::Mask,
+                "1 = paper, 0 = ink",
+            )],
+            params: vec![
+                ParamSpec::float(
+                    "theta",
+                    20.0,
+                    -360.0,
+                    360.0,
+                    "rotation of the pattern, degrees",
+                ),
+                ParamSpec::float("cell", 4.0, 1.0, 256.0, "cell size n in pixels"),
+                ParamSpec::float(
+                    "c_cross",
+                    0.9,
+                    0.0,
+                    1.0,
+                    "intensity below which cross-hatching appears",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let intensity = inputs.require("intensity")?.mask("intensity")?.clone();
+        let values = [p.f32("theta").to_radians(), p.f32("cell"), p.f32("c_cross")];
+        let texture = screen_pass::run(
+            ctx,
+            "halftone",
+            MASK_FORMAT,
+            &[("intensity", &intensity.texture)],
+            &[],
+            Some(&screen_pass::uniform_bytes(&values)),
+        )?;
+        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+    }
+}

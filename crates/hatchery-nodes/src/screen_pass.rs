@@ -1,0 +1,135 @@
+//! Image-space passes: one full-frame triangle through a fragment shader that reads input
+//! textures by pixel. Shared by every mask and compositing node.
+
+use crate::Ctx;
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::NodeError;
+
+/// Format of `Mask` values.
+pub const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Format of `Image` values (premultiplied RGBA).
+pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+fn pipeline(
+    gpu: &GpuContext,
+    program: &str,
+    format: wgpu::TextureFormat,
+) -> Result<wgpu::RenderPipeline, GpuError> {
+    let source = crate::shaders::source(program).ok_or_else(|| GpuError::Validation {
+        what: format!("shader {program}"),
+        message: "no such shader program".into(),
+    })?;
+    let module = gpu.shader(program, &source)?;
+    gpu.checked(&format!("pipeline {program}"), |device| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(program),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })
+}
+
+/// Runs `program` over the frame: the frame-sized `textures` are bound at bindings 0, 1, … in
+/// order (each named by the port it came from, for size errors), then the `patterns` (textures of
+/// any size), then the uniform (if any). Returns the new frame-sized texture of `format`.
+pub fn run(
+    ctx: &mut Ctx,
+    program: &'static str,
+    format: wgpu::TextureFormat,
+    textures: &[(&str, &wgpu::Texture)],
+    patterns: &[&wgpu::Texture],
+    uniform: Option<&[u8]>,
+) -> Result<wgpu::Texture, NodeError> {
+    let (width, height) = ctx.size();
+    for (port, texture) in textures {
+        if (texture.width(), texture.height()) != (width, height) {
+            return Err(NodeError::at_port(
+                port,
+                format!(
+                    "input is {}×{}, the frame is {width}×{height}",
+                    texture.width(),
+                    texture.height()
+                ),
+            ));
+        }
+    }
+    let key = format!("screen:{program}:{format:?}");
+    let pipeline = ctx
+        .cached(&key, |gpu| pipeline(gpu, program, format))
+        .map_err(|e| NodeError::new(e.to_string()))?;
+    let gpu = &ctx.gpu;
+    let views: Vec<wgpu::TextureView> = textures
+        .iter()
+        .map(|(_, t)| *t)
+        .chain(patterns.iter().copied())
+        .map(|t| t.create_view(&Default::default()))
+        .collect();
+    let uniform_buffer =
+        uniform.map(|bytes| gpu.buffer_init(program, bytes, wgpu::BufferUsages::UNIFORM));
+    let mut entries: Vec<wgpu::BindGroupEntry> = views
+        .iter()
+        .enumerate()
+        .map(|(i, view)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: wgpu::BindingResource::TextureView(view),
+        })
+        .collect();
+    if let Some(buffer) = &uniform_buffer {
+        entries.push(wgpu::BindGroupEntry {
+            binding: views.len() as u32,
+            resource: buffer.as_entire_binding(),
+        });
+    }
+    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(program),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    });
+    let output = gpu.render_target(program, width, height, format);
+    let output_view = output.create_view(&Default::default());
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(program),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &output_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    let work = encoder.finish();
+    ctx.submit(work);
+    Ok(output)
+}
+
+/// Packs floats into a uniform block (vec4-aligned, as the shaders declare them).
+pub fn uniform_bytes(values: &[f32]) -> Vec<u8> {
+    let mut padded = values.to_vec();
+    padded.resize(values.len().div_ceil(4).max(1) * 4, 0.0);
+    bytemuck::cast_slice(&padded).to_vec()
+}

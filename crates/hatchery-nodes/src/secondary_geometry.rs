@@ -1,0 +1,185 @@
+//! `SecondaryGeometry`: intensity of user-chosen inner geometry, attenuated by the number of
+//! iso-surface layers in front of it (Fischer et al. 2005, §3.2, eq. 1–2).
+
+use crate::gbuffer::NORMAL_FORMAT;
+use crate::screen_pass::MASK_FORMAT;
+use crate::value::{GBuffer, Mask};
+use crate::{Ctx, Value, mesh_pass};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct SecondaryGeometryNode;
+
+fn pipeline(
+    gpu: &hatchery_gpu::GpuContext,
+) -> Result<wgpu::RenderPipeline, hatchery_gpu::GpuError> {
+    let source = crate::shaders::source("secondary_geometry").expect("registered program");
+    let module = gpu.shader("secondary_geometry", &source)?;
+    gpu.checked("pipeline secondary_geometry", |device| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("secondary geometry"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(mesh_pass::vertex_layout())],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(mesh_pass::depth_state()),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(MASK_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })
+}
+
+impl Node<Value, Ctx> for SecondaryGeometryNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "SecondaryGeometry",
+            category: "Illustration",
+            doc: "Renders secondary geometry S with its own depth test. Intensity I_S = max(n · lightDir, 0) \
+                  (eq. 1) times 1 in front of layer 1, α between layers 1 and 2, β behind layer 2 \
+                  (eq. 2, Fischer et al. 2005 §3.2). Outputs the intensity (0 where no S) and S's own \
+                  G-buffer (its depth for eq. 10).",
+            inputs: vec![
+                PortSpec::input("mesh", PortType::Mesh, "the secondary geometry S"),
+                PortSpec::input("camera", PortType::Camera, "the view"),
+                PortSpec::input("light", PortType::Light, "the light"),
+                PortSpec::input(
+                    "layer1",
+                    PortType::GBuffer,
+                    "first iso-surface layer (GBuffer)",
+                ),
+                PortSpec::input(
+                    "layer2",
+                    PortType::GBuffer,
+                    "second iso-surface layer (DepthPeel)",
+                ),
+            ],
+            outputs: vec![
+                PortSpec::output("intensity", PortType::Mask, "attenuated intensity I_S"),
+                PortSpec::output("gbuffer", PortType::GBuffer, "depth and normal of S"),
+            ],
+            params: vec![
+                ParamSpec::float("alpha", 0.7, 0.0, 1.0, "attenuation behind one layer (α)"),
+                ParamSpec::float(
+                    "beta",
+                    0.21,
+                    0.0,
+                    1.0,
+                    "attenuation behind two layers (β < α)",
+                ),
+                ParamSpec::bool(
+                    "two_sided",
+                    true,
+                    "light back faces with the flipped normal",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let mesh = inputs.require("mesh")?.mesh("mesh")?.clone();
+        let camera = inputs.require("camera")?.camera("camera")?.clone();
+        let light = inputs.require("light")?.light("light")?.clone();
+        let layer1 = inputs.require("layer1")?.gbuffer("layer1")?.clone();
+        let layer2 = inputs.require("layer2")?.gbuffer("layer2")?.clone();
+        let (w, h) = (camera.width, camera.height);
+        for (port, layer) in [("layer1", &layer1), ("layer2", &layer2)] {
+            if (layer.depth.width(), layer.depth.height()) != (w, h) {
+                return Err(NodeError::at_port(
+                    port,
+                    "layer size differs from the camera's frame size",
+                ));
+            }
+        }
+        let pipeline = ctx
+            .cached("secondary_geometry.pipeline", pipeline)
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let gpu = &ctx.gpu;
+        let l = light.view_direction(&camera);
+        let two_sided = if p.bool("two_sided") { 1.0 } else { 0.0 };
+        let params = crate::screen_pass::uniform_bytes(&[
+            l.x,
+            l.y,
+            l.z,
+            0.0,
+            p.f32("alpha"),
+            p.f32("beta"),
+            two_sided,
+            0.0,
+        ]);
+        let camera_buf = gpu.buffer_init(
+            "camera",
+            bytemuck::bytes_of(&camera.uniform()),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let params_buf = gpu.buffer_init("secondary", &params, wgpu::BufferUsages::UNIFORM);
+        let (d1, d2) = (
+            layer1.depth.create_view(&Default::default()),
+            layer2.depth.create_view(&Default::default()),
+        );
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("secondary geometry"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: camera_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&d1),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&d2),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: params_buf.as_entire_binding(),
+                },
+            ],
+        });
+        let intensity = gpu.render_target("secondary intensity", w, h, MASK_FORMAT);
+        let normal = gpu.render_target("secondary normal", w, h, NORMAL_FORMAT);
+        let depth = mesh_pass::depth_target(gpu, "secondary depth", w, h);
+        let work = mesh_pass::draw_mesh_targets(
+            gpu,
+            &pipeline,
+            &bind_group,
+            &mesh,
+            &[&intensity, &normal],
+            &depth,
+        );
+        ctx.submit(work);
+        Ok(vec![
+            Value::Mask(Arc::new(Mask { texture: intensity })),
+            Value::GBuffer(Arc::new(GBuffer {
+                depth,
+                normal,
+                camera: (*camera).clone(),
+            })),
+        ])
+    }
+}
