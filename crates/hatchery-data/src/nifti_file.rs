@@ -226,7 +226,8 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
     })
 }
 
-fn replace_non_finite(path: &Path, values: &mut [f32]) -> Result<(), DataError> {
+/// Shared with the VTK loader: [`VolumeData`] holds finite values only.
+pub(crate) fn replace_non_finite(path: &Path, values: &mut [f32]) -> Result<(), DataError> {
     if values.iter().all(|v| v.is_finite()) {
         return Ok(());
     }

@@ -85,6 +85,23 @@ impl Camera {
         self.proj * self.view
     }
 
+    /// View-space position of the point at pixel (x, y) (top-left origin) with window depth `depth`.
+    pub fn view_position(&self, x: usize, y: usize, depth: f32) -> Vec3 {
+        let ndc_x = (x as f32 + 0.5) / self.width as f32 * 2.0 - 1.0;
+        let ndc_y = 1.0 - (y as f32 + 0.5) / self.height as f32 * 2.0;
+        let p = self.proj.inverse() * glam::Vec4::new(ndc_x, ndc_y, depth, 1.0);
+        p.truncate() / p.w
+    }
+
+    /// Unit vector from the surface point at pixel (x, y) towards the viewer, in view space.
+    pub fn view_direction_at(&self, x: usize, y: usize, depth: f32) -> Vec3 {
+        if self.orthographic {
+            Vec3::Z
+        } else {
+            -self.view_position(x, y, depth).normalize()
+        }
+    }
+
     /// The uniform block shared by mesh shaders (`CameraUniform` in WGSL).
     pub fn uniform(&self) -> CameraUniform {
         CameraUniform {
