@@ -234,3 +234,78 @@ fn no_gpu_adapter_is_a_clear_error_saying_what_to_install() {
         .unwrap();
     assert_clean_failure(&output, &["no GPU adapter found", "mesa-vulkan-drivers"]);
 }
+
+#[test]
+fn every_intermediate_buffer_of_the_hidden_structures_preset_can_be_dumped() {
+    // The buffers of Fischer et al.'s Fig. 3 (layer 1), 5 (layer 2) and 7 (silhouettes), and the rest.
+    let dir = tempfile::tempdir().unwrap();
+    let ports = [
+        ("layer1", "gbuffer", 4),
+        ("layer2", "gbuffer", 4),
+        ("secondary", "intensity", 0),
+        ("secondary", "gbuffer", 4),
+        ("silhouette1", "mask", 0),
+        ("silhouette2", "mask", 0),
+        ("intensity1", "intensity", 0),
+        ("hatching", "mask", 0),
+        ("secondary_behind", "mask", 0),
+        ("secondary_final", "mask", 0),
+        ("back_layer", "image", 4),
+        ("front_hatching", "image", 4),
+    ];
+    let mut args: Vec<String> = [
+        "render",
+        "graphs/hidden_structures.ron",
+        "--size",
+        "160x120",
+        "-o",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.push(dir.path().join("final.png").to_string_lossy().into_owned());
+    for (node, port, _) in ports {
+        for ext in ["npy", "png"] {
+            args.push("--dump".into());
+            args.push(format!(
+                "{node}.{port}={}",
+                dir.path().join(format!("{node}.{port}.{ext}")).display()
+            ));
+        }
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let output = hatchery(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    for (node, port, channels) in ports {
+        let array =
+            hatchery_nodes::export::read_npy(&dir.path().join(format!("{node}.{port}.npy")))
+                .unwrap();
+        let mut shape = vec![120, 160];
+        if channels > 0 {
+            shape.push(channels);
+        }
+        assert_eq!(array.shape, shape, "{node}.{port}");
+        assert!(
+            array.data.iter().all(|v| v.is_finite()),
+            "{node}.{port} has non-finite values"
+        );
+        let picture = common::read_png(&dir.path().join(format!("{node}.{port}.png")));
+        assert_eq!(picture.dimensions(), (160, 120), "{node}.{port}");
+    }
+    // Layer 1 and layer 2 differ (peeling did something), and the silhouettes are not empty.
+    let l1 = hatchery_nodes::export::read_npy(&dir.path().join("layer1.gbuffer.npy")).unwrap();
+    let l2 = hatchery_nodes::export::read_npy(&dir.path().join("layer2.gbuffer.npy")).unwrap();
+    let behind = l1
+        .data
+        .chunks(4)
+        .zip(l2.data.chunks(4))
+        .filter(|(a, b)| b[0] < 1.0 && b[0] > a[0])
+        .count();
+    assert!(
+        behind > 1000,
+        "layer 2 must lie behind layer 1 on the block: {behind} pixels"
+    );
+    let silhouettes =
+        hatchery_nodes::export::read_npy(&dir.path().join("silhouette2.mask.npy")).unwrap();
+    assert!(silhouettes.data.iter().filter(|v| **v > 0.5).count() > 100);
+}

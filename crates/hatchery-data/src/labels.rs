@@ -223,3 +223,229 @@ fn sum_taps<'s>(out: &mut [f32], kernel: &[f32], source: impl Fn(usize) -> &'s [
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 20^3 voxels: label 1 in a ball of radius 6 at the centre, 2 in a box, 0 elsewhere,
+    /// stored with a little noise so rounding matters.
+    fn labelled() -> VolumeData {
+        let n = 20u32;
+        let mut values = Vec::new();
+        for z in 0..n {
+            for y in 0..n {
+                for x in 0..n {
+                    let d2 = [x, y, z]
+                        .map(|c| (c as f32 - 10.0).powi(2))
+                        .iter()
+                        .sum::<f32>();
+                    let label = if d2 <= 36.0 {
+                        1.0
+                    } else if x < 4 && y < 4 {
+                        2.0
+                    } else {
+                        0.0
+                    };
+                    values.push(label + 0.3 * ((x + y + z) % 3) as f32 - 0.3);
+                }
+            }
+        }
+        VolumeData::new([n; 3], [1.0, 2.0, 0.5], [1.0, 2.0, 3.0], values).unwrap()
+    }
+
+    fn expected(volume: &VolumeData, labels: &[i64]) -> Vec<f32> {
+        let v = labelled();
+        assert_eq!(v.dims, volume.dims);
+        v.values
+            .iter()
+            .map(|x| {
+                if labels.contains(&(x.round() as i64)) {
+                    1.0
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn exact_mask_without_smoothing() {
+        let v = labelled();
+        for labels in [&[1][..], &[2], &[1, 2], &[0], &[2, 2, 1]] {
+            let m = label_mask(&v, labels, 0.0).unwrap();
+            assert_eq!(m.values, expected(&v, labels), "{labels:?}");
+            assert_eq!((m.dims, m.spacing, m.origin), (v.dims, v.spacing, v.origin));
+        }
+        let ball = label_mask(&v, &[1], 0.0).unwrap();
+        assert_eq!(ball.values.iter().sum::<f32>() as u64, label_counts(&v)[&1]);
+        // Absent labels: all zero, not an error.
+        let none = label_mask(&v, &[7, 9], 0.0).unwrap();
+        assert_eq!(none.value_range, [0.0, 0.0]);
+        assert!(label_mask(&v, &[], 0.0).is_err());
+        assert!(label_mask(&v, &[1], f32::NAN).is_err());
+    }
+
+    #[test]
+    fn smoothing_preserves_the_sum_and_the_range() {
+        let v = labelled();
+        // The ball is at least 3 voxels from every border, more than radius ceil(3 * 1.0).
+        for sigma in [0.5f32, 1.0] {
+            let m = label_mask(&v, &[1], sigma).unwrap();
+            let sharp: f64 = expected(&v, &[1]).iter().map(|&x| x as f64).sum();
+            let smooth: f64 = m.values.iter().map(|&x| x as f64).sum();
+            assert!(
+                ((smooth - sharp) / sharp).abs() < 1e-3,
+                "{sigma}: {smooth} vs {sharp}"
+            );
+            assert!(m.value_range[0] >= 0.0 && m.value_range[1] <= 1.0);
+            // Blurred: the centre stays inside, the surface is no longer a 0/1 step.
+            assert!(m.value(10, 10, 10) > 0.99);
+            assert!(m.values.iter().any(|&x| x > 0.1 && x < 0.9));
+            // Symmetric kernel on a symmetric ball.
+            let a = m.value(10, 4, 10);
+            assert!((a - m.value(10, 16, 10)).abs() < 1e-5);
+            assert!((a - m.value(4, 10, 10)).abs() < 1e-5);
+        }
+        // The box touches the border: clamped edges keep the corner inside.
+        let m = label_mask(&v, &[2], 1.0).unwrap();
+        assert!(m.value(0, 0, 0) > 0.9);
+    }
+
+    #[test]
+    fn counts() {
+        let v = VolumeData::new(
+            [2, 2, 2],
+            [1.0; 3],
+            [0.0; 3],
+            vec![0.0, 0.4, 1.0, 1.2, -3.0, 7.0, 6.6, 0.0],
+        )
+        .unwrap();
+        let c = label_counts(&v);
+        assert_eq!(
+            c.into_iter().collect::<Vec<_>>(),
+            [(-3, 1), (0, 3), (1, 2), (7, 2)]
+        );
+        // Values too far apart for a dense histogram.
+        let v = VolumeData::new(
+            [2, 2, 2],
+            [1.0; 3],
+            [0.0; 3],
+            vec![0.0, 1e9, 0.0, 0.0, 5.0, 0.0, 0.0, 1e9],
+        )
+        .unwrap();
+        let c = label_counts(&v);
+        assert_eq!(
+            c.into_iter().collect::<Vec<_>>(),
+            [(0, 5), (5, 1), (1_000_000_000, 2)]
+        );
+    }
+
+    #[test]
+    fn frog_largest_label_mask() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../shared/data/volumes/frog_tissues.vti"
+        );
+        let frog = crate::vti_file::load_vti(std::path::Path::new(path)).unwrap();
+        let counts = label_counts(&frog);
+        let (&largest, &count) = counts
+            .iter()
+            .filter(|&(&l, _)| l != 0)
+            .max_by_key(|&(_, &n)| n)
+            .unwrap();
+        assert_eq!((largest, count), (13, 438_052));
+        let start = std::time::Instant::now();
+        let sharp = label_mask(&frog, &[largest], 0.0).unwrap();
+        let t_sharp = start.elapsed();
+        let start = std::time::Instant::now();
+        let smooth = label_mask(&frog, &[largest], 1.0).unwrap();
+        let t_smooth = start.elapsed();
+        eprintln!("frog label {largest}: mask {t_sharp:?}, mask + blur sigma 1: {t_smooth:?}");
+        assert_eq!(
+            sharp.values.iter().filter(|&&x| x == 1.0).count() as u64,
+            count
+        );
+        assert_eq!(smooth.value_range[1], 1.0);
+        let sum: f64 = smooth.values.iter().map(|&x| x as f64).sum();
+        assert!((sum / count as f64 - 1.0).abs() < 1e-2, "{sum}");
+    }
+
+    #[test]
+    fn label_lists() {
+        assert_eq!(parse_label_list("3"), Ok(vec![3]));
+        assert_eq!(parse_label_list("3,4, 7"), Ok(vec![3, 4, 7]));
+        assert_eq!(parse_label_list("1-5"), Ok(vec![1, 2, 3, 4, 5]));
+        assert_eq!(parse_label_list(" 2-4 ,9"), Ok(vec![2, 3, 4, 9]));
+        assert_eq!(parse_label_list("9,2-4,3"), Ok(vec![2, 3, 4, 9]));
+        assert_eq!(parse_label_list("-2--1, 5 - 6"), Ok(vec![-2, -1, 5, 6]));
+        assert_eq!(parse_label_list("4-4"), Ok(vec![4]));
+        assert_eq!(parse_label_list("x"), Err("`x`: not a label number".into()));
+        assert_eq!(
+            parse_label_list("1,x"),
+            Err("`x`: not a label number".into())
+        );
+        assert_eq!(
+            parse_label_list("2.5"),
+            Err("`2.5`: not a label number".into())
+        );
+        assert_eq!(
+            parse_label_list("1-b"),
+            Err("`1-b`: `b` is not a label number".into())
+        );
+        assert_eq!(
+            parse_label_list("5-1"),
+            Err("`5-1`: range start is after its end".into())
+        );
+        assert!(
+            parse_label_list("1,,2")
+                .unwrap_err()
+                .contains("empty entry")
+        );
+        assert!(parse_label_list("1-").is_err());
+        assert!(parse_label_list("").is_err());
+        assert!(parse_label_list(" ").is_err());
+        assert!(
+            parse_label_list("0-1000000000")
+                .unwrap_err()
+                .contains("longer than")
+        );
+    }
+}
+#[cfg(test)]
+mod timing_tmp {
+    use super::*;
+    #[test]
+    fn timing_tmp() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../shared/data/volumes/frog_tissues.vti"
+        );
+        let t = std::time::Instant::now();
+        let frog = crate::vti_file::load_vti(std::path::Path::new(path)).unwrap();
+        eprintln!("load {:?}", t.elapsed());
+        for _ in 0..3 {
+            let t = std::time::Instant::now();
+            let mask: Vec<f32> = frog
+                .values
+                .par_iter()
+                .map(|&v| if v.round() as i64 == 13 { 1.0 } else { 0.0 })
+                .collect();
+            let a = t.elapsed();
+            let t = std::time::Instant::now();
+            let m2 = mask.clone();
+            let v = VolumeData::new(frog.dims, frog.spacing, frog.origin, m2).unwrap();
+            let b = t.elapsed();
+            let t = std::time::Instant::now();
+            let blurred = gaussian_blur(mask, frog.dims, 1.0);
+            let c = t.elapsed();
+            let t = std::time::Instant::now();
+            let _ = label_counts(&v);
+            let d = t.elapsed();
+            eprintln!(
+                "mask {a:?} clone+new {b:?} blur {c:?} counts {d:?} {}",
+                blurred.len()
+            );
+        }
+    }
+}

@@ -31,3 +31,43 @@ pub fn load_volume(path: &Path) -> Result<VolumeData, DataError> {
         ))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn picks_the_loader_by_ending() {
+        let dir = tempfile::tempdir().unwrap();
+        let vti = dir.path().join("Small.VTI");
+        std::fs::write(
+            &vti,
+            r#"<VTKFile type="ImageData" version="1.0">
+<ImageData WholeExtent="0 1 0 1 0 1" Origin="0 0 0" Spacing="1 1 1"><Piece Extent="0 1 0 1 0 1">
+<PointData><DataArray type="UInt8" Name="v" format="ascii">0 1 2 3 4 5 6 7</DataArray></PointData>
+</Piece></ImageData></VTKFile>"#,
+        )
+        .unwrap();
+        assert_eq!(load_volume(&vti).unwrap().value_range, [0.0, 7.0]);
+
+        // The VTI bytes under NIfTI names go to the NIfTI loader, which refuses them.
+        for name in ["a.nii", "a.NII.GZ", "a.Nii.gz"] {
+            let path = dir.path().join(name);
+            std::fs::copy(&vti, &path).unwrap();
+            let e = load_volume(&path).unwrap_err().to_string();
+            assert!(
+                e.contains("NIfTI") || e.contains("gzip") || e.contains("truncated"),
+                "{e}"
+            );
+        }
+
+        for name in ["a.mhd", "a.vti.gz", "nii", "a.gz"] {
+            let path = dir.path().join(name);
+            let e = load_volume(&path).unwrap_err();
+            assert!(matches!(e, DataError::Unsupported { .. }), "{name}: {e}");
+            let e = e.to_string();
+            assert!(e.starts_with(&path.display().to_string()), "{e}");
+            assert!(e.contains(".nii, .nii.gz, .vti"), "{e}");
+        }
+    }
+}

@@ -1110,7 +1110,6 @@ mod tests {
             let e = load_vti(&path).expect_err(&what).to_string();
             assert!(e.starts_with(&path.display().to_string()), "{what}: {e}");
             assert!(!e.contains('\n'), "{what}: {e}");
-            eprintln!("{what}: {e}");
             match what.as_str() {
                 "huge extent" => assert!(e.contains("more than the limit"), "{e}"),
                 "three components" => assert!(e.contains("3 components"), "{e}"),

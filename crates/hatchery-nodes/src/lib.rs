@@ -21,6 +21,7 @@ pub mod procedural_volume;
 pub mod save_image;
 pub mod screen_pass;
 pub mod secondary_geometry;
+pub mod select_image;
 mod session;
 pub mod shaded_surface;
 pub mod shaders;
@@ -59,6 +60,7 @@ pub fn registry() -> Registry {
     r.register(multiply_by_mask::MultiplyByMaskNode);
     r.register(depth_test_mask::DepthTestMaskNode);
     r.register(mask_combine::MaskCombineNode);
+    r.register(select_image::SelectImageNode);
     r.register(save_image::SaveImageNode);
     r
 }
