@@ -67,6 +67,17 @@ impl Scenario {
         }
     }
 
+    fn applies_to(&self, session: &Session) -> bool {
+        match self {
+            Scenario::Full => true,
+            Scenario::Orbit { camera } => session
+                .graph
+                .node(camera)
+                .is_some_and(|n| n.kind == "Camera"),
+            Scenario::Vary { node, .. } => session.graph.node(node).is_some(),
+        }
+    }
+
     /// Makes the change this scenario measures, before frame `frame` of `frames`.
     fn apply(&self, session: &mut Session, frame: usize, frames: usize) -> Result<()> {
         match self {
@@ -150,9 +161,14 @@ pub fn run(
         gpu_timing &= session.ctx.enable_gpu_timing();
     }
     let all_targets: Vec<Vec<String>> = sessions.iter().map(targets).collect();
+    // A scenario applies to the graphs that have the node it changes.
     let pairs: Vec<(usize, usize)> = (0..sessions.len())
         .flat_map(|g| (0..scenarios.len()).map(move |s| (g, s)))
+        .filter(|&(g, s)| scenarios[s].applies_to(&sessions[g]))
         .collect();
+    if pairs.is_empty() {
+        bail!("no scenario applies to any of the graphs (check the node names)");
+    }
 
     let bar = ProgressBar::new((sizes.len() * (frames + 1) * pairs.len()) as u64);
     bar.set_style(

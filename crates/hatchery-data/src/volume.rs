@@ -1,6 +1,7 @@
 //! Scalar volumes on a regular, axis-aligned grid.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::DataError;
 
@@ -53,15 +54,16 @@ impl VolumeData {
                 "volume origin must be finite, got {origin:?}"
             )));
         }
-        let mut range = [f32::INFINITY, f32::NEG_INFINITY];
-        for (i, &v) in values.iter().enumerate() {
-            if !v.is_finite() {
-                return Err(DataError::Invalid(format!(
-                    "volume value {v} at index {i} is not finite"
-                )));
-            }
-            range[0] = range[0].min(v);
-            range[1] = range[1].max(v);
+        // In parallel: this runs over every voxel each time a volume is loaded or derived.
+        let (range, finite) = values.par_chunks(1 << 16).map(range_and_finite).reduce(
+            || ([f32::INFINITY, f32::NEG_INFINITY], true),
+            |(a, fa), (b, fb)| ([a[0].min(b[0]), a[1].max(b[1])], fa && fb),
+        );
+        if !finite && let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(DataError::Invalid(format!(
+                "volume value {} at index {i} is not finite",
+                values[i]
+            )));
         }
         Ok(Self {
             dims,
@@ -159,6 +161,32 @@ impl VolumeData {
     }
 }
 
+/// `[min, max]` of the finite values and whether all are finite. Eight independent lanes and
+/// plain comparisons (no NaN-aware `min`) let the loop vectorise.
+fn range_and_finite(values: &[f32]) -> ([f32; 2], bool) {
+    const LANES: usize = 8;
+    let mut lo = [f32::INFINITY; LANES];
+    let mut hi = [f32::NEG_INFINITY; LANES];
+    let mut finite = true;
+    let mut chunks = values.chunks_exact(LANES);
+    for chunk in &mut chunks {
+        for k in 0..LANES {
+            let v = chunk[k];
+            finite &= v.is_finite();
+            lo[k] = if v < lo[k] { v } else { lo[k] };
+            hi[k] = if v > hi[k] { v } else { hi[k] };
+        }
+    }
+    for &v in chunks.remainder() {
+        finite &= v.is_finite();
+        lo[0] = if v < lo[0] { v } else { lo[0] };
+        hi[0] = if v > hi[0] { v } else { hi[0] };
+    }
+    let lo = lo.into_iter().fold(f32::INFINITY, f32::min);
+    let hi = hi.into_iter().fold(f32::NEG_INFINITY, f32::max);
+    ([lo, hi], finite)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -197,6 +225,17 @@ mod tests {
         .unwrap();
         assert_eq!(v.value_range, [-1.0, 5.0]);
         assert_eq!(v.voxel_count(), 8);
+        // Spread over many chunks and lanes, with the extremes in the remainders.
+        let n = 40 * 50 * 70;
+        let mut values: Vec<f32> = (0..n).map(|i| (i % 97) as f32).collect();
+        values[n - 1] = -3.0;
+        values[70_001] = 200.0;
+        let big = VolumeData::new([40, 50, 70], [1.0; 3], [0.0; 3], values.clone()).unwrap();
+        assert_eq!(big.value_range, [-3.0, 200.0]);
+        values[100_000] = f32::NAN;
+        values[130_000] = f32::INFINITY;
+        let e = VolumeData::new([40, 50, 70], [1.0; 3], [0.0; 3], values).unwrap_err();
+        assert!(e.to_string().contains("at index 100000"), "{e}");
     }
 
     #[test]

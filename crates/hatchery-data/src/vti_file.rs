@@ -517,11 +517,9 @@ fn parse_extent(path: &Path, text: &str) -> Result<[i64; 6], DataError> {
     let extent: [i64; 6] = numbers.try_into().map_err(|_| bad())?;
     // Bounded so that the counts below cannot overflow.
     const LIMIT: i64 = 1 << 40;
-    if (0..3).any(|a| {
-        extent[2 * a] > extent[2 * a + 1]
-            || extent[2 * a].abs() > LIMIT
-            || extent[2 * a + 1] > LIMIT
-    }) {
+    if extent.iter().any(|e| !(-LIMIT..=LIMIT).contains(e))
+        || (0..3).any(|a| extent[2 * a] > extent[2 * a + 1])
+    {
         return Err(bad());
     }
     Ok(extent)
@@ -1077,6 +1075,16 @@ mod tests {
         cases.push((
             "huge extent".into(),
             text.replace("0 499 0 469 0 135", "0 99999 0 99999 0 99999")
+                .into_bytes(),
+        ));
+        cases.push((
+            "extreme extent".into(),
+            text.replace("0 499 0 469 0 135", "-9223372036854775808 0 0 469 0 135")
+                .into_bytes(),
+        ));
+        cases.push((
+            "reversed extent".into(),
+            text.replace("0 499 0 469 0 135", "499 0 0 469 0 135")
                 .into_bytes(),
         ));
         cases.push((

@@ -9,6 +9,7 @@ pub mod export;
 pub mod fill;
 pub mod gbuffer;
 pub mod halftone;
+pub mod label_mask;
 pub mod light;
 pub mod marching_cubes;
 pub mod mask_combine;
@@ -45,6 +46,7 @@ pub fn registry() -> Registry {
     r.register(volume_file::VolumeFileNode);
     r.register(mesh_file::MeshFileNode);
     r.register(marching_cubes::MarchingCubesNode);
+    r.register(label_mask::LabelMaskNode);
     r.register(mesh_transform::MeshTransformNode);
     r.register(camera::CameraNode);
     r.register(light::LightNode);

@@ -14,16 +14,20 @@ impl Node<Value, Ctx> for VolumeFileNode {
         NodeSchema {
             kind: "VolumeFile",
             category: "Data",
-            doc: "Reads a NIfTI-1 volume (.nii or .nii.gz) of any integer or float type, applying \
-                  scl_slope/scl_inter and keeping the voxel spacing. Relative paths are relative to the \
-                  graph file's folder.",
+            doc: "Reads a volume: NIfTI-1 (.nii, .nii.gz) of any integer or float type with \
+                  scl_slope/scl_inter applied, or VTK XML image data (.vti, e.g. label volumes). Voxel \
+                  spacing and origin are kept. Relative paths are relative to the graph file's folder.",
             inputs: vec![],
             outputs: vec![PortSpec::output(
                 "volume",
                 PortType::Volume,
                 "the volume, in world units (mm)",
             )],
-            params: vec![ParamSpec::path("path", "", "the .nii or .nii.gz file")],
+            params: vec![ParamSpec::path(
+                "path",
+                "",
+                "the .nii, .nii.gz or .vti file",
+            )],
             frame_dependent: false,
             sink: false,
         }
@@ -38,11 +42,10 @@ impl Node<Value, Ctx> for VolumeFileNode {
         let path = p.path("path");
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
-                "parameter `path` is empty: name a .nii or .nii.gz file",
+                "parameter `path` is empty: name a .nii, .nii.gz or .vti file",
             ));
         }
-        let data = hatchery_data::nifti_file::load_nifti(&path)
-            .map_err(|e| NodeError::new(e.to_string()))?;
+        let data = hatchery_data::load_volume(&path).map_err(|e| NodeError::new(e.to_string()))?;
         tracing::info!(
             path = %path.display(),
             dims = ?data.dims,
