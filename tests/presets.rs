@@ -40,7 +40,7 @@ fn every_preset_loads_validates_and_renders() {
             let value = session.executor.output(&source, port).unwrap().clone();
             let picture = export::to_rgba8(&value, &session.ctx.gpu).unwrap();
             let fraction = common::non_background_fraction(&picture);
-            if !(0.02..0.98).contains(&fraction) {
+            if !(0.005..0.98).contains(&fraction) {
                 let saved = common::save_failure(&format!("preset_{saver}"), &picture);
                 panic!(
                     "{}: {saver} covers {fraction:.3} of the frame (blank?); see {}",

@@ -173,14 +173,15 @@ mod tests {
     fn engine_block_is_material_outside_the_bores_and_pistons_sit_inside_them() {
         let block = engine_block(41).unwrap();
         let pistons = pistons(41).unwrap();
-        // Index 20 is the origin, spacing 0.05: x = 0.4 is index 28, x = 0.65 index 33.
+        // Index 20 is the origin, spacing 0.05: x = 0.4 is index 28; (0, 0.2, 0) is index (20, 24, 20),
+        // 0.15 from both bore walls and farther from every other face.
         assert!(block.value(28, 20, 20) < 0.0, "bore axis must be empty");
         assert!(
-            block.value(20, 30, 20) > 0.0,
+            block.value(20, 24, 20) > 0.0,
             "between the bores is material"
         );
         assert!(
-            (block.value(20, 30, 20) - 0.15).abs() < 1e-5,
+            (block.value(20, 24, 20) - 0.15).abs() < 1e-5,
             "0.15 to the nearest bore wall"
         );
         assert!(block.value(2, 20, 20) < 0.0, "outside the box");
