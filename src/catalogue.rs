@@ -15,11 +15,13 @@ fn range(p: &ParamSpec) -> String {
 
 /// Schemas grouped by category, in a fixed order.
 fn grouped(registry: &Registry) -> Vec<(&'static str, Vec<&NodeSchema>)> {
-    const ORDER: [&str; 6] = [
+    const ORDER: [&str; 8] = [
         "Data",
         "Geometry",
         "Scene",
         "Rendering",
+        "Volume",
+        "Illustration",
         "Compositing",
         "Output",
     ];

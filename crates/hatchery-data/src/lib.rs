@@ -3,12 +3,17 @@
 //! marching cubes.
 
 pub mod error;
+pub mod gradient;
 pub mod labels;
+pub mod lighting;
+pub mod lit_sphere;
 pub mod marching_cubes;
 pub mod mesh;
 pub mod mesh_file;
 pub mod nifti_file;
 pub mod procedural;
+pub mod style;
+pub mod transfer_function;
 pub mod volume;
 pub mod volume_file;
 pub mod vti_file;

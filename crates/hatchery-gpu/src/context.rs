@@ -272,6 +272,89 @@ impl GpuContext {
         })
     }
 
+    /// Uploads a scalar volume (x fastest) as a filterable R16Float 3-D texture holding
+    /// (v - lo) / (hi - lo), so that hardware trilinear filtering works on every adapter and the
+    /// relative precision (2^-11 of the range) is the same for any value range.
+    pub fn upload_volume_normalized(
+        &self,
+        label: &str,
+        dims: [u32; 3],
+        values: &[f32],
+        range: [f32; 2],
+    ) -> Result<wgpu::Texture, GpuError> {
+        let limit = self.device.limits().max_texture_dimension_3d;
+        if dims.iter().any(|&d| d == 0 || d > limit) {
+            return Err(GpuError::TooLarge {
+                what: format!("volume {label}"),
+                size: format!("{}×{}×{}", dims[0], dims[1], dims[2]),
+                limit: format!("{limit} voxels per axis"),
+            });
+        }
+        let scale = if range[1] > range[0] {
+            1.0 / (range[1] - range[0])
+        } else {
+            0.0
+        };
+        let halves: Vec<half::f16> = values
+            .iter()
+            .map(|v| half::f16::from_f32((v - range[0]) * scale))
+            .collect();
+        let desc = wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: dims[0],
+                height: dims[1],
+                depth_or_array_layers: dims[2],
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D3,
+            format: wgpu::TextureFormat::R16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        };
+        let bytes: &[u8] = bytemuck::cast_slice(&halves);
+        self.checked(&format!("uploading volume {label}"), |device| {
+            device.create_texture_with_data(
+                &self.queue,
+                &desc,
+                wgpu::util::TextureDataOrder::LayerMajor,
+                bytes,
+            )
+        })
+    }
+
+    /// A 2-D texture initialised with `data` (tightly packed rows), e.g. lookup tables.
+    pub fn texture_2d_init(
+        &self,
+        label: &str,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+        data: &[u8],
+    ) -> wgpu::Texture {
+        let desc = wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        };
+        self.device.create_texture_with_data(
+            &self.queue,
+            &desc,
+            wgpu::util::TextureDataOrder::LayerMajor,
+            data,
+        )
+    }
+
     /// A buffer initialised with `data`.
     pub fn buffer_init(&self, label: &str, data: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
         self.device

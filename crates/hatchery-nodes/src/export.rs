@@ -1,7 +1,7 @@
 //! Getting values out of the graph: raw float arrays (`.npy`, for numpy) and viewable pictures
 //! (`.png`), used by `--dump`, by `SaveImage` and by tests.
 
-use crate::value::Value;
+use crate::value::{TransferFunction, Value};
 use hatchery_gpu::{GpuContext, TextureData};
 use std::io::Write;
 use std::path::Path;
@@ -56,6 +56,28 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
             }
             Array {
                 shape: vec![m.data.positions.len(), 6],
+                data,
+            }
+        }
+        Value::TransferFunction(tf) => match tf.as_ref() {
+            TransferFunction::Color(f) => Array {
+                shape: vec![f.lut.len(), 4],
+                data: f.lut.iter().flatten().copied().collect(),
+            },
+            TransferFunction::Style { function, .. } => Array {
+                shape: vec![function.tft.len(), 2],
+                data: function.tft.iter().flatten().copied().collect(),
+            },
+        },
+        Value::StyleSet(set) => {
+            let size = set.maps.first().map_or(0, |m| m.size as usize);
+            let data = set
+                .maps
+                .iter()
+                .flat_map(|m| m.texels.iter().flatten().copied())
+                .collect();
+            Array {
+                shape: vec![set.maps.len(), size, size, 4],
                 data,
             }
         }
@@ -118,6 +140,33 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Str
             image::RgbaImage::from_fn(w, h, |x, y| {
                 let g = to_u8((v.data.value(x, h - 1 - y, z) - lo) * scale);
                 image::Rgba([g, g, g, 255])
+            })
+        }
+        Value::TransferFunction(tf) => {
+            // The colour ramp (over white, by opacity) or the style index as grey.
+            let (w, h) = (256u32, 32u32);
+            image::RgbaImage::from_fn(w, h, |x, _| match tf.as_ref() {
+                TransferFunction::Color(f) => {
+                    let c = f.lut[(x as usize * (f.lut.len() - 1)) / (w as usize - 1)];
+                    let over = |v: f32| v * c[3] + (1.0 - c[3]);
+                    image::Rgba([to_u8(over(c[0])), to_u8(over(c[1])), to_u8(over(c[2])), 255])
+                }
+                TransferFunction::Style { function, .. } => {
+                    let e =
+                        function.tft[(x as usize * (function.tft.len() - 1)) / (w as usize - 1)];
+                    let g = to_u8(e[0] / (function.ift.len().max(2) - 1) as f32);
+                    image::Rgba([g, g, g, to_u8(e[1])])
+                }
+            })
+        }
+        Value::StyleSet(set) => {
+            let size = set.maps.first().map_or(1, |m| m.size);
+            image::RgbaImage::from_fn(size * set.maps.len().max(1) as u32, size, |x, y| {
+                let Some(map) = set.maps.get((x / size) as usize) else {
+                    return image::Rgba([0, 0, 0, 0]);
+                };
+                let t = map.texels[(y * size + x % size) as usize];
+                image::Rgba([to_u8(t[0]), to_u8(t[1]), to_u8(t[2]), to_u8(t[3])])
             })
         }
         Value::Mesh(_) | Value::Camera(_) | Value::Light(_) => {

@@ -18,7 +18,9 @@ pub mod mesh_pass;
 pub mod mesh_transform;
 pub mod mix_by_mask;
 pub mod multiply_by_mask;
+pub mod over;
 pub mod procedural_volume;
+pub mod raycast;
 pub mod save_image;
 pub mod screen_pass;
 pub mod secondary_geometry;
@@ -27,6 +29,9 @@ mod session;
 pub mod shaded_surface;
 pub mod shaders;
 pub mod silhouette;
+pub mod style_set;
+pub mod style_transfer_function;
+pub mod transfer_function_1d;
 pub mod value;
 pub mod volume_file;
 
@@ -62,7 +67,13 @@ pub fn registry() -> Registry {
     r.register(multiply_by_mask::MultiplyByMaskNode);
     r.register(depth_test_mask::DepthTestMaskNode);
     r.register(mask_combine::MaskCombineNode);
+    r.register(over::OverNode);
     r.register(select_image::SelectImageNode);
+    r.register(transfer_function_1d::TransferFunction1DNode);
+    r.register(style_set::StyleSetNode);
+    r.register(style_transfer_function::StyleTransferFunctionNode);
+    r.register(raycast::RaycastNode);
+    r.register(raycast::IsoSurfaceRaycastNode);
     r.register(save_image::SaveImageNode);
     r
 }

@@ -26,6 +26,8 @@ pub const MIX_BY_MASK: &str = shader_file!("mix_by_mask.wgsl");
 pub const MULTIPLY_BY_MASK: &str = shader_file!("multiply_by_mask.wgsl");
 pub const DEPTH_TEST_MASK: &str = shader_file!("depth_test_mask.wgsl");
 pub const MASK_COMBINE: &str = shader_file!("mask_combine.wgsl");
+pub const RAYCAST: &str = shader_file!("raycast.wgsl");
+pub const OVER: &str = shader_file!("over.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
@@ -59,6 +61,8 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             screen("depth_test_mask.wgsl", DEPTH_TEST_MASK),
         ),
         ("mask_combine", screen("mask_combine.wgsl", MASK_COMBINE)),
+        ("raycast", screen("raycast.wgsl", RAYCAST)),
+        ("over", screen("over.wgsl", OVER)),
     ]
 }
 

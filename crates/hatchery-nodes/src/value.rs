@@ -10,6 +10,7 @@ use std::sync::{Arc, OnceLock};
 pub struct Volume {
     pub data: Arc<VolumeData>,
     texture: OnceLock<wgpu::Texture>,
+    max_gradient: OnceLock<f32>,
 }
 
 impl Volume {
@@ -17,15 +18,27 @@ impl Volume {
         Self {
             data: Arc::new(data),
             texture: OnceLock::new(),
+            max_gradient: OnceLock::new(),
         }
     }
-    /// The R32Float 3-D texture, uploaded on first use.
+    /// The R16Float 3-D texture of (v − lo) / (hi − lo) over the value range, uploaded on first use.
     pub fn texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
         if let Some(t) = self.texture.get() {
             return Ok(t);
         }
-        let t = gpu.upload_volume("volume", self.data.dims, &self.data.values)?;
+        let t = gpu.upload_volume_normalized(
+            "volume",
+            self.data.dims,
+            &self.data.values,
+            self.data.value_range,
+        )?;
         Ok(self.texture.get_or_init(|| t))
+    }
+    /// The largest gradient magnitude (world units), computed once: normalises |g| to [0, 1].
+    pub fn max_gradient(&self) -> f32 {
+        *self
+            .max_gradient
+            .get_or_init(|| hatchery_data::gradient::max_gradient_magnitude(&self.data))
     }
 }
 
@@ -103,6 +116,91 @@ pub struct Mask {
     pub texture: wgpu::Texture,
 }
 
+/// A transfer function: colour + opacity per value, or a style transfer function (§4.1 of
+/// Bruckner & Gröller 2007) referring to a set of lit-sphere styles.
+pub enum TransferFunction {
+    Color(hatchery_data::transfer_function::TransferFunction1D),
+    Style {
+        function: hatchery_data::style::StyleTransferFunction,
+        styles: Arc<StyleSet>,
+    },
+}
+
+/// Lit-sphere maps (§3.1), each with its own mip chain, uploaded as the layers of one texture
+/// array on first use (mip-mapping per layer never mixes styles, §4.3).
+pub struct StyleSet {
+    pub names: Vec<String>,
+    pub maps: Vec<hatchery_data::lit_sphere::LitSphere>,
+    texture: OnceLock<wgpu::Texture>,
+}
+
+impl StyleSet {
+    pub fn new(names: Vec<String>, maps: Vec<hatchery_data::lit_sphere::LitSphere>) -> Self {
+        Self {
+            names,
+            maps,
+            texture: OnceLock::new(),
+        }
+    }
+
+    /// The Rgba16Float texture array, one layer per style, full mip chains.
+    pub fn texture(&self, gpu: &GpuContext) -> &wgpu::Texture {
+        self.texture.get_or_init(|| {
+            let size = self.maps.first().map_or(1, |m| m.size);
+            let chains: Vec<Vec<hatchery_data::lit_sphere::LitSphere>> =
+                self.maps.iter().map(|m| m.mip_chain()).collect();
+            let levels = chains.first().map_or(1, |c| c.len() as u32);
+            let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("styles"),
+                size: wgpu::Extent3d {
+                    width: size,
+                    height: size,
+                    depth_or_array_layers: self.maps.len().max(1) as u32,
+                },
+                mip_level_count: levels,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba16Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            });
+            for (layer, chain) in chains.iter().enumerate() {
+                for (level, map) in chain.iter().enumerate() {
+                    let texels: Vec<half::f16> = map
+                        .texels
+                        .iter()
+                        .flat_map(|t| t.map(half::f16::from_f32))
+                        .collect();
+                    gpu.queue.write_texture(
+                        wgpu::TexelCopyTextureInfo {
+                            texture: &texture,
+                            mip_level: level as u32,
+                            origin: wgpu::Origin3d {
+                                x: 0,
+                                y: 0,
+                                z: layer as u32,
+                            },
+                            aspect: wgpu::TextureAspect::All,
+                        },
+                        bytemuck::cast_slice(&texels),
+                        wgpu::TexelCopyBufferLayout {
+                            offset: 0,
+                            bytes_per_row: Some(map.size * 8),
+                            rows_per_image: None,
+                        },
+                        wgpu::Extent3d {
+                            width: map.size,
+                            height: map.size,
+                            depth_or_array_layers: 1,
+                        },
+                    );
+                }
+            }
+            texture
+        })
+    }
+}
+
 /// A value on an edge.
 #[derive(Clone)]
 pub enum Value {
@@ -113,6 +211,8 @@ pub enum Value {
     GBuffer(Arc<GBuffer>),
     Image(Arc<Image>),
     Mask(Arc<Mask>),
+    TransferFunction(Arc<TransferFunction>),
+    StyleSet(Arc<StyleSet>),
 }
 
 impl Value {
@@ -125,6 +225,8 @@ impl Value {
             Value::GBuffer(_) => PortType::GBuffer,
             Value::Image(_) => PortType::Image,
             Value::Mask(_) => PortType::Mask,
+            Value::TransferFunction(_) => PortType::TransferFunction,
+            Value::StyleSet(_) => PortType::StyleSet,
         }
     }
 }
@@ -157,3 +259,5 @@ accessor!(light, Light, Arc<crate::light::Light>);
 accessor!(gbuffer, GBuffer, Arc<GBuffer>);
 accessor!(image, Image, Arc<Image>);
 accessor!(mask, Mask, Arc<Mask>);
+accessor!(transfer_function, TransferFunction, Arc<TransferFunction>);
+accessor!(style_set, StyleSet, Arc<StyleSet>);

@@ -1,0 +1,133 @@
+//! `StyleSet`: lit-sphere maps (Bruckner & Gröller 2007, §3.1), procedural or painted (PNG).
+
+use crate::value::StyleSet;
+use crate::{Ctx, Value};
+use hatchery_data::lit_sphere::{self, LitSphere};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct StyleSetNode;
+
+const SIZE: u32 = 128;
+
+impl Node<Value, Ctx> for StyleSetNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "StyleSet",
+            category: "Volume",
+            doc: "A list of lit-sphere styles (sphere maps indexed by the eye-space normal, §3.1): \
+                  `styles` names them in order, comma-separated — procedural ones (shaded, toon2, \
+                  toon3, gooch, metal, ink_rim, flat), each optionally tinted as name:r,g,b, or a path \
+                  to a square PNG with a power-of-two size (relative to the graph file). Style k of a \
+                  StyleTransferFunction is the k-th entry. Each keeps its own mip chain.",
+            inputs: vec![],
+            outputs: vec![PortSpec::output("styles", PortType::StyleSet, "the styles")],
+            params: vec![ParamSpec::text(
+                "styles",
+                "shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9",
+                "styles in order: name[:r,g,b] or a PNG path",
+            )],
+            frame_dependent: false,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        _ctx: &mut Ctx,
+        _inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let mut names = Vec::new();
+        let mut maps = Vec::new();
+        for entry in split_entries(p.text("styles")) {
+            let map = if entry.to_ascii_lowercase().ends_with(".png") {
+                let path = resolve(p, &entry);
+                let picture = image::open(&path)
+                    .map_err(|e| NodeError::new(format!("style {}: {e}", path.display())))?
+                    .resize_exact(SIZE, SIZE, image::imageops::FilterType::Triangle)
+                    .to_rgba8();
+                lit_sphere::from_rgba8(SIZE, SIZE, picture.as_raw())
+                    .map_err(|e| NodeError::new(format!("style {}: {e}", path.display())))?
+            } else {
+                procedural(&entry)?
+            };
+            names.push(entry);
+            maps.push(map);
+        }
+        if maps.is_empty() {
+            return Err(NodeError::new("parameter `styles` names no style"));
+        }
+        Ok(vec![Value::StyleSet(Arc::new(StyleSet::new(names, maps)))])
+    }
+}
+
+/// Splits "shaded:0.9,0.8,0.7, toon2, a.png" into entries: a comma followed by a name starts a
+/// new entry, a comma followed by a number continues the colour.
+fn split_entries(text: &str) -> Vec<String> {
+    let mut entries: Vec<String> = Vec::new();
+    for part in text.split(',') {
+        let part = part.trim();
+        if part.is_empty() {
+            continue;
+        }
+        let continues_colour =
+            part.parse::<f32>().is_ok() && entries.last().is_some_and(|e| e.contains(':'));
+        match entries.last_mut() {
+            Some(last) if continues_colour => {
+                last.push(',');
+                last.push_str(part);
+            }
+            _ => entries.push(part.to_owned()),
+        }
+    }
+    entries
+}
+
+fn resolve(p: &Params, path: &str) -> std::path::PathBuf {
+    let path = std::path::PathBuf::from(path);
+    match p.base_dir() {
+        Some(base) if path.is_relative() => base.join(path),
+        _ => path,
+    }
+}
+
+fn procedural(entry: &str) -> Result<LitSphere, NodeError> {
+    let (name, colour) = match entry.split_once(':') {
+        Some((name, rgb)) => {
+            let values: Vec<f32> = rgb
+                .split(',')
+                .map(|v| v.trim().parse::<f32>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| {
+                    NodeError::new(format!("style `{entry}`: colour must be r,g,b numbers"))
+                })?;
+            if values.len() != 3 || values.iter().any(|v| !(0.0..=1.0).contains(v)) {
+                return Err(NodeError::new(format!(
+                    "style `{entry}`: colour must be three numbers in [0, 1]"
+                )));
+            }
+            (name.trim(), [values[0], values[1], values[2]])
+        }
+        None => (entry.trim(), [0.85, 0.85, 0.85]),
+    };
+    lit_sphere::procedural(name, SIZE, colour).ok_or_else(|| {
+        NodeError::new(format!(
+            "unknown style `{name}` (procedural styles: {}; or a .png path)",
+            lit_sphere::STYLES.join(", ")
+        ))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn entries_split_on_names_not_on_colour_components() {
+        assert_eq!(
+            super::split_entries("shaded:0.9,0.8,0.7, toon2, ink_rim:0,0,0, maps/a.png"),
+            vec!["shaded:0.9,0.8,0.7", "toon2", "ink_rim:0,0,0", "maps/a.png"]
+        );
+    }
+}

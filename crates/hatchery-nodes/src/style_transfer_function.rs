@@ -1,0 +1,58 @@
+//! `StyleTransferFunction`: per data value a style and a uniform opacity α_u (Bruckner & Gröller
+//! 2007, §3.2 and §4.1: tft, ift and sft lookups, interpolation between whole styles).
+
+use crate::value::TransferFunction;
+use crate::{Ctx, Value};
+use hatchery_data::style::StyleTransferFunction;
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+pub struct StyleTransferFunctionNode;
+
+impl Node<Value, Ctx> for StyleTransferFunctionNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "StyleTransferFunction",
+            category: "Volume",
+            doc: "A style transfer function: nodes \"value: style opacity; …\" (style = index into the \
+                  StyleSet, opacity = uniform α_u). Between two nodes the style index and α_u are \
+                  interpolated, so whole styles blend uniformly for every normal; a style may appear \
+                  several times (the index function ift of §4.1). Connect to Raycast's `tf`.",
+            inputs: vec![PortSpec::input(
+                "styles",
+                PortType::StyleSet,
+                "the lit-sphere styles",
+            )],
+            outputs: vec![PortSpec::output(
+                "tf",
+                PortType::TransferFunction,
+                "the style transfer function",
+            )],
+            params: vec![ParamSpec::text(
+                "nodes",
+                "40: 0 0.02; 90: 1 0.3; 160: 2 1.0",
+                "value: style opacity; …",
+            )],
+            frame_dependent: false,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        _ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let styles = inputs.require("styles")?.style_set("styles")?.clone();
+        let nodes = StyleTransferFunction::parse(p.text("nodes"))
+            .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
+        let function = StyleTransferFunction::from_nodes(&nodes, styles.maps.len())
+            .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
+        Ok(vec![Value::TransferFunction(Arc::new(
+            TransferFunction::Style { function, styles },
+        ))])
+    }
+}

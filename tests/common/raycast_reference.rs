@@ -1,0 +1,496 @@
+//! CPU reference ray caster: the sampling rule the GPU ray caster implements, written out
+//! plainly (no acceleration, no jitter) so GPU images can be checked against it.
+//!
+//! Per pixel `(x, y)`: `ndc = ((x + 0.5) / W * 2 − 1, 1 − (y + 0.5) / H * 2)`; `P0`, `P1` =
+//! `inverse(view_proj)` applied to `(ndc, 0)` and `(ndc, 1)` (divided by w); `dir =
+//! normalize(P1 − P0)`. The ray `P0 + t dir` is clipped against the box of voxel centres
+//! `[world_min, world_max]` (slab test, `t_in` clamped to >= 0). Samples at `t = t_in + k h`,
+//! `k = 0, 1, …` while `t <= t_out`, `h = step_voxels · min(spacing)`; each `t` is computed from
+//! `k` (not accumulated).
+//!
+//! Interpretations where the specification leaves room (the GPU must match these):
+//! - Unit normal: `n̂ = g / |g|` (0 if `|g| < 1e-12`), moved to view space with
+//!   `view.transform_vector3` and renormalised (a no-op for a rigid view matrix).
+//! - `L = normalize(light_dir_view)`, `H = normalize(L + V)` (0 if `L = −V`).
+//! - Gradient magnitude normalised as `|g| / gmax` clamped to [0, 1], 0 if `gmax = 0`, with
+//!   `gmax = max_gradient_magnitude(volume)`.
+//! - Context-preserving distance: perspective `d = |P − E|`, `E` = `inverse(view)` origin,
+//!   normalised by the min/max of `|corner − E|` over the 8 box corners; orthographic: the eye
+//!   is at infinity, `d` = depth along the ray from the near plane, `d = t` (measured from the
+//!   ray's own `P0`), normalised by the min/max over the 8 corners of `(corner − P0) · dir`
+//!   (the same for every ray, since all `P0` lie on the near plane). In both cases
+//!   `dist = clamp((d − d_min) / (d_max − d_min), 0, 1)` (0 if `d_max <= d_min`).
+//! - Iso colour with `Lighting` shading: the colour part of eq. 8 (alpha stays 1);
+//!   with `ContextPreserving`: as `Phong`.
+
+#![allow(dead_code)]
+
+use glam::{Mat4, Vec3, Vec4};
+use hatchery_data::VolumeData;
+use hatchery_data::gradient::max_gradient_magnitude;
+use hatchery_data::lighting::{
+    LightingTf, apply_lighting_tf, context_preserving_alpha, phong_intensity,
+};
+use hatchery_data::transfer_function::TransferFunction1D;
+
+/// What a ray computes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Mode {
+    /// Front-to-back direct volume rendering.
+    Dvr,
+    /// Maximum intensity projection.
+    Mip,
+    /// First crossing of the iso value (linearly refined between samples).
+    Iso(f32),
+}
+
+/// How a DVR (or iso) sample is shaded.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shading {
+    None,
+    /// Two-sided Blinn–Phong (tutorial eq. 3); the colour is `clamp(c · s, 0, 1)`.
+    Phong {
+        ambient: f32,
+        diffuse: f32,
+        specular: f32,
+        exponent: f32,
+    },
+    /// VolumeShop lighting transfer function (tutorial eq. 8), looked up with signed `N·L`,
+    /// `N·H`.
+    Lighting(LightingTf),
+    /// Colour as `Phong`, opacity by the context-preserving model (tutorial eq. 5).
+    ContextPreserving {
+        kappa_t: f32,
+        kappa_s: f32,
+        ambient: f32,
+        diffuse: f32,
+        specular: f32,
+        exponent: f32,
+    },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct RayParams {
+    pub view_proj: Mat4,
+    pub view: Mat4,
+    pub width: u32,
+    pub height: u32,
+    pub orthographic: bool,
+    /// Sample distance in voxels; the world step is `step_voxels · min(spacing)`.
+    pub step_voxels: f32,
+    pub mode: Mode,
+    pub shading: Shading,
+    /// Unit vector towards the light, in view space.
+    pub light_dir_view: Vec3,
+    /// Stop after the sample at which the accumulated alpha reaches this (1.0 disables).
+    pub early_termination: f32,
+}
+
+/// `P0` (on the near plane) and the unit direction of the ray through pixel `(x, y)`.
+pub fn pixel_ray(p: &RayParams, x: u32, y: u32) -> (Vec3, Vec3) {
+    let inverse = p.view_proj.inverse();
+    let ndc_x = (x as f32 + 0.5) / p.width as f32 * 2.0 - 1.0;
+    let ndc_y = 1.0 - (y as f32 + 0.5) / p.height as f32 * 2.0;
+    let unproject = |z: f32| {
+        let h = inverse * Vec4::new(ndc_x, ndc_y, z, 1.0);
+        h.truncate() / h.w
+    };
+    let p0 = unproject(0.0);
+    let p1 = unproject(1.0);
+    (p0, (p1 - p0).normalize())
+}
+
+/// Slab intersection of `origin + t dir` with the box `[lo, hi]`: `(t_in, t_out)` with `t_in`
+/// clamped to >= 0, or `None` if the ray misses (or the box is behind it). A zero direction
+/// component constrains nothing if the origin lies within that slab (bounds inclusive) and
+/// misses otherwise.
+pub fn intersect_box(lo: Vec3, hi: Vec3, origin: Vec3, dir: Vec3) -> Option<(f32, f32)> {
+    let mut t_in = f32::NEG_INFINITY;
+    let mut t_out = f32::INFINITY;
+    for axis in 0..3 {
+        let (o, d) = (origin[axis], dir[axis]);
+        if d == 0.0 {
+            if o < lo[axis] || o > hi[axis] {
+                return None;
+            }
+            continue;
+        }
+        let t1 = (lo[axis] - o) / d;
+        let t2 = (hi[axis] - o) / d;
+        t_in = t_in.max(t1.min(t2));
+        t_out = t_out.min(t1.max(t2));
+    }
+    let t_in = t_in.max(0.0);
+    (t_in <= t_out).then_some((t_in, t_out))
+}
+
+/// The world step `h` of the parameters for this volume.
+pub fn world_step(volume: &VolumeData, p: &RayParams) -> f32 {
+    let min_spacing = volume.spacing.iter().copied().fold(f32::INFINITY, f32::min);
+    p.step_voxels * min_spacing
+}
+
+/// Premultiplied RGBA per pixel, row 0 at the top.
+pub fn render(volume: &VolumeData, tf: &TransferFunction1D, p: &RayParams) -> Vec<[f32; 4]> {
+    let caster = Caster::new(volume, p);
+    per_pixel(p.width, p.height, |x, y| caster.pixel(tf, x, y))
+}
+
+/// Per pixel: the window depth `(view_proj · P).z / w` of the first crossing `P` of `iso` (as
+/// [`Mode::Iso`] finds it; 1 if none) and the view-space unit normal `−g / |g|` there (towards
+/// lower values; zero if no hit or `|g| < 1e-12`). `p.mode` and `p.shading` are ignored.
+pub fn gbuffer_iso(volume: &VolumeData, p: &RayParams, iso: f32) -> Vec<(f32, Vec3)> {
+    let caster = Caster::new(volume, p);
+    per_pixel(p.width, p.height, |x, y| {
+        let Some(ray) = caster.ray(x, y) else {
+            return (1.0, Vec3::ZERO);
+        };
+        let Some(t) = caster.iso_hit(&ray, iso) else {
+            return (1.0, Vec3::ZERO);
+        };
+        let pos = ray.at(t);
+        let clip = p.view_proj * pos.extend(1.0);
+        let g = caster.gradient(pos);
+        let normal = if g.length() < 1e-12 {
+            Vec3::ZERO
+        } else {
+            p.view
+                .transform_vector3(-g / g.length())
+                .normalize_or_zero()
+        };
+        (clip.z / clip.w, normal)
+    })
+}
+
+/// Runs `f` for every pixel on all cores; row-major from the top row.
+fn per_pixel<T: Send + Clone + Default>(
+    width: u32,
+    height: u32,
+    f: impl Fn(u32, u32) -> T + Sync,
+) -> Vec<T> {
+    let mut out = vec![T::default(); width as usize * height as usize];
+    if out.is_empty() {
+        return out;
+    }
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let rows_per_chunk = (height as usize).div_ceil(threads).max(1);
+    std::thread::scope(|scope| {
+        for (chunk, rows) in out.chunks_mut(rows_per_chunk * width as usize).enumerate() {
+            let f = &f;
+            scope.spawn(move || {
+                for (i, px) in rows.iter_mut().enumerate() {
+                    let i = chunk * rows_per_chunk * width as usize + i;
+                    *px = f((i % width as usize) as u32, (i / width as usize) as u32);
+                }
+            });
+        }
+    });
+    out
+}
+
+struct Ray {
+    origin: Vec3,
+    dir: Vec3,
+    t_in: f32,
+    t_out: f32,
+}
+
+impl Ray {
+    fn at(&self, t: f32) -> Vec3 {
+        self.origin + t * self.dir
+    }
+}
+
+struct Caster<'a> {
+    volume: &'a VolumeData,
+    p: &'a RayParams,
+    h: f32,
+    /// Gradient magnitude normaliser (0 for a constant volume).
+    gmax: f32,
+    lo: Vec3,
+    hi: Vec3,
+    /// Perspective eye position (world).
+    eye: Vec3,
+    light: Vec3,
+}
+
+impl<'a> Caster<'a> {
+    fn new(volume: &'a VolumeData, p: &'a RayParams) -> Self {
+        let h = world_step(volume, p);
+        assert!(
+            h > 0.0 && h.is_finite(),
+            "step_voxels must be positive, got {}",
+            p.step_voxels
+        );
+        let needs_gmax = matches!(
+            p.shading,
+            Shading::Lighting(_) | Shading::ContextPreserving { .. }
+        );
+        Self {
+            volume,
+            p,
+            h,
+            gmax: if needs_gmax {
+                max_gradient_magnitude(volume)
+            } else {
+                0.0
+            },
+            lo: volume.world_min(),
+            hi: volume.world_max(),
+            eye: p.view.inverse().transform_point3(Vec3::ZERO),
+            light: p.light_dir_view.normalize_or_zero(),
+        }
+    }
+
+    fn ray(&self, x: u32, y: u32) -> Option<Ray> {
+        let (origin, dir) = pixel_ray(self.p, x, y);
+        let (t_in, t_out) = intersect_box(self.lo, self.hi, origin, dir)?;
+        Some(Ray {
+            origin,
+            dir,
+            t_in,
+            t_out,
+        })
+    }
+
+    /// The sample positions' parameters `t_in + k h`, `k = 0, 1, …` while `<= t_out`.
+    fn samples(&self, ray: &Ray) -> impl Iterator<Item = f32> + use<> {
+        let (t_in, t_out, h) = (ray.t_in, ray.t_out, self.h);
+        (0u32..)
+            .map(move |k| t_in + k as f32 * h)
+            .take_while(move |&t| t <= t_out)
+    }
+
+    fn voxel(&self, pos: Vec3) -> Vec3 {
+        (pos - Vec3::from_array(self.volume.origin)) / Vec3::from_array(self.volume.spacing)
+    }
+
+    fn value(&self, pos: Vec3) -> f32 {
+        self.volume.sample_trilinear(self.voxel(pos))
+    }
+
+    fn gradient(&self, pos: Vec3) -> Vec3 {
+        self.volume.gradient(self.voxel(pos))
+    }
+
+    fn gradient_norm(&self, g: Vec3) -> f32 {
+        if self.gmax > 0.0 {
+            (g.length() / self.gmax).min(1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// View-space unit normal `n̂`, light `L` and half vector `H` at world position `pos` with
+    /// gradient `g`.
+    fn frame(&self, pos: Vec3, g: Vec3) -> (Vec3, Vec3, Vec3) {
+        let len = g.length();
+        let n = if len < 1e-12 {
+            Vec3::ZERO
+        } else {
+            self.p.view.transform_vector3(g / len).normalize_or_zero()
+        };
+        let v = if self.p.orthographic {
+            Vec3::Z
+        } else {
+            -self.p.view.transform_point3(pos).normalize_or_zero()
+        };
+        let l = self.light;
+        (n, l, (l + v).normalize_or_zero())
+    }
+
+    fn pixel(&self, tf: &TransferFunction1D, x: u32, y: u32) -> [f32; 4] {
+        let Some(ray) = self.ray(x, y) else {
+            return [0.0; 4];
+        };
+        match self.p.mode {
+            Mode::Dvr => self.dvr(tf, &ray),
+            Mode::Mip => {
+                let m = self
+                    .samples(&ray)
+                    .map(|t| self.value(ray.at(t)))
+                    .fold(None, |m: Option<f32>, v| Some(m.map_or(v, |m| m.max(v))));
+                match m {
+                    Some(m) => {
+                        let [r, g, b, a] = tf.lookup(m);
+                        [r * a, g * a, b * a, a]
+                    }
+                    None => [0.0; 4],
+                }
+            }
+            Mode::Iso(iso) => match self.iso_hit(&ray, iso) {
+                Some(t) => {
+                    let pos = ray.at(t);
+                    let [r, g, b, _] = tf.lookup(iso);
+                    let c = self.shade_iso(Vec3::new(r, g, b), pos);
+                    [c.x, c.y, c.z, 1.0]
+                }
+                None => [0.0; 4],
+            },
+        }
+    }
+
+    /// `t*` of the first sample with `v >= iso` (`t_in` if the first one is), refined linearly
+    /// from the previous sample.
+    fn iso_hit(&self, ray: &Ray, iso: f32) -> Option<f32> {
+        let mut previous: Option<(f32, f32)> = None;
+        for t in self.samples(ray) {
+            let v = self.value(ray.at(t));
+            if v >= iso {
+                return Some(match previous {
+                    None => t,
+                    Some((t0, v0)) => t0 + self.h * (iso - v0) / (v - v0),
+                });
+            }
+            previous = Some((t, v));
+        }
+        None
+    }
+
+    fn shade_iso(&self, c: Vec3, pos: Vec3) -> Vec3 {
+        match &self.p.shading {
+            Shading::None => c,
+            Shading::Phong {
+                ambient,
+                diffuse,
+                specular,
+                exponent,
+            }
+            | Shading::ContextPreserving {
+                ambient,
+                diffuse,
+                specular,
+                exponent,
+                ..
+            } => {
+                let (n, l, h) = self.frame(pos, self.gradient(pos));
+                let s = phong_intensity(
+                    n.to_array(),
+                    l.to_array(),
+                    h.to_array(),
+                    *ambient,
+                    *diffuse,
+                    *specular,
+                    *exponent,
+                );
+                (c * s).clamp(Vec3::ZERO, Vec3::ONE)
+            }
+            Shading::Lighting(table) => {
+                let g = self.gradient(pos);
+                let (n, l, h) = self.frame(pos, g);
+                let s = table.lookup(n.dot(l), n.dot(h));
+                let (c, _) = apply_lighting_tf(s, c.to_array(), 1.0, self.gradient_norm(g));
+                Vec3::from_array(c)
+            }
+        }
+    }
+
+    /// Normalised context-preserving distance of the sample at `t` on `ray`.
+    fn distance_norm(&self, ray: &Ray, t: f32) -> f32 {
+        let corners = (0..8).map(|i| {
+            Vec3::new(
+                if i & 1 == 0 { self.lo.x } else { self.hi.x },
+                if i & 2 == 0 { self.lo.y } else { self.hi.y },
+                if i & 4 == 0 { self.lo.z } else { self.hi.z },
+            )
+        });
+        let (d, measure): (f32, Box<dyn Fn(Vec3) -> f32>) = if self.p.orthographic {
+            let (o, dir) = (ray.origin, ray.dir);
+            (t, Box::new(move |c: Vec3| (c - o).dot(dir)))
+        } else {
+            let eye = self.eye;
+            (
+                (ray.at(t) - eye).length(),
+                Box::new(move |c: Vec3| (c - eye).length()),
+            )
+        };
+        let (d_min, d_max) = corners
+            .map(measure)
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), d| {
+                (a.min(d), b.max(d))
+            });
+        if d_max > d_min {
+            ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    fn dvr(&self, tf: &TransferFunction1D, ray: &Ray) -> [f32; 4] {
+        let mut acc_c = Vec3::ZERO;
+        let mut acc_a = 0.0f32;
+        for t in self.samples(ray) {
+            let pos = ray.at(t);
+            let v = self.value(pos);
+            let [r, g, b, a] = tf.lookup(v);
+            let mut c = Vec3::new(r, g, b);
+            let mut alpha = 1.0 - (1.0 - a).powf(self.p.step_voxels);
+            match &self.p.shading {
+                Shading::None => {}
+                Shading::Phong {
+                    ambient,
+                    diffuse,
+                    specular,
+                    exponent,
+                } => {
+                    let (n, l, h) = self.frame(pos, self.gradient(pos));
+                    let s = phong_intensity(
+                        n.to_array(),
+                        l.to_array(),
+                        h.to_array(),
+                        *ambient,
+                        *diffuse,
+                        *specular,
+                        *exponent,
+                    );
+                    c = (c * s).clamp(Vec3::ZERO, Vec3::ONE);
+                }
+                Shading::Lighting(table) => {
+                    let grad = self.gradient(pos);
+                    let (n, l, h) = self.frame(pos, grad);
+                    let s = table.lookup(n.dot(l), n.dot(h));
+                    let (shaded, a) =
+                        apply_lighting_tf(s, c.to_array(), alpha, self.gradient_norm(grad));
+                    c = Vec3::from_array(shaded);
+                    alpha = a;
+                }
+                Shading::ContextPreserving {
+                    kappa_t,
+                    kappa_s,
+                    ambient,
+                    diffuse,
+                    specular,
+                    exponent,
+                } => {
+                    let grad = self.gradient(pos);
+                    let (n, l, h) = self.frame(pos, grad);
+                    let s = phong_intensity(
+                        n.to_array(),
+                        l.to_array(),
+                        h.to_array(),
+                        *ambient,
+                        *diffuse,
+                        *specular,
+                        *exponent,
+                    );
+                    c = (c * s).clamp(Vec3::ZERO, Vec3::ONE);
+                    alpha = context_preserving_alpha(
+                        alpha,
+                        self.gradient_norm(grad),
+                        *kappa_t,
+                        *kappa_s,
+                        s,
+                        self.distance_norm(ray, t),
+                        acc_a,
+                    );
+                }
+            }
+            acc_c += (1.0 - acc_a) * alpha * c;
+            acc_a += (1.0 - acc_a) * alpha;
+            if acc_a >= self.p.early_termination {
+                break;
+            }
+        }
+        [acc_c.x, acc_c.y, acc_c.z, acc_a]
+    }
+}
