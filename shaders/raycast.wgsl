@@ -282,15 +282,16 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             let s = ray.phong.y * abs(dot(l, n)) + ray.phong.z * pow(abs(dot(hv, n)), ray.phong.w) + ray.phong.x;
             if shading == 1 || shading == 3 {
                 c = clamp(c * s, vec3<f32>(0.0), vec3<f32>(1.0));
-            } else if shading == 2 {
-                // VolumeShop lighting transfer function, eq. 8.
-                let lt = lighting_lookup(dot(n, l), dot(n, hv));
-                c = clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
-                a = min(1.0, a / max(1e-6, min(1.0, lt.w + (1.0 - g_norm))));
             }
         }
         // Opacity correction for the step length (TF opacities are per voxel).
         a = 1.0 - pow(1.0 - clamp(a, 0.0, 1.0), step_voxels);
+        if shading == 2 {
+            // VolumeShop lighting transfer function, eq. 8 (on the corrected opacity).
+            let lt = lighting_lookup(dot(n, l), dot(n, hv));
+            c = clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
+            a = min(1.0, a / max(1e-6, min(1.0, lt.w + (1.0 - g_norm))));
+        }
         if shading == 3 {
             // Context-preserving opacity, eq. 5 (applied to the corrected opacity).
             let s = ray.phong.y * abs(dot(l, n)) + ray.phong.z * pow(abs(dot(hv, n)), ray.phong.w) + ray.phong.x;
@@ -343,15 +344,18 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
         }
         let n = (ray.view * vec4<f32>(n_world, 0.0)).xyz;
         var c = table_lookup(ray.mode.y).rgb;
-        if shading == 1 {
-            let view_pos = (ray.view * vec4<f32>(p, 1.0)).xyz;
-            var v_dir = vec3<f32>(0.0, 0.0, 1.0);
-            if !orthographic {
-                v_dir = -normalize(view_pos);
-            }
-            let hv = normalize(l + v_dir);
+        let view_pos = (ray.view * vec4<f32>(p, 1.0)).xyz;
+        var v_dir = vec3<f32>(0.0, 0.0, 1.0);
+        if !orthographic {
+            v_dir = -normalize(view_pos);
+        }
+        let hv = normalize(l + v_dir);
+        if shading == 1 || shading == 3 {
             let s = ray.phong.y * abs(dot(l, n)) + ray.phong.z * pow(abs(dot(hv, n)), ray.phong.w) + ray.phong.x;
             c = clamp(c * s, vec3<f32>(0.0), vec3<f32>(1.0));
+        } else if shading == 2 {
+            let lt = lighting_lookup(dot(n, l), dot(n, hv));
+            c = clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
         }
         out.color = vec4<f32>(c, 1.0);
         out.normal = vec4<f32>(n, 1.0);

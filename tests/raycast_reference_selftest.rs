@@ -3,16 +3,16 @@
 //! sample is a voxel value, so MIP is the column maximum and DVR the front-to-back "over" of
 //! the column.
 
-// The reference is a plain module file so this test does not depend on `common`'s GPU helpers.
-#[path = "common/raycast_reference.rs"]
-mod raycast_reference;
+mod common;
 
+use common::raycast_reference::{
+    Mode, RayParams, Shading, gbuffer_iso, intersect_box, pixel_ray, render,
+};
 use glam::{Mat4, Vec3};
 use hatchery_data::VolumeData;
 use hatchery_data::lighting::lighting_tf;
 use hatchery_data::procedural;
 use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
-use raycast_reference::{Mode, RayParams, Shading, gbuffer_iso, intersect_box, pixel_ray, render};
 
 /// Voxels per axis of the test volumes (grid over [-1, 1]^3).
 const N: u32 = 32;
@@ -210,6 +210,27 @@ fn slab_intersection() {
         ),
         None
     );
+}
+
+#[test]
+fn first_and_last_voxel_layers_are_sampled() {
+    // Only the front (z = N − 1) or only the back (z = 0) layer is 1: with one-voxel steps
+    // from t_in to t_out both end samples fall exactly on the box faces and must be taken.
+    for layer in [N - 1, 0] {
+        let values = (0..N * N * N)
+            .map(|i| if i / (N * N) == layer { 1.0 } else { 0.0 })
+            .collect();
+        let v = VolumeData::new([N; 3], [spacing(); 3], [-1.0; 3], values).unwrap();
+        let tf = tf([0.0, 1.0]);
+        let img = render(&v, &tf, &ortho(0.0, Mode::Mip, Shading::None, 1.0));
+        compare(
+            &format!("MIP with only layer {layer} set"),
+            &img,
+            |_, _| premultiplied(tf.lookup(1.0)),
+            1e-5,
+            false,
+        );
+    }
 }
 
 #[test]
@@ -477,8 +498,14 @@ fn perspective_images_are_mirror_symmetric() {
         specular: 0.3,
         exponent: 16.0,
     };
-    let a = render(&v, &tf, &perspective(Mode::Dvr, cp, size));
-    let b = render(&v, &tf, &perspective(Mode::Dvr, phong, size));
+    // (Without early termination: the attenuated ray would otherwise run on past the point
+    // where the other one stopped.)
+    let mut with_cp = perspective(Mode::Dvr, cp, size);
+    with_cp.early_termination = 1.0;
+    let mut without = perspective(Mode::Dvr, phong, size);
+    without.early_termination = 1.0;
+    let a = render(&v, &tf, &with_cp);
+    let b = render(&v, &tf, &without);
     for (a, b) in a.iter().zip(&b) {
         assert!(
             a.iter().all(|c| c.is_finite() && (0.0..=1.0).contains(c)),

@@ -3,6 +3,8 @@
 
 #![allow(dead_code)]
 
+pub mod raycast_reference;
+
 use hatchery_graph::{Graph, GraphDocument};
 use hatchery_nodes::Session;
 use std::path::{Path, PathBuf};

@@ -9,8 +9,11 @@
 //! `k` (not accumulated).
 //!
 //! Interpretations where the specification leaves room (the GPU must match these):
-//! - Unit normal: `n̂ = g / |g|` (0 if `|g| < 1e-12`), moved to view space with
-//!   `view.transform_vector3` and renormalised (a no-op for a rigid view matrix).
+//! - Unit normal: `n̂ = SHADING_NORMAL_SIGN · g / |g|` with the sign −1 (towards lower values, outward
+//!   for bright objects, the GPU's convention) (0 if `|g| < 1e-12`), moved to view
+//!   space with `view.transform_vector3` and renormalised (a no-op for a rigid view matrix).
+//!   The sign only matters for the lighting transfer function (signed `N·L`, `N·H`); see
+//!   [`SHADING_NORMAL_SIGN`].
 //! - `L = normalize(light_dir_view)`, `H = normalize(L + V)` (0 if `L = −V`).
 //! - Gradient magnitude normalised as `|g| / gmax` clamped to [0, 1], 0 if `gmax = 0`, with
 //!   `gmax = max_gradient_magnitude(volume)`.
@@ -32,6 +35,13 @@ use hatchery_data::lighting::{
     LightingTf, apply_lighting_tf, context_preserving_alpha, phong_intensity,
 };
 use hatchery_data::transfer_function::TransferFunction1D;
+
+/// Sign of the shading normal: `+1` is the specification's `n̂ = g / |g|` (towards higher
+/// values, i.e. inwards for a bright object on a dark background). Phong and context-preserving
+/// shading use absolute values and do not care; the lighting transfer function is looked up
+/// with signed `N·L`, `N·H`, so with `+1` the lit side of a bright object gets `N·L < 0`.
+/// `-1` (outward for bright objects, the gbuffer's convention) is the other choice.
+pub const SHADING_NORMAL_SIGN: f32 = -1.0;
 
 /// What a ray computes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -235,8 +245,8 @@ impl<'a> Caster<'a> {
             } else {
                 0.0
             },
-            lo: volume.world_min(),
-            hi: volume.world_max(),
+            lo: volume.world_min() - box_margin(volume),
+            hi: volume.world_max() + box_margin(volume),
             eye: p.view.inverse().transform_point3(Vec3::ZERO),
             light: p.light_dir_view.normalize_or_zero(),
         }
@@ -253,12 +263,12 @@ impl<'a> Caster<'a> {
         })
     }
 
-    /// The sample positions' parameters `t_in + k h`, `k = 0, 1, …` while `<= t_out`.
+    /// The sample positions' parameters `t_in + k h` for `k < floor((t_out − t_in) / h) + 1`
+    /// (the count is computed once, exactly as the shader does).
     fn samples(&self, ray: &Ray) -> impl Iterator<Item = f32> + use<> {
-        let (t_in, t_out, h) = (ray.t_in, ray.t_out, self.h);
-        (0u32..)
-            .map(move |k| t_in + k as f32 * h)
-            .take_while(move |&t| t <= t_out)
+        let (t_in, h) = (ray.t_in, self.h);
+        let count = ((ray.t_out - t_in) / h).floor().max(-1.0) as i64 + 1;
+        (0..count.max(0)).map(move |k| t_in + k as f32 * h)
     }
 
     fn voxel(&self, pos: Vec3) -> Vec3 {
@@ -288,7 +298,10 @@ impl<'a> Caster<'a> {
         let n = if len < 1e-12 {
             Vec3::ZERO
         } else {
-            self.p.view.transform_vector3(g / len).normalize_or_zero()
+            self.p
+                .view
+                .transform_vector3(SHADING_NORMAL_SIGN * g / len)
+                .normalize_or_zero()
         };
         let v = if self.p.orthographic {
             Vec3::Z
@@ -380,7 +393,7 @@ impl<'a> Caster<'a> {
                 let (n, l, h) = self.frame(pos, g);
                 let s = table.lookup(n.dot(l), n.dot(h));
                 let (c, _) = apply_lighting_tf(s, c.to_array(), 1.0, self.gradient_norm(g));
-                Vec3::from_array(c)
+                Vec3::from_array(c).clamp(Vec3::ZERO, Vec3::ONE)
             }
         }
     }
@@ -451,7 +464,7 @@ impl<'a> Caster<'a> {
                     let s = table.lookup(n.dot(l), n.dot(h));
                     let (shaded, a) =
                         apply_lighting_tf(s, c.to_array(), alpha, self.gradient_norm(grad));
-                    c = Vec3::from_array(shaded);
+                    c = Vec3::from_array(shaded).clamp(Vec3::ZERO, Vec3::ONE);
                     alpha = a;
                 }
                 Shading::ContextPreserving {
@@ -493,4 +506,10 @@ impl<'a> Caster<'a> {
         }
         [acc_c.x, acc_c.y, acc_c.z, acc_a]
     }
+}
+
+/// The box of voxel centres is widened by this much on every side, so that rays running exactly
+/// along a face (axis-aligned orthographic views) hit it despite rounding; the shader does the same.
+pub fn box_margin(volume: &VolumeData) -> Vec3 {
+    Vec3::splat(1e-4 * volume.spacing.iter().copied().fold(f32::INFINITY, f32::min))
 }

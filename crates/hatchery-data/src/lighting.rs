@@ -45,7 +45,7 @@ fn contour_weight(n_dot_v: f32) -> f32 {
 ///   `s_s = 0.8 max(N·H, 0)^64`, and the contour of `phong_contour`.
 pub fn lighting_tf(model: &str) -> Option<LightingTf> {
     let entry: fn(f32, f32) -> [f32; 4] = match model {
-        "phong" => |nl, nh| phong_entry(nl, nh),
+        "phong" => phong_entry,
         "phong_contour" => |nl, nh| with_contour(phong_entry(nl, nh), nl, nh),
         "cartoon" => |nl, nh| {
             let d = if nl > 0.3 { 0.9 } else { 0.35 };
@@ -119,7 +119,7 @@ pub fn apply_lighting_tf(
     let [s_a, s_d, s_s, s_alpha] = s;
     let c = color.map(|c| (s_a + s_d) * c + s_s);
     let g = gradient_norm.clamp(0.0, 1.0);
-    let denominator = (s_alpha + (1.0 - g)).min(1.0).max(1e-6);
+    let denominator = (s_alpha + (1.0 - g)).clamp(1e-6, 1.0);
     (c, (alpha_u / denominator).min(1.0))
 }
 

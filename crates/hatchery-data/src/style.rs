@@ -169,7 +169,8 @@ pub fn contour_push_scale(nx: f32, ny: f32, n_dot_v: f32, t: f32, kappa_v: f32) 
     let limit = contour_limit(t, kappa_v);
     let nv = n_dot_v.abs();
     let r = (nx * nx + ny * ny).sqrt();
-    if !(limit > 0.0 && nv <= limit) || r == 0.0 {
+    let on_contour = limit > 0.0 && nv <= limit;
+    if !on_contour || r == 0.0 {
         return 1.0;
     }
     let delta = 1.0 - ((limit - nv) / limit).min(1.0);
@@ -208,7 +209,7 @@ pub fn illustrative_alpha(
 /// 0 if either normal is (near) zero or the step is not positive.
 pub fn curvature_estimate(n: [f32; 3], previous: [f32; 3], step_world: f32) -> f32 {
     let len2 = |v: [f32; 3]| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if !(step_world > 0.0) || len2(n) < 1e-12 || len2(previous) < 1e-12 {
+    if step_world.is_nan() || step_world <= 0.0 || len2(n) < 1e-12 || len2(previous) < 1e-12 {
         return 0.0;
     }
     let dot = n[0] * previous[0] + n[1] * previous[1] + n[2] * previous[2];

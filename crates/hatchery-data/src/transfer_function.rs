@@ -92,7 +92,7 @@ impl TransferFunction1D {
     ///
     /// `u = clamp((v - d0) / (d1 - d0), 0, 1)`, `x = u (LUT_SIZE - 1)`,
     /// `k = min(floor(x), LUT_SIZE - 2)`, `f = x - k`, result `lut[k] (1 - f) + lut[k + 1] f`.
-    /// A NaN `v` is treated as `u = 0`.
+    /// A NaN `v` (or a domain with `d1 <= d0`) gives `u = 0`.
     pub fn lookup(&self, v: f32) -> [f32; 4] {
         let (k, f) = lut_position(self.domain, v);
         lerp4(self.lut[k], self.lut[k + 1], f)
@@ -201,9 +201,14 @@ pub(crate) fn segment(values: &[f32], v: f32) -> (usize, f32) {
 
 /// The shared lookup rule: table index `k` (0..=LUT_SIZE-2) and fraction `f` for value `v`.
 pub(crate) fn lut_position(domain: [f32; 2], v: f32) -> (usize, f32) {
-    let u = (v - domain[0]) / (domain[1] - domain[0]);
-    // NaN (also from a zero-width domain) -> 0.
-    let u = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) };
+    let span = domain[1] - domain[0];
+    // NaN values and empty domains (never built here) -> 0.
+    let u = (v - domain[0]) / span;
+    let u = if span > 0.0 && !u.is_nan() {
+        u.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let x = u * (LUT_SIZE - 1) as f32;
     let k = (x.floor() as usize).min(LUT_SIZE - 2);
     (k, x - k as f32)

@@ -159,8 +159,11 @@ pub fn cast(
     let gpu = &ctx.gpu;
     let data = &volume.data;
     let volume_texture = volume.texture(gpu).map_err(err)?;
-    let (lo, hi) = (data.world_min(), data.world_max());
     let min_spacing = data.spacing.iter().copied().fold(f32::INFINITY, f32::min);
+    // Widen the box of voxel centres a little so rays running exactly along a face (axis-aligned
+    // orthographic views) still hit it; sampling clamps to the grid anyway.
+    let margin = Vec3::splat(1e-4 * min_spacing);
+    let (lo, hi) = (data.world_min() - margin, data.world_max() + margin);
     let step_world = o.step_voxels * min_spacing;
 
     // Tables: colour TF or style TF, lighting TF, styles, index function.
