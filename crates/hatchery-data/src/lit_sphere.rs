@@ -5,7 +5,14 @@ use glam::Vec3;
 
 /// Names accepted by [`procedural`].
 pub const STYLES: &[&str] = &[
-    "shaded", "toon2", "toon3", "gooch", "metal", "ink_rim", "flat",
+    "shaded",
+    "toon2",
+    "toon3",
+    "gooch",
+    "metal",
+    "ink_rim",
+    "flat",
+    "nagy_toon",
 ];
 
 /// A square lit-sphere map of straight-alpha RGBA texels, row 0 at the top (`ny = +1`).
@@ -110,6 +117,17 @@ fn shade(style: &str, n: Vec3, color: Vec3) -> Option<[f32; 4]> {
             interior * smoothstep(0.25, 0.45, nv)
         }
         "flat" => color,
+        // Nagy et al. 2002, §4.4: two tones switched at N·L = 0.5, black silhouettes where
+        // (N·V)² is small.
+        "nagy_toon" => {
+            if nv * nv < 0.1 {
+                Vec3::ZERO
+            } else if nl > 0.5 {
+                color
+            } else {
+                color * 0.5
+            }
+        }
         _ => return None,
     };
     let rgb = rgb.clamp(Vec3::ZERO, Vec3::ONE);
