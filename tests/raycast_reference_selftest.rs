@@ -227,7 +227,7 @@ fn first_and_last_voxel_layers_are_sampled() {
             &format!("MIP with only layer {layer} set"),
             &img,
             |_, _| premultiplied(tf.lookup(1.0)),
-            1e-5,
+            1e-3,
             false,
         );
     }
@@ -244,7 +244,7 @@ fn mip_is_the_column_maximum() {
                 .fold(f32::NEG_INFINITY, f32::max);
             premultiplied(tf.lookup(m))
         };
-        compare(&format!("MIP of {name}"), &img, want, 1e-4, false);
+        compare(&format!("MIP of {name}"), &img, want, 1e-3, false);
     }
 }
 
@@ -261,7 +261,7 @@ fn dvr_is_front_to_back_over_of_the_column() {
                 &format!("DVR of {name}, termination {stop}"),
                 &img,
                 want,
-                1e-4,
+                1e-3,
                 false,
             );
         }
@@ -478,7 +478,7 @@ fn perspective_images_are_mirror_symmetric() {
             for x in 0..size / 2 {
                 let a = img[(y * size + x) as usize];
                 let b = img[(y * size + size - 1 - x) as usize];
-                assert!(max_diff(a, b) < 1e-4, "{mode:?} ({x}, {y}): {a:?} vs {b:?}");
+                assert!(max_diff(a, b) < 1e-3, "{mode:?} ({x}, {y}): {a:?} vs {b:?}");
             }
         }
     }
