@@ -59,7 +59,8 @@ enum Command {
         /// What changes between frames: `full`, `orbit:CAMERA`, `vary:NODE.PARAM=a,b` (repeatable).
         #[arg(long, default_value = "full")]
         scenario: Vec<String>,
-        /// Override a parameter in every graph that has the node: `node.param=value`.
+        /// Override a parameter in every graph that has the node: `node.param=value`, or in the
+        /// N-th graph only: `N:node.param=value` (so one graph can be measured in two settings).
         #[arg(long, value_name = "NODE.PARAM=VALUE")]
         set: Vec<String>,
     },
@@ -208,6 +209,16 @@ fn run(cli: Cli) -> Result<()> {
                 )?;
                 // Each override applies to the graphs that have its node.
                 for assignment in &set {
+                    // `N:node.param=value` applies to the N-th graph only (1-based).
+                    let (only, assignment) = match assignment.split_once(':') {
+                        Some((n, rest)) if n.chars().all(|c| c.is_ascii_digit()) && !n.is_empty() => {
+                            (n.parse::<usize>().ok(), rest)
+                        }
+                        _ => (None, assignment.as_str()),
+                    };
+                    if only.is_some_and(|n| n != sessions.len() + 1) {
+                        continue;
+                    }
                     let (node, param, value) = split_assignment(assignment, "NODE.PARAM")?;
                     if session.graph.node(node).is_some() {
                         let value = resolve_cli_path(&session, node, param, value);
