@@ -36,6 +36,9 @@ struct Ray {
     style: vec4<f32>,
     // xyz world eye position (perspective cameras).
     eye: vec4<f32>,
+    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its value range
+    // (the texture is normalised like the volume's); w = width of the label → row table.
+    labels: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> ray: Ray;
@@ -47,8 +50,12 @@ struct Ray {
 @group(0) @binding(4) var lighting_table: texture_2d<f32>;
 // One layer per distinct style, each with its own mip chain (no mixing between styles, §4.3).
 @group(0) @binding(5) var styles: texture_2d_array<f32>;
-// N×1: node index -> style layer (the index function texture ift of §4.1).
+// N×rows: node index -> style layer (the index function texture ift of §4.1), one row per object.
 @group(0) @binding(6) var style_index: texture_2d<f32>;
+// Object labels on the volume's grid (read at the nearest voxel: never interpolated).
+@group(0) @binding(7) var label_volume: texture_3d<f32>;
+// Row 0: table row of each label; row 1: (domain lo, hi, node count N, 0) of each table row.
+@group(0) @binding(8) var label_rows: texture_2d<f32>;
 
 const LUT_SIZE: f32 = 256.0;
 const LIGHTING_SIZE: f32 = 64.0;
@@ -81,19 +88,23 @@ fn gradient_at(q: vec3<f32>) -> vec3<f32> {
     return g;
 }
 
-// The LUT rule of hatchery_data::transfer_function::TransferFunction1D::lookup.
-fn table_lookup(v: f32) -> vec4<f32> {
-    let span = ray.tf.y - ray.tf.x;
+// The LUT rule of hatchery_data::transfer_function::TransferFunction1D::lookup, on table row `row`.
+fn table_lookup_row(v: f32, row: i32, domain: vec2<f32>) -> vec4<f32> {
+    let span = domain.y - domain.x;
     var u = 0.0;
     if span > 0.0 {
-        u = clamp((v - ray.tf.x) / span, 0.0, 1.0);
+        u = clamp((v - domain.x) / span, 0.0, 1.0);
     }
     let x = u * (LUT_SIZE - 1.0);
     let k = min(floor(x), LUT_SIZE - 2.0);
     let f = x - k;
-    let a = textureLoad(tf_table, vec2<i32>(i32(k), 0), 0);
-    let b = textureLoad(tf_table, vec2<i32>(i32(k) + 1, 0), 0);
+    let a = textureLoad(tf_table, vec2<i32>(i32(k), row), 0);
+    let b = textureLoad(tf_table, vec2<i32>(i32(k) + 1, row), 0);
     return mix(a, b, f);
+}
+
+fn table_lookup(v: f32) -> vec4<f32> {
+    return table_lookup_row(v, 0, ray.tf.xy);
 }
 
 // Bilinear lookup of the lighting transfer function at signed (N·L, N·H).
@@ -232,15 +243,28 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
         var a = 0.0;
         if shading == 4 {
             // Style transfer function (§4.1): (i, α_u) from tft, whole styles j0, j1 from ift.
-            let entry = table_lookup(v);
+            var row = 0;
+            var domain = ray.tf.xy;
+            var node_count = ray.tf.z;
+            if ray.labels.x > 0.5 {
+                // The object at the nearest voxel picks the table row (§4.2).
+                let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0)));
+                let label = round(ray.labels.y + textureLoad(label_volume, voxel, 0).r * (ray.labels.z - ray.labels.y));
+                let slot = clamp(i32(label), 0, i32(ray.labels.w) - 1);
+                row = i32(textureLoad(label_rows, vec2<i32>(slot, 0), 0).r + 0.5);
+                let info = textureLoad(label_rows, vec2<i32>(row, 1), 0);
+                domain = info.xy;
+                node_count = info.z;
+            }
+            let entry = table_lookup_row(v, row, domain);
             let i = entry.x;
             let alpha_u = entry.y;
-            let last = max(ray.tf.z - 1.0, 0.0);
+            let last = max(node_count - 1.0, 0.0);
             let i0 = clamp(floor(i), 0.0, last);
             let i1 = min(i0 + 1.0, last);
             let w = clamp(i - i0, 0.0, 1.0);
-            let j0 = i32(textureLoad(style_index, vec2<i32>(i32(i0), 0), 0).r + 0.5);
-            let j1 = i32(textureLoad(style_index, vec2<i32>(i32(i1), 0), 0).r + 0.5);
+            let j0 = i32(textureLoad(style_index, vec2<i32>(i32(i0), row), 0).r + 0.5);
+            let j1 = i32(textureLoad(style_index, vec2<i32>(i32(i1), row), 0).r + 0.5);
             // κv: angle between successive normals over the step (§3.3).
             var kappa_v = 0.0;
             if k > 0u && dot(previous_normal, previous_normal) > 0.5 && g_length > 1e-12 {

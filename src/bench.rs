@@ -272,7 +272,14 @@ pub fn run(
     println!("summary: median frame time in ms (ratio to the first column)");
     let columns: Vec<String> = pairs
         .iter()
-        .map(|&(g, s)| format!("{}:{} [{}]", g + 1, file_name(&graphs[g]), scenarios[s].name()))
+        .map(|&(g, s)| {
+            format!(
+                "{}:{} [{}]",
+                g + 1,
+                file_name(&graphs[g]),
+                scenarios[s].name()
+            )
+        })
         .collect();
     println!("| size | {} |", columns.join(" | "));
     println!("|---|{}", "---|".repeat(columns.len()));

@@ -211,7 +211,9 @@ fn run(cli: Cli) -> Result<()> {
                 for assignment in &set {
                     // `N:node.param=value` applies to the N-th graph only (1-based).
                     let (only, assignment) = match assignment.split_once(':') {
-                        Some((n, rest)) if n.chars().all(|c| c.is_ascii_digit()) && !n.is_empty() => {
+                        Some((n, rest))
+                            if n.chars().all(|c| c.is_ascii_digit()) && !n.is_empty() =>
+                        {
                             (n.parse::<usize>().ok(), rest)
                         }
                         _ => (None, assignment.as_str()),

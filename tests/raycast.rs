@@ -494,7 +494,11 @@ fn centre_row(
         session,
         &volume,
         &cam,
-        TransferFunction::Style { function, styles },
+        TransferFunction::Style {
+            function,
+            per_label: Vec::new(),
+            styles,
+        },
         &params,
         Vec3::Z,
     );
@@ -684,4 +688,116 @@ fn iso_surface_raycast_matches_the_analytic_sphere_and_feeds_silhouettes() {
             }
         }
     }
+}
+
+#[test]
+fn two_dimensional_style_tf_picks_styles_per_object_label() {
+    // Two objects side by side: label 1 for x < 8, label 2 for x >= 8, value = label.
+    let n = 16u32;
+    let values: Vec<f32> = (0..n * n * n)
+        .map(|i| if i % n < 8 { 1.0 } else { 2.0 })
+        .collect();
+    let data = VolumeData::new([n; 3], [1.0; 3], [0.0; 3], values).unwrap();
+    let volume = Arc::new(Volume::new(data));
+    let flat = |c: [f32; 3]| hatchery_data::lit_sphere::procedural("flat", 64, c).unwrap();
+    let styles = Arc::new(StyleSet::new(
+        vec!["red".into(), "blue".into(), "green".into()],
+        vec![
+            flat([1.0, 0.0, 0.0]),
+            flat([0.0, 0.0, 1.0]),
+            flat([0.0, 1.0, 0.0]),
+        ],
+    ));
+    let everything =
+        StyleTransferFunction::from_nodes(&StyleTransferFunction::parse("0: 2 1.0").unwrap(), 3)
+            .unwrap();
+    let row = |text: &str| {
+        StyleTransferFunction::from_nodes(&StyleTransferFunction::parse(text).unwrap(), 3).unwrap()
+    };
+    let per_label = vec![(1, row("0: 0 1.0")), (2, row("0: 1 1.0"))];
+    let mut s = session();
+    let distance = 30.0f32;
+    let fov = 2.0 * (8.0f32 / distance).atan().to_degrees();
+    let cam = camera(
+        &mut s,
+        n,
+        n,
+        true,
+        0.0,
+        0.0,
+        distance,
+        fov,
+        Vec3::splat(7.5),
+    );
+    let params = node_params(
+        "dvr",
+        "none",
+        0.5,
+        &[
+            ("contours", ParamValue::Bool(false)),
+            ("transparency", ParamValue::Bool(false)),
+        ],
+    );
+    let light = hatchery_nodes::light::Light {
+        direction: Vec3::Z,
+        view_space: true,
+        color: [1.0; 3],
+        intensity: 1.0,
+        ambient: 0.0,
+    };
+    let render = |s: &mut Session, tf: TransferFunction, labels: bool| {
+        let mut inputs = vec![
+            ("volume", Value::Volume(volume.clone())),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+            ("tf", Value::TransferFunction(Arc::new(tf))),
+            ("light", Value::Light(Arc::new(light.clone()))),
+        ];
+        if labels {
+            inputs.push(("labels", Value::Volume(volume.clone())));
+        }
+        let p: Vec<(&str, ParamValue)> = params
+            .iter()
+            .map(|(n, v)| (n.as_str(), v.clone()))
+            .collect();
+        let out = run_node(s, "Raycast", inputs, &p);
+        rgba(s, &out[0])
+    };
+    let image = render(
+        &mut s,
+        TransferFunction::Style {
+            function: everything.clone(),
+            per_label,
+            styles: styles.clone(),
+        },
+        true,
+    );
+    for y in 2..n - 2 {
+        let left = image[(y * n + 2) as usize];
+        let right = image[(y * n + n - 3) as usize];
+        assert!(
+            left[0] > 0.9 && left[2] < 0.1,
+            "label 1 must use style 0 (red): {left:?}"
+        );
+        assert!(
+            right[2] > 0.9 && right[0] < 0.1,
+            "label 2 must use style 1 (blue): {right:?}"
+        );
+    }
+    // Without rows, every object takes the common function (green).
+    let plain = render(
+        &mut s,
+        TransferFunction::Style {
+            function: everything,
+            per_label: vec![],
+            styles,
+        },
+        true,
+    );
+    assert!(
+        plain
+            .iter()
+            .filter(|p| p[3] > 0.5)
+            .all(|p| p[1] > 0.9 && p[0] < 0.1),
+        "common function must be green"
+    );
 }

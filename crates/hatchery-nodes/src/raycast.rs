@@ -25,6 +25,8 @@ struct Statics {
     blank_table: wgpu::Texture,
     blank_styles: wgpu::Texture,
     blank_index: wgpu::Texture,
+    blank_labels: wgpu::Texture,
+    blank_label_rows: wgpu::Texture,
 }
 
 fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
@@ -88,13 +90,96 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         wgpu::TextureFormat::R32Float,
         &[0u8; 4],
     );
+    let blank_labels =
+        gpu.upload_volume_normalized("blank labels", [1, 1, 1], &[0.0], [0.0, 1.0])?;
+    let blank_label_rows = gpu.texture_2d_init(
+        "blank label rows",
+        1,
+        2,
+        wgpu::TextureFormat::Rgba32Float,
+        &[0u8; 32],
+    );
     Ok(Statics {
         pipeline,
         sampler,
         blank_table,
         blank_styles,
         blank_index,
+        blank_labels,
+        blank_label_rows,
     })
+}
+
+/// The style tables of §4.1 as textures, one row per object (§4.2): row 0 is the function for
+/// every object, rows 1.. the per-label ones.
+struct StyleTables {
+    rows: u32,
+    /// LUT_SIZE × rows of (i, α_u, 0, 0).
+    tft: Vec<f32>,
+    ift_width: u32,
+    /// ift_width × rows of style indices.
+    ift: Vec<f32>,
+    label_width: u32,
+    /// label_width × 2: row 0 = table row of each label (x); row 1 = (domain lo, hi, N, 0) per row.
+    label_rows: Vec<f32>,
+}
+
+impl StyleTables {
+    fn new(
+        function: &hatchery_data::style::StyleTransferFunction,
+        per_label: &[(i64, hatchery_data::style::StyleTransferFunction)],
+    ) -> Self {
+        let functions: Vec<&hatchery_data::style::StyleTransferFunction> =
+            std::iter::once(function)
+                .chain(per_label.iter().map(|(_, f)| f))
+                .collect();
+        let rows = functions.len() as u32;
+        let ift_width = functions
+            .iter()
+            .map(|f| f.ift.len())
+            .max()
+            .unwrap_or(1)
+            .max(1) as u32;
+        let mut tft = Vec::new();
+        let mut ift = Vec::new();
+        for f in &functions {
+            tft.extend(f.tft.iter().flat_map(|e| [e[0], e[1], 0.0, 0.0]));
+            let mut row: Vec<f32> = f.ift.iter().map(|&j| j as f32).collect();
+            row.resize(ift_width as usize, *row.last().unwrap_or(&0.0));
+            ift.extend(row);
+        }
+        // Labels up to the largest listed one, plus one slot for every larger label (row 0).
+        let max_label = per_label
+            .iter()
+            .map(|(l, _)| *l)
+            .max()
+            .unwrap_or(0)
+            .clamp(0, 65_534);
+        let label_width = (max_label as u32 + 2).max(rows);
+        let mut label_rows = vec![0.0f32; label_width as usize * 8];
+        for (row, (label, _)) in per_label.iter().enumerate() {
+            if (0..=max_label).contains(label) {
+                label_rows[*label as usize * 4] = (row + 1) as f32;
+            }
+        }
+        for (row, f) in functions.iter().enumerate() {
+            let at = (label_width as usize + row) * 4;
+            label_rows[at..at + 4].copy_from_slice(&[
+                f.domain[0],
+                f.domain[1],
+                f.ift.len() as f32,
+                0.0,
+            ]);
+        }
+        Self {
+            rows,
+            tft,
+            ift_width,
+            ift,
+            label_width,
+            label_rows,
+        }
+    }
 }
 
 fn floats_texture(
@@ -152,6 +237,7 @@ pub fn cast(
     volume: &Volume,
     camera: &Camera,
     tf: Option<&TransferFunction>,
+    labels: Option<&Volume>,
     o: &RayOptions,
 ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
     let err = |e: GpuError| NodeError::new(e.to_string());
@@ -171,6 +257,8 @@ pub fn cast(
     let (mut domain, mut nodes, mut map_size) = ([0.0f32, 1.0f32], 0.0f32, 1.0f32);
     let mut style_view = None;
     let mut index_texture = None;
+    let mut label_rows = None;
+    let mut label_count = 0.0f32;
     let table = match tf {
         Some(TransferFunction::Color(f)) => {
             domain = f.domain;
@@ -183,7 +271,11 @@ pub fn cast(
                 &flat,
             ))
         }
-        Some(TransferFunction::Style { function, styles }) => {
+        Some(TransferFunction::Style {
+            function,
+            per_label,
+            styles,
+        }) => {
             domain = function.domain;
             shading = 4.0;
             nodes = function.ift.len() as f32;
@@ -196,25 +288,34 @@ pub fn cast(
                         ..Default::default()
                     }),
             );
-            let ift: Vec<f32> = function.ift.iter().map(|&j| j as f32).collect();
-            index_texture = Some(floats_texture(
-                gpu,
+            if !per_label.is_empty() && labels.is_none() {
+                return Err(NodeError::at_port(
+                    "labels",
+                    "the style transfer function has per-label rows (`label_nodes`): connect a label volume",
+                ));
+            }
+            let tables = StyleTables::new(function, per_label);
+            index_texture = Some(gpu.texture_2d_init(
                 "ift",
-                ift.len() as u32,
+                tables.ift_width,
+                tables.rows,
                 wgpu::TextureFormat::R32Float,
-                &ift,
+                bytemuck::cast_slice(&tables.ift),
             ));
-            let flat: Vec<f32> = function
-                .tft
-                .iter()
-                .flat_map(|e| [e[0], e[1], 0.0, 0.0])
-                .collect();
-            Some(floats_texture(
-                gpu,
-                "tft",
-                function.tft.len() as u32,
+            label_rows = Some(gpu.texture_2d_init(
+                "label rows",
+                tables.label_width,
+                2,
                 wgpu::TextureFormat::Rgba32Float,
-                &flat,
+                bytemuck::cast_slice(&tables.label_rows),
+            ));
+            label_count = tables.label_width as f32;
+            Some(gpu.texture_2d_init(
+                "tft",
+                hatchery_data::transfer_function::LUT_SIZE as u32,
+                tables.rows,
+                wgpu::TextureFormat::Rgba32Float,
+                bytemuck::cast_slice(&tables.tft),
             ))
         }
         None => None,
@@ -283,6 +384,14 @@ pub fn cast(
     ]);
     let eye = camera.view.inverse().w_axis.xyz();
     u.extend_from_slice(&[eye.x, eye.y, eye.z, 0.0]);
+    let label_range = labels.map_or([0.0, 1.0], |l| l.data.value_range);
+    let use_labels = labels.is_some() && label_rows.is_some();
+    u.extend_from_slice(&[
+        bool_f(use_labels),
+        label_range[0],
+        label_range[1],
+        label_count,
+    ]);
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::cast_slice(&u),
@@ -304,6 +413,26 @@ pub fn cast(
     let index_view = index_texture
         .as_ref()
         .unwrap_or(&st.blank_index)
+        .create_view(&Default::default());
+    let labels_texture = match labels.filter(|_| use_labels) {
+        Some(l) => {
+            if l.data.dims != data.dims {
+                return Err(NodeError::at_port(
+                    "labels",
+                    format!(
+                        "label volume is {:?} voxels, the volume {:?}: they must share the grid",
+                        l.data.dims, data.dims
+                    ),
+                ));
+            }
+            l.texture(gpu).map_err(err)?
+        }
+        None => &st.blank_labels,
+    };
+    let labels_view = labels_texture.create_view(&Default::default());
+    let label_rows_view = label_rows
+        .as_ref()
+        .unwrap_or(&st.blank_label_rows)
         .create_view(&Default::default());
     let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("raycast"),
@@ -336,6 +465,14 @@ pub fn cast(
             wgpu::BindGroupEntry {
                 binding: 6,
                 resource: wgpu::BindingResource::TextureView(&index_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 7,
+                resource: wgpu::BindingResource::TextureView(&labels_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 8,
+                resource: wgpu::BindingResource::TextureView(&label_rows_view),
             },
         ],
     });
@@ -422,6 +559,11 @@ impl Node<Value, Ctx> for RaycastNode {
                     "colour/opacity or style transfer function",
                 ),
                 PortSpec::optional("light", PortType::Light, "the light (default: a headlight)"),
+                PortSpec::optional(
+                    "labels",
+                    PortType::Volume,
+                    "object labels on the same grid (per-label style rows, §4.2)",
+                ),
             ],
             outputs: vec![
                 PortSpec::output("image", PortType::Image, "premultiplied colour"),
@@ -547,7 +689,18 @@ impl Node<Value, Ctx> for RaycastNode {
             hit_opacity: p.f32("hit_opacity"),
             light_view: light_direction(inputs, &camera)?,
         };
-        let (image, gbuffer) = cast(ctx, &volume, &camera, Some(&tf), &options)?;
+        let labels = inputs
+            .get("labels")
+            .map(|l| l.volume("labels").cloned())
+            .transpose()?;
+        let (image, gbuffer) = cast(
+            ctx,
+            &volume,
+            &camera,
+            Some(&tf),
+            labels.as_deref(),
+            &options,
+        )?;
         Ok(vec![
             Value::Image(Arc::new(Image { texture: image })),
             Value::GBuffer(Arc::new(gbuffer)),
@@ -608,7 +761,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             hit_opacity: 1.0,
             light_view: Vec3::Z,
         };
-        let (_, gbuffer) = cast(ctx, &volume, &camera, None, &options)?;
+        let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])
     }
 }

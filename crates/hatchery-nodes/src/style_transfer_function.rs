@@ -19,7 +19,9 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
             doc: "A style transfer function: nodes \"value: style opacity; …\" (style = index into the \
                   StyleSet, opacity = uniform α_u). Between two nodes the style index and α_u are \
                   interpolated, so whole styles blend uniformly for every normal; a style may appear \
-                  several times (the index function ift of §4.1). Connect to Raycast's `tf`.",
+                  several times (the index function ift of §4.1). `label_nodes` adds the 2-D variant of \
+                  §4.2 (value × object): rows for chosen labels of the label volume given to \
+                  Raycast's `labels`. Connect to Raycast's `tf`.",
             inputs: vec![PortSpec::input(
                 "styles",
                 PortType::StyleSet,
@@ -30,11 +32,18 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
                 PortType::TransferFunction,
                 "the style transfer function",
             )],
-            params: vec![ParamSpec::text(
-                "nodes",
-                "40: 0 0.02; 90: 1 0.3; 160: 2 1.0",
-                "value: style opacity; …",
-            )],
+            params: vec![
+                ParamSpec::text(
+                    "nodes",
+                    "40: 0 0.02; 90: 1 0.3; 160: 2 1.0",
+                    "value: style opacity; … (every object)",
+                ),
+                ParamSpec::text(
+                    "label_nodes",
+                    "",
+                    "per object of a label volume (§4.2): \"LABEL = value: style opacity; … | LABEL = …\"",
+                ),
+            ],
             frame_dependent: false,
             sink: false,
         }
@@ -51,8 +60,33 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
             .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
         let function = StyleTransferFunction::from_nodes(&nodes, styles.maps.len())
             .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
+        let mut per_label = Vec::new();
+        for row in p
+            .text("label_nodes")
+            .split('|')
+            .map(str::trim)
+            .filter(|r| !r.is_empty())
+        {
+            let bad = |m: String| NodeError::new(format!("parameter `label_nodes`, `{row}`: {m}"));
+            let (label, nodes) = row
+                .split_once('=')
+                .ok_or_else(|| bad("expected LABEL = nodes".into()))?;
+            let label: i64 = label
+                .trim()
+                .parse()
+                .map_err(|_| bad(format!("`{}` is not a label number", label.trim())))?;
+            let nodes = StyleTransferFunction::parse(nodes).map_err(bad)?;
+            per_label.push((
+                label,
+                StyleTransferFunction::from_nodes(&nodes, styles.maps.len()).map_err(bad)?,
+            ));
+        }
         Ok(vec![Value::TransferFunction(Arc::new(
-            TransferFunction::Style { function, styles },
+            TransferFunction::Style {
+                function,
+                per_label,
+                styles,
+            },
         ))])
     }
 }

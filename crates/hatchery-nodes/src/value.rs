@@ -120,8 +120,11 @@ pub struct Mask {
 /// Bruckner & Gröller 2007) referring to a set of lit-sphere styles.
 pub enum TransferFunction {
     Color(hatchery_data::transfer_function::TransferFunction1D),
+    /// `function` applies to every object; `per_label` rows replace it for the listed labels of
+    /// a label volume (the 2-D value × object variant of §4.2).
     Style {
         function: hatchery_data::style::StyleTransferFunction,
+        per_label: Vec<(i64, hatchery_data::style::StyleTransferFunction)>,
         styles: Arc<StyleSet>,
     },
 }
