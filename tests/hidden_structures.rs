@@ -5,7 +5,7 @@
 mod common;
 
 use glam::{Mat4, Vec3, Vec4};
-use hatchery_graph::{NodeInputs, ParamValue, Params};
+use hatchery_graph::{ParamValue, Params};
 use hatchery_nodes::export::{self, Array};
 use hatchery_nodes::value::Mask;
 use hatchery_nodes::{Session, Value};
@@ -440,41 +440,6 @@ fn depth_peeling_of_nested_spheres_matches_the_analytic_layers() {
     }
 }
 
-/// Runs one node kind directly on given inputs (for synthetic inputs no graph produces).
-fn run_node(
-    session: &mut Session,
-    kind: &str,
-    inputs: Vec<(&'static str, Value)>,
-    params: &[(&str, ParamValue)],
-) -> Vec<Value> {
-    let schema = session.registry.node(kind).unwrap().schema();
-    let mut values: BTreeMap<String, ParamValue> = schema
-        .params
-        .iter()
-        .map(|p| (p.name.to_owned(), p.default.clone()))
-        .collect();
-    for (name, value) in params {
-        values.insert((*name).to_owned(), value.clone());
-    }
-    let names: Vec<&'static str> = schema.inputs.iter().map(|p| p.name).collect();
-    let ordered = names
-        .iter()
-        .map(|n| {
-            inputs
-                .iter()
-                .find(|(name, _)| name == n)
-                .map(|(_, v)| v.clone())
-        })
-        .collect();
-    let node = session.registry.node(kind).unwrap();
-    node.execute(
-        &mut session.ctx,
-        &NodeInputs::new(names, ordered),
-        &Params::new(values, None),
-    )
-    .unwrap()
-}
-
 fn constant_mask(session: &Session, value: f32) -> Value {
     let gpu = &session.ctx.gpu;
     let texture = gpu.render_target("constant", W, H, wgpu::TextureFormat::R32Float);
@@ -505,7 +470,7 @@ fn halftone_of_constant_fields_follows_the_tau_rule_and_whitens_monotonically() 
     for step in 0..=20 {
         let intensity = step as f32 / 20.0;
         let input = constant_mask(&session, intensity);
-        let out = run_node(
+        let out = common::run_node(
             &mut session,
             "Halftone",
             vec![("intensity", input)],
@@ -553,7 +518,7 @@ fn halftone_of_constant_fields_follows_the_tau_rule_and_whitens_monotonically() 
 fn pip_with_zero_perturbation_finds_no_edges_and_two_pixels_draw_thicker_lines_than_one() {
     let path = common::repo_root().join("graphs/hidden_structures.ron");
     let mut session = Session::open(&path, W, H).unwrap();
-    let mut count = |session: &mut Session, amount: &str| {
+    let count = |session: &mut Session, amount: &str| {
         session
             .set_param_text("silhouette1", "pip", "constant")
             .unwrap();

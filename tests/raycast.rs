@@ -9,11 +9,10 @@ use hatchery_data::lit_sphere::LitSphere;
 use hatchery_data::style::StyleTransferFunction;
 use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
 use hatchery_data::{VolumeData, procedural};
-use hatchery_graph::{NodeInputs, ParamValue, Params};
+use hatchery_graph::ParamValue;
 use hatchery_nodes::camera::Camera;
 use hatchery_nodes::value::{StyleSet, TransferFunction, Volume};
 use hatchery_nodes::{Session, Value, export};
-use std::collections::BTreeMap;
 use std::sync::Arc;
 
 fn session() -> Session {
@@ -22,41 +21,6 @@ fn session() -> Session {
         64,
         64,
     )
-}
-
-/// Runs one node kind directly on given inputs.
-fn run_node(
-    session: &mut Session,
-    kind: &str,
-    inputs: Vec<(&'static str, Value)>,
-    params: &[(&str, ParamValue)],
-) -> Vec<Value> {
-    let node = session.registry.node(kind).unwrap();
-    let schema = node.schema();
-    let mut values: BTreeMap<String, ParamValue> = schema
-        .params
-        .iter()
-        .map(|p| (p.name.to_owned(), p.default.clone()))
-        .collect();
-    for (name, value) in params {
-        values.insert((*name).to_owned(), value.clone());
-    }
-    let names: Vec<&'static str> = schema.inputs.iter().map(|p| p.name).collect();
-    let ordered = names
-        .iter()
-        .map(|n| {
-            inputs
-                .iter()
-                .find(|(name, _)| name == n)
-                .map(|(_, v)| v.clone())
-        })
-        .collect();
-    node.execute(
-        &mut session.ctx,
-        &NodeInputs::new(names, ordered),
-        &Params::new(values, None),
-    )
-    .unwrap_or_else(|e| panic!("{kind}: {e}"))
 }
 
 fn rgba(session: &Session, value: &Value) -> Vec<[f32; 4]> {
@@ -145,7 +109,7 @@ fn raycast(
         .iter()
         .map(|(n, v)| (n.as_str(), v.clone()))
         .collect();
-    let out = run_node(
+    let out = common::run_node(
         session,
         "Raycast",
         vec![
@@ -568,7 +532,7 @@ fn iso_surface_raycast_matches_the_analytic_sphere_and_feeds_silhouettes() {
     let volume = Arc::new(Volume::new(procedural::sphere(64, radius).unwrap()));
     for ortho in [true, false] {
         let cam = camera(&mut s, w, h, ortho, 20.0, 10.0, 3.0, 40.0, Vec3::ZERO);
-        let out = run_node(
+        let out = common::run_node(
             &mut s,
             "IsoSurfaceRaycast",
             vec![
@@ -653,7 +617,7 @@ fn iso_surface_raycast_matches_the_analytic_sphere_and_feeds_silhouettes() {
 
         // The silhouette of the iso-surface G-buffer is the sphere's outline.
         // Depth threshold for this scene's depth scale: only the outline's jump, not the slope.
-        let mask = run_node(
+        let mask = common::run_node(
             &mut s,
             "Silhouette",
             vec![("gbuffer", out[0].clone())],
@@ -759,7 +723,7 @@ fn two_dimensional_style_tf_picks_styles_per_object_label() {
             .iter()
             .map(|(n, v)| (n.as_str(), v.clone()))
             .collect();
-        let out = run_node(s, "Raycast", inputs, &p);
+        let out = common::run_node(s, "Raycast", inputs, &p);
         rgba(s, &out[0])
     };
     let image = render(

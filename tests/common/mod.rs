@@ -5,8 +5,9 @@
 
 pub mod raycast_reference;
 
-use hatchery_graph::{Graph, GraphDocument};
+use hatchery_graph::{Graph, GraphDocument, NodeInputs, ParamValue, Params};
 use hatchery_nodes::Session;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 pub fn repo_root() -> PathBuf {
@@ -83,4 +84,42 @@ pub fn read_png(path: &Path) -> image::RgbaImage {
     image::open(path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
         .to_rgba8()
+}
+
+/// Runs one node kind directly on given inputs (for synthetic inputs no graph produces).
+pub fn run_node(
+    session: &mut Session,
+    kind: &str,
+    inputs: Vec<(&'static str, hatchery_nodes::Value)>,
+    params: &[(&str, ParamValue)],
+) -> Vec<hatchery_nodes::Value> {
+    let node = session
+        .registry
+        .node(kind)
+        .unwrap_or_else(|| panic!("no node kind {kind}"));
+    let schema = node.schema();
+    let mut values: BTreeMap<String, ParamValue> = schema
+        .params
+        .iter()
+        .map(|p| (p.name.to_owned(), p.default.clone()))
+        .collect();
+    for (name, value) in params {
+        values.insert((*name).to_owned(), value.clone());
+    }
+    let names: Vec<&'static str> = schema.inputs.iter().map(|p| p.name).collect();
+    let ordered = names
+        .iter()
+        .map(|n| {
+            inputs
+                .iter()
+                .find(|(name, _)| name == n)
+                .map(|(_, v)| v.clone())
+        })
+        .collect();
+    node.execute(
+        &mut session.ctx,
+        &NodeInputs::new(names, ordered),
+        &Params::new(values, None),
+    )
+    .unwrap_or_else(|e| panic!("{kind}: {e}"))
 }

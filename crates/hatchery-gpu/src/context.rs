@@ -230,48 +230,6 @@ impl GpuContext {
         Ok(())
     }
 
-    /// Uploads a scalar volume (x fastest) as an R32Float 3-D texture.
-    pub fn upload_volume(
-        &self,
-        label: &str,
-        dims: [u32; 3],
-        values: &[f32],
-    ) -> Result<wgpu::Texture, GpuError> {
-        let limit = self.device.limits().max_texture_dimension_3d;
-        if dims.iter().any(|&d| d == 0 || d > limit) {
-            return Err(GpuError::TooLarge {
-                what: format!("volume {label}"),
-                size: format!("{}×{}×{}", dims[0], dims[1], dims[2]),
-                limit: format!("{limit} voxels per axis"),
-            });
-        }
-        let desc = wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: dims[0],
-                height: dims[1],
-                depth_or_array_layers: dims[2],
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D3,
-            format: wgpu::TextureFormat::R32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_DST
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        };
-        let bytes: &[u8] = bytemuck::cast_slice(values);
-        self.checked(&format!("uploading volume {label}"), |device| {
-            device.create_texture_with_data(
-                &self.queue,
-                &desc,
-                wgpu::util::TextureDataOrder::LayerMajor,
-                bytes,
-            )
-        })
-    }
-
     /// Uploads a scalar volume (x fastest) as a filterable R16Float 3-D texture holding
     /// (v - lo) / (hi - lo), so that hardware trilinear filtering works on every adapter and the
     /// relative precision (2^-11 of the range) is the same for any value range.
