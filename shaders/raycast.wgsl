@@ -222,7 +222,32 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             continue;
         }
 
-        // Direct volume rendering.
+        // Direct volume rendering. Classify first: samples the transfer function makes fully
+        // transparent contribute nothing, so they skip the six gradient fetches.
+        var row = 0;
+        var domain = ray.tf.xy;
+        var node_count = ray.tf.z;
+        if shading == 4 && ray.labels.x > 0.5 {
+            // The object at the nearest voxel picks the table row (§4.2).
+            let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0)));
+            let label = round(ray.labels.y + textureLoad(label_volume, voxel, 0).r * (ray.labels.z - ray.labels.y));
+            let slot = clamp(i32(label), 0, i32(ray.labels.w) - 1);
+            row = i32(textureLoad(label_rows, vec2<i32>(slot, 0), 0).r + 0.5);
+            let info = textureLoad(label_rows, vec2<i32>(row, 1), 0);
+            domain = info.xy;
+            node_count = info.z;
+        }
+        let entry = table_lookup_row(v, row, domain);
+        // Colour TFs keep opacity in .a, style TFs α_u in .y.
+        var classified = entry.a;
+        if shading == 4 {
+            classified = entry.y;
+        }
+        if classified <= 0.0 {
+            // κv restarts after a gap (no normal to compare with).
+            previous_normal = vec3<f32>(0.0);
+            continue;
+        }
         let g = gradient_at(q);
         let g_length = length(g);
         var n_world = vec3<f32>(0.0);
@@ -243,20 +268,6 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
         var a = 0.0;
         if shading == 4 {
             // Style transfer function (§4.1): (i, α_u) from tft, whole styles j0, j1 from ift.
-            var row = 0;
-            var domain = ray.tf.xy;
-            var node_count = ray.tf.z;
-            if ray.labels.x > 0.5 {
-                // The object at the nearest voxel picks the table row (§4.2).
-                let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0)));
-                let label = round(ray.labels.y + textureLoad(label_volume, voxel, 0).r * (ray.labels.z - ray.labels.y));
-                let slot = clamp(i32(label), 0, i32(ray.labels.w) - 1);
-                row = i32(textureLoad(label_rows, vec2<i32>(slot, 0), 0).r + 0.5);
-                let info = textureLoad(label_rows, vec2<i32>(row, 1), 0);
-                domain = info.xy;
-                node_count = info.z;
-            }
-            let entry = table_lookup_row(v, row, domain);
             let i = entry.x;
             let alpha_u = entry.y;
             let last = max(node_count - 1.0, 0.0);
@@ -300,7 +311,6 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             }
             previous_normal = n;
         } else {
-            let entry = table_lookup(v);
             c = entry.rgb;
             a = entry.a;
             let s = ray.phong.y * abs(dot(l, n)) + ray.phong.z * pow(abs(dot(hv, n)), ray.phong.w) + ray.phong.x;
