@@ -7,6 +7,7 @@
 //!   ports by index, typed parameters. Reordering a node's ports never breaks saved files.
 
 pub mod document;
+pub mod edit;
 pub mod error;
 pub mod executor;
 pub mod graph;

@@ -121,7 +121,9 @@ impl Session {
     /// Runs just what `node.port` needs and returns its value.
     pub fn evaluate(&mut self, node: &str, port: &str) -> Result<Value, SessionError> {
         if self.graph.node(node).is_none() {
-            return Err(SessionError::Other(format!("no node `{node}` in the graph")));
+            return Err(SessionError::Other(format!(
+                "no node `{node}` in the graph"
+            )));
         }
         self.run(&[node])?;
         self.output(node, port).cloned()

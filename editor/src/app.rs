@@ -1,0 +1,942 @@
+//! The egui application: menu bar, snarl canvas (a view rebuilt from the document), inspector,
+//! viewport and status line.
+
+use crate::preview::Preview;
+use crate::state::EditorState;
+use egui::{Color32, Id, Key, Modifiers, Pos2, Ui};
+use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer, SnarlWidget, get_selected_nodes};
+use egui_snarl::{InPin, NodeId, OutPin, Snarl};
+use hatchery_graph::{EditorPos, ParamKind, ParamSpec, ParamValue, PortType, SchemaLookup};
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// One colour per port type (also the legend).
+pub fn port_color(ty: PortType) -> Color32 {
+    match ty {
+        PortType::Volume => Color32::from_rgb(230, 160, 60),
+        PortType::Labels => Color32::from_rgb(200, 110, 40),
+        PortType::Mesh => Color32::from_rgb(90, 180, 90),
+        PortType::Camera => Color32::from_rgb(80, 150, 230),
+        PortType::Light => Color32::from_rgb(240, 220, 90),
+        PortType::GBuffer => Color32::from_rgb(150, 100, 220),
+        PortType::Image => Color32::from_rgb(230, 90, 120),
+        PortType::Mask => Color32::from_rgb(180, 180, 180),
+        PortType::TransferFunction => Color32::from_rgb(60, 200, 200),
+        PortType::StyleSet => Color32::from_rgb(220, 120, 220),
+    }
+}
+
+fn pos(p: Pos2) -> EditorPos {
+    EditorPos { x: p.x, y: p.y }
+}
+
+pub struct EditorApp {
+    pub state: EditorState,
+    pub preview: Preview,
+    /// Render the viewport (tests that only edit turn it off).
+    pub preview_enabled: bool,
+    /// Folder listed in the Presets menu.
+    pub presets_dir: PathBuf,
+    /// The path field of the File menu.
+    pub file_field: String,
+    snarl: Snarl<String>,
+    snarl_ids: BTreeMap<String, NodeId>,
+    /// Where the canvas put each node at the last rebuild or move (nodes without a stored
+    /// position get a grid place, written to the document only when moved).
+    placed: BTreeMap<String, Pos2>,
+    synced_revision: Option<u64>,
+    last_ui_selection: Vec<String>,
+    search: String,
+    clipboard: String,
+    texture: Option<egui::TextureHandle>,
+    title: String,
+    offer_recovery: bool,
+    /// Fit every node into the canvas on the next frame.
+    pub frame_all: bool,
+    /// The canvas's graph → screen transform of the last frame.
+    pub canvas_transform: egui::emath::TSTransform,
+    /// An action that would discard unsaved changes, waiting for the user's answer.
+    pending: Option<Pending>,
+}
+
+/// Actions that replace the document and so ask first when it has unsaved changes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Pending {
+    Open(PathBuf),
+    New,
+}
+
+const SNARL_ID: &str = "hatchery-snarl";
+
+impl Default for EditorApp {
+    fn default() -> Self {
+        Self::new(EditorState::new())
+    }
+}
+
+impl EditorApp {
+    pub fn new(state: EditorState) -> Self {
+        let presets_dir = ["graphs", concat!(env!("CARGO_MANIFEST_DIR"), "/../graphs")]
+            .iter()
+            .map(PathBuf::from)
+            .find(|p| p.is_dir())
+            .unwrap_or_else(|| PathBuf::from("graphs"));
+        let offer_recovery = state.has_recovery();
+        EditorApp {
+            file_field: state
+                .path()
+                .map_or(String::new(), |p| p.display().to_string()),
+            state,
+            preview: Preview::default(),
+            preview_enabled: true,
+            presets_dir,
+            snarl: Snarl::new(),
+            snarl_ids: BTreeMap::new(),
+            placed: BTreeMap::new(),
+            synced_revision: None,
+            last_ui_selection: Vec::new(),
+            search: String::new(),
+            clipboard: String::new(),
+            texture: None,
+            title: String::new(),
+            offer_recovery,
+            pending: None,
+            frame_all: true,
+            canvas_transform: egui::emath::TSTransform::IDENTITY,
+        }
+    }
+
+    /// Opens a file (a bad file leaves the current graph and reports why in the status line).
+    pub fn open(&mut self, path: &Path) {
+        match self.state.open(path) {
+            Ok(()) => {
+                self.file_field = path.display().to_string();
+                self.preview.chosen = None;
+                self.offer_recovery = self.state.has_recovery();
+            }
+            Err(e) => self.state.status = e,
+        }
+    }
+
+    /// Opens a file or starts a new graph, asking first if that would discard unsaved changes.
+    pub fn request(&mut self, action: Pending) {
+        if self.state.is_dirty() {
+            self.pending = Some(action);
+        } else {
+            self.perform(action);
+        }
+    }
+
+    /// The action waiting for confirmation, if any.
+    pub fn pending(&self) -> Option<&Pending> {
+        self.pending.as_ref()
+    }
+
+    fn perform(&mut self, action: Pending) {
+        match action {
+            Pending::Open(path) => self.open(&path),
+            Pending::New => {
+                let scratch = self.state.scratch_dir.clone();
+                self.state = EditorState::new();
+                self.state.scratch_dir = scratch;
+                self.file_field.clear();
+                self.preview.chosen = None;
+                self.offer_recovery = false;
+            }
+        }
+    }
+
+    fn confirm_discard(&mut self, ui: &mut Ui) {
+        let Some(action) = self.pending.clone() else {
+            return;
+        };
+        egui::Window::new("Unsaved changes")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+            .show(ui.ctx(), |ui| {
+                ui.label("The graph has unsaved changes. Discard them?");
+                ui.horizontal(|ui| {
+                    if ui.button("Discard changes").clicked() {
+                        self.pending = None;
+                        self.perform(action.clone());
+                    }
+                    if ui.button("Cancel").clicked() {
+                        self.pending = None;
+                    }
+                });
+            });
+    }
+
+    /// The snarl node showing graph node `id`, if any.
+    pub fn snarl_node(&self, id: &str) -> Option<NodeId> {
+        self.snarl_ids.get(id).copied()
+    }
+
+    /// Rebuilds the canvas from the document (Snarl is only a view of it).
+    fn rebuild_snarl(&mut self) {
+        let mut snarl = Snarl::new();
+        let mut ids = BTreeMap::new();
+        let mut placed = BTreeMap::new();
+        for (i, n) in self.state.doc().nodes.iter().enumerate() {
+            let at = n.editor.map_or_else(
+                || Pos2::new(240.0 * (i % 5) as f32, 160.0 * (i / 5) as f32),
+                |p| Pos2::new(p.x, p.y),
+            );
+            placed.insert(n.id.clone(), at);
+            ids.insert(n.id.clone(), snarl.insert_node(at, n.id.clone()));
+        }
+        for e in &self.state.doc().edges {
+            let (Some(&from), Some(&to)) = (ids.get(&e.from.0), ids.get(&e.to.0)) else {
+                continue;
+            };
+            let kind = |id: &str| {
+                self.state
+                    .doc()
+                    .nodes
+                    .iter()
+                    .find(|n| n.id == id)
+                    .and_then(|n| self.state.registry.schema(&n.kind))
+            };
+            let (Some(fs), Some(ts)) = (kind(&e.from.0), kind(&e.to.0)) else {
+                continue;
+            };
+            if let (Some(o), Some(i)) = (fs.output_index(&e.from.1), ts.input_index(&e.to.1)) {
+                snarl.connect(
+                    egui_snarl::OutPinId {
+                        node: from,
+                        output: o,
+                    },
+                    egui_snarl::InPinId { node: to, input: i },
+                );
+            }
+        }
+        self.snarl = snarl;
+        self.snarl_ids = ids;
+        self.placed = placed;
+        self.synced_revision = Some(self.state.revision());
+    }
+
+    /// One frame of the whole editor.
+    pub fn ui(&mut self, ui: &mut Ui) {
+        self.shortcuts(ui);
+        if self.synced_revision != Some(self.state.revision()) {
+            self.rebuild_snarl();
+        }
+        egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
+        egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
+        egui::Panel::right("inspector")
+            .default_size(320.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    self.inspector(ui);
+                    ui.separator();
+                    self.viewport(ui);
+                });
+            });
+        egui::CentralPanel::default().show(ui, |ui| self.canvas(ui));
+        self.confirm_discard(ui);
+
+        // A drag (of a slider, a node, ...) ends when the pointer is released.
+        let busy = ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
+        if !busy {
+            self.state.end_group();
+        }
+        self.state.autosave();
+        let title = self.state.title();
+        if title != self.title {
+            ui.ctx()
+                .send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
+    }
+
+    fn shortcuts(&mut self, ui: &mut Ui) {
+        let typing = ui.ctx().egui_wants_keyboard_input();
+        let (redo, undo, save) = ui.input_mut(|i| {
+            let redo = i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z)
+                || i.consume_key(Modifiers::COMMAND, Key::Y);
+            let undo = i.consume_key(Modifiers::COMMAND, Key::Z);
+            let save = i.consume_key(Modifiers::COMMAND, Key::S);
+            (redo, undo, save)
+        });
+        if redo {
+            self.state.redo();
+        } else if undo {
+            self.state.undo();
+        }
+        if save {
+            let _ = self.state.save();
+        }
+        if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F)) {
+            self.frame_all = true;
+        }
+        if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Delete)) {
+            let ids: Vec<String> = self.state.selection.iter().cloned().collect();
+            let _ = self.state.remove_nodes(&ids);
+        }
+    }
+
+    fn menu_bar(&mut self, ui: &mut Ui) {
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                if ui.button("New").clicked() {
+                    self.request(Pending::New);
+                    ui.close();
+                }
+                ui.label("Path:");
+                ui.text_edit_singleline(&mut self.file_field);
+                ui.horizontal(|ui| {
+                    if ui.button("Open").clicked() {
+                        let path = PathBuf::from(self.file_field.trim());
+                        self.request(Pending::Open(path));
+                        ui.close();
+                    }
+                    if ui.button("Save").clicked() {
+                        let _ = self.state.save();
+                        ui.close();
+                    }
+                    if ui.button("Save as").clicked() {
+                        let path = PathBuf::from(self.file_field.trim());
+                        let _ = self.state.save_as(&path);
+                        ui.close();
+                    }
+                });
+            });
+            ui.menu_button("Presets", |ui| {
+                let mut presets: Vec<PathBuf> = std::fs::read_dir(&self.presets_dir)
+                    .map(|d| {
+                        d.filter_map(|e| e.ok().map(|e| e.path()))
+                            .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                presets.sort();
+                for p in presets {
+                    let name = p
+                        .file_stem()
+                        .map_or(String::new(), |s| s.to_string_lossy().into());
+                    if ui.button(name).clicked() {
+                        self.request(Pending::Open(p));
+                        ui.close();
+                    }
+                }
+            });
+            ui.menu_button("Edit", |ui| {
+                if ui
+                    .add_enabled(self.state.can_undo(), egui::Button::new("Undo (Ctrl+Z)"))
+                    .clicked()
+                {
+                    self.state.undo();
+                }
+                if ui
+                    .add_enabled(
+                        self.state.can_redo(),
+                        egui::Button::new("Redo (Ctrl+Shift+Z)"),
+                    )
+                    .clicked()
+                {
+                    self.state.redo();
+                }
+            });
+            ui.menu_button("View", |ui| {
+                if ui.button("Frame all (F)").clicked() {
+                    self.frame_all = true;
+                    ui.close();
+                }
+            });
+            ui.menu_button("Legend", |ui| {
+                for ty in PortType::ALL {
+                    ui.colored_label(port_color(ty), format!("● {ty}"));
+                }
+            });
+            ui.label(self.state.title());
+        });
+    }
+
+    fn status_line(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            if self.offer_recovery {
+                ui.colored_label(Color32::YELLOW, "An autosave of this graph exists.");
+                if ui.button("Restore").clicked() {
+                    let _ = self.state.restore_recovery();
+                    self.offer_recovery = false;
+                }
+                if ui.button("Discard").clicked() {
+                    self.state.discard_recovery();
+                    self.offer_recovery = false;
+                }
+            }
+            for e in self.state.graph_errors() {
+                ui.colored_label(Color32::LIGHT_RED, e);
+            }
+            ui.label(&self.state.status);
+        });
+    }
+
+    fn canvas(&mut self, ui: &mut Ui) {
+        let widget = SnarlWidget::new().id(Id::new(SNARL_ID));
+        let failed = self.preview.failed_node.clone();
+        let frame_into =
+            std::mem::take(&mut self.frame_all).then(|| ui.available_rect_before_wrap());
+        let mut viewer = Viewer {
+            frame_into,
+            transform: self.canvas_transform,
+            state: &mut self.state,
+            search: &mut self.search,
+            clipboard: &mut self.clipboard,
+            preview: &mut self.preview.chosen,
+            failed,
+        };
+        // Dragging a node's title moves the node instead of selecting its text.
+        ui.style_mut().interaction.selectable_labels = false;
+        widget.show(&mut self.snarl, &mut viewer, ui);
+        self.canvas_transform = viewer.transform;
+        let changed_by_viewer = self.synced_revision != Some(self.state.revision());
+
+        // Node moves: written back to the document (one undo step per drag).
+        if !changed_by_viewer {
+            let moved: Vec<(String, Pos2)> = self
+                .snarl
+                .nodes_pos()
+                .filter_map(|(p, id)| {
+                    let old = *self.placed.get(id)?;
+                    (old.distance(p) > 0.25).then(|| (id.clone(), p))
+                })
+                .collect();
+            for (id, p) in moved {
+                self.state.move_node(&id, pos(p));
+                self.placed.insert(id, p);
+            }
+            // The canvas already shows these positions: no rebuild needed.
+            self.synced_revision = Some(self.state.revision());
+        }
+
+        let selected: Vec<String> = get_selected_nodes(Id::new(SNARL_ID), ui.ctx())
+            .into_iter()
+            .filter_map(|n| self.snarl.get_node(n).cloned())
+            .collect();
+        if selected != self.last_ui_selection {
+            self.state.selection = selected.iter().cloned().collect();
+            self.last_ui_selection = selected;
+        }
+    }
+
+    fn inspector(&mut self, ui: &mut Ui) {
+        ui.heading("Inspector");
+        let Some(id) = self.state.selection.iter().next().cloned() else {
+            ui.label("Select a node to edit its parameters.");
+            return;
+        };
+        let Some(node) = self.state.doc().nodes.iter().find(|n| n.id == id).cloned() else {
+            return;
+        };
+        ui.label(format!("{} ({})", node.id, node.kind));
+        if let Some(e) = self.state.node_error(&id) {
+            ui.colored_label(Color32::LIGHT_RED, e);
+        }
+        let Some(schema) = self.state.registry.schema(&node.kind).cloned() else {
+            ui.label("unknown kind: no parameters to show");
+            return;
+        };
+        ui.label(schema.doc).on_hover_text(schema.category);
+        egui::Grid::new("params").num_columns(2).show(ui, |ui| {
+            for spec in &schema.params {
+                let current = node
+                    .params
+                    .get(spec.name)
+                    .and_then(|raw| spec.convert(raw).ok())
+                    .unwrap_or_else(|| spec.default.clone());
+                ui.label(spec.name).on_hover_text(spec.doc);
+                if let Some(value) = param_widget(ui, spec, &current) {
+                    let dragging =
+                        ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
+                    let _ = self.state.set_param(&id, spec.name, value, dragging);
+                }
+                ui.end_row();
+            }
+        });
+    }
+
+    fn viewport(&mut self, ui: &mut Ui) {
+        ui.heading("Viewport");
+        let target = self.preview.target(self.state.doc());
+        ui.label(match &target {
+            Some((n, p)) => format!("showing {n}.{p}"),
+            None => "nothing to show".into(),
+        });
+        if self.preview.chosen.is_some() && ui.button("Show the SaveImage input").clicked() {
+            self.preview.chosen = None;
+        }
+        let width = ui.available_width().max(64.0);
+        let size = egui::vec2(width, width * 0.75);
+        if self.preview_enabled {
+            let ppp = ui.ctx().pixels_per_point();
+            let (w, h) = ((size.x * ppp) as u32, (size.y * ppp) as u32);
+            if self.preview.update(&mut self.state, w, h)
+                && let Some(img) = &self.preview.image
+            {
+                let color = egui::ColorImage::from_rgba_unmultiplied(
+                    [img.width() as usize, img.height() as usize],
+                    img.as_raw(),
+                );
+                self.texture = Some(ui.ctx().load_texture(
+                    "viewport",
+                    color,
+                    egui::TextureOptions::LINEAR,
+                ));
+            }
+        }
+        if let Some(e) = &self.preview.error {
+            ui.colored_label(Color32::LIGHT_RED, e);
+        }
+        match &self.texture {
+            Some(t) => {
+                ui.image((t.id(), size));
+            }
+            None => {
+                ui.allocate_space(size);
+            }
+        }
+    }
+}
+
+impl eframe::App for EditorApp {
+    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
+        EditorApp::ui(self, ui);
+    }
+}
+
+/// A widget for one parameter; returns the new value when the user changed it.
+fn param_widget(ui: &mut Ui, spec: &ParamSpec, current: &ParamValue) -> Option<ParamValue> {
+    let hover = format!("{} ({})", spec.doc, spec.kind.describe());
+    match (&spec.kind, current) {
+        (ParamKind::Float { min, max }, ParamValue::Float(x)) => {
+            let mut v = *x;
+            let r = if (max - min).is_finite() && max - min <= 1.0e4 {
+                ui.add(egui::Slider::new(&mut v, *min..=*max))
+            } else {
+                ui.add(egui::DragValue::new(&mut v).range(*min..=*max).speed(0.01))
+            };
+            r.on_hover_text(hover)
+                .changed()
+                .then_some(ParamValue::Float(v.clamp(*min, *max)))
+        }
+        (ParamKind::Int { min, max }, ParamValue::Int(x)) => {
+            let mut v = *x;
+            let r = ui.add(egui::DragValue::new(&mut v).range(*min..=*max));
+            r.on_hover_text(hover)
+                .changed()
+                .then_some(ParamValue::Int(v))
+        }
+        (ParamKind::Bool, ParamValue::Bool(b)) => {
+            let mut v = *b;
+            let r = ui.checkbox(&mut v, "");
+            r.on_hover_text(hover)
+                .changed()
+                .then_some(ParamValue::Bool(v))
+        }
+        (ParamKind::Choice(names), ParamValue::Choice(c)) => {
+            let mut chosen = None;
+            egui::ComboBox::from_id_salt(spec.name)
+                .selected_text(c.as_str())
+                .show_ui(ui, |ui| {
+                    for name in names.iter() {
+                        if ui.selectable_label(c == name, *name).clicked() && c != name {
+                            chosen = Some(ParamValue::Choice((*name).to_owned()));
+                        }
+                    }
+                })
+                .response
+                .on_hover_text(hover);
+            chosen
+        }
+        (ParamKind::Color, ParamValue::Color(c)) => {
+            let mut v = c.map(|x| x as f32);
+            let r = ui.color_edit_button_rgba_unmultiplied(&mut v);
+            r.on_hover_text(hover)
+                .changed()
+                .then(|| ParamValue::Color(v.map(|x| (x as f64).clamp(0.0, 1.0))))
+        }
+        (ParamKind::Vec3, ParamValue::Vec3(v)) => {
+            let mut v = *v;
+            let changed = ui
+                .horizontal(|ui| {
+                    let mut changed = false;
+                    for x in &mut v {
+                        changed |= ui.add(egui::DragValue::new(x).speed(0.01)).changed();
+                    }
+                    changed
+                })
+                .inner;
+            changed.then_some(ParamValue::Vec3(v))
+        }
+        (ParamKind::Path, ParamValue::Path(s)) | (ParamKind::Text, ParamValue::Text(s)) => {
+            let mut v = s.clone();
+            let r = ui.text_edit_singleline(&mut v).on_hover_text(hover);
+            r.changed().then_some(match spec.kind {
+                ParamKind::Path => ParamValue::Path(v),
+                _ => ParamValue::Text(v),
+            })
+        }
+        _ => {
+            ui.label(current.to_string());
+            None
+        }
+    }
+}
+
+/// The snarl viewer: every change goes through the editor state (and so `edit`).
+struct Viewer<'a> {
+    /// "Frame all" requested: the canvas rectangle (screen space) to fit the nodes into.
+    frame_into: Option<egui::Rect>,
+    transform: egui::emath::TSTransform,
+    state: &'a mut EditorState,
+    search: &'a mut String,
+    clipboard: &'a mut String,
+    preview: &'a mut Option<(String, String)>,
+    failed: Option<(String, String)>,
+}
+
+impl Viewer<'_> {
+    fn schema(&self, id: &str) -> Option<hatchery_graph::NodeSchema> {
+        let n = self.state.doc().nodes.iter().find(|n| n.id == id)?;
+        self.state.registry.schema(&n.kind).cloned()
+    }
+
+    fn error(&self, id: &str) -> Option<String> {
+        let mut text = self.state.node_error(id).map(str::to_owned);
+        if let Some((n, m)) = &self.failed
+            && n == id
+        {
+            text = Some(match text {
+                Some(t) => format!("{t}\n{m}"),
+                None => m.clone(),
+            });
+        }
+        text
+    }
+
+    fn pin(ty: Option<PortType>) -> PinInfo {
+        match ty {
+            Some(ty) => PinInfo::circle()
+                .with_fill(port_color(ty))
+                .with_wire_color(port_color(ty)),
+            None => PinInfo::square().with_fill(Color32::DARK_RED),
+        }
+    }
+
+    fn kind_menu(&mut self, ui: &mut Ui, kinds: Vec<&'static str>) -> Option<&'static str> {
+        ui.add(egui::TextEdit::singleline(self.search).hint_text("search"));
+        let needle = self.search.to_lowercase();
+        let mut picked = None;
+        egui::ScrollArea::vertical()
+            .max_height(300.0)
+            .show(ui, |ui| {
+                for kind in kinds {
+                    if kind.to_lowercase().contains(&needle) && ui.button(kind).clicked() {
+                        picked = Some(kind);
+                    }
+                }
+            });
+        if picked.is_some() {
+            self.search.clear();
+            ui.close();
+        }
+        picked
+    }
+}
+
+impl SnarlViewer<String> for Viewer<'_> {
+    fn title(&mut self, node: &String) -> String {
+        match self.state.doc().nodes.iter().find(|n| &n.id == node) {
+            Some(n) => format!("{} ({})", n.id, n.kind),
+            None => node.clone(),
+        }
+    }
+
+    fn inputs(&mut self, node: &String) -> usize {
+        self.schema(node).map_or(0, |s| s.inputs.len())
+    }
+
+    fn outputs(&mut self, node: &String) -> usize {
+        self.schema(node).map_or(0, |s| s.outputs.len())
+    }
+
+    fn show_input(
+        &mut self,
+        pin: &InPin,
+        ui: &mut Ui,
+        snarl: &mut Snarl<String>,
+    ) -> impl SnarlPin + 'static {
+        let port = snarl
+            .get_node(pin.id.node)
+            .and_then(|id| self.schema(id))
+            .and_then(|s| s.inputs.get(pin.id.input).cloned());
+        match &port {
+            Some(p) => {
+                let required = if p.required { "" } else { " (optional)" };
+                ui.label(p.name)
+                    .on_hover_text(format!("{}: {}{required}\n{}", p.name, p.ty, p.doc));
+            }
+            None => {
+                ui.label("?");
+            }
+        }
+        Self::pin(port.map(|p| p.ty))
+    }
+
+    fn show_output(
+        &mut self,
+        pin: &OutPin,
+        ui: &mut Ui,
+        snarl: &mut Snarl<String>,
+    ) -> impl SnarlPin + 'static {
+        let port = snarl
+            .get_node(pin.id.node)
+            .and_then(|id| self.schema(id))
+            .and_then(|s| s.outputs.get(pin.id.output).cloned());
+        match &port {
+            Some(p) => {
+                ui.label(p.name)
+                    .on_hover_text(format!("{}: {}\n{}", p.name, p.ty, p.doc));
+            }
+            None => {
+                ui.label("?");
+            }
+        }
+        Self::pin(port.map(|p| p.ty))
+    }
+
+    fn has_body(&mut self, node: &String) -> bool {
+        self.error(node).is_some()
+    }
+
+    fn show_body(
+        &mut self,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<String>,
+    ) {
+        let Some(id) = snarl.get_node(node).cloned() else {
+            return;
+        };
+        if let Some(e) = self.error(&id) {
+            let first = e.lines().next().unwrap_or_default().to_owned();
+            ui.colored_label(Color32::LIGHT_RED, format!("⚠ {first}"))
+                .on_hover_text(e);
+        }
+    }
+
+    fn connect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<String>) {
+        let (Some(f), Some(t)) = (
+            snarl.get_node(from.id.node).cloned(),
+            snarl.get_node(to.id.node).cloned(),
+        ) else {
+            return;
+        };
+        let (Some(fs), Some(ts)) = (self.schema(&f), self.schema(&t)) else {
+            self.state.status = "cannot connect nodes of unknown kinds".into();
+            return;
+        };
+        let (Some(op), Some(ip)) = (fs.outputs.get(from.id.output), ts.inputs.get(to.id.input))
+        else {
+            return;
+        };
+        if self.state.connect((&f, op.name), (&t, ip.name)).is_ok() {
+            snarl.drop_inputs(to.id);
+            snarl.connect(from.id, to.id);
+            self.state.status = format!("connected {f}.{} → {t}.{}", op.name, ip.name);
+        }
+    }
+
+    fn disconnect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<String>) {
+        let (Some(f), Some(t)) = (
+            snarl.get_node(from.id.node).cloned(),
+            snarl.get_node(to.id.node).cloned(),
+        ) else {
+            return;
+        };
+        let (Some(fs), Some(ts)) = (self.schema(&f), self.schema(&t)) else {
+            return;
+        };
+        let (Some(op), Some(ip)) = (fs.outputs.get(from.id.output), ts.inputs.get(to.id.input))
+        else {
+            return;
+        };
+        if self.state.disconnect((&f, op.name), (&t, ip.name)) {
+            snarl.disconnect(from.id, to.id);
+        }
+    }
+
+    fn drop_inputs(&mut self, pin: &InPin, snarl: &mut Snarl<String>) {
+        for remote in pin.remotes.clone() {
+            let from = snarl.out_pin(remote);
+            self.disconnect(&from, pin, snarl);
+        }
+    }
+
+    fn drop_outputs(&mut self, pin: &OutPin, snarl: &mut Snarl<String>) {
+        for remote in pin.remotes.clone() {
+            let to = snarl.in_pin(remote);
+            self.disconnect(pin, &to, snarl);
+        }
+    }
+
+    fn has_graph_menu(&mut self, _pos: Pos2, _snarl: &mut Snarl<String>) -> bool {
+        true
+    }
+
+    fn show_graph_menu(&mut self, at: Pos2, ui: &mut Ui, _snarl: &mut Snarl<String>) {
+        ui.label("Add node");
+        let kinds = self.state.registry.kinds();
+        if let Some(kind) = self.kind_menu(ui, kinds) {
+            let _ = self.state.add_node(kind, pos(at));
+        }
+        if !self.clipboard.is_empty() && ui.button("Paste").clicked() {
+            let text = self.clipboard.clone();
+            let _ = self.state.paste(&text, pos(at));
+            ui.close();
+        }
+    }
+
+    fn has_dropped_wire_menu(&mut self, _src: AnyPins, _snarl: &mut Snarl<String>) -> bool {
+        true
+    }
+
+    fn show_dropped_wire_menu(
+        &mut self,
+        at: Pos2,
+        ui: &mut Ui,
+        src: AnyPins,
+        snarl: &mut Snarl<String>,
+    ) {
+        // The dragged pins' node and port names, and their type.
+        let (ends, output): (Vec<(String, &'static str, PortType)>, bool) = match src {
+            AnyPins::Out(pins) => (
+                pins.iter()
+                    .filter_map(|p| {
+                        let id = snarl.get_node(p.node)?.clone();
+                        let port = self.schema(&id)?.outputs.get(p.output)?.clone();
+                        Some((id, port.name, port.ty))
+                    })
+                    .collect(),
+                true,
+            ),
+            AnyPins::In(pins) => (
+                pins.iter()
+                    .filter_map(|p| {
+                        let id = snarl.get_node(p.node)?.clone();
+                        let port = self.schema(&id)?.inputs.get(p.input)?.clone();
+                        Some((id, port.name, port.ty))
+                    })
+                    .collect(),
+                false,
+            ),
+        };
+        let Some(ty) = ends.first().map(|e| e.2) else {
+            ui.close();
+            return;
+        };
+        ui.label(format!("Add a node taking {ty}"));
+        let kinds = hatchery_graph::edit::compatible_kinds(&self.state.registry, ty, output);
+        let Some(kind) = self.kind_menu(ui, kinds) else {
+            return;
+        };
+        let Ok(new) = self.state.add_node(kind, pos(at)) else {
+            return;
+        };
+        let Some(schema) = self.state.registry.schema(kind).cloned() else {
+            return;
+        };
+        let ports = if output {
+            &schema.inputs
+        } else {
+            &schema.outputs
+        };
+        if let Some(port) = ports.iter().find(|p| p.ty == ty) {
+            for (id, name, _) in &ends {
+                let _ = if output {
+                    self.state.connect((id, name), (&new, port.name))
+                } else {
+                    self.state.connect((&new, port.name), (id, name))
+                };
+            }
+        }
+    }
+
+    fn current_transform(
+        &mut self,
+        to_global: &mut egui::emath::TSTransform,
+        snarl: &mut Snarl<String>,
+    ) {
+        self.transform = *to_global;
+        let Some(rect) = self.frame_into.take() else {
+            return;
+        };
+        // Node positions are top-left corners; assume a typical node size for the far side.
+        let mut bounds = egui::Rect::NOTHING;
+        for (p, _) in snarl.nodes_pos() {
+            bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(220.0, 120.0)));
+        }
+        if !bounds.is_positive() {
+            return;
+        }
+        let bounds = bounds.expand(40.0);
+        let scaling = (rect.width() / bounds.width())
+            .min(rect.height() / bounds.height())
+            .clamp(0.2, 1.0);
+        *to_global = egui::emath::TSTransform {
+            scaling,
+            translation: rect.center().to_vec2() - bounds.center().to_vec2() * scaling,
+        };
+        self.transform = *to_global;
+    }
+
+    fn has_node_menu(&mut self, _node: &String) -> bool {
+        true
+    }
+
+    fn show_node_menu(
+        &mut self,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<String>,
+    ) {
+        let Some(id) = snarl.get_node(node).cloned() else {
+            return;
+        };
+        let selected: BTreeSet<String> = if self.state.selection.contains(&id) {
+            self.state.selection.clone()
+        } else {
+            BTreeSet::from([id.clone()])
+        };
+        let ids: Vec<&str> = selected.iter().map(String::as_str).collect();
+        if let Some(schema) = self.schema(&id) {
+            for out in &schema.outputs {
+                if ui.button(format!("Preview {}", out.name)).clicked() {
+                    *self.preview = Some((id.clone(), out.name.to_owned()));
+                    ui.close();
+                }
+            }
+        }
+        if ui.button("Duplicate").clicked() {
+            let _ = self.state.duplicate(&ids);
+            ui.close();
+        }
+        if ui.button("Copy").clicked() {
+            *self.clipboard = self.state.copy(&ids);
+            ui.ctx().copy_text(self.clipboard.clone());
+            ui.close();
+        }
+        if ui.button("Delete").clicked() {
+            let owned: Vec<String> = selected.into_iter().collect();
+            let _ = self.state.remove_nodes(&owned);
+            ui.close();
+        }
+    }
+}

@@ -1,0 +1,396 @@
+//! The editor's model, free of egui: the document, undo/redo, selection, validation errors and
+//! the autosave recovery file.
+
+use hatchery_graph::document::Source;
+use hatchery_graph::{EdgeDoc, EditorPos, FORMAT_VERSION, Graph, GraphDocument, ParamValue, edit};
+use hatchery_nodes::Registry;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// How long the editor waits between two autosaves of a dirty document.
+pub const AUTOSAVE_INTERVAL: Duration = Duration::from_secs(2);
+
+pub struct EditorState {
+    pub registry: Registry,
+    doc: GraphDocument,
+    path: Option<PathBuf>,
+    dirty: bool,
+    undo: Vec<GraphDocument>,
+    redo: Vec<GraphDocument>,
+    /// Key of the edit that is still going on (a parameter drag, a node move): further changes
+    /// with the same key do not push another undo step.
+    open_group: Option<String>,
+    pub selection: BTreeSet<String>,
+    /// Validation errors by node id (several joined by newlines).
+    errors: BTreeMap<String, String>,
+    /// Errors that concern no single node.
+    graph_errors: Vec<String>,
+    /// The last message for the status line (a refused wire, a failed save, ...).
+    pub status: String,
+    /// Where recovery files of unsaved graphs go (the temp dir unless set).
+    pub scratch_dir: PathBuf,
+    last_autosave: Instant,
+    /// Increases on every change of the document: views rebuild when it moves.
+    revision: u64,
+}
+
+impl Default for EditorState {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl EditorState {
+    /// An empty, unsaved graph.
+    pub fn new() -> Self {
+        let mut s = EditorState {
+            registry: hatchery_nodes::registry(),
+            doc: GraphDocument {
+                version: FORMAT_VERSION,
+                ..Default::default()
+            },
+            path: None,
+            dirty: false,
+            undo: Vec::new(),
+            redo: Vec::new(),
+            open_group: None,
+            selection: BTreeSet::new(),
+            errors: BTreeMap::new(),
+            graph_errors: Vec::new(),
+            status: String::new(),
+            scratch_dir: std::env::temp_dir(),
+            last_autosave: Instant::now(),
+            revision: 0,
+        };
+        s.validate();
+        s
+    }
+
+    /// Opens a graph file. Files with validation errors open (the errors are attached to their
+    /// nodes); only unreadable or unparsable files are refused, leaving the state unchanged.
+    pub fn open(&mut self, path: &Path) -> Result<(), String> {
+        let (doc, _) = GraphDocument::load(path).map_err(|e| e.to_string())?;
+        self.doc = doc;
+        self.path = Some(path.to_path_buf());
+        self.dirty = false;
+        self.undo.clear();
+        self.redo.clear();
+        self.open_group = None;
+        self.selection.clear();
+        self.last_autosave = Instant::now();
+        self.revision += 1;
+        self.validate();
+        self.status = format!("opened {}", path.display());
+        Ok(())
+    }
+
+    pub fn doc(&self) -> &GraphDocument {
+        &self.doc
+    }
+    pub fn path(&self) -> Option<&Path> {
+        self.path.as_deref()
+    }
+    pub fn is_dirty(&self) -> bool {
+        self.dirty
+    }
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+    pub fn can_undo(&self) -> bool {
+        !self.undo.is_empty()
+    }
+    pub fn can_redo(&self) -> bool {
+        !self.redo.is_empty()
+    }
+    pub fn errors(&self) -> &BTreeMap<String, String> {
+        &self.errors
+    }
+    pub fn graph_errors(&self) -> &[String] {
+        &self.graph_errors
+    }
+    pub fn node_error(&self, id: &str) -> Option<&str> {
+        self.errors.get(id).map(String::as_str)
+    }
+    /// The window title: file name and a `*` when there are unsaved changes.
+    pub fn title(&self) -> String {
+        let name = self
+            .path
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or("untitled".into(), |n| n.to_string_lossy().into_owned());
+        format!(
+            "{}{name} — hatchery editor",
+            if self.dirty { "*" } else { "" }
+        )
+    }
+
+    /// The folder relative paths in the graph resolve against.
+    pub fn base_dir(&self) -> Option<PathBuf> {
+        self.path.as_ref().and_then(|p| p.parent()).map(|p| {
+            if p.as_os_str().is_empty() {
+                PathBuf::from(".")
+            } else {
+                p.to_path_buf()
+            }
+        })
+    }
+
+    /// Validates the document; on success returns the runtime graph.
+    pub fn validate(&mut self) -> Option<Graph> {
+        self.errors.clear();
+        self.graph_errors.clear();
+        let source = Source {
+            path: self.path.clone(),
+            text: String::new(),
+        };
+        match Graph::from_document(
+            &self.doc,
+            &source,
+            &self.registry,
+            self.base_dir().as_deref(),
+        ) {
+            Ok(graph) => Some(graph),
+            Err(errors) => {
+                for e in &errors.0 {
+                    let message = e.kind.to_string();
+                    match e.node() {
+                        Some(node) => {
+                            let slot = self.errors.entry(node.to_owned()).or_default();
+                            if !slot.is_empty() {
+                                slot.push('\n');
+                            }
+                            slot.push_str(&message);
+                        }
+                        None => self.graph_errors.push(message),
+                    }
+                }
+                None
+            }
+        }
+    }
+
+    /// Applies an edit to a copy of the document; on success it becomes the document and the
+    /// previous one goes on the undo stack (unless `group` continues the edit that pushed last).
+    pub fn apply<T>(
+        &mut self,
+        group: Option<&str>,
+        f: impl FnOnce(&mut GraphDocument, &Registry) -> Result<T, String>,
+    ) -> Result<T, String> {
+        let mut next = self.doc.clone();
+        match f(&mut next, &self.registry) {
+            Ok(value) => {
+                let continues = group.is_some() && self.open_group.as_deref() == group;
+                if !continues {
+                    self.undo.push(std::mem::replace(&mut self.doc, next));
+                } else {
+                    self.doc = next;
+                }
+                self.open_group = group.map(str::to_owned);
+                self.redo.clear();
+                self.dirty = true;
+                self.revision += 1;
+                self.validate();
+                Ok(value)
+            }
+            Err(message) => {
+                self.status = message.clone();
+                Err(message)
+            }
+        }
+    }
+
+    /// Ends the edit a drag was grouping: the next change is a new undo step.
+    pub fn end_group(&mut self) {
+        self.open_group = None;
+    }
+
+    pub fn undo(&mut self) -> bool {
+        let Some(prev) = self.undo.pop() else {
+            return false;
+        };
+        self.redo.push(std::mem::replace(&mut self.doc, prev));
+        self.after_history_step();
+        true
+    }
+
+    pub fn redo(&mut self) -> bool {
+        let Some(next) = self.redo.pop() else {
+            return false;
+        };
+        self.undo.push(std::mem::replace(&mut self.doc, next));
+        self.after_history_step();
+        true
+    }
+
+    fn after_history_step(&mut self) {
+        self.open_group = None;
+        self.dirty = true;
+        self.revision += 1;
+        let doc = &self.doc;
+        self.selection
+            .retain(|id| doc.nodes.iter().any(|n| &n.id == id));
+        self.validate();
+    }
+
+    // Edits: thin wrappers over `hatchery_graph::edit` with undo.
+
+    pub fn add_node(&mut self, kind: &str, at: EditorPos) -> Result<String, String> {
+        let id = self.apply(None, |d, r| edit::add_node(d, r, kind, at))?;
+        self.selection = BTreeSet::from([id.clone()]);
+        Ok(id)
+    }
+
+    pub fn remove_nodes(&mut self, ids: &[String]) -> Result<(), String> {
+        self.apply(None, |d, _| {
+            for id in ids {
+                edit::remove_node(d, id).ok_or_else(|| format!("no node `{id}`"))?;
+            }
+            Ok(())
+        })?;
+        for id in ids {
+            self.selection.remove(id);
+        }
+        Ok(())
+    }
+
+    pub fn connect(
+        &mut self,
+        from: (&str, &str),
+        to: (&str, &str),
+    ) -> Result<Option<EdgeDoc>, String> {
+        self.apply(None, |d, r| edit::connect(d, r, from, to))
+    }
+
+    pub fn disconnect(&mut self, from: (&str, &str), to: (&str, &str)) -> bool {
+        self.apply(None, |d, _| {
+            if edit::disconnect(d, from, to) {
+                Ok(())
+            } else {
+                Err("no such wire".into())
+            }
+        })
+        .is_ok()
+    }
+
+    /// Sets a parameter. While `dragging`, changes of the same parameter are one undo step.
+    pub fn set_param(
+        &mut self,
+        node: &str,
+        name: &str,
+        value: ParamValue,
+        dragging: bool,
+    ) -> Result<(), String> {
+        let key = format!("param:{node}.{name}");
+        let group = dragging.then_some(key.as_str());
+        self.apply(group, |d, r| edit::set_param(d, r, node, name, value))
+    }
+
+    /// Moves a node; a move during one drag is one undo step.
+    pub fn move_node(&mut self, id: &str, at: EditorPos) {
+        let key = format!("move:{id}");
+        let _ = self.apply(Some(&key), |d, _| {
+            if edit::move_node(d, id, at) {
+                Ok(())
+            } else {
+                Err(format!("no node `{id}`"))
+            }
+        });
+    }
+
+    pub fn copy(&self, ids: &[&str]) -> String {
+        edit::copy_nodes(&self.doc, ids)
+    }
+
+    pub fn paste(&mut self, text: &str, offset: EditorPos) -> Result<Vec<String>, String> {
+        let ids = self.apply(None, |d, _| edit::paste_nodes(d, text, offset))?;
+        self.selection = ids.iter().cloned().collect();
+        Ok(ids)
+    }
+
+    pub fn duplicate(&mut self, ids: &[&str]) -> Result<Vec<String>, String> {
+        let text = self.copy(ids);
+        self.paste(&text, EditorPos { x: 40.0, y: 40.0 })
+    }
+
+    // Files.
+
+    /// Saves to the current path.
+    pub fn save(&mut self) -> Result<(), String> {
+        let path = self
+            .path
+            .clone()
+            .ok_or_else(|| "the graph has no file yet: use Save as".to_string())?;
+        self.save_as(&path)
+    }
+
+    /// Saves (atomically) to `path`, which becomes the current file.
+    pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
+        let old_recovery = self.recovery_path();
+        self.doc
+            .save(path)
+            .map_err(|e| format!("cannot save {}: {e}", path.display()))?;
+        let _ = std::fs::remove_file(old_recovery);
+        self.path = Some(path.to_path_buf());
+        let _ = std::fs::remove_file(self.recovery_path());
+        self.dirty = false;
+        self.status = format!("saved {}", path.display());
+        self.validate();
+        Ok(())
+    }
+
+    /// `<graph>.ron.recovery` next to the file, or a file in the scratch dir for unsaved graphs.
+    pub fn recovery_path(&self) -> PathBuf {
+        match &self.path {
+            Some(p) => {
+                let name = p
+                    .file_name()
+                    .map_or("graph.ron".into(), |n| n.to_string_lossy().into_owned());
+                p.with_file_name(format!("{name}.recovery"))
+            }
+            None => self.scratch_dir.join("hatchery-untitled.ron.recovery"),
+        }
+    }
+
+    /// Writes the recovery file if the document is dirty and the last autosave is at least
+    /// [`AUTOSAVE_INTERVAL`] before `now`. Returns whether it wrote.
+    pub fn autosave_at(&mut self, now: Instant) -> bool {
+        if !self.dirty || now.saturating_duration_since(self.last_autosave) < AUTOSAVE_INTERVAL {
+            return false;
+        }
+        self.last_autosave = now;
+        match self.doc.save(&self.recovery_path()) {
+            Ok(()) => true,
+            Err(e) => {
+                self.status = format!("autosave failed: {e}");
+                false
+            }
+        }
+    }
+
+    pub fn autosave(&mut self) -> bool {
+        self.autosave_at(Instant::now())
+    }
+
+    /// Whether a recovery file newer than... any recovery file exists for the current graph.
+    pub fn has_recovery(&self) -> bool {
+        self.recovery_path().is_file()
+    }
+
+    /// Replaces the document with the recovery file's (as an undoable, unsaved edit).
+    pub fn restore_recovery(&mut self) -> Result<(), String> {
+        let path = self.recovery_path();
+        let (doc, _) = GraphDocument::load(&path).map_err(|e| e.to_string())?;
+        self.apply(None, |d, _| {
+            *d = doc;
+            Ok(())
+        })?;
+        self.status = format!("restored {}", path.display());
+        Ok(())
+    }
+
+    /// Forgets the recovery file.
+    pub fn discard_recovery(&mut self) {
+        let _ = std::fs::remove_file(self.recovery_path());
+    }
+}

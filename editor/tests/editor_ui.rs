@@ -1,0 +1,605 @@
+//! The editor driven through its real UI with egui_kittest (and through `EditorState` where
+//! driving the snarl canvas headlessly is impractical: adding nodes from the right-click menu
+//! and dragging wires between pins need exact pin positions).
+
+use egui::accesskit::Role;
+use egui::{Key, Modifiers};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use hatchery_editor::{EditorApp, EditorState};
+use hatchery_graph::{EditorPos, GraphDocument, ParamValue};
+use std::path::{Path, PathBuf};
+
+fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path)
+}
+
+/// Copies a graph into a temp dir (so autosaves never land in the repository) and opens it.
+fn open_copy(path: &str, dir: &Path) -> (EditorApp, PathBuf) {
+    let target = dir.join(Path::new(path).file_name().unwrap());
+    std::fs::copy(repo(path), &target).unwrap();
+    let mut state = EditorState::new();
+    state.scratch_dir = dir.to_path_buf();
+    state.open(&target).unwrap();
+    let mut app = EditorApp::new(state);
+    app.preview_enabled = false;
+    (app, target)
+}
+
+fn harness(app: EditorApp) -> Harness<'static, EditorApp> {
+    Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app)
+}
+
+#[test]
+fn open_add_connect_refuse_edit_undo_redo_save_and_reload() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, path) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    // The canvas shows every node with id and kind.
+    h.get_by_label("shaded (ShadedSurface)");
+    h.get_by_label("surface (MarchingCubes)");
+    assert!(h.state().state.errors().is_empty());
+    assert!(!h.state().state.is_dirty());
+
+    // Add (through the state API: the canvas menu needs a right-click at an exact spot).
+    let gbuffer = h
+        .state_mut()
+        .state
+        .add_node("GBuffer", EditorPos { x: 500.0, y: 400.0 })
+        .unwrap();
+    assert_eq!(gbuffer, "g_buffer_1");
+    let silhouette = h
+        .state_mut()
+        .state
+        .add_node("Silhouette", EditorPos { x: 700.0, y: 400.0 })
+        .unwrap();
+    h.run();
+    h.get_by_label("g_buffer_1 (GBuffer)");
+    // Added nodes are selected: canvas title + inspector heading.
+    assert_eq!(h.get_all_by_label("silhouette_1 (Silhouette)").count(), 2);
+    // Unconnected required inputs are errors on the new nodes, the rest is fine.
+    assert!(h.state().state.node_error("g_buffer_1").is_some());
+    assert!(h.state().state.node_error("shaded").is_none());
+    assert!(h.state().state.title().starts_with('*'), "dirty marker");
+
+    // Connect compatible pairs.
+    let s = &mut h.state_mut().state;
+    s.connect(("camera", "camera"), (&gbuffer, "camera"))
+        .unwrap();
+    s.connect(("surface", "mesh"), (&gbuffer, "mesh")).unwrap();
+    s.connect((&gbuffer, "gbuffer"), (&silhouette, "gbuffer"))
+        .unwrap();
+    assert!(s.errors().is_empty(), "{:?}", s.errors());
+    // Refuse an incompatible one, with the reason in the status line.
+    let err = s
+        .connect(("shaded", "image"), (&gbuffer, "camera"))
+        .unwrap_err();
+    assert!(err.contains("type mismatch"), "{err}");
+    h.run();
+    h.get_by_label_contains("type mismatch");
+    let edges = h.state().state.doc().edges.len();
+    assert_eq!(edges, 8);
+
+    // Change a parameter through the inspector: select the silhouette, untick `use_depth`.
+    h.state_mut().state.selection = [silhouette.clone()].into();
+    h.run();
+    // The title on the canvas and the inspector's heading.
+    assert_eq!(h.get_all_by_label("silhouette_1 (Silhouette)").count(), 2);
+    let before = h.state().state.doc().clone();
+    h.get_all_by_role(Role::CheckBox).next().unwrap().click();
+    h.run();
+    let raw = |h: &Harness<EditorApp>| {
+        h.state()
+            .state
+            .doc()
+            .nodes
+            .iter()
+            .find(|n| n.id == silhouette)
+            .unwrap()
+            .params
+            .get("use_depth")
+            .cloned()
+    };
+    assert_eq!(raw(&h), Some(ron::Value::Bool(false)));
+    let after = h.state().state.doc().clone();
+
+    // Undo / redo with the keyboard.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run();
+    assert_eq!(h.state().state.doc(), &before);
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.run();
+    assert_eq!(h.state().state.doc(), &after);
+
+    // Save as and load back equal.
+    let saved = dir.path().join("saved.ron");
+    h.state_mut().state.save_as(&saved).unwrap();
+    h.run();
+    assert!(!h.state().state.is_dirty());
+    assert!(!h.state().state.title().starts_with('*'));
+    let (loaded, _) = GraphDocument::load(&saved).unwrap();
+    assert_eq!(
+        loaded.to_ron_string(),
+        h.state().state.doc().to_ron_string()
+    );
+    // The original file is untouched by save-as.
+    let (original, _) = GraphDocument::load(&path).unwrap();
+    assert_eq!(original.nodes.len(), 6);
+}
+
+#[test]
+fn a_parameter_drag_is_one_undo_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let s = &mut app.state;
+    let original = s.doc().clone();
+    for iso in [0.1, 0.2, 0.3] {
+        s.set_param("surface", "iso", ParamValue::Float(iso), true)
+            .unwrap();
+    }
+    s.end_group();
+    s.set_param("surface", "iso", ParamValue::Float(0.4), false)
+        .unwrap();
+    // Out of range: refused, nothing pushed.
+    assert!(
+        s.set_param("camera", "elevation", ParamValue::Float(1.0e9), false)
+            .is_err()
+    );
+    assert!(s.undo());
+    let iso = |s: &EditorState| {
+        s.doc()
+            .nodes
+            .iter()
+            .find(|n| n.id == "surface")
+            .unwrap()
+            .params["iso"]
+            .clone()
+    };
+    assert_eq!(iso(s), ron::Value::Number(ron::Number::new(0.3)));
+    assert!(s.undo());
+    assert_eq!(s.doc(), &original);
+    assert!(!s.undo());
+    assert!(s.redo() && s.redo());
+    assert_eq!(iso(s), ron::Value::Number(ron::Number::new(0.4)));
+}
+
+#[test]
+fn a_graph_with_an_error_opens_and_shows_it_on_the_node() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("tests/fixtures/bad/missing_input.ron", dir.path());
+    let message = app
+        .state
+        .node_error("gbuffer")
+        .expect("error on gbuffer")
+        .to_owned();
+    assert!(message.contains("mesh"), "{message}");
+    assert!(app.state.node_error("camera").is_none());
+    let mut h = harness(app);
+    h.run();
+    h.get_by_label("gbuffer (GBuffer)");
+    h.get_by_label_contains("⚠");
+    // Still editable: fixing it clears the error.
+    let s = &mut h.state_mut().state;
+    let volume = s
+        .add_node("ProceduralVolume", EditorPos { x: 0.0, y: 0.0 })
+        .unwrap();
+    let mc = s
+        .add_node("MarchingCubes", EditorPos { x: 200.0, y: 0.0 })
+        .unwrap();
+    s.connect((&volume, "volume"), (&mc, "volume")).unwrap();
+    s.connect((&mc, "mesh"), ("gbuffer", "mesh")).unwrap();
+    assert!(s.errors().is_empty(), "{:?}", s.errors());
+    h.run();
+    assert!(h.query_by_label_contains("⚠").is_none());
+}
+
+#[test]
+fn unreadable_files_are_refused_without_panicking() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    app.open(&repo("tests/fixtures/bad/syntax_error.ron"));
+    assert!(!app.state.status.is_empty());
+    assert_eq!(app.state.doc().nodes.len(), 6, "the open graph stays");
+    app.open(&dir.path().join("missing.ron"));
+    assert!(
+        app.state.status.contains("cannot read"),
+        "{}",
+        app.state.status
+    );
+}
+
+#[test]
+fn autosave_recovers_an_unsaved_edit() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, path) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let start = std::time::Instant::now();
+    let s = &mut app.state;
+    assert!(
+        !s.autosave_at(start + std::time::Duration::from_secs(5)),
+        "clean: nothing to save"
+    );
+    s.set_param("camera", "azimuth", ParamValue::Float(75.0), false)
+        .unwrap();
+    assert!(!s.autosave_at(start), "less than 2 s after opening");
+    assert!(s.autosave_at(start + std::time::Duration::from_secs(3)));
+    assert_eq!(
+        s.recovery_path(),
+        dir.path().join("shaded_surface.ron.recovery")
+    );
+    let edited = s.doc().clone();
+    drop(app); // quit without saving
+
+    let mut state = EditorState::new();
+    state.open(&path).unwrap();
+    assert!(state.has_recovery());
+    assert_ne!(state.doc().to_ron_string(), edited.to_ron_string());
+    let mut h = harness(EditorApp::new(state));
+    h.state_mut().preview_enabled = false;
+    h.run();
+    h.get_by_label("Restore").click();
+    h.run();
+    assert_eq!(
+        h.state().state.doc().to_ron_string(),
+        edited.to_ron_string()
+    );
+    assert!(h.state().state.is_dirty());
+    // Saving removes the recovery file.
+    h.state_mut().state.save().unwrap();
+    assert!(!dir.path().join("shaded_surface.ron.recovery").exists());
+}
+
+#[test]
+fn snapshot_of_the_editor_with_a_preset() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    app.preview_enabled = true;
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .wgpu()
+        .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
+    h.run_steps(3);
+    let preview = h
+        .state()
+        .preview
+        .image
+        .clone()
+        .expect("the viewport rendered");
+    assert!(non_blank(&preview), "the rendered preset is blank");
+    h.state_mut()
+        .state
+        .set_param("camera", "azimuth", ParamValue::Float(90.0), false)
+        .unwrap();
+    h.run_steps(2);
+    assert!(
+        h.state().preview.error.is_none(),
+        "{:?}",
+        h.state().preview.error
+    );
+    let shot = h.render().expect("kittest wgpu render");
+    assert!(non_blank(&shot), "the editor snapshot is blank");
+    let out = std::env::temp_dir().join("hatchery-editor-snapshot.png");
+    shot.save(&out).unwrap();
+    eprintln!("editor snapshot written to {}", out.display());
+}
+
+fn non_blank(img: &image::RgbaImage) -> bool {
+    let first = img.get_pixel(0, 0);
+    img.pixels().filter(|p| *p != first).count() > (img.width() * img.height() / 100) as usize
+}
+
+fn right_click_at(h: &Harness<EditorApp>, pos: egui::Pos2) {
+    h.event(egui::Event::PointerMoved(pos));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Secondary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+}
+
+#[test]
+fn the_canvas_menu_adds_a_searched_node() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    right_click_at(&h, egui::pos2(500.0, 720.0));
+    h.run();
+    h.get_by_label("Add node");
+    h.get_by_role(Role::TextInput).focus();
+    h.run();
+    h.get_by_role(Role::TextInput).type_text("silh");
+    h.run();
+    assert!(
+        h.query_by_label("Camera").is_none(),
+        "filtered out by the search"
+    );
+    h.get_by_label("Silhouette").click();
+    h.run();
+    let doc = h.state().state.doc();
+    let added = doc
+        .nodes
+        .iter()
+        .find(|n| n.kind == "Silhouette")
+        .expect("added");
+    assert_eq!(added.id, "silhouette_1");
+    assert!(added.editor.is_some());
+    assert_eq!(h.get_all_by_label("silhouette_1 (Silhouette)").count(), 2);
+}
+
+#[test]
+fn opening_another_graph_asks_before_discarding_changes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    app.state
+        .set_param("camera", "azimuth", ParamValue::Float(10.0), false)
+        .unwrap();
+    let other = dir.path().join("bad.ron");
+    std::fs::copy(repo("tests/fixtures/bad/missing_input.ron"), &other).unwrap();
+    app.request(hatchery_editor::app::Pending::Open(other.clone()));
+    let mut h = harness(app);
+    h.run();
+    h.get_by_label("Cancel").click();
+    h.run();
+    assert!(h.state().pending().is_none());
+    assert_eq!(h.state().state.doc().nodes.len(), 6, "kept");
+    h.state_mut()
+        .request(hatchery_editor::app::Pending::Open(other.clone()));
+    h.run();
+    h.get_by_label("Discard changes").click();
+    h.run();
+    assert_eq!(h.state().state.path(), Some(other.as_path()));
+    assert_eq!(h.state().state.doc().nodes.len(), 2);
+}
+
+#[test]
+fn dragging_a_node_moves_it_in_the_document_as_one_undo_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let pos_of = |h: &Harness<EditorApp>| {
+        let n = h
+            .state()
+            .state
+            .doc()
+            .nodes
+            .iter()
+            .find(|n| n.id == "light")
+            .unwrap();
+        n.editor.unwrap()
+    };
+    let start = pos_of(&h);
+    // Accessibility rects of canvas widgets are in graph space: map them to the screen.
+    let title = h.get_by_label("light (Light)").rect();
+    let from = h.state().canvas_transform * title.center();
+    h.event(egui::Event::PointerMoved(from));
+    h.event(egui::Event::PointerButton {
+        pos: from,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    h.step();
+    for i in 1..=10 {
+        h.event(egui::Event::PointerMoved(
+            from + egui::vec2(8.0 * i as f32, 4.0 * i as f32),
+        ));
+        h.step();
+    }
+    let to = from + egui::vec2(80.0, 40.0);
+    h.event(egui::Event::PointerButton {
+        pos: to,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    h.run();
+    let end = pos_of(&h);
+    assert!(
+        end.x > start.x + 40.0 && end.y > start.y + 20.0,
+        "{start:?} → {end:?}"
+    );
+    assert!(h.state().state.is_dirty());
+    assert!(h.state_mut().state.undo());
+    assert_eq!(pos_of(&h), start, "the whole drag is one step");
+}
+
+#[test]
+fn an_execution_error_is_shown_on_its_node_and_the_editor_keeps_working() {
+    let dir = tempfile::tempdir().unwrap();
+    // Copied away from graphs/, the preset's relative mesh path points nowhere.
+    let (mut app, _) = open_copy("graphs/bunny_surface.ron", dir.path());
+    assert!(
+        app.state.errors().is_empty(),
+        "valid graph: {:?}",
+        app.state.errors()
+    );
+    app.preview_enabled = true;
+    let mut h = harness(app);
+    h.run();
+    let (node, message) = h
+        .state()
+        .preview
+        .failed_node
+        .clone()
+        .expect("execution failed");
+    assert_eq!(node, "bunny", "{message}");
+    assert!(h.state().preview.error.is_some());
+    h.get_by_label_contains("⚠");
+    // Pointing the node at a file that exists fixes it.
+    let mesh = repo("../shared/data/meshes/bunny.obj");
+    if mesh.is_file() {
+        let path = ParamValue::Path(mesh.display().to_string());
+        h.state_mut()
+            .state
+            .set_param("bunny", "path", path, false)
+            .unwrap();
+        h.run();
+        assert!(
+            h.state().preview.failed_node.is_none(),
+            "{:?}",
+            h.state().preview.error
+        );
+        assert!(h.state().preview.image.is_some());
+    }
+}
+
+#[test]
+fn the_node_menu_duplicates_previews_and_deletes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let on_title = |h: &Harness<EditorApp>, label: &str| {
+        let rect = h.get_by_label(label).rect();
+        h.state().canvas_transform * rect.center()
+    };
+    let at = on_title(&h, "surface (MarchingCubes)");
+    right_click_at(&h, at);
+    h.run();
+    h.get_by_label("Duplicate").click();
+    h.run();
+    let doc = h.state().state.doc();
+    let copy = doc
+        .nodes
+        .iter()
+        .find(|n| n.id == "surface_1")
+        .expect("duplicated");
+    assert_eq!(copy.kind, "MarchingCubes");
+    assert_eq!(
+        copy.params,
+        doc.nodes.iter().find(|n| n.id == "surface").unwrap().params
+    );
+
+    let at = on_title(&h, "shells (ProceduralVolume)");
+    right_click_at(&h, at);
+    h.run();
+    h.get_by_label("Preview volume").click();
+    h.run();
+    assert_eq!(
+        h.state().preview.chosen,
+        Some(("shells".to_string(), "volume".to_string()))
+    );
+
+    // The duplicate is selected (its title is also the inspector's heading): deselect.
+    h.state_mut().state.selection.clear();
+    h.run();
+    let at = on_title(&h, "surface_1 (MarchingCubes)");
+    right_click_at(&h, at);
+    h.run();
+    h.get_by_label("Delete").click();
+    h.run();
+    assert!(
+        h.state()
+            .state
+            .doc()
+            .nodes
+            .iter()
+            .all(|n| n.id != "surface_1")
+    );
+    assert_eq!(h.state().state.doc().nodes.len(), 6);
+}
+
+/// Drags with the primary button from `from` to `to` (screen points) in small steps.
+fn drag(h: &mut Harness<EditorApp>, from: egui::Pos2, to: egui::Pos2) {
+    h.event(egui::Event::PointerMoved(from));
+    h.event(egui::Event::PointerButton {
+        pos: from,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    h.step();
+    for i in 1..=10 {
+        h.event(egui::Event::PointerMoved(
+            from + (to - from) * (i as f32 / 10.0),
+        ));
+        h.step();
+    }
+    h.event(egui::Event::PointerButton {
+        pos: to,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    h.run();
+}
+
+#[test]
+fn dragging_a_wire_between_incompatible_pins_is_refused_with_a_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let t = h.state().canvas_transform;
+    // Pin labels in graph space; the pins sit just outside them.
+    let leftmost = |h: &Harness<EditorApp>, label: &str| {
+        h.get_all_by_label(label)
+            .map(|n| n.rect())
+            .min_by(|a, b| a.left().total_cmp(&b.left()))
+            .unwrap()
+    };
+    let rightmost = |h: &Harness<EditorApp>, label: &str| {
+        h.get_all_by_label(label)
+            .map(|n| n.rect())
+            .max_by(|a, b| a.left().total_cmp(&b.left()))
+            .unwrap()
+    };
+    let volume_out = leftmost(&h, "volume"); // shells.volume
+    let camera_in = rightmost(&h, "camera"); // shaded.camera
+    let from = t * egui::pos2(volume_out.right() + 8.0, volume_out.center().y);
+    let to = t * egui::pos2(camera_in.left() - 12.0, camera_in.center().y);
+    let before = h.state().state.doc().clone();
+    drag(&mut h, from, to);
+    assert_eq!(h.state().state.doc(), &before, "nothing connected");
+    assert!(
+        h.state().state.status.contains("type mismatch"),
+        "status: {}",
+        h.state().state.status
+    );
+    h.get_by_label_contains("type mismatch");
+}
+
+#[test]
+fn dragging_a_wire_between_compatible_pins_connects_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let added = app
+        .state
+        .add_node("MarchingCubes", EditorPos { x: 280.0, y: 520.0 })
+        .unwrap();
+    app.state.selection.clear();
+    let mut h = harness(app);
+    h.run();
+    let t = h.state().canvas_transform;
+    let volumes: Vec<egui::Rect> = h.get_all_by_label("volume").map(|n| n.rect()).collect();
+    let out = *volumes
+        .iter()
+        .min_by(|a, b| a.left().total_cmp(&b.left()))
+        .unwrap(); // shells.volume
+    let input = *volumes
+        .iter()
+        .max_by(|a, b| a.top().total_cmp(&b.top()))
+        .unwrap(); // the new node's volume input
+    let from = t * egui::pos2(out.right() + 8.0, out.center().y);
+    let to = t * egui::pos2(input.left() - 12.0, input.center().y);
+    drag(&mut h, from, to);
+    let edge = hatchery_graph::EdgeDoc {
+        from: ("shells".into(), "volume".into()),
+        to: (added.clone(), "volume".into()),
+    };
+    assert!(
+        h.state().state.doc().edges.contains(&edge),
+        "status: {}",
+        h.state().state.status
+    );
+    assert!(h.state().state.node_error(&added).is_none());
+    assert!(h.state_mut().state.undo());
+    assert!(!h.state().state.doc().edges.contains(&edge));
+}
