@@ -273,12 +273,10 @@ fn resolve_cli_path(session: &Session, node: &str, param: &str, value: &str) -> 
         .and_then(|n| session.registry.schema(&n.kind))
         .and_then(|s| s.param(param))
         .is_some_and(|p| p.kind == ParamKind::Path);
-    if is_path && !value.is_empty() {
-        if let Ok(abs) = std::path::absolute(value) {
-            return abs.to_string_lossy().into_owned();
-        }
+    match std::path::absolute(value) {
+        Ok(abs) if is_path && !value.is_empty() => abs.to_string_lossy().into_owned(),
+        _ => value.to_owned(),
     }
-    value.to_owned()
 }
 
 fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[String]) -> Result<()> {

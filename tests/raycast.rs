@@ -31,6 +31,7 @@ fn rgba(session: &Session, value: &Value) -> Vec<[f32; 4]> {
         .collect()
 }
 
+#[allow(clippy::too_many_arguments)]
 fn camera(
     session: &mut Session,
     w: u32,

@@ -36,9 +36,12 @@ pub trait ExecContext {
     }
 }
 
+/// A registered node kind: its schema (computed once) and its behaviour.
+type Entry<V, C> = (NodeSchema, Box<dyn Node<V, C>>);
+
 /// All node kinds, by name.
 pub struct Registry<V, C> {
-    kinds: BTreeMap<&'static str, (NodeSchema, Box<dyn Node<V, C>>)>,
+    kinds: BTreeMap<&'static str, Entry<V, C>>,
 }
 
 impl<V, C> Default for Registry<V, C> {
