@@ -35,6 +35,8 @@ pub struct EditorApp {
     pub preview: Preview,
     /// Render the viewport (tests that only edit turn it off).
     pub preview_enabled: bool,
+    /// Where the viewport image was drawn last frame (screen points; tests drag in it).
+    pub viewport_rect: egui::Rect,
     /// Folder listed in the Presets menu.
     pub presets_dir: PathBuf,
     /// The path field of the File menu.
@@ -89,6 +91,7 @@ impl EditorApp {
             state,
             preview: Preview::default(),
             preview_enabled: true,
+            viewport_rect: egui::Rect::NOTHING,
             presets_dir,
             snarl: Snarl::new(),
             snarl_ids: BTreeMap::new(),
@@ -458,6 +461,45 @@ impl EditorApp {
         });
     }
 
+    /// Dragging in the viewport orbits the graph's Camera node (azimuth, elevation), the wheel
+    /// zooms (distance); one drag or one burst of scrolling is one undo step.
+    fn orbit_camera(&mut self, ui: &Ui, response: &egui::Response) {
+        let Some(camera) = viewport_camera(self.state.doc()) else {
+            return;
+        };
+        let current = |state: &EditorState, name: &str| camera_param(state, &camera, name);
+        if response.dragged() {
+            let delta = response.drag_delta();
+            if delta != egui::Vec2::ZERO {
+                let azimuth = (current(&self.state, "azimuth") - delta.x as f64 * 0.4 + 180.0)
+                    .rem_euclid(360.0)
+                    - 180.0;
+                let elevation =
+                    (current(&self.state, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0);
+                let values = [
+                    ("azimuth", ParamValue::Float(azimuth)),
+                    ("elevation", ParamValue::Float(elevation)),
+                ];
+                let _ = self.state.set_params(&camera, &values, "viewport orbit");
+            }
+        }
+        if response.drag_stopped() {
+            self.state.end_group();
+        }
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                let distance =
+                    (current(&self.state, "distance") * (-scroll as f64 * 0.002).exp()).max(1e-3);
+                let _ = self.state.set_params(
+                    &camera,
+                    &[("distance", ParamValue::Float(distance))],
+                    "viewport zoom",
+                );
+            }
+        }
+    }
+
     fn viewport(&mut self, ui: &mut Ui) {
         ui.heading("Viewport");
         let target = self.preview.target(self.state.doc());
@@ -490,14 +532,12 @@ impl EditorApp {
         if let Some(e) = &self.preview.error {
             ui.colored_label(Color32::LIGHT_RED, e);
         }
-        match &self.texture {
-            Some(t) => {
-                ui.image((t.id(), size));
-            }
-            None => {
-                ui.allocate_space(size);
-            }
-        }
+        let response = match &self.texture {
+            Some(t) => ui.add(egui::Image::new((t.id(), size)).sense(egui::Sense::drag())),
+            None => ui.allocate_response(size, egui::Sense::drag()),
+        };
+        self.viewport_rect = response.rect;
+        self.orbit_camera(ui, &response);
     }
 }
 
@@ -938,5 +978,37 @@ impl SnarlViewer<String> for Viewer<'_> {
             let _ = self.state.remove_nodes(&owned);
             ui.close();
         }
+    }
+}
+
+/// The Camera node the viewport drives: the first one by id.
+fn viewport_camera(doc: &hatchery_graph::GraphDocument) -> Option<String> {
+    let mut cameras: Vec<&str> = doc
+        .nodes
+        .iter()
+        .filter(|n| n.kind == "Camera")
+        .map(|n| n.id.as_str())
+        .collect();
+    cameras.sort();
+    cameras.first().map(|id| id.to_string())
+}
+
+/// A Camera parameter as the graph will use it: the file's value, else the schema's default.
+fn camera_param(state: &EditorState, camera: &str, name: &str) -> f64 {
+    let spec = state.registry.schema("Camera").and_then(|s| s.param(name));
+    let raw = state
+        .doc()
+        .nodes
+        .iter()
+        .find(|n| n.id == camera)
+        .and_then(|n| n.params.get(name));
+    let value = match (spec, raw) {
+        (Some(spec), Some(raw)) => spec.convert(raw).ok(),
+        (Some(spec), None) => Some(spec.default.clone()),
+        _ => None,
+    };
+    match value {
+        Some(ParamValue::Float(x)) => x,
+        _ => 0.0,
     }
 }

@@ -286,6 +286,22 @@ impl EditorState {
         self.apply(group, |d, r| edit::set_param(d, r, node, name, value))
     }
 
+    /// Sets several parameters of one node as one edit; edits with the same `group` (a viewport
+    /// drag) merge into one undo step.
+    pub fn set_params(
+        &mut self,
+        node: &str,
+        values: &[(&str, ParamValue)],
+        group: &str,
+    ) -> Result<(), String> {
+        self.apply(Some(group), |d, r| {
+            for (name, value) in values {
+                edit::set_param(d, r, node, name, value.clone())?;
+            }
+            Ok(())
+        })
+    }
+
     /// Moves a node; a move during one drag is one undo step.
     pub fn move_node(&mut self, id: &str, at: EditorPos) {
         let key = format!("move:{id}");

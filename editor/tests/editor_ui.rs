@@ -603,3 +603,41 @@ fn dragging_a_wire_between_compatible_pins_connects_them() {
     assert!(h.state_mut().state.undo());
     assert!(!h.state().state.doc().edges.contains(&edge));
 }
+
+#[test]
+fn dragging_in_the_viewport_orbits_the_camera_node_as_one_undo_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let azimuth = |h: &Harness<EditorApp>| {
+        let node = h
+            .state()
+            .state
+            .doc()
+            .nodes
+            .iter()
+            .find(|n| n.id == "camera")
+            .unwrap();
+        match node.params.get("azimuth") {
+            Some(ron::Value::Number(n)) => n.into_f64(),
+            other => panic!("azimuth is {other:?}"),
+        }
+    };
+    assert_eq!(azimuth(&h), 30.0);
+    let centre = h.state().viewport_rect.center();
+    assert!(
+        h.state().viewport_rect.width() > 10.0,
+        "the viewport must be on screen"
+    );
+    drag(&mut h, centre, centre + egui::vec2(50.0, 0.0));
+    let turned = azimuth(&h);
+    assert!(
+        (turned - 10.0).abs() < 1e-6,
+        "a 50-point drag turns the camera by 20°: {turned}"
+    );
+    // The whole drag is one undo step.
+    h.state_mut().state.undo();
+    h.run();
+    assert_eq!(azimuth(&h), 30.0);
+}
