@@ -641,3 +641,66 @@ fn dragging_in_the_viewport_orbits_the_camera_node_as_one_undo_step() {
     h.run();
     assert_eq!(azimuth(&h), 30.0);
 }
+
+/// Benchmark, not a check (run with `--ignored --nocapture`): UI frame time with the
+/// brain-surface preset open, idle and while the viewport re-renders after a parameter change.
+/// The viewport renders on the UI thread, so a re-rendering frame costs the render.
+#[test]
+#[ignore]
+fn ui_frame_time_with_the_brain_preset() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/brain_surface.ron", dir.path());
+    // The copy lives in a temp dir: point it at the shared MRI by absolute path.
+    let mri = repo("../shared/data/volumes/mni152_t1.nii.gz")
+        .canonicalize()
+        .unwrap();
+    app.state
+        .set_param(
+            "mri",
+            "path",
+            hatchery_graph::ParamValue::Path(mri.to_string_lossy().into_owned()),
+            false,
+        )
+        .unwrap();
+    app.preview_enabled = true;
+    let mut h = harness(app);
+    let start = std::time::Instant::now();
+    h.run();
+    println!(
+        "first frame (loads the MRI, marching cubes, first render): {:.1} ms",
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    let mut idle = Vec::new();
+    for _ in 0..10 {
+        let t = std::time::Instant::now();
+        h.step();
+        idle.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let mut changed = Vec::new();
+    for i in 0..10 {
+        h.state_mut()
+            .state
+            .set_param(
+                "camera",
+                "azimuth",
+                hatchery_graph::ParamValue::Float(-60.0 + 5.0 * i as f64),
+                false,
+            )
+            .unwrap();
+        let t = std::time::Instant::now();
+        h.step();
+        changed.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let gpu = hatchery_gpu::GpuContext::new().unwrap();
+    println!(
+        "adapter: {} — viewport {:?} points — UI frame median: idle {:.2} ms, after an azimuth change (viewport re-render) {:.1} ms",
+        gpu.describe(),
+        h.state().viewport_rect.size(),
+        median(&mut idle),
+        median(&mut changed)
+    );
+}
