@@ -378,28 +378,7 @@ fn dragging_a_node_moves_it_in_the_document_as_one_undo_step() {
     // Accessibility rects of canvas widgets are in graph space: map them to the screen.
     let title = h.get_by_label("light (Light)").rect();
     let from = h.state().canvas_transform * title.center();
-    h.event(egui::Event::PointerMoved(from));
-    h.event(egui::Event::PointerButton {
-        pos: from,
-        button: egui::PointerButton::Primary,
-        pressed: true,
-        modifiers: Modifiers::NONE,
-    });
-    h.step();
-    for i in 1..=10 {
-        h.event(egui::Event::PointerMoved(
-            from + egui::vec2(8.0 * i as f32, 4.0 * i as f32),
-        ));
-        h.step();
-    }
-    let to = from + egui::vec2(80.0, 40.0);
-    h.event(egui::Event::PointerButton {
-        pos: to,
-        button: egui::PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
-    h.run();
+    drag(&mut h, from, from + egui::vec2(80.0, 40.0));
     let end = pos_of(&h);
     assert!(
         end.x > start.x + 40.0 && end.y > start.y + 20.0,
