@@ -102,6 +102,15 @@ impl Camera {
         }
     }
 
+    /// The camera block as a uniform buffer (binding 0 of every mesh shader).
+    pub fn uniform_buffer(&self, gpu: &hatchery_gpu::GpuContext) -> wgpu::Buffer {
+        gpu.buffer_init(
+            "camera",
+            bytemuck::bytes_of(&self.uniform()),
+            wgpu::BufferUsages::UNIFORM,
+        )
+    }
+
     /// The uniform block shared by mesh shaders (`CameraUniform` in WGSL).
     pub fn uniform(&self) -> CameraUniform {
         CameraUniform {

@@ -64,11 +64,7 @@ impl Node<Value, Ctx> for DepthPeelNode {
             })
             .map_err(|e| NodeError::new(e.to_string()))?;
         let gpu = &ctx.gpu;
-        let uniform = gpu.buffer_init(
-            "camera",
-            bytemuck::bytes_of(&camera.uniform()),
-            wgpu::BufferUsages::UNIFORM,
-        );
+        let uniform = camera.uniform_buffer(gpu);
         let previous_view = previous.depth.create_view(&Default::default());
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("depth peel"),

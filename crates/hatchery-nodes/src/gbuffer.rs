@@ -48,11 +48,7 @@ impl Node<Value, Ctx> for GBufferNode {
             .map_err(|e| NodeError::new(e.to_string()))?;
         let gpu = &ctx.gpu;
         let (w, h) = (camera.width, camera.height);
-        let uniform = gpu.buffer_init(
-            "camera",
-            bytemuck::bytes_of(&camera.uniform()),
-            wgpu::BufferUsages::UNIFORM,
-        );
+        let uniform = camera.uniform_buffer(gpu);
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("gbuffer"),
             layout: &pipeline.get_bind_group_layout(0),

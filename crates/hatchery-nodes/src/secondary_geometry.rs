@@ -129,11 +129,7 @@ impl Node<Value, Ctx> for SecondaryGeometryNode {
             two_sided,
             0.0,
         ]);
-        let camera_buf = gpu.buffer_init(
-            "camera",
-            bytemuck::bytes_of(&camera.uniform()),
-            wgpu::BufferUsages::UNIFORM,
-        );
+        let camera_buf = camera.uniform_buffer(gpu);
         let params_buf = gpu.buffer_init("secondary", &params, wgpu::BufferUsages::UNIFORM);
         let (d1, d2) = (
             layer1.depth.create_view(&Default::default()),

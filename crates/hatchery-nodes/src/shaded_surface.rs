@@ -104,11 +104,7 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
                 if p.bool("two_sided") { 1.0 } else { 0.0 },
             ],
         };
-        let camera_buf = gpu.buffer_init(
-            "camera",
-            bytemuck::bytes_of(&camera.uniform()),
-            wgpu::BufferUsages::UNIFORM,
-        );
+        let camera_buf = camera.uniform_buffer(gpu);
         let shading_buf = gpu.buffer_init(
             "shading",
             bytemuck::bytes_of(&shading),
