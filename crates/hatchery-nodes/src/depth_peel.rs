@@ -1,8 +1,6 @@
 //! `DepthPeel`: the next layer of a mesh behind a previous G-buffer (Fischer et al. 2005, §3.1).
 
-use crate::gbuffer::NORMAL_FORMAT;
-use crate::value::GBuffer;
-use crate::{Ctx, Value, mesh_pass};
+use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
@@ -58,44 +56,7 @@ impl Node<Value, Ctx> for DepthPeelNode {
                 "layer size differs from the camera's frame size",
             ));
         }
-        let pipeline = ctx
-            .cached("depth_peel.pipeline", |gpu| {
-                mesh_pass::mesh_pipeline(gpu, "depth_peel", NORMAL_FORMAT, None)
-            })
-            .map_err(|e| NodeError::new(e.to_string()))?;
-        let gpu = &ctx.gpu;
-        let uniform = camera.uniform_buffer(gpu);
-        let previous_view = previous.depth.create_view(&Default::default());
-        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("depth peel"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: uniform.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&previous_view),
-                },
-            ],
-        });
-        let normal = gpu.render_target("peeled normal", w, h, NORMAL_FORMAT);
-        let depth = mesh_pass::depth_target(gpu, "peeled depth", w, h);
-        let work = mesh_pass::draw_mesh(
-            gpu,
-            &pipeline,
-            &bind_group,
-            &mesh,
-            &normal,
-            wgpu::Color::TRANSPARENT,
-            &depth,
-        );
-        ctx.submit(work);
-        Ok(vec![Value::GBuffer(Arc::new(GBuffer {
-            depth,
-            normal,
-            camera: (*camera).clone(),
-        }))])
+        let layer = crate::gbuffer::render_layer(ctx, &mesh, &camera, Some(&previous))?;
+        Ok(vec![Value::GBuffer(Arc::new(layer))])
     }
 }

@@ -1,12 +1,10 @@
 //! `DepthTestMask`: where one layer lies in front of another (Fischer et al. 2005, eq. 10).
 
-use crate::screen_pass::{self, MASK_FORMAT};
-use crate::value::Mask;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 const COMPARISONS: &[&str] = &["a<=b", "a<b", "a>=b", "a>b"];
 
@@ -52,14 +50,12 @@ impl Node<Value, Ctx> for DepthTestMaskNode {
             .iter()
             .position(|c| *c == p.choice("compare"))
             .unwrap_or(0);
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::mask(
             ctx,
             "depth_test_mask",
-            MASK_FORMAT,
             &[("a", &a.depth), ("b", &b.depth)],
             &[],
             Some(&screen_pass::uniform_bytes(&[op as f32])),
-        )?;
-        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+        )?])
     }
 }

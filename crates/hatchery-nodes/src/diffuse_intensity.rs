@@ -1,12 +1,10 @@
 //! `DiffuseIntensity`: max(n · l, 0) of a G-buffer layer (Fischer et al. 2005, eq. 1 and 6).
 
-use crate::screen_pass::{self, MASK_FORMAT};
-use crate::value::Mask;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub struct DiffuseIntensityNode;
 
@@ -77,14 +75,12 @@ impl Node<Value, Ctx> for DiffuseIntensityNode {
             },
             0.0,
         ]);
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::mask(
             ctx,
             "diffuse_intensity",
-            MASK_FORMAT,
             &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
             &[],
             Some(&screen_pass::uniform_bytes(&values)),
-        )?;
-        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+        )?])
     }
 }

@@ -1,12 +1,10 @@
 //! `Fill`: a frame of one colour (the paper of an illustration).
 
-use crate::screen_pass::{self, IMAGE_FORMAT};
-use crate::value::Image;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub struct FillNode;
 
@@ -39,14 +37,12 @@ impl Node<Value, Ctx> for FillNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::image(
             ctx,
             "fill",
-            IMAGE_FORMAT,
             &[],
             &[],
             Some(&screen_pass::uniform_bytes(&p.color("color"))),
-        )?;
-        Ok(vec![Value::Image(Arc::new(Image { texture }))])
+        )?])
     }
 }

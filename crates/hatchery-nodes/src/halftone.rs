@@ -1,12 +1,10 @@
 //! `Halftone`: procedural screening of an intensity mask (Fischer et al. 2005, §3.3.2, eq. 7–9).
 
-use crate::screen_pass::{self, MASK_FORMAT};
-use crate::value::Mask;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub struct HalftoneNode;
 
@@ -59,14 +57,12 @@ impl Node<Value, Ctx> for HalftoneNode {
     ) -> Result<Vec<Value>, NodeError> {
         let intensity = inputs.require("intensity")?.mask("intensity")?.clone();
         let values = [p.f32("theta").to_radians(), p.f32("cell"), p.f32("c_cross")];
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::mask(
             ctx,
             "halftone",
-            MASK_FORMAT,
             &[("intensity", &intensity.texture)],
             &[],
             Some(&screen_pass::uniform_bytes(&values)),
-        )?;
-        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+        )?])
     }
 }

@@ -1,12 +1,10 @@
 //! `MaskCombine`: per-pixel logic and arithmetic of two masks.
 
-use crate::screen_pass::{self, MASK_FORMAT};
-use crate::value::Mask;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 const OPERATIONS: &[&str] = &["and", "or", "min", "add", "subtract", "a_not_b"];
 
@@ -48,14 +46,12 @@ impl Node<Value, Ctx> for MaskCombineNode {
             .iter()
             .position(|o| *o == p.choice("operation"))
             .unwrap_or(0);
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::mask(
             ctx,
             "mask_combine",
-            MASK_FORMAT,
             &[("a", &a.texture), ("b", &b.texture)],
             &[],
             Some(&screen_pass::uniform_bytes(&[op as f32])),
-        )?;
-        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+        )?])
     }
 }

@@ -1,12 +1,10 @@
 //! `MixByMask`: mix(base, over, mask) — an image or a colour blended in where a mask is set.
 
-use crate::screen_pass::{self, IMAGE_FORMAT};
-use crate::value::Image;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub struct MixByMaskNode;
 
@@ -59,10 +57,9 @@ impl Node<Value, Ctx> for MixByMaskNode {
             if over.is_some() { 1.0 } else { 0.0 },
         ];
         let over_texture = over.as_ref().map_or(&base.texture, |o| &o.texture);
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::image(
             ctx,
             "mix_by_mask",
-            IMAGE_FORMAT,
             &[
                 ("base", &base.texture),
                 ("over", over_texture),
@@ -70,7 +67,6 @@ impl Node<Value, Ctx> for MixByMaskNode {
             ],
             &[],
             Some(&screen_pass::uniform_bytes(&values)),
-        )?;
-        Ok(vec![Value::Image(Arc::new(Image { texture }))])
+        )?])
     }
 }

@@ -1,12 +1,10 @@
 //! `MultiplyByMask`: darkens an image by a mask (ink where the mask says so).
 
-use crate::screen_pass::{self, IMAGE_FORMAT};
-use crate::value::Image;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub struct MultiplyByMaskNode;
 
@@ -45,14 +43,12 @@ impl Node<Value, Ctx> for MultiplyByMaskNode {
         let image = inputs.require("image")?.image("image")?.clone();
         let mask = inputs.require("mask")?.mask("mask")?.clone();
         let values = [if p.bool("invert") { 1.0 } else { 0.0 }];
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::image(
             ctx,
             "multiply_by_mask",
-            IMAGE_FORMAT,
             &[("image", &image.texture), ("mask", &mask.texture)],
             &[],
             Some(&screen_pass::uniform_bytes(&values)),
-        )?;
-        Ok(vec![Value::Image(Arc::new(Image { texture }))])
+        )?])
     }
 }

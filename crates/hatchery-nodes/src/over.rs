@@ -1,13 +1,11 @@
 //! `Over`: one image over another (premultiplied Porter–Duff over), e.g. a volume rendering over
 //! paper, or strokes embedded over a rendering.
 
-use crate::screen_pass::{self, IMAGE_FORMAT};
-use crate::value::Image;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub struct OverNode;
 
@@ -36,14 +34,12 @@ impl Node<Value, Ctx> for OverNode {
     ) -> Result<Vec<Value>, NodeError> {
         let front = inputs.require("front")?.image("front")?.clone();
         let back = inputs.require("back")?.image("back")?.clone();
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::image(
             ctx,
             "over",
-            IMAGE_FORMAT,
             &[("front", &front.texture), ("back", &back.texture)],
             &[],
             None,
-        )?;
-        Ok(vec![Value::Image(Arc::new(Image { texture }))])
+        )?])
     }
 }

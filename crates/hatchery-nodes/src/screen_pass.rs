@@ -1,9 +1,11 @@
 //! Image-space passes: one full-frame triangle through a fragment shader that reads input
 //! textures by pixel. Shared by every mask and compositing node.
 
-use crate::Ctx;
+use crate::value::{Image, Mask};
+use crate::{Ctx, Value};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::NodeError;
+use std::sync::Arc;
 
 /// Format of `Mask` values.
 pub const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
@@ -125,6 +127,30 @@ pub fn run(
     let work = encoder.finish();
     ctx.submit(work);
     Ok(output)
+}
+
+/// [`run`] producing a `Mask` value.
+pub fn mask(
+    ctx: &mut Ctx,
+    program: &'static str,
+    textures: &[(&str, &wgpu::Texture)],
+    patterns: &[&wgpu::Texture],
+    uniform: Option<&[u8]>,
+) -> Result<Value, NodeError> {
+    let texture = run(ctx, program, MASK_FORMAT, textures, patterns, uniform)?;
+    Ok(Value::Mask(Arc::new(Mask { texture })))
+}
+
+/// [`run`] producing an `Image` value.
+pub fn image(
+    ctx: &mut Ctx,
+    program: &'static str,
+    textures: &[(&str, &wgpu::Texture)],
+    patterns: &[&wgpu::Texture],
+    uniform: Option<&[u8]>,
+) -> Result<Value, NodeError> {
+    let texture = run(ctx, program, IMAGE_FORMAT, textures, patterns, uniform)?;
+    Ok(Value::Image(Arc::new(Image { texture })))
 }
 
 /// Packs floats into a uniform block (vec4-aligned, as the shaders declare them).

@@ -1,13 +1,11 @@
 //! `Silhouette`: image-space feature lines of a G-buffer layer (Fischer et al. 2005, §3.3.1), with
 //! optional procedurally perturbed sampling (PIP, Yuan & Chen 2005, §6, eq. 2).
 
-use crate::screen_pass::{self, MASK_FORMAT};
-use crate::value::Mask;
+use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 pub const PIP_MODES: &[&str] = &["none", "constant", "texture", "noise", "dots"];
 
@@ -115,14 +113,12 @@ impl Node<Value, Ctx> for SilhouetteNode {
             p.f32("pip_scale"),
             p.int("pip_seed") as f32,
         ];
-        let texture = screen_pass::run(
+        Ok(vec![screen_pass::mask(
             ctx,
             "silhouette",
-            MASK_FORMAT,
             &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
             &[&pattern],
             Some(&screen_pass::uniform_bytes(&values)),
-        )?;
-        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+        )?])
     }
 }
