@@ -1,7 +1,8 @@
 //! The egui application: menu bar, snarl canvas (a view rebuilt from the document), inspector,
 //! viewport and status line.
 
-use crate::preview::Preview;
+use crate::preview::{Preview, Shown};
+use crate::render_worker::{NodeTime, Port};
 use crate::state::EditorState;
 use egui::{Color32, Id, Key, Modifiers, Pos2, Ui};
 use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer, SnarlWidget, get_selected_nodes};
@@ -50,7 +51,8 @@ pub struct EditorApp {
     last_ui_selection: Vec<String>,
     search: String,
     clipboard: String,
-    texture: Option<egui::TextureHandle>,
+    /// Why the last wire drop was refused, where and when (shown as a tooltip for a while).
+    pub refusal: Option<Refusal>,
     title: String,
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
@@ -60,6 +62,17 @@ pub struct EditorApp {
     /// An action that would discard unsaved changes, waiting for the user's answer.
     pending: Option<Pending>,
 }
+
+/// A refused wire: the reason, shown next to the pointer until `until` (egui time, seconds).
+#[derive(Clone, Debug)]
+pub struct Refusal {
+    pub reason: String,
+    pub at: Pos2,
+    pub until: f64,
+}
+
+/// How long a refusal tooltip stays up, seconds.
+const REFUSAL_SECONDS: f64 = 4.0;
 
 /// Actions that replace the document and so ask first when it has unsaved changes.
 #[derive(Clone, Debug, PartialEq)]
@@ -100,13 +113,24 @@ impl EditorApp {
             last_ui_selection: Vec::new(),
             search: String::new(),
             clipboard: String::new(),
-            texture: None,
+            refusal: None,
             title: String::new(),
             offer_recovery,
             pending: None,
             frame_all: true,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
         }
+    }
+
+    /// An editor inside eframe: previews render on the window's wgpu device when that is a good
+    /// idea (see [`crate::preview::share_device_by_default`]).
+    pub fn with_creation_context(state: EditorState, cc: &eframe::CreationContext<'_>) -> Self {
+        let mut app = Self::new(state);
+        if let Some(rs) = &cc.wgpu_render_state {
+            let share = crate::preview::share_device_by_default(&rs.adapter.get_info());
+            app.preview.set_render_state(rs.clone(), share);
+        }
+        app
     }
 
     /// Opens a file (a bad file leaves the current graph and reports why in the status line).
@@ -382,6 +406,12 @@ impl EditorApp {
         let failed = self.preview.failed_node.clone();
         let frame_into =
             std::mem::take(&mut self.frame_all).then(|| ui.available_rect_before_wrap());
+        let thumbnails: BTreeMap<Port, (egui::TextureId, egui::Vec2)> = self
+            .preview
+            .thumbnails
+            .iter()
+            .map(|(port, shown)| (port.clone(), (shown.id(), thumbnail_size(shown))))
+            .collect();
         let mut viewer = Viewer {
             frame_into,
             transform: self.canvas_transform,
@@ -389,12 +419,28 @@ impl EditorApp {
             search: &mut self.search,
             clipboard: &mut self.clipboard,
             preview: &mut self.preview.chosen,
+            pins: &mut self.preview.pins,
+            thumbnails,
+            times: self.preview.show_times.then_some(&self.preview.times),
+            refused: None,
             failed,
         };
         // Dragging a node's title moves the node instead of selecting its text.
         ui.style_mut().interaction.selectable_labels = false;
         widget.show(&mut self.snarl, &mut viewer, ui);
         self.canvas_transform = viewer.transform;
+        if let Some(reason) = viewer.refused.take() {
+            let now = ui.input(|i| i.time);
+            let at = ui
+                .input(|i| i.pointer.latest_pos())
+                .unwrap_or_else(|| ui.max_rect().center());
+            self.refusal = Some(Refusal {
+                reason,
+                at,
+                until: now + REFUSAL_SECONDS,
+            });
+        }
+        self.refusal_tooltip(ui);
         let changed_by_viewer = self.synced_revision != Some(self.state.revision());
 
         // Node moves: written back to the document (one undo step per drag).
@@ -461,14 +507,52 @@ impl EditorApp {
         });
     }
 
-    /// Dragging in the viewport orbits the graph's Camera node (azimuth, elevation), the wheel
-    /// zooms (distance); one drag or one burst of scrolling is one undo step.
+    /// The reason of a refused wire, next to where it was dropped, for a few seconds.
+    fn refusal_tooltip(&mut self, ui: &Ui) {
+        let Some(refusal) = &self.refusal else {
+            return;
+        };
+        let now = ui.input(|i| i.time);
+        if now > refusal.until {
+            self.refusal = None;
+            return;
+        }
+        egui::Area::new(Id::new("wire-refusal"))
+            .order(egui::Order::Tooltip)
+            .fixed_pos(refusal.at + egui::vec2(12.0, 12.0))
+            .interactable(false)
+            .show(ui.ctx(), |ui| {
+                egui::Frame::popup(ui.style()).show(ui, |ui| {
+                    ui.colored_label(Color32::LIGHT_RED, format!("⛔ {}", refusal.reason));
+                });
+            });
+        ui.ctx()
+            .request_repaint_after(std::time::Duration::from_secs_f64(refusal.until - now));
+    }
+
+    /// Dragging in the viewport orbits the graph's Camera node (azimuth, elevation), dragging
+    /// with the right or middle button (or with Shift) pans its target, the wheel zooms
+    /// (distance); one drag or one burst of scrolling is one undo step.
     fn orbit_camera(&mut self, ui: &Ui, response: &egui::Response) {
         let Some(camera) = viewport_camera(self.state.doc()) else {
             return;
         };
         let current = |state: &EditorState, name: &str| camera_param(state, &camera, name);
-        if response.dragged() {
+        let panning = response.dragged_by(egui::PointerButton::Secondary)
+            || response.dragged_by(egui::PointerButton::Middle)
+            || (response.dragged_by(egui::PointerButton::Primary)
+                && ui.input(|i| i.modifiers.shift));
+        if panning {
+            let delta = response.drag_delta();
+            if delta != egui::Vec2::ZERO {
+                let target = pan_target(&self.state, &camera, delta, response.rect.height());
+                let _ = self.state.set_params(
+                    &camera,
+                    &[("target", ParamValue::Vec3(target))],
+                    "viewport pan",
+                );
+            }
+        } else if response.dragged() {
             let delta = response.drag_delta();
             if delta != egui::Vec2::ZERO {
                 let azimuth = (current(&self.state, "azimuth") - delta.x as f64 * 0.4 + 180.0)
@@ -510,35 +594,71 @@ impl EditorApp {
         if self.preview.chosen.is_some() && ui.button("Show the SaveImage input").clicked() {
             self.preview.chosen = None;
         }
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut self.preview.show_times, "Node times")
+                .on_hover_text("Show each node's last CPU and GPU time on the canvas");
+            if self.preview.is_busy() {
+                // No spinner: it would repaint the UI all the time the frame renders.
+                ui.label("rendering…");
+            } else if let Some((elapsed, adapter)) = &self.preview.last_render {
+                ui.label(format!("{:.1} ms", elapsed.as_secs_f64() * 1e3))
+                    .on_hover_text(format!(
+                        "wall time of the last render on the render thread, on {adapter}"
+                    ));
+            }
+        });
         let width = ui.available_width().max(64.0);
         let size = egui::vec2(width, width * 0.75);
         if self.preview_enabled {
             let ppp = ui.ctx().pixels_per_point();
             let (w, h) = ((size.x * ppp) as u32, (size.y * ppp) as u32);
-            if self.preview.update(&mut self.state, w, h)
-                && let Some(img) = &self.preview.image
-            {
-                let color = egui::ColorImage::from_rgba_unmultiplied(
-                    [img.width() as usize, img.height() as usize],
-                    img.as_raw(),
-                );
-                self.texture = Some(ui.ctx().load_texture(
-                    "viewport",
-                    color,
-                    egui::TextureOptions::LINEAR,
-                ));
-            }
+            self.preview.update(ui.ctx(), &mut self.state, w, h);
         }
         if let Some(e) = &self.preview.error {
             ui.colored_label(Color32::LIGHT_RED, e);
         }
-        let response = match &self.texture {
-            Some(t) => ui.add(egui::Image::new((t.id(), size)).sense(egui::Sense::drag())),
-            None => ui.allocate_response(size, egui::Sense::drag()),
+        let sense = egui::Sense::drag();
+        let response = match &self.preview.viewport {
+            Some(shown) => ui.add(egui::Image::new((shown.id(), size)).sense(sense)),
+            None => ui.allocate_response(size, sense),
         };
         self.viewport_rect = response.rect;
         self.orbit_camera(ui, &response);
     }
+}
+
+/// A thumbnail's size on the canvas (points): its pixels, at most the thumbnail bound.
+fn thumbnail_size(shown: &Shown) -> egui::Vec2 {
+    let [w, h] = shown.size();
+    egui::vec2(w as f32, h as f32)
+}
+
+/// The Camera target after panning by `delta` screen points in a viewport `height` points
+/// tall: the scene follows the pointer (at the target's depth).
+fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, height: f32) -> [f64; 3] {
+    let get = |name: &str| camera_param(state, camera, name) as f32;
+    let up_z = camera_choice(state, camera, "up").as_deref() == Some("z");
+    let orbit = hatchery_nodes::camera::Camera::orbit(
+        glam::Vec3::ZERO,
+        get("azimuth"),
+        get("elevation"),
+        get("distance"),
+        get("fov"),
+        false,
+        0.1,
+        10.0,
+        up_z,
+        1,
+        1,
+    );
+    // Rows of the view matrix are the camera's right and up axes in world space.
+    let right = orbit.view.row(0).truncate();
+    let up = orbit.view.row(1).truncate();
+    let world_per_point =
+        2.0 * get("distance") * (get("fov").to_radians() / 2.0).tan() / height.max(1.0);
+    let shift = (-right * delta.x + up * delta.y) * world_per_point;
+    let target = camera_target(state, camera);
+    [0, 1, 2].map(|i| target[i] + shift[i] as f64)
 }
 
 impl eframe::App for EditorApp {
@@ -635,6 +755,13 @@ struct Viewer<'a> {
     search: &'a mut String,
     clipboard: &'a mut String,
     preview: &'a mut Option<(String, String)>,
+    /// Ports shown as thumbnails on their nodes (clicking an output's name toggles it).
+    pins: &'a mut BTreeSet<Port>,
+    thumbnails: BTreeMap<Port, (egui::TextureId, egui::Vec2)>,
+    /// Per-node times, when the user asked for them.
+    times: Option<&'a BTreeMap<String, NodeTime>>,
+    /// Why a wire drop was refused this frame.
+    refused: Option<String>,
     failed: Option<(String, String)>,
 }
 
@@ -736,12 +863,30 @@ impl SnarlViewer<String> for Viewer<'_> {
             .get_node(pin.id.node)
             .and_then(|id| self.schema(id))
             .and_then(|s| s.outputs.get(pin.id.output).cloned());
-        match &port {
-            Some(p) => {
-                ui.label(p.name)
-                    .on_hover_text(format!("{}: {}\n{}", p.name, p.ty, p.doc));
+        let node = snarl.get_node(pin.id.node).cloned();
+        match (&port, node) {
+            (Some(p), Some(node)) => {
+                let key = (node, p.name.to_owned());
+                let pinned = self.pins.contains(&key);
+                let text = if pinned {
+                    egui::RichText::new(format!("{} 👁", p.name)).strong()
+                } else {
+                    egui::RichText::new(p.name)
+                };
+                let response = ui
+                    .add(egui::Label::new(text).sense(egui::Sense::click()))
+                    .on_hover_text(format!(
+                        "{}: {}\n{}\nClick to {} its thumbnail on the node",
+                        p.name,
+                        p.ty,
+                        p.doc,
+                        if pinned { "hide" } else { "show" }
+                    ));
+                if response.clicked() && !self.pins.remove(&key) {
+                    self.pins.insert(key);
+                }
             }
-            None => {
+            _ => {
                 ui.label("?");
             }
         }
@@ -750,6 +895,8 @@ impl SnarlViewer<String> for Viewer<'_> {
 
     fn has_body(&mut self, node: &String) -> bool {
         self.error(node).is_some()
+            || self.pins.iter().any(|(n, _)| n == node)
+            || self.times.is_some_and(|t| t.contains_key(node))
     }
 
     fn show_body(
@@ -768,6 +915,32 @@ impl SnarlViewer<String> for Viewer<'_> {
             ui.colored_label(Color32::LIGHT_RED, format!("⚠ {first}"))
                 .on_hover_text(e);
         }
+        if let Some(time) = self.times.and_then(|t| t.get(&id)) {
+            ui.label(egui::RichText::new(format_time(time)).monospace().small())
+                .on_hover_text(
+                    "CPU: encoding the node's GPU work or doing its CPU work; GPU: its \
+                     submissions between timestamps (where the adapter has them). On a \
+                     software driver both are CPU time.",
+                );
+        }
+        let pinned: Vec<Port> = self
+            .pins
+            .iter()
+            .filter(|(n, _)| *n == id)
+            .cloned()
+            .collect();
+        for port in pinned {
+            match self.thumbnails.get(&port) {
+                Some((texture, size)) => {
+                    let name = format!("{}.{}", port.0, port.1);
+                    ui.add(egui::Image::new((*texture, *size)).alt_text(&name))
+                        .on_hover_text(name);
+                }
+                None => {
+                    ui.label(format!("{}: rendering…", port.1));
+                }
+            }
+        }
     }
 
     fn connect(&mut self, from: &OutPin, to: &InPin, snarl: &mut Snarl<String>) {
@@ -785,10 +958,13 @@ impl SnarlViewer<String> for Viewer<'_> {
         else {
             return;
         };
-        if self.state.connect((&f, op.name), (&t, ip.name)).is_ok() {
-            snarl.drop_inputs(to.id);
-            snarl.connect(from.id, to.id);
-            self.state.status = format!("connected {f}.{} → {t}.{}", op.name, ip.name);
+        match self.state.connect((&f, op.name), (&t, ip.name)) {
+            Ok(_) => {
+                snarl.drop_inputs(to.id);
+                snarl.connect(from.id, to.id);
+                self.state.status = format!("connected {f}.{} → {t}.{}", op.name, ip.name);
+            }
+            Err(reason) => self.refused = Some(reason),
         }
     }
 
@@ -981,6 +1157,18 @@ impl SnarlViewer<String> for Viewer<'_> {
     }
 }
 
+/// "12.3 ms cpu · 4.5 ms gpu", or "cached" when the last pass reused the node's outputs.
+fn format_time(time: &NodeTime) -> String {
+    if time.cached {
+        return "⏱ cached".into();
+    }
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    match time.gpu {
+        Some(gpu) => format!("⏱ {:.1} ms cpu · {:.1} ms gpu", ms(time.cpu), ms(gpu)),
+        None => format!("⏱ {:.1} ms cpu", ms(time.cpu)),
+    }
+}
+
 /// The Camera node the viewport drives: the first one by id.
 fn viewport_camera(doc: &hatchery_graph::GraphDocument) -> Option<String> {
     let mut cameras: Vec<&str> = doc
@@ -994,21 +1182,37 @@ fn viewport_camera(doc: &hatchery_graph::GraphDocument) -> Option<String> {
 }
 
 /// A Camera parameter as the graph will use it: the file's value, else the schema's default.
-fn camera_param(state: &EditorState, camera: &str, name: &str) -> f64 {
-    let spec = state.registry.schema("Camera").and_then(|s| s.param(name));
+fn camera_value(state: &EditorState, camera: &str, name: &str) -> Option<ParamValue> {
+    let spec = state.registry.schema("Camera")?.param(name)?;
     let raw = state
         .doc()
         .nodes
         .iter()
         .find(|n| n.id == camera)
         .and_then(|n| n.params.get(name));
-    let value = match (spec, raw) {
-        (Some(spec), Some(raw)) => spec.convert(raw).ok(),
-        (Some(spec), None) => Some(spec.default.clone()),
-        _ => None,
-    };
-    match value {
+    match raw {
+        Some(raw) => spec.convert(raw).ok(),
+        None => Some(spec.default.clone()),
+    }
+}
+
+fn camera_param(state: &EditorState, camera: &str, name: &str) -> f64 {
+    match camera_value(state, camera, name) {
         Some(ParamValue::Float(x)) => x,
         _ => 0.0,
+    }
+}
+
+fn camera_choice(state: &EditorState, camera: &str, name: &str) -> Option<String> {
+    match camera_value(state, camera, name) {
+        Some(ParamValue::Choice(c)) => Some(c),
+        _ => None,
+    }
+}
+
+fn camera_target(state: &EditorState, camera: &str) -> [f64; 3] {
+    match camera_value(state, camera, "target") {
+        Some(ParamValue::Vec3(v)) => v,
+        _ => [0.0; 3],
     }
 }

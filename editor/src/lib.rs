@@ -3,10 +3,13 @@
 //! - [`state::EditorState`]: the document, undo/redo, selection, validation errors, autosave
 //!   recovery — no egui types, testable on its own.
 //! - [`app::EditorApp`]: the egui user interface (canvas, inspector, viewport, menus).
-//! - [`preview::Preview`]: renders the previewed output through `hatchery_nodes::Session`.
+//! - [`preview::Preview`]: what the viewport and the pin thumbnails show, as egui textures.
+//! - [`render_worker::RenderWorker`]: the thread that runs the graph (`hatchery_nodes::Session`)
+//!   so the UI never waits for a frame.
 
 pub mod app;
 pub mod preview;
+pub mod render_worker;
 pub mod state;
 
 pub use app::EditorApp;

@@ -1,30 +1,96 @@
-//! The viewport's renderer: runs the graph through a [`Session`] (on the calling thread for
-//! now; the executor's cache makes a parameter change re-run only what depends on it) and reads
-//! the previewed output back as an RGBA picture.
+//! The viewport and the pin thumbnails: what to render (asked of the [`RenderWorker`] whenever
+//! the document, the viewport size, the shown port or the pinned ports change) and the egui
+//! textures showing the answers. On the window's device the worker's textures are registered
+//! with egui-wgpu as they are; otherwise their pixels are uploaded as egui textures.
 
+use crate::render_worker::{NodeTime, Picture, Port, RenderWorker, Rendered, Request};
 use crate::state::EditorState;
+use eframe::egui_wgpu;
+use hatchery_gpu::{GpuContext, wgpu};
 use hatchery_graph::GraphDocument;
-use hatchery_nodes::{Session, SessionError, export};
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::Duration;
 
-/// What was last rendered: the document revision, the size and the port.
-type Key = (u64, (u32, u32), (String, String));
+/// Largest thumbnail on a node, in pixels.
+pub const THUMBNAIL_BOUND: (u32, u32) = (160, 120);
+
+/// A picture egui can draw.
+pub enum Shown {
+    /// A texture on the window's device, registered with egui-wgpu (no copy).
+    Native {
+        id: egui::TextureId,
+        size: [u32; 2],
+        /// Kept alive while egui draws it.
+        _texture: wgpu::Texture,
+    },
+    /// Pixels uploaded as an egui texture.
+    Managed(egui::TextureHandle),
+}
+
+impl Shown {
+    pub fn id(&self) -> egui::TextureId {
+        match self {
+            Shown::Native { id, .. } => *id,
+            Shown::Managed(handle) => handle.id(),
+        }
+    }
+    /// Size in pixels.
+    pub fn size(&self) -> [u32; 2] {
+        match self {
+            Shown::Native { size, .. } => *size,
+            Shown::Managed(handle) => {
+                let [w, h] = handle.size();
+                [w as u32, h as u32]
+            }
+        }
+    }
+    pub fn is_native(&self) -> bool {
+        matches!(self, Shown::Native { .. })
+    }
+}
+
+/// What a request was made for; a new request goes out when this changes.
+#[derive(Clone, PartialEq)]
+struct Key {
+    revision: u64,
+    size: (u32, u32),
+    viewport: Option<Port>,
+    pins: Vec<Port>,
+    timing: bool,
+}
 
 #[derive(Default)]
 pub struct Preview {
-    session: Option<Session>,
     /// The port shown; `None` = the input of the graph's first `SaveImage` node.
-    pub chosen: Option<(String, String)>,
-    last: Option<Key>,
-    /// The last picture (kept when a later render fails).
-    pub image: Option<image::RgbaImage>,
-    /// Why the last render failed.
+    pub chosen: Option<Port>,
+    /// Ports whose thumbnails are shown on their nodes.
+    pub pins: BTreeSet<Port>,
+    /// Show per-node times on the nodes (and measure GPU times).
+    pub show_times: bool,
+    /// The window's wgpu state, when the editor runs on eframe's wgpu renderer.
+    render_state: Option<egui_wgpu::RenderState>,
+    /// Render on the window's device so pictures are shown without copies.
+    share_device: bool,
+    worker: Option<RenderWorker>,
+    next_id: u64,
+    sent: Option<Key>,
+    /// The request whose answer has not arrived yet.
+    awaiting: Option<u64>,
+    pub viewport: Option<Shown>,
+    pub thumbnails: BTreeMap<Port, Shown>,
+    /// Why the last render (or the last thumbnail) failed.
     pub error: Option<String>,
     /// The node whose execution failed, with the message (shown on the node).
     pub failed_node: Option<(String, String)>,
+    pub times: BTreeMap<String, NodeTime>,
+    /// Wall time of the last answered request on the render thread, and the adapter.
+    pub last_render: Option<(Duration, String)>,
+    /// How many answers have been shown (tests wait on this).
+    pub answers: u64,
 }
 
 /// The port feeding the first `SaveImage` node (by id order).
-pub fn default_target(doc: &GraphDocument) -> Option<(String, String)> {
+pub fn default_target(doc: &GraphDocument) -> Option<Port> {
     let mut saves: Vec<&str> = doc
         .nodes
         .iter()
@@ -40,67 +106,233 @@ pub fn default_target(doc: &GraphDocument) -> Option<(String, String)> {
     })
 }
 
+/// Whether the worker should share the window's device. Lavapipe runs a device's submissions
+/// one after another, so on a CPU adapter a long ray cast on the shared queue would hold up the
+/// window's own frames: there the worker gets a device of its own unless
+/// `HATCHERY_EDITOR_SHARED_DEVICE=1` says otherwise (`=0` forces a separate device anywhere).
+pub fn share_device_by_default(adapter: &wgpu::AdapterInfo) -> bool {
+    match std::env::var("HATCHERY_EDITOR_SHARED_DEVICE").as_deref() {
+        Ok("1") => true,
+        Ok("0") => false,
+        _ => adapter.device_type != wgpu::DeviceType::Cpu,
+    }
+}
+
 impl Preview {
+    /// Uses the window's wgpu state; `share_device` renders on its device (zero-copy display).
+    pub fn set_render_state(&mut self, render_state: egui_wgpu::RenderState, share_device: bool) {
+        self.render_state = Some(render_state);
+        self.share_device = share_device;
+        self.worker = None;
+    }
+
+    /// Whether the worker renders on the window's device.
+    pub fn shares_device(&self) -> bool {
+        self.worker.as_ref().is_some_and(|w| w.shared_device)
+    }
+
     /// The port that will be rendered.
-    pub fn target(&self, doc: &GraphDocument) -> Option<(String, String)> {
+    pub fn target(&self, doc: &GraphDocument) -> Option<Port> {
         self.chosen
             .clone()
             .filter(|(n, _)| doc.nodes.iter().any(|m| &m.id == n))
             .or_else(|| default_target(doc))
     }
 
-    /// Re-renders if the document, the size or the target changed. Returns whether a new
-    /// picture is available. Never panics on a bad graph: failures land in `error`.
-    pub fn update(&mut self, state: &mut EditorState, width: u32, height: u32) -> bool {
-        let (width, height) = (width.clamp(16, 4096), height.clamp(16, 4096));
-        let Some(target) = self.target(state.doc()) else {
-            self.error = Some("nothing to preview: connect a SaveImage or pick an output".into());
-            self.last = None;
-            return false;
-        };
-        let key = (state.revision(), (width, height), target.clone());
-        if self.last.as_ref() == Some(&key) {
-            return false;
+    /// A request is out and its answer has not been shown yet.
+    pub fn is_busy(&self) -> bool {
+        self.awaiting.is_some()
+    }
+
+    /// Shows any answer that arrived, then asks for a new render if the document, the size,
+    /// the shown port or the pins changed. Never blocks on rendering and never panics on a bad
+    /// graph: failures land in `error` and on the failing node.
+    pub fn update(
+        &mut self,
+        ctx: &egui::Context,
+        state: &mut EditorState,
+        width: u32,
+        height: u32,
+    ) {
+        if let Some(answer) = self.worker.as_ref().and_then(RenderWorker::newest) {
+            self.show(ctx, answer);
         }
-        self.last = Some(key);
-        self.failed_node = None;
+        let size = (width.clamp(16, 4096), height.clamp(16, 4096));
+        let doc = state.doc();
+        // Pins of removed nodes go away with them.
+        self.pins
+            .retain(|(n, _)| doc.nodes.iter().any(|m| &m.id == n));
+        let key = Key {
+            revision: state.revision(),
+            size,
+            viewport: self.target(doc),
+            pins: self.pins.iter().cloned().collect(),
+            timing: self.show_times,
+        };
+        if self.sent.as_ref() == Some(&key) {
+            return;
+        }
+        self.sent = Some(key.clone());
+        if key.viewport.is_none() && key.pins.is_empty() {
+            self.error = Some("nothing to preview: connect a SaveImage or pick an output".into());
+            return;
+        }
         let Some(graph) = state.validate() else {
             self.error = Some("the graph has errors (see the nodes)".into());
-            return false;
+            return;
         };
-        let result = (|| -> Result<image::RgbaImage, SessionError> {
-            let session = match &mut self.session {
-                Some(s) => {
-                    s.graph = graph;
-                    if s.ctx.size() != (width, height) {
-                        s.ctx.set_size(width, height)?;
+        if let Err(e) = self.ensure_worker(ctx) {
+            self.error = Some(e);
+            return;
+        }
+        self.next_id += 1;
+        let request = Request {
+            id: self.next_id,
+            graph,
+            size,
+            viewport: key.viewport,
+            thumbnails: key.pins,
+            thumbnail_bound: THUMBNAIL_BOUND,
+            timing: key.timing,
+        };
+        match self.worker.as_ref().map(|w| w.send(request)) {
+            Some(Ok(())) => self.awaiting = Some(self.next_id),
+            Some(Err(e)) => {
+                // The thread ended (it should not): start a new one next time.
+                self.worker = None;
+                self.sent = None;
+                self.error = Some(e);
+            }
+            None => {}
+        }
+    }
+
+    fn ensure_worker(&mut self, ctx: &egui::Context) -> Result<(), String> {
+        if self.worker.is_some() {
+            return Ok(());
+        }
+        let gpu = match (&self.render_state, self.share_device) {
+            (Some(rs), true) => Some(GpuContext::from_device(
+                rs.adapter.get_info(),
+                rs.device.clone(),
+                rs.queue.clone(),
+            )),
+            _ => None,
+        };
+        let worker = RenderWorker::spawn(gpu, ctx.clone())
+            .map_err(|e| format!("cannot start the render thread: {e}"))?;
+        self.worker = Some(worker);
+        Ok(())
+    }
+
+    fn show(&mut self, ctx: &egui::Context, answer: Rendered) {
+        if self.awaiting == Some(answer.id) {
+            self.awaiting = None;
+        }
+        self.answers += 1;
+        self.failed_node = answer.failed_node;
+        self.times = answer.times;
+        self.last_render = Some((answer.elapsed, answer.adapter));
+        self.error = None;
+        match answer.viewport {
+            Some(Ok(picture)) => {
+                let old = self.viewport.take();
+                match self.install(ctx, old, picture, "viewport") {
+                    Ok(shown) => self.viewport = Some(shown),
+                    Err(e) => self.error = Some(e),
+                }
+            }
+            Some(Err(e)) => self.error = Some(e),
+            None => {}
+        }
+        let mut kept = BTreeMap::new();
+        for (port, result) in answer.thumbnails {
+            let old = self.thumbnails.remove(&port);
+            match result {
+                Ok(picture) => {
+                    let name = format!("thumbnail {}.{}", port.0, port.1);
+                    match self.install(ctx, old, picture, &name) {
+                        Ok(shown) => {
+                            kept.insert(port, shown);
+                        }
+                        Err(e) => {
+                            self.error.get_or_insert(e);
+                        }
                     }
-                    s
                 }
-                None => self.session.insert(Session::with_graph(
-                    hatchery_nodes::registry(),
-                    graph,
-                    width,
-                    height,
-                )?),
-            };
-            let value = session.evaluate(&target.0, &target.1)?;
-            export::to_rgba8(&value, &session.ctx.gpu).map_err(SessionError::Other)
-        })();
-        match result {
-            Ok(picture) => {
-                self.image = Some(picture);
-                self.error = None;
-                true
-            }
-            Err(e) => {
-                if let SessionError::Exec(exec) = &e {
-                    self.failed_node = Some((exec.node.clone(), exec.message.clone()));
+                Err(e) => {
+                    self.release(old);
+                    self.error.get_or_insert(e);
                 }
-                tracing::warn!("preview failed: {e}");
-                self.error = Some(e.to_string());
-                false
             }
+        }
+        // Thumbnails no longer pinned.
+        for (_, old) in std::mem::replace(&mut self.thumbnails, kept) {
+            self.release(Some(old));
+        }
+    }
+
+    /// Shows `picture` in place of `old` (reusing its texture id where it can).
+    fn install(
+        &mut self,
+        ctx: &egui::Context,
+        old: Option<Shown>,
+        picture: Picture,
+        name: &str,
+    ) -> Result<Shown, String> {
+        Ok(match picture {
+            Picture::Texture(texture) => {
+                let Some(rs) = &self.render_state else {
+                    return Err("a texture came back without a window device to show it".into());
+                };
+                let view = texture.create_view(&Default::default());
+                let size = [texture.width(), texture.height()];
+                let mut renderer = rs.renderer.write();
+                let id = match old {
+                    Some(Shown::Native { id, .. }) => {
+                        renderer.update_egui_texture_from_wgpu_texture(
+                            &rs.device,
+                            &view,
+                            wgpu::FilterMode::Linear,
+                            id,
+                        );
+                        id
+                    }
+                    _ => renderer.register_native_texture(
+                        &rs.device,
+                        &view,
+                        wgpu::FilterMode::Linear,
+                    ),
+                };
+                Shown::Native {
+                    id,
+                    size,
+                    _texture: texture,
+                }
+            }
+            Picture::Pixels(pixels) => {
+                let color = egui::ColorImage::from_rgba_premultiplied(
+                    [pixels.width() as usize, pixels.height() as usize],
+                    pixels.as_raw(),
+                );
+                match old {
+                    Some(Shown::Managed(mut handle)) => {
+                        handle.set(color, egui::TextureOptions::LINEAR);
+                        Shown::Managed(handle)
+                    }
+                    other => {
+                        self.release(other);
+                        Shown::Managed(ctx.load_texture(name, color, egui::TextureOptions::LINEAR))
+                    }
+                }
+            }
+        })
+    }
+
+    /// Frees a picture's texture (egui frees managed ones when their handle drops).
+    fn release(&self, shown: Option<Shown>) {
+        if let (Some(Shown::Native { id, .. }), Some(rs)) = (shown, &self.render_state) {
+            rs.renderer.write().free_texture(&id);
         }
     }
 }

@@ -7,7 +7,7 @@ use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use hatchery_editor::{EditorApp, EditorState};
-use hatchery_graph::{EditorPos, GraphDocument, ParamValue};
+use hatchery_graph::{EditorPos, GraphDocument, ParamValue, SchemaLookup};
 use std::path::{Path, PathBuf};
 
 fn repo(path: &str) -> PathBuf {
@@ -24,6 +24,24 @@ fn open_copy(path: &str, dir: &Path) -> (EditorApp, PathBuf) {
     let mut app = EditorApp::new(state);
     app.preview_enabled = false;
     (app, target)
+}
+
+/// Steps the UI until the render thread's answer to the latest request is shown. Starts with
+/// two frames: the canvas is drawn after the viewport, so a change made on the canvas (a pin)
+/// is asked for in the frame after.
+fn wait_for_render(h: &mut Harness<EditorApp>) {
+    let start = std::time::Instant::now();
+    h.step();
+    h.step();
+    while h.state().preview.is_busy() {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(300),
+            "no picture after 300 s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    h.step();
 }
 
 fn harness(app: EditorApp) -> Harness<'static, EditorApp> {
@@ -256,33 +274,70 @@ fn snapshot_of_the_editor_with_a_preset() {
     let dir = tempfile::tempdir().unwrap();
     let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
     app.preview_enabled = true;
+    // The window's device is opened as the editor opens it, and the render thread shares it
+    // (forced: on a CPU adapter the editor would otherwise give the thread its own device), so
+    // the viewport is a wgpu texture registered with egui-wgpu.
+    let mut setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.device_descriptor = std::sync::Arc::new(hatchery_gpu::GpuContext::device_descriptor);
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
-        .wgpu()
-        .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
-    h.run_steps(3);
-    let preview = h
+        .wgpu_setup(eframe::egui_wgpu::WgpuSetup::CreateNew(setup))
+        .build_eframe(move |cc| {
+            let rs = cc
+                .wgpu_render_state
+                .clone()
+                .expect("kittest gives a wgpu render state");
+            app.preview.set_render_state(rs, true);
+            app
+        });
+    wait_for_render(&mut h);
+    assert!(h.state().preview.shares_device());
+    assert!(
+        h.state().preview.error.is_none(),
+        "{:?}",
+        h.state().preview.error
+    );
+    let shown = h
         .state()
         .preview
-        .image
-        .clone()
+        .viewport
+        .as_ref()
         .expect("the viewport rendered");
-    assert!(non_blank(&preview), "the rendered preset is blank");
+    assert!(shown.is_native(), "shown without a copy");
     h.state_mut()
         .state
         .set_param("camera", "azimuth", ParamValue::Float(90.0), false)
         .unwrap();
-    h.run_steps(2);
+    wait_for_render(&mut h);
     assert!(
         h.state().preview.error.is_none(),
         "{:?}",
         h.state().preview.error
     );
     let shot = h.render().expect("kittest wgpu render");
-    assert!(non_blank(&shot), "the editor snapshot is blank");
     let out = std::env::temp_dir().join("hatchery-editor-snapshot.png");
     shot.save(&out).unwrap();
     eprintln!("editor snapshot written to {}", out.display());
+    assert!(non_blank(&shot), "the editor snapshot is blank");
+    // The viewport's part of the screenshot shows the rendered surface, not an empty panel.
+    let r = h.state().viewport_rect;
+    let ppp = shot.width() as f32 / 1280.0;
+    let viewport = image::imageops::crop_imm(
+        &shot,
+        (r.left() * ppp) as u32,
+        (r.top() * ppp) as u32,
+        (r.width() * ppp) as u32,
+        (r.height() * ppp) as u32,
+    )
+    .to_image();
+    assert!(viewport.width() > 100 && viewport.height() > 50);
+    assert!(
+        non_blank(&viewport),
+        "the viewport in the snapshot is blank"
+    );
+    // The canvas (left) and the inspector (right of the canvas) are there too.
+    h.get_by_label("shaded (ShadedSurface)");
+    h.get_by_label("Inspector");
 }
 
 fn non_blank(img: &image::RgbaImage) -> bool {
@@ -401,7 +456,7 @@ fn an_execution_error_is_shown_on_its_node_and_the_editor_keeps_working() {
     );
     app.preview_enabled = true;
     let mut h = harness(app);
-    h.run();
+    wait_for_render(&mut h);
     let (node, message) = h
         .state()
         .preview
@@ -419,13 +474,13 @@ fn an_execution_error_is_shown_on_its_node_and_the_editor_keeps_working() {
             .state
             .set_param("bunny", "path", path, false)
             .unwrap();
-        h.run();
+        wait_for_render(&mut h);
         assert!(
             h.state().preview.failed_node.is_none(),
             "{:?}",
             h.state().preview.error
         );
-        assert!(h.state().preview.image.is_some());
+        assert!(h.state().preview.viewport.is_some());
     }
 }
 
@@ -487,10 +542,19 @@ fn the_node_menu_duplicates_previews_and_deletes() {
 
 /// Drags with the primary button from `from` to `to` (screen points) in small steps.
 fn drag(h: &mut Harness<EditorApp>, from: egui::Pos2, to: egui::Pos2) {
+    drag_with(h, from, to, egui::PointerButton::Primary);
+}
+
+fn drag_with(
+    h: &mut Harness<EditorApp>,
+    from: egui::Pos2,
+    to: egui::Pos2,
+    button: egui::PointerButton,
+) {
     h.event(egui::Event::PointerMoved(from));
     h.event(egui::Event::PointerButton {
         pos: from,
-        button: egui::PointerButton::Primary,
+        button,
         pressed: true,
         modifiers: Modifiers::NONE,
     });
@@ -503,7 +567,7 @@ fn drag(h: &mut Harness<EditorApp>, from: egui::Pos2, to: egui::Pos2) {
     }
     h.event(egui::Event::PointerButton {
         pos: to,
-        button: egui::PointerButton::Primary,
+        button,
         pressed: false,
         modifiers: Modifiers::NONE,
     });
@@ -542,7 +606,20 @@ fn dragging_a_wire_between_incompatible_pins_is_refused_with_a_message() {
         "status: {}",
         h.state().state.status
     );
-    h.get_by_label_contains("type mismatch");
+    // In the status line and as a tooltip where the wire was dropped.
+    assert_eq!(h.query_all_by_label_contains("type mismatch").count(), 2);
+    let refusal = h.state().refusal.clone().expect("a refusal tooltip");
+    assert!(
+        refusal.reason.contains("type mismatch"),
+        "{}",
+        refusal.reason
+    );
+    assert!(
+        refusal.at.distance(to) < 20.0,
+        "at {:?}, dropped at {to:?}",
+        refusal.at
+    );
+    h.get_by_label_contains("⛔");
 }
 
 #[test]
@@ -583,25 +660,22 @@ fn dragging_a_wire_between_compatible_pins_connects_them() {
     assert!(!h.state().state.doc().edges.contains(&edge));
 }
 
+/// A parameter of the "camera" node as written in the document.
+fn camera_raw(h: &Harness<EditorApp>, name: &str) -> Option<ron::Value> {
+    let doc = h.state().state.doc();
+    let camera = doc.nodes.iter().find(|n| n.id == "camera").unwrap();
+    camera.params.get(name).cloned()
+}
+
 #[test]
 fn dragging_in_the_viewport_orbits_the_camera_node_as_one_undo_step() {
     let dir = tempfile::tempdir().unwrap();
     let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
     let mut h = harness(app);
     h.run();
-    let azimuth = |h: &Harness<EditorApp>| {
-        let node = h
-            .state()
-            .state
-            .doc()
-            .nodes
-            .iter()
-            .find(|n| n.id == "camera")
-            .unwrap();
-        match node.params.get("azimuth") {
-            Some(ron::Value::Number(n)) => n.into_f64(),
-            other => panic!("azimuth is {other:?}"),
-        }
+    let azimuth = |h: &Harness<EditorApp>| match camera_raw(h, "azimuth") {
+        Some(ron::Value::Number(n)) => n.into_f64(),
+        other => panic!("azimuth is {other:?}"),
     };
     assert_eq!(azimuth(&h), 30.0);
     let centre = h.state().viewport_rect.center();
@@ -619,6 +693,187 @@ fn dragging_in_the_viewport_orbits_the_camera_node_as_one_undo_step() {
     h.state_mut().state.undo();
     h.run();
     assert_eq!(azimuth(&h), 30.0);
+}
+
+#[test]
+fn right_dragging_in_the_viewport_pans_the_camera_target() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let target = |h: &Harness<EditorApp>| camera_raw(h, "target");
+    assert_eq!(
+        target(&h),
+        None,
+        "the preset uses the default target (origin)"
+    );
+    let r = h.state().viewport_rect;
+    let centre = r.center();
+    drag_with(
+        &mut h,
+        centre,
+        centre + egui::vec2(40.0, 0.0),
+        egui::PointerButton::Secondary,
+    );
+    let after: [f64; 3] = match target(&h) {
+        Some(raw) => match h
+            .state()
+            .state
+            .registry
+            .schema("Camera")
+            .unwrap()
+            .param("target")
+            .unwrap()
+            .convert(&raw)
+            .unwrap()
+        {
+            ParamValue::Vec3(v) => v,
+            other => panic!("target is {other:?}"),
+        },
+        None => panic!("panning set no target"),
+    };
+    // Camera at azimuth 30°, elevation 20°, distance 3.5, fov 40°: the scene follows the pointer,
+    // so the target moves left along the camera's right axis by 40 points' worth of world units.
+    let (az, fov, distance) = (30f64.to_radians(), 40f64.to_radians(), 3.5);
+    let world = 40.0 * 2.0 * distance * (fov / 2.0).tan() / r.height() as f64;
+    let right = [az.cos(), 0.0, -az.sin()];
+    for i in 0..3 {
+        assert!(
+            (after[i] + right[i] * world).abs() < 1e-4,
+            "target {after:?}, expected {:?}",
+            right.map(|x| -x * world)
+        );
+    }
+    // Azimuth and elevation are untouched, and the pan is one undo step.
+    let camera = h
+        .state()
+        .state
+        .doc()
+        .nodes
+        .iter()
+        .find(|n| n.id == "camera")
+        .unwrap();
+    let number = |name: &str| match camera.params.get(name) {
+        Some(ron::Value::Number(n)) => n.into_f64(),
+        other => panic!("{name} is {other:?}"),
+    };
+    assert_eq!((number("azimuth"), number("elevation")), (30.0, 20.0));
+    h.state_mut().state.undo();
+    h.run();
+    assert_eq!(target(&h), None);
+}
+
+#[test]
+fn the_viewport_renders_off_the_ui_thread_and_output_pins_show_thumbnails_and_times() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    app.preview_enabled = true;
+    // Room for the thumbnail: a pinned node grows to the right, over the SaveImage node.
+    app.state.move_node(
+        "save",
+        EditorPos {
+            x: 1100.0,
+            y: 120.0,
+        },
+    );
+    let mut h = harness(app);
+    // The first frame asks the render thread and returns without a picture.
+    h.step();
+    assert!(h.state().preview.is_busy(), "a render was requested");
+    assert!(h.state().preview.viewport.is_none());
+    h.get_by_label("rendering…");
+    wait_for_render(&mut h);
+    assert!(
+        h.state().preview.error.is_none(),
+        "{:?}",
+        h.state().preview.error
+    );
+    let viewport = h
+        .state()
+        .preview
+        .viewport
+        .as_ref()
+        .expect("a picture")
+        .size();
+    assert!(
+        !h.state().preview.shares_device(),
+        "no window device: pixels come back"
+    );
+
+    // Clicking an output's name pins its thumbnail on the node.
+    // Two labels read "image": shaded's output (left) and save's input (right).
+    // Canvas rects are in graph coordinates: click where the canvas draws them.
+    fn click_leftmost(h: &mut Harness<EditorApp>, label: &str) {
+        // Nodes take their new size a frame after their content changes: let them settle.
+        h.run_steps(3);
+        let mut all: Vec<egui::Rect> = h.get_all_by_label(label).map(|n| n.rect()).collect();
+        all.sort_by(|a, b| a.left().total_cmp(&b.left()));
+        let at = h.state().canvas_transform * all[0].center();
+        h.event(egui::Event::PointerMoved(at));
+        for pressed in [true, false] {
+            h.event(egui::Event::PointerButton {
+                pos: at,
+                button: egui::PointerButton::Primary,
+                pressed,
+                modifiers: Modifiers::NONE,
+            });
+            h.step();
+        }
+    }
+    click_leftmost(&mut h, "image");
+    let port = ("shaded".to_string(), "image".to_string());
+    assert!(h.state().preview.pins.contains(&port));
+    wait_for_render(&mut h);
+    let thumb = h
+        .state()
+        .preview
+        .thumbnails
+        .get(&port)
+        .expect("a thumbnail")
+        .size();
+    assert!(
+        thumb[0] <= 160 && thumb[1] <= 120 && thumb[0] >= 150,
+        "{thumb:?}"
+    );
+    let aspect = |s: [u32; 2]| s[0] as f64 / s[1] as f64;
+    assert!(
+        (aspect(thumb) - aspect(viewport)).abs() < 0.05,
+        "{thumb:?} vs {viewport:?}"
+    );
+    h.get_by_label("shaded.image");
+
+    // Node times on request: everything cached right after, then a parameter change re-runs
+    // only the shading node.
+    h.get_by_label("Node times").click();
+    wait_for_render(&mut h);
+    let times = h.state().preview.times.clone();
+    assert!(times.values().all(|t| t.cached), "{times:?}");
+    h.state_mut()
+        .state
+        .set_param(
+            "shaded",
+            "color",
+            ParamValue::Color([0.2, 0.4, 0.9, 1.0]),
+            false,
+        )
+        .unwrap();
+    wait_for_render(&mut h);
+    let times = h.state().preview.times.clone();
+    assert!(
+        !times["shaded"].cached && times["shaded"].cpu > std::time::Duration::ZERO,
+        "{times:?}"
+    );
+    assert!(
+        times["surface"].cached && times["shells"].cached,
+        "{times:?}"
+    );
+    assert!(h.query_all_by_label_contains("⏱").count() >= 4);
+
+    // Clicking again unpins it.
+    click_leftmost(&mut h, "image 👁");
+    assert!(!h.state().preview.pins.contains(&port));
+    wait_for_render(&mut h);
+    assert!(h.state().preview.thumbnails.is_empty());
 }
 
 /// Benchmark, not a check (run with `--ignored --nocapture`): UI frame time with the

@@ -76,9 +76,10 @@ impl GpuContext {
         })
     }
 
-    /// Opens a device on a chosen adapter (the editor shares its adapter this way).
-    pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
-        let adapter_info = adapter.get_info();
+    /// What hatchery asks of a device on `adapter`: timestamps and filterable floats where the
+    /// adapter has them, and the adapter's own texture and buffer size limits (volumes are big).
+    /// The editor gives this to eframe so that the window's device can render graphs too.
+    pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
         // Timestamps are optional: used for per-node GPU times where the adapter has them.
         let wanted = wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
@@ -93,18 +94,37 @@ impl GpuContext {
             ..wgpu::Limits::downlevel_defaults()
         }
         .using_resolution(adapter_limits.clone());
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        wgpu::DeviceDescriptor {
             label: Some("hatchery"),
             required_features,
             required_limits,
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,
-        }))
+        }
+    }
+
+    /// Opens a device on a chosen adapter.
+    pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
+        let adapter_info = adapter.get_info();
+        let (device, queue) = pollster::block_on(
+            adapter.request_device(&Self::device_descriptor(adapter)),
+        )
         .map_err(|e| GpuError::Device {
             adapter: adapter_info.name.clone(),
             message: e.to_string(),
         })?;
+        Ok(Self::from_device(adapter_info, device, queue))
+    }
+
+    /// Renders on a device opened elsewhere (the editor's window device, so that its previews
+    /// are shown without copies). GPU errors that escape an error scope are collected and
+    /// reported with the next pass instead of panicking.
+    pub fn from_device(
+        adapter_info: wgpu::AdapterInfo,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> Self {
         let uncaptured = Arc::new(Mutex::new(Vec::new()));
         let sink = uncaptured.clone();
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
@@ -113,12 +133,12 @@ impl GpuContext {
                 errors.push(error.to_string());
             }
         }));
-        Ok(Self {
+        Self {
             device,
             queue,
             adapter_info,
             uncaptured,
-        })
+        }
     }
 
     /// One line naming the adapter, driver and backend (for logs and benchmark reports).
@@ -268,7 +288,9 @@ impl GpuContext {
             sample_count: 1,
             dimension: wgpu::TextureDimension::D3,
             format: wgpu::TextureFormat::R16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         };
         let bytes: &[u8] = bytemuck::cast_slice(&halves);
@@ -302,7 +324,9 @@ impl GpuContext {
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         };
         self.device.create_texture_with_data(

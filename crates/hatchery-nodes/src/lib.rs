@@ -5,6 +5,7 @@ pub mod context;
 pub mod depth_peel;
 pub mod depth_test_mask;
 pub mod diffuse_intensity;
+pub mod display;
 pub mod export;
 pub mod fill;
 pub mod gbuffer;

@@ -71,15 +71,30 @@ pub fn run(
             ));
         }
     }
-    let key = format!("screen:{program}:{format:?}");
-    let pipeline = ctx
-        .cached(&key, |gpu| pipeline(gpu, program, format))
-        .map_err(|e| NodeError::new(e.to_string()))?;
-    let gpu = &ctx.gpu;
-    let views: Vec<wgpu::TextureView> = textures
+    let bound: Vec<&wgpu::Texture> = textures
         .iter()
         .map(|(_, t)| *t)
         .chain(patterns.iter().copied())
+        .collect();
+    render(ctx, program, format, (width, height), &bound, uniform)
+        .map_err(|e| NodeError::new(e.to_string()))
+}
+
+/// Runs `program` into a new `size` texture of `format`, with `textures` bound at bindings
+/// 0, 1, … and the uniform (if any) after them. No size checks: the shader addresses its inputs.
+pub fn render(
+    ctx: &mut Ctx,
+    program: &'static str,
+    format: wgpu::TextureFormat,
+    (width, height): (u32, u32),
+    textures: &[&wgpu::Texture],
+    uniform: Option<&[u8]>,
+) -> Result<wgpu::Texture, GpuError> {
+    let key = format!("screen:{program}:{format:?}");
+    let pipeline = ctx.cached(&key, |gpu| pipeline(gpu, program, format))?;
+    let gpu = &ctx.gpu;
+    let views: Vec<wgpu::TextureView> = textures
+        .iter()
         .map(|t| t.create_view(&Default::default()))
         .collect();
     let uniform_buffer =

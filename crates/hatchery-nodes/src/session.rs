@@ -39,7 +39,18 @@ impl Session {
         width: u32,
         height: u32,
     ) -> Result<Session, SessionError> {
-        let ctx = RenderContext::new(GpuContext::new()?, width, height)?;
+        Session::with_gpu(registry, graph, GpuContext::new()?, width, height)
+    }
+
+    /// A session rendering on a device opened elsewhere (the editor's window device).
+    pub fn with_gpu(
+        registry: Registry,
+        graph: Graph,
+        gpu: GpuContext,
+        width: u32,
+        height: u32,
+    ) -> Result<Session, SessionError> {
+        let ctx = RenderContext::new(gpu, width, height)?;
         Ok(Session {
             registry,
             graph,

@@ -28,6 +28,7 @@ pub const DEPTH_TEST_MASK: &str = shader_file!("depth_test_mask.wgsl");
 pub const MASK_COMBINE: &str = shader_file!("mask_combine.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
 pub const OVER: &str = shader_file!("over.wgsl");
+pub const DISPLAY: &str = shader_file!("display.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
@@ -63,6 +64,7 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         ("mask_combine", screen("mask_combine.wgsl", MASK_COMBINE)),
         ("raycast", screen("raycast.wgsl", RAYCAST)),
         ("over", screen("over.wgsl", OVER)),
+        ("display", screen("display.wgsl", DISPLAY)),
     ]
 }
 

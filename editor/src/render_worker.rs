@@ -1,0 +1,246 @@
+//! Rendering off the UI thread. A worker thread owns the executor [`Session`]; the UI sends it
+//! the validated graph with the ports to show and gets display pictures back, so the UI keeps
+//! drawing while a frame renders. Only the newest request is rendered: a slider drag does not
+//! queue up frames. The executor's cache makes a parameter change re-run only what depends on it.
+//!
+//! Pictures are display textures (`hatchery_nodes::display`). When the worker renders on the
+//! window's own device they are handed to egui-wgpu as they are (no copy); on a device of its own
+//! they come back as pixels.
+
+use hatchery_gpu::{GpuContext, wgpu};
+use hatchery_graph::Graph;
+use hatchery_nodes::{Session, SessionError, display, registry};
+use std::collections::{BTreeMap, BTreeSet};
+use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
+use std::time::{Duration, Instant};
+
+/// An output port: (node id, port name).
+pub type Port = (String, String);
+
+/// What to render.
+pub struct Request {
+    /// Increases with every request; the answer carries it back.
+    pub id: u64,
+    pub graph: Graph,
+    /// Frame size in pixels (the viewport's size).
+    pub size: (u32, u32),
+    /// The port shown in the viewport.
+    pub viewport: Option<Port>,
+    /// Ports pinned as thumbnails on their nodes, drawn to fit in `thumbnail_bound` pixels.
+    pub thumbnails: Vec<Port>,
+    pub thumbnail_bound: (u32, u32),
+    /// Measure per-node GPU times (timestamp queries) as well as CPU times.
+    pub timing: bool,
+}
+
+/// A display picture: a texture on the window's device, or pixels from a separate device.
+pub enum Picture {
+    Texture(wgpu::Texture),
+    Pixels(image::RgbaImage),
+}
+
+/// How long a node took in the last request, or that its cached output was reused.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodeTime {
+    pub cpu: Duration,
+    pub gpu: Option<Duration>,
+    pub cached: bool,
+}
+
+/// The answer to a [`Request`].
+pub struct Rendered {
+    pub id: u64,
+    pub viewport: Option<Result<Picture, String>>,
+    pub thumbnails: Vec<(Port, Result<Picture, String>)>,
+    /// The node whose execution failed, with the message (shown on the node).
+    pub failed_node: Option<(String, String)>,
+    pub times: BTreeMap<String, NodeTime>,
+    /// Wall time of the whole request on the worker.
+    pub elapsed: Duration,
+    /// The adapter rendered on (for the times' caption).
+    pub adapter: String,
+}
+
+/// The worker thread's handle. Dropping it ends the thread after its current frame.
+pub struct RenderWorker {
+    requests: Sender<Request>,
+    answers: Receiver<Rendered>,
+    /// Whether pictures come back as textures on the window's device.
+    pub shared_device: bool,
+}
+
+impl RenderWorker {
+    /// Starts the worker. With `gpu`, it renders on that device (the window's, so pictures are
+    /// shown without copies); without, it opens a device of its own. `repaint` is asked to
+    /// redraw the UI when a picture is ready.
+    pub fn spawn(gpu: Option<GpuContext>, repaint: egui::Context) -> std::io::Result<Self> {
+        let (requests, inbox) = channel::<Request>();
+        let (outbox, answers) = channel::<Rendered>();
+        let shared_device = gpu.is_some();
+        std::thread::Builder::new()
+            .name("hatchery-render".into())
+            .spawn(move || {
+                let mut worker = Worker {
+                    gpu,
+                    session: None,
+                    copy_back: !shared_device,
+                };
+                while let Ok(mut request) = inbox.recv() {
+                    // Skip to the newest request: older ones are out of date.
+                    loop {
+                        match inbox.try_recv() {
+                            Ok(newer) => request = newer,
+                            Err(TryRecvError::Empty) => break,
+                            Err(TryRecvError::Disconnected) => return,
+                        }
+                    }
+                    let answer = worker.render(request);
+                    if outbox.send(answer).is_err() {
+                        return;
+                    }
+                    repaint.request_repaint();
+                }
+            })?;
+        Ok(Self {
+            requests,
+            answers,
+            shared_device,
+        })
+    }
+
+    /// Queues a request (the worker drops it if a newer one arrives first).
+    pub fn send(&self, request: Request) -> Result<(), String> {
+        self.requests
+            .send(request)
+            .map_err(|_| "the render thread has stopped".to_owned())
+    }
+
+    /// The newest answer that arrived since the last call, if any.
+    pub fn newest(&self) -> Option<Rendered> {
+        let mut newest = None;
+        while let Ok(answer) = self.answers.try_recv() {
+            newest = Some(answer);
+        }
+        newest
+    }
+}
+
+struct Worker {
+    /// The device to open the session on (taken when the session is made).
+    gpu: Option<GpuContext>,
+    session: Option<Session>,
+    /// Read pictures back as pixels (the worker's device is not the window's).
+    copy_back: bool,
+}
+
+impl Worker {
+    fn session(&mut self, graph: Graph, size: (u32, u32)) -> Result<&mut Session, SessionError> {
+        match &mut self.session {
+            Some(session) => {
+                session.graph = graph;
+                if session.ctx.size() != size {
+                    session.ctx.set_size(size.0, size.1)?;
+                }
+            }
+            None => {
+                let gpu = match self.gpu.take() {
+                    Some(gpu) => gpu,
+                    None => GpuContext::new()?,
+                };
+                self.session = Some(Session::with_gpu(registry(), graph, gpu, size.0, size.1)?);
+            }
+        }
+        Ok(self.session.as_mut().expect("made above"))
+    }
+
+    fn render(&mut self, request: Request) -> Rendered {
+        let started = Instant::now();
+        let mut answer = Rendered {
+            id: request.id,
+            viewport: None,
+            thumbnails: Vec::new(),
+            failed_node: None,
+            times: BTreeMap::new(),
+            elapsed: Duration::ZERO,
+            adapter: String::new(),
+        };
+        let copy_back = self.copy_back;
+        let session = match self.session(request.graph, request.size) {
+            Ok(session) => session,
+            Err(e) => {
+                answer.viewport = Some(Err(e.to_string()));
+                answer.elapsed = started.elapsed();
+                return answer;
+            }
+        };
+        answer.adapter = session.ctx.gpu.describe();
+        if request.timing {
+            session.ctx.enable_gpu_timing();
+        }
+        // Nodes that ran in this request, and nodes whose cached outputs it reused.
+        let mut executed = BTreeSet::new();
+        let mut reused = BTreeSet::new();
+        let mut picture = |port: &Port, bound: (u32, u32), answer: &mut Rendered| {
+            let (node, name) = port;
+            let result = session
+                .run(&[node.as_str()])
+                .map(|report| {
+                    executed.extend(report.executed);
+                    reused.extend(report.cached);
+                })
+                .and_then(|()| session.output(node, name).cloned());
+            let value = match result {
+                Ok(value) => value,
+                Err(e) => {
+                    if let SessionError::Exec(exec) = &e {
+                        answer.failed_node = Some((exec.node.clone(), exec.message.clone()));
+                    }
+                    return Err(e.to_string());
+                }
+            };
+            let texture = display::display_texture(&mut session.ctx, &value, bound)
+                .map_err(|e| format!("{node}.{name}: {e}"))?;
+            if copy_back {
+                let data = session
+                    .ctx
+                    .gpu
+                    .read_texture(&texture)
+                    .map_err(|e| e.to_string())?;
+                Ok(Picture::Pixels(image::RgbaImage::from_fn(
+                    data.width,
+                    data.height,
+                    |x, y| {
+                        let t = data.texel(x, y);
+                        image::Rgba([0, 1, 2, 3].map(|c| (t[c] * 255.0).round() as u8))
+                    },
+                )))
+            } else {
+                Ok(Picture::Texture(texture))
+            }
+        };
+        if let Some(port) = &request.viewport {
+            answer.viewport = Some(picture(port, request.size, &mut answer));
+        }
+        for port in &request.thumbnails {
+            let shown = picture(port, request.thumbnail_bound, &mut answer);
+            answer.thumbnails.push((port.clone(), shown));
+        }
+        // Times of every node the requested ports depend on (those that ran or were reused).
+        let session = self.session.as_ref().expect("made above");
+        for (node, stats) in session.executor.stats() {
+            if !executed.contains(node) && !reused.contains(node) {
+                continue;
+            }
+            answer.times.insert(
+                node.clone(),
+                NodeTime {
+                    cpu: stats.cpu_time,
+                    gpu: stats.gpu_time,
+                    cached: !executed.contains(node),
+                },
+            );
+        }
+        answer.elapsed = started.elapsed();
+        answer
+    }
+}
