@@ -53,6 +53,7 @@ pub struct EditorApp {
     clipboard: String,
     /// Why the last wire drop was refused, where and when (shown as a tooltip for a while).
     pub refusal: Option<Refusal>,
+    style_thumbnails: crate::style_picker::Thumbnails,
     title: String,
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
@@ -114,6 +115,7 @@ impl EditorApp {
             search: String::new(),
             clipboard: String::new(),
             refusal: None,
+            style_thumbnails: Default::default(),
             title: String::new(),
             offer_recovery,
             pending: None,
@@ -489,6 +491,12 @@ impl EditorApp {
             return;
         };
         ui.label(schema.doc).on_hover_text(schema.category);
+        // Editors for the parameters that are more than a number.
+        match node.kind.as_str() {
+            "TransferFunction1D" => self.transfer_function_section(ui, &id, &node),
+            "StyleSet" => self.styles_section(ui, &id, &node),
+            _ => {}
+        }
         egui::Grid::new("params").num_columns(2).show(ui, |ui| {
             for spec in &schema.params {
                 let current = node
@@ -505,6 +513,66 @@ impl EditorApp {
                 ui.end_row();
             }
         });
+    }
+
+    /// The curve editor of a `TransferFunction1D` node. Editing a preset turns it into `custom`
+    /// points (the preset's points over the range it spans now), so the look does not jump.
+    fn transfer_function_section(&mut self, ui: &mut Ui, id: &str, node: &hatchery_graph::NodeDoc) {
+        let value = |name: &str| node_param(&self.state, node, name);
+        let text = |v: Option<ParamValue>| match v {
+            Some(ParamValue::Text(t) | ParamValue::Choice(t)) => t,
+            _ => String::new(),
+        };
+        let float = |v: Option<ParamValue>| match v {
+            Some(ParamValue::Float(x)) => x as f32,
+            _ => 0.0,
+        };
+        let preset = text(value("preset"));
+        let range = self
+            .preview
+            .tf_domains
+            .get(id)
+            .copied()
+            .unwrap_or([float(value("range_min")), float(value("range_max"))]);
+        ui.label("Transfer function").on_hover_text(
+            "drag a point to move it, double-click to add one, right-click a point to remove it",
+        );
+        let mut points = match crate::tf_editor::node_points(&preset, &text(value("points")), range)
+        {
+            Ok(points) => points,
+            Err(e) => {
+                ui.colored_label(Color32::LIGHT_RED, format!("cannot draw the curve: {e}"));
+                return;
+            }
+        };
+        let context = self.preview.tf_domains.get(id).copied();
+        if crate::tf_editor::tf_editor(ui, Id::new(("tf editor", id)), &mut points, context) {
+            let values = [
+                ("preset", ParamValue::Choice("custom".into())),
+                (
+                    "points",
+                    ParamValue::Text(hatchery_data::transfer_function::format_points(&points)),
+                ),
+            ];
+            let _ = self.state.set_params(id, &values, "transfer function edit");
+        }
+        ui.separator();
+    }
+
+    /// The lit-sphere style picker of a `StyleSet` node.
+    fn styles_section(&mut self, ui: &mut Ui, id: &str, node: &hatchery_graph::NodeDoc) {
+        let Some(ParamValue::Text(styles)) = node_param(&self.state, node, "styles") else {
+            return;
+        };
+        ui.label("Styles");
+        if let Some(new) =
+            crate::style_picker::style_picker(ui, &mut self.style_thumbnails, &styles)
+        {
+            let _ = self
+                .state
+                .set_params(id, &[("styles", ParamValue::Text(new))], "styles edit");
+        }
+        ui.separator();
     }
 
     /// The reason of a refused wire, next to where it was dropped, for a few seconds.
@@ -1181,19 +1249,23 @@ fn viewport_camera(doc: &hatchery_graph::GraphDocument) -> Option<String> {
     cameras.first().map(|id| id.to_string())
 }
 
-/// A Camera parameter as the graph will use it: the file's value, else the schema's default.
-fn camera_value(state: &EditorState, camera: &str, name: &str) -> Option<ParamValue> {
-    let spec = state.registry.schema("Camera")?.param(name)?;
-    let raw = state
-        .doc()
-        .nodes
-        .iter()
-        .find(|n| n.id == camera)
-        .and_then(|n| n.params.get(name));
-    match raw {
+/// A node's parameter as the graph will use it: the file's value, else the schema's default.
+fn node_param(
+    state: &EditorState,
+    node: &hatchery_graph::NodeDoc,
+    name: &str,
+) -> Option<ParamValue> {
+    let spec = state.registry.schema(&node.kind)?.param(name)?;
+    match node.params.get(name) {
         Some(raw) => spec.convert(raw).ok(),
         None => Some(spec.default.clone()),
     }
+}
+
+/// A Camera parameter as the graph will use it.
+fn camera_value(state: &EditorState, camera: &str, name: &str) -> Option<ParamValue> {
+    let node = state.doc().nodes.iter().find(|n| n.id == camera)?;
+    node_param(state, node, name)
 }
 
 fn camera_param(state: &EditorState, camera: &str, name: &str) -> f64 {

@@ -11,6 +11,8 @@ pub mod app;
 pub mod preview;
 pub mod render_worker;
 pub mod state;
+pub mod style_picker;
+pub mod tf_editor;
 
 pub use app::EditorApp;
 pub use state::EditorState;

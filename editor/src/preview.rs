@@ -83,6 +83,8 @@ pub struct Preview {
     /// The node whose execution failed, with the message (shown on the node).
     pub failed_node: Option<(String, String)>,
     pub times: BTreeMap<String, NodeTime>,
+    /// Value ranges of the evaluated `TransferFunction1D` nodes.
+    pub tf_domains: BTreeMap<String, [f32; 2]>,
     /// Wall time of the last answered request on the render thread, and the adapter.
     pub last_render: Option<(Duration, String)>,
     /// How many answers have been shown (tests wait on this).
@@ -232,6 +234,7 @@ impl Preview {
         self.answers += 1;
         self.failed_node = answer.failed_node;
         self.times = answer.times;
+        self.tf_domains.extend(answer.tf_domains);
         self.last_render = Some((answer.elapsed, answer.adapter));
         self.error = None;
         match answer.viewport {

@@ -9,7 +9,8 @@
 
 use hatchery_gpu::{GpuContext, wgpu};
 use hatchery_graph::Graph;
-use hatchery_nodes::{Session, SessionError, display, registry};
+use hatchery_nodes::value::TransferFunction;
+use hatchery_nodes::{Session, SessionError, Value, display, registry};
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::time::{Duration, Instant};
@@ -55,6 +56,9 @@ pub struct Rendered {
     /// The node whose execution failed, with the message (shown on the node).
     pub failed_node: Option<(String, String)>,
     pub times: BTreeMap<String, NodeTime>,
+    /// The value range each evaluated `TransferFunction1D` node spans (its presets follow the
+    /// connected volume's range, which only the executed graph knows).
+    pub tf_domains: BTreeMap<String, [f32; 2]>,
     /// Wall time of the whole request on the worker.
     pub elapsed: Duration,
     /// The adapter rendered on (for the times' caption).
@@ -161,6 +165,7 @@ impl Worker {
             thumbnails: Vec::new(),
             failed_node: None,
             times: BTreeMap::new(),
+            tf_domains: BTreeMap::new(),
             elapsed: Duration::ZERO,
             adapter: String::new(),
         };
@@ -239,6 +244,13 @@ impl Worker {
                     cached: !executed.contains(node),
                 },
             );
+        }
+        for node in answer.times.keys() {
+            if let Ok(Value::TransferFunction(tf)) = session.output(node, "tf")
+                && let TransferFunction::Color(f) = tf.as_ref()
+            {
+                answer.tf_domains.insert(node.clone(), f.domain);
+            }
         }
         answer.elapsed = started.elapsed();
         answer

@@ -938,3 +938,128 @@ fn ui_frame_time_with_the_brain_preset() {
         median(&mut changed)
     );
 }
+
+/// The `points` text of node `tf`, parsed.
+fn tf_points(h: &Harness<EditorApp>) -> Vec<hatchery_data::transfer_function::ControlPoint> {
+    let doc = h.state().state.doc();
+    let node = doc.nodes.iter().find(|n| n.id == "tf").unwrap();
+    match node.params.get("points") {
+        Some(ron::Value::String(text)) => {
+            hatchery_data::transfer_function::TransferFunction1D::parse_points(text).unwrap()
+        }
+        other => panic!("points is {other:?}"),
+    }
+}
+
+fn click_with(h: &mut Harness<EditorApp>, at: egui::Pos2, button: egui::PointerButton) {
+    h.event(egui::Event::PointerMoved(at));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+}
+
+#[test]
+fn the_transfer_function_editor_moves_adds_and_removes_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/tf1d_phong_brain.ron", dir.path());
+    app.state.selection = ["tf".to_string()].into();
+    // Frames 1/60 s apart (kittest's default 1/4 s is too slow for a double-click).
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .with_step_dt(1.0 / 60.0)
+        .with_max_steps(200)
+        .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
+    h.run();
+    let before = tf_points(&h);
+    assert_eq!(before.len(), 5);
+    let curve = h.get_by_label("transfer function curve").rect();
+    let span = before[4].value - before[0].value;
+
+    // Drag point 3 up by 28 points (a fifth of the curve's height) and right by 10.
+    let handle = h.get_by_label("transfer function point 3").rect().center();
+    drag(&mut h, handle, handle + egui::vec2(10.0, -28.0));
+    let after = tf_points(&h);
+    assert_eq!(after.len(), 5);
+    let lifted = after[2].rgba[3] - before[2].rgba[3];
+    assert!(
+        (lifted - 28.0 / curve.height()).abs() < 0.01,
+        "opacity +{lifted}"
+    );
+    let moved = after[2].value - before[2].value;
+    let expected = 10.0 / curve.width() * span;
+    assert!(
+        (moved - expected).abs() < 0.02 * span,
+        "value +{moved}, expected +{expected}"
+    );
+    assert_eq!(after[2].rgba[..3], before[2].rgba[..3], "colour kept");
+    // One drag is one undo step.
+    h.state_mut().state.undo();
+    h.run();
+    assert_eq!(tf_points(&h), before);
+
+    // A double-click on an empty part of the curve adds a point there, between its neighbours.
+    let x = curve.left() + curve.width() * 0.05;
+    let at = egui::pos2(x, curve.bottom() - curve.height() * 0.5);
+    click_with(&mut h, at, egui::PointerButton::Primary);
+    click_with(&mut h, at, egui::PointerButton::Primary);
+    h.run();
+    let added = tf_points(&h);
+    assert_eq!(added.len(), 6, "{added:?}");
+    assert!(added.windows(2).all(|w| w[0].value < w[1].value));
+    let new = added.iter().find(|p| !before.contains(p)).unwrap();
+    assert!((new.rgba[3] - 0.5).abs() < 0.02, "{new:?}");
+
+    // A right-click on a point removes it.
+    let handle = h.get_by_label("transfer function point 2").rect().center();
+    click_with(&mut h, handle, egui::PointerButton::Secondary);
+    h.run();
+    assert_eq!(tf_points(&h).len(), 5);
+}
+
+#[test]
+fn the_style_picker_swaps_adds_and_removes_lit_sphere_styles() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/volume_styles.ron", dir.path());
+    app.state.selection = ["styles".to_string()].into();
+    let mut h = harness(app);
+    h.run();
+    let styles = |h: &Harness<EditorApp>| {
+        let doc = h.state().state.doc();
+        let node = doc.nodes.iter().find(|n| n.id == "styles").unwrap();
+        match node.params.get("styles") {
+            Some(ron::Value::String(text)) => text.clone(),
+            other => panic!("styles is {other:?}"),
+        }
+    };
+    let original = styles(&h);
+    assert_eq!(original, "gooch:0.6,0.7,0.9, toon3:0.9,0.45,0.35");
+    // Each style is a thumbnail button; clicking it opens the gallery of every style.
+    h.get_by_label("gooch").click();
+    h.run();
+    h.get_by_label("Pick a style");
+    h.get_by_label("metal").click();
+    h.run();
+    assert_eq!(styles(&h), "metal:0.6,0.7,0.9, toon3:0.9,0.45,0.35");
+    h.get_by_label("+ Add style").click();
+    h.run();
+    assert_eq!(
+        styles(&h),
+        "metal:0.6,0.7,0.9, toon3:0.9,0.45,0.35, shaded:0.85,0.85,0.85"
+    );
+    let removes: Vec<_> = h.get_all_by_label("✕").collect();
+    assert_eq!(removes.len(), 3);
+    removes[0].click();
+    h.run();
+    assert_eq!(styles(&h), "toon3:0.9,0.45,0.35, shaded:0.85,0.85,0.85");
+    for _ in 0..3 {
+        h.state_mut().state.undo();
+    }
+    h.run();
+    assert_eq!(styles(&h), original);
+}

@@ -175,6 +175,19 @@ impl TransferFunction1D {
     }
 }
 
+/// Writes points in the syntax [`TransferFunction1D::parse_points`] reads, each number in its
+/// shortest form that reads back to the same `f32` (so editing a curve round-trips exactly).
+pub fn format_points(points: &[ControlPoint]) -> String {
+    points
+        .iter()
+        .map(|p| {
+            let [r, g, b, a] = p.rgba;
+            format!("{}: {} {} {} {}", p.value, r, g, b, a)
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
 /// Data value of table entry `k` over `[first, last]`.
 pub(crate) fn table_position(first: f32, last: f32, k: usize) -> f32 {
     if k == LUT_SIZE - 1 {
@@ -279,6 +292,27 @@ fn parse_number(s: &str) -> Result<f32, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn formatted_points_parse_back_to_the_same_points() {
+        let points = vec![
+            ControlPoint {
+                value: -12.5,
+                rgba: [0.0, 0.1, 0.2, 0.0],
+            },
+            ControlPoint {
+                value: 1.0 / 3.0,
+                rgba: [0.7, 0.123_456_79, 1.0, 0.05],
+            },
+            ControlPoint {
+                value: 255.0,
+                rgba: [1.0; 4],
+            },
+        ];
+        let text = format_points(&points);
+        assert_eq!(text.split(';').count(), 3, "{text}");
+        assert_eq!(TransferFunction1D::parse_points(&text).unwrap(), points);
+    }
 
     fn close(a: [f32; 4], b: [f32; 4], tol: f32) -> bool {
         a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)

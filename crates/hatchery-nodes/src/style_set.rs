@@ -66,7 +66,7 @@ impl Node<Value, Ctx> for StyleSetNode {
 
 /// Splits "shaded:0.9,0.8,0.7, toon2, a.png" into entries: a comma followed by a name starts a
 /// new entry, a comma followed by a number continues the colour.
-fn split_entries(text: &str) -> Vec<String> {
+pub fn split_entries(text: &str) -> Vec<String> {
     let mut entries: Vec<String> = Vec::new();
     for part in text.split(',') {
         let part = part.trim();
@@ -94,26 +94,35 @@ fn resolve(p: &Params, path: &str) -> std::path::PathBuf {
     }
 }
 
-fn procedural(entry: &str) -> Result<LitSphere, NodeError> {
-    let (name, colour) = match entry.split_once(':') {
-        Some((name, rgb)) => {
-            let values: Vec<f32> = rgb
-                .split(',')
-                .map(|v| v.trim().parse::<f32>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| {
-                    NodeError::new(format!("style `{entry}`: colour must be r,g,b numbers"))
-                })?;
-            if values.len() != 3 || values.iter().any(|v| !(0.0..=1.0).contains(v)) {
-                return Err(NodeError::new(format!(
-                    "style `{entry}`: colour must be three numbers in [0, 1]"
-                )));
-            }
-            (name.trim(), [values[0], values[1], values[2]])
-        }
-        None => (entry.trim(), [0.85, 0.85, 0.85]),
+/// Default tint of a procedural style written without a colour.
+pub const DEFAULT_TINT: [f32; 3] = [0.85, 0.85, 0.85];
+
+/// A procedural entry "name[:r,g,b]" as its name and tint.
+pub fn parse_procedural(entry: &str) -> Result<(String, [f32; 3]), String> {
+    let Some((name, rgb)) = entry.split_once(':') else {
+        return Ok((entry.trim().to_owned(), DEFAULT_TINT));
     };
-    lit_sphere::procedural(name, SIZE, colour).ok_or_else(|| {
+    let values: Vec<f32> = rgb
+        .split(',')
+        .map(|v| v.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("style `{entry}`: colour must be r,g,b numbers"))?;
+    if values.len() != 3 || values.iter().any(|v| !(0.0..=1.0).contains(v)) {
+        return Err(format!(
+            "style `{entry}`: colour must be three numbers in [0, 1]"
+        ));
+    }
+    Ok((name.trim().to_owned(), [values[0], values[1], values[2]]))
+}
+
+/// Writes a procedural entry the way [`parse_procedural`] reads it.
+pub fn format_procedural(name: &str, tint: [f32; 3]) -> String {
+    format!("{name}:{},{},{}", tint[0], tint[1], tint[2])
+}
+
+fn procedural(entry: &str) -> Result<LitSphere, NodeError> {
+    let (name, colour) = parse_procedural(entry).map_err(NodeError::new)?;
+    lit_sphere::procedural(&name, SIZE, colour).ok_or_else(|| {
         NodeError::new(format!(
             "unknown style `{name}` (procedural styles: {}; or a .png path)",
             lit_sphere::STYLES.join(", ")
@@ -123,6 +132,21 @@ fn procedural(entry: &str) -> Result<LitSphere, NodeError> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn procedural_entries_round_trip() {
+        let text = super::format_procedural("gooch", [0.6, 0.7, 0.9]);
+        assert_eq!(text, "gooch:0.6,0.7,0.9");
+        assert_eq!(
+            super::parse_procedural(&text).unwrap(),
+            ("gooch".to_owned(), [0.6, 0.7, 0.9])
+        );
+        assert_eq!(
+            super::parse_procedural("toon2").unwrap(),
+            ("toon2".to_owned(), super::DEFAULT_TINT)
+        );
+        assert!(super::parse_procedural("toon2:1,2").is_err());
+    }
+
     #[test]
     fn entries_split_on_names_not_on_colour_components() {
         assert_eq!(
