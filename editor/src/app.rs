@@ -1,6 +1,7 @@
 //! The egui application: menu bar, snarl canvas (a view rebuilt from the document), inspector,
 //! viewport and status line.
 
+use crate::files::{FileKind, FilePicker, Purpose};
 use crate::preview::{Preview, Shown};
 use crate::render_worker::{NodeTime, Port};
 use crate::state::EditorState;
@@ -54,6 +55,8 @@ pub struct EditorApp {
     /// Why the last wire drop was refused, where and when (shown as a tooltip for a while).
     pub refusal: Option<Refusal>,
     style_thumbnails: crate::style_picker::Thumbnails,
+    /// The file dialog (path parameters, Open…, Save as…).
+    pub picker: FilePicker,
     title: String,
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
@@ -116,6 +119,7 @@ impl EditorApp {
             clipboard: String::new(),
             refusal: None,
             style_thumbnails: Default::default(),
+            picker: FilePicker::default(),
             title: String::new(),
             offer_recovery,
             pending: None,
@@ -264,6 +268,10 @@ impl EditorApp {
                 });
             });
         egui::CentralPanel::default().show(ui, |ui| self.canvas(ui));
+        self.dropped_files(ui);
+        if let Some((purpose, path)) = self.picker.update(ui.ctx()) {
+            self.picked(purpose, &path);
+        }
         self.confirm_discard(ui);
 
         // A drag (of a slider, a node, ...) ends when the pointer is released.
@@ -313,6 +321,24 @@ impl EditorApp {
                     self.request(Pending::New);
                     ui.close();
                 }
+                if ui.button("Open…").clicked() {
+                    let folder = self
+                        .state
+                        .base_dir()
+                        .or_else(|| Some(self.presets_dir.clone()));
+                    self.picker
+                        .open(Purpose::OpenGraph, Some(FileKind::Graph), folder);
+                    ui.close();
+                }
+                if ui.button("Save as…").clicked() {
+                    self.picker.open(
+                        Purpose::SaveGraphAs,
+                        Some(FileKind::Graph),
+                        self.state.base_dir(),
+                    );
+                    ui.close();
+                }
+                ui.separator();
                 ui.label("Path:");
                 ui.text_edit_singleline(&mut self.file_field);
                 ui.horizontal(|ui| {
@@ -497,7 +523,7 @@ impl EditorApp {
             "StyleSet" => self.styles_section(ui, &id, &node),
             _ => {}
         }
-        egui::Grid::new("params").num_columns(2).show(ui, |ui| {
+        egui::Grid::new("params").num_columns(3).show(ui, |ui| {
             for spec in &schema.params {
                 let current = node
                     .params
@@ -510,9 +536,117 @@ impl EditorApp {
                         ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
                     let _ = self.state.set_param(&id, spec.name, value, dragging);
                 }
+                // A third column: the file dialog button of path parameters.
+                if spec.kind == ParamKind::Path
+                    && ui
+                        .button("📂")
+                        .on_hover_text(format!("choose {} with the file dialog", spec.name))
+                        .clicked()
+                {
+                    self.choose_path(&node, spec.name, &current);
+                }
                 ui.end_row();
             }
         });
+    }
+
+    /// Opens the file dialog for a path parameter, in the folder of its current file.
+    fn choose_path(&mut self, node: &hatchery_graph::NodeDoc, param: &str, current: &ParamValue) {
+        let base = self.state.base_dir();
+        let folder = match current {
+            ParamValue::Path(p) if !p.is_empty() => {
+                let p = PathBuf::from(p);
+                let p = match &base {
+                    Some(b) if p.is_relative() => b.join(p),
+                    _ => p,
+                };
+                p.parent().map(Path::to_path_buf)
+            }
+            _ => None,
+        }
+        .filter(|folder| folder.is_dir())
+        .or(base);
+        let kind = match node.kind.as_str() {
+            "VolumeFile" => Some(FileKind::Volume),
+            "MeshFile" => Some(FileKind::Mesh),
+            _ => None,
+        };
+        let purpose = Purpose::Param {
+            node: node.id.clone(),
+            param: param.to_owned(),
+        };
+        self.picker.open(purpose, kind, folder);
+    }
+
+    /// The user picked `path` in the file dialog.
+    fn picked(&mut self, purpose: Purpose, path: &Path) {
+        match purpose {
+            Purpose::Param { node, param } => {
+                let stored = crate::files::path_for_graph(self.state.base_dir().as_deref(), path);
+                let _ = self
+                    .state
+                    .set_param(&node, &param, ParamValue::Path(stored), false);
+            }
+            Purpose::OpenGraph => self.request(Pending::Open(path.to_path_buf())),
+            Purpose::SaveGraphAs => {
+                if self.state.save_as(path).is_ok() {
+                    self.file_field = path.display().to_string();
+                }
+            }
+        }
+    }
+
+    /// Files dropped on the window: a graph opens; a volume or mesh becomes a source node
+    /// reading it, where it was dropped.
+    fn dropped_files(&mut self, ui: &Ui) {
+        let hovering = ui.input(|i| !i.raw.hovered_files.is_empty());
+        if hovering {
+            egui::Area::new(Id::new("drop-hint"))
+                .order(egui::Order::Tooltip)
+                .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+                .interactable(false)
+                .show(ui.ctx(), |ui| {
+                    egui::Frame::popup(ui.style()).show(ui, |ui| {
+                        ui.label(
+                            "Drop a graph (.ron) to open it, or a volume (.nii, .nii.gz, .vti) or \
+                             mesh (.obj, .ply, .stl) to add a node reading it",
+                        );
+                    });
+                });
+        }
+        let dropped = ui.input(|i| i.raw.dropped_files.clone());
+        if dropped.is_empty() {
+            return;
+        }
+        let at = ui
+            .input(|i| i.pointer.latest_pos())
+            .unwrap_or_else(|| ui.max_rect().center());
+        let graph_at = self.canvas_transform.inverse() * at;
+        for (n, file) in dropped.iter().enumerate() {
+            let path = file.path().to_path_buf();
+            let kind = FileKind::of(&path);
+            match kind.and_then(FileKind::node_kind) {
+                Some(node_kind) => {
+                    let place = graph_at + egui::vec2(0.0, 140.0 * n as f32);
+                    let stored =
+                        crate::files::path_for_graph(self.state.base_dir().as_deref(), &path);
+                    let params = [("path", ParamValue::Path(stored))];
+                    if let Ok(id) = self.state.add_node_with(node_kind, pos(place), &params) {
+                        self.state.status = format!("added {id} reading {}", path.display());
+                    }
+                }
+                None if kind == Some(FileKind::Graph) => {
+                    self.request(Pending::Open(path));
+                }
+                None => {
+                    self.state.status = format!(
+                        "{}: not a graph, volume or mesh file (.ron; .nii, .nii.gz, .vti; .obj, \
+                         .ply, .stl)",
+                        path.display()
+                    );
+                }
+            }
+        }
     }
 
     /// The curve editor of a `TransferFunction1D` node. Editing a preset turns it into `custom`

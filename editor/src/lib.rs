@@ -8,6 +8,7 @@
 //!   so the UI never waits for a frame.
 
 pub mod app;
+pub mod files;
 pub mod preview;
 pub mod render_worker;
 pub mod state;

@@ -241,6 +241,24 @@ impl EditorState {
         Ok(id)
     }
 
+    /// Adds a node with some parameters set, as one undo step (a dropped data file).
+    pub fn add_node_with(
+        &mut self,
+        kind: &str,
+        at: EditorPos,
+        params: &[(&str, ParamValue)],
+    ) -> Result<String, String> {
+        let id = self.apply(None, |d, r| {
+            let id = edit::add_node(d, r, kind, at)?;
+            for (name, value) in params {
+                edit::set_param(d, r, &id, name, value.clone())?;
+            }
+            Ok(id)
+        })?;
+        self.selection = BTreeSet::from([id.clone()]);
+        Ok(id)
+    }
+
     pub fn remove_nodes(&mut self, ids: &[String]) -> Result<(), String> {
         self.apply(None, |d, _| {
             for id in ids {

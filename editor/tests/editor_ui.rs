@@ -1063,3 +1063,129 @@ fn the_style_picker_swaps_adds_and_removes_lit_sphere_styles() {
     h.run();
     assert_eq!(styles(&h), original);
 }
+
+/// A file dropped on the window, as the platform layer reports it.
+#[derive(Debug)]
+struct DroppedPath(PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+fn drop_file(h: &mut Harness<EditorApp>, path: &Path, at: egui::Pos2) {
+    h.event(egui::Event::PointerMoved(at));
+    h.input_mut()
+        .dropped_files
+        .push(std::sync::Arc::new(DroppedPath(path.to_path_buf())));
+    h.run();
+}
+
+#[test]
+fn dropped_files_open_graphs_and_add_source_nodes_where_they_land() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let nodes = h.state().state.doc().nodes.len();
+
+    // A mesh: a MeshFile node reading it, at the drop point, its path relative to the graph.
+    let data = dir.path().join("data");
+    std::fs::create_dir(&data).unwrap();
+    let mesh = data.join("tri.obj");
+    std::fs::write(&mesh, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let at = egui::pos2(300.0, 600.0);
+    drop_file(&mut h, &mesh, at);
+    let doc = h.state().state.doc().clone();
+    assert_eq!(doc.nodes.len(), nodes + 1);
+    let added = doc
+        .nodes
+        .iter()
+        .find(|n| n.kind == "MeshFile")
+        .expect("a MeshFile node");
+    assert_eq!(
+        added.params.get("path"),
+        Some(&ron::Value::String("data/tri.obj".into()))
+    );
+    let placed = added.editor.expect("placed on the canvas");
+    let screen = h.state().canvas_transform * egui::pos2(placed.x, placed.y);
+    assert!(
+        screen.distance(at) < 1.0,
+        "placed at {screen:?}, dropped at {at:?}"
+    );
+    // Adding it is one undo step.
+    h.state_mut().state.undo();
+    assert_eq!(h.state().state.doc().nodes.len(), nodes);
+
+    // Files hatchery does not read are refused with a message.
+    let notes = dir.path().join("notes.txt");
+    std::fs::write(&notes, "hello").unwrap();
+    drop_file(&mut h, &notes, at);
+    assert_eq!(h.state().state.doc().nodes.len(), nodes);
+    assert!(
+        h.state()
+            .state
+            .status
+            .contains("not a graph, volume or mesh"),
+        "{}",
+        h.state().state.status
+    );
+
+    // A graph opens (the document has no unsaved edits after the undo... it does: ask first).
+    let other = dir.path().join("other.ron");
+    std::fs::copy(repo("graphs/hidden_structures.ron"), &other).unwrap();
+    drop_file(&mut h, &other, at);
+    if h.state().pending().is_some() {
+        h.get_by_label("Discard changes").click();
+        h.run();
+    }
+    assert_eq!(h.state().state.path(), Some(other.as_path()));
+}
+
+#[test]
+fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/bunny_surface.ron", dir.path());
+    std::fs::write(
+        dir.path().join("tri.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    app.state.selection = ["bunny".to_string()].into();
+    let mut h = harness(app);
+    h.run();
+    h.get_by_label("📂").click();
+    // The dialog reads the folder on a thread of its own: step until it lists the file.
+    for _ in 0..400 {
+        h.step();
+        if h.query_by_label_contains("tri.obj").is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert_eq!(
+        h.state().picker.purpose(),
+        Some(&hatchery_editor::files::Purpose::Param {
+            node: "bunny".into(),
+            param: "path".into()
+        })
+    );
+    h.get_by_label("Choose bunny.path");
+    // The dialog lists the graph's folder (the bunny's relative path points there, missing).
+    h.get_by_label_contains("tri.obj").click();
+    h.step();
+    h.get_by_label("🗀  Open").click();
+    h.step();
+    h.step();
+    assert!(h.state().picker.purpose().is_none(), "the dialog closed");
+    let doc = h.state().state.doc();
+    let bunny = doc.nodes.iter().find(|n| n.id == "bunny").unwrap();
+    assert_eq!(
+        bunny.params.get("path"),
+        Some(&ron::Value::String("tri.obj".into()))
+    );
+}
