@@ -1097,8 +1097,10 @@ impl SnarlViewer<String> for Viewer<'_> {
 
     fn has_body(&mut self, node: &String) -> bool {
         self.error(node).is_some()
-            || self.pins.iter().any(|(n, _)| n == node)
-            || self.times.is_some_and(|t| t.contains_key(node))
+    }
+
+    fn has_footer(&mut self, node: &String) -> bool {
+        self.pins.iter().any(|(n, _)| n == node) || self.times.is_some_and(|t| t.contains_key(node))
     }
 
     fn show_body(
@@ -1117,6 +1119,20 @@ impl SnarlViewer<String> for Viewer<'_> {
             ui.colored_label(Color32::LIGHT_RED, format!("⚠ {first}"))
                 .on_hover_text(e);
         }
+    }
+
+    /// Below the pins: the node's times (on request) and its pinned thumbnails.
+    fn show_footer(
+        &mut self,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        ui: &mut Ui,
+        snarl: &mut Snarl<String>,
+    ) {
+        let Some(id) = snarl.get_node(node).cloned() else {
+            return;
+        };
         if let Some(time) = self.times.and_then(|t| t.get(&id)) {
             ui.label(egui::RichText::new(format_time(time)).monospace().small())
                 .on_hover_text(
