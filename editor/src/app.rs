@@ -65,6 +65,8 @@ pub struct EditorApp {
     pub canvas_transform: egui::emath::TSTransform,
     /// An action that would discard unsaved changes, waiting for the user's answer.
     pending: Option<Pending>,
+    /// The user agreed to close the window with unsaved changes.
+    quitting: bool,
 }
 
 /// A refused wire: the reason, shown next to the pointer until `until` (egui time, seconds).
@@ -83,6 +85,8 @@ const REFUSAL_SECONDS: f64 = 4.0;
 pub enum Pending {
     Open(PathBuf),
     New,
+    /// Closing the window.
+    Quit,
 }
 
 const SNARL_ID: &str = "hatchery-snarl";
@@ -123,6 +127,7 @@ impl EditorApp {
             title: String::new(),
             offer_recovery,
             pending: None,
+            quitting: false,
             frame_all: true,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
         }
@@ -168,6 +173,8 @@ impl EditorApp {
     fn perform(&mut self, action: Pending) {
         match action {
             Pending::Open(path) => self.open(&path),
+            // The recovery file stays: the next start still offers it.
+            Pending::Quit => self.quitting = true,
             Pending::New => {
                 let scratch = self.state.scratch_dir.clone();
                 self.state = EditorState::new();
@@ -252,6 +259,7 @@ impl EditorApp {
 
     /// One frame of the whole editor.
     pub fn ui(&mut self, ui: &mut Ui) {
+        self.guard_close(ui);
         self.shortcuts(ui);
         if self.synced_revision != Some(self.state.revision()) {
             self.rebuild_snarl();
@@ -285,6 +293,19 @@ impl EditorApp {
             ui.ctx()
                 .send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
+        }
+    }
+
+    /// Closing the window with unsaved changes asks first (the autosave covers crashes only).
+    fn guard_close(&mut self, ui: &Ui) {
+        if self.quitting {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+            return;
+        }
+        if ui.input(|i| i.viewport().close_requested()) && self.state.is_dirty() {
+            ui.ctx()
+                .send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.pending = Some(Pending::Quit);
         }
     }
 
@@ -434,12 +455,15 @@ impl EditorApp {
         let failed = self.preview.failed_node.clone();
         let frame_into =
             std::mem::take(&mut self.frame_all).then(|| ui.available_rect_before_wrap());
-        let thumbnails: BTreeMap<Port, (egui::TextureId, egui::Vec2)> = self
+        let mut thumbnails: BTreeMap<Port, Result<(egui::TextureId, egui::Vec2), String>> = self
             .preview
             .thumbnails
             .iter()
-            .map(|(port, shown)| (port.clone(), (shown.id(), thumbnail_size(shown))))
+            .map(|(port, shown)| (port.clone(), Ok((shown.id(), thumbnail_size(shown)))))
             .collect();
+        for (port, e) in &self.preview.thumbnail_errors {
+            thumbnails.insert(port.clone(), Err(e.clone()));
+        }
         let mut viewer = Viewer {
             frame_into,
             transform: self.canvas_transform,
@@ -959,7 +983,8 @@ struct Viewer<'a> {
     preview: &'a mut Option<(String, String)>,
     /// Ports shown as thumbnails on their nodes (clicking an output's name toggles it).
     pins: &'a mut BTreeSet<Port>,
-    thumbnails: BTreeMap<Port, (egui::TextureId, egui::Vec2)>,
+    /// Pictures (or why there is none) of the pinned ports.
+    thumbnails: BTreeMap<Port, Result<(egui::TextureId, egui::Vec2), String>>,
     /// Per-node times, when the user asked for them.
     times: Option<&'a BTreeMap<String, NodeTime>>,
     /// Why a wire drop was refused this frame.
@@ -1149,10 +1174,14 @@ impl SnarlViewer<String> for Viewer<'_> {
             .collect();
         for port in pinned {
             match self.thumbnails.get(&port) {
-                Some((texture, size)) => {
+                Some(Ok((texture, size))) => {
                     let name = format!("{}.{}", port.0, port.1);
                     ui.add(egui::Image::new((*texture, *size)).alt_text(&name))
                         .on_hover_text(name);
+                }
+                Some(Err(e)) => {
+                    ui.colored_label(Color32::LIGHT_RED, format!("{}: no picture", port.1))
+                        .on_hover_text(e);
                 }
                 None => {
                     ui.label(format!("{}: rendering…", port.1));

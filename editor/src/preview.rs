@@ -78,6 +78,8 @@ pub struct Preview {
     awaiting: Option<u64>,
     pub viewport: Option<Shown>,
     pub thumbnails: BTreeMap<Port, Shown>,
+    /// Pinned ports that have no picture, and why (a mesh, a camera, a failed node).
+    pub thumbnail_errors: BTreeMap<Port, String>,
     /// Why the last render (or the last thumbnail) failed.
     pub error: Option<String>,
     /// The node whose execution failed, with the message (shown on the node).
@@ -249,6 +251,7 @@ impl Preview {
             None => {}
         }
         let mut kept = BTreeMap::new();
+        self.thumbnail_errors.clear();
         for (port, result) in answer.thumbnails {
             let old = self.thumbnails.remove(&port);
             match result {
@@ -265,7 +268,7 @@ impl Preview {
                 }
                 Err(e) => {
                     self.release(old);
-                    self.error.get_or_insert(e);
+                    self.thumbnail_errors.insert(port, e);
                 }
             }
         }

@@ -878,6 +878,18 @@ fn the_viewport_renders_off_the_ui_thread_and_output_pins_show_thumbnails_and_ti
     );
     assert!(h.query_all_by_label_contains("⏱").count() >= 4);
 
+    // A port without a picture (a mesh) says so on its node instead of a thumbnail.
+    let mesh = ("surface".to_string(), "mesh".to_string());
+    h.state_mut().preview.pins.insert(mesh.clone());
+    wait_for_render(&mut h);
+    let why = h.state().preview.thumbnail_errors.get(&mesh).cloned();
+    assert!(
+        why.as_deref().is_some_and(|e| e.contains("no picture")),
+        "{why:?}"
+    );
+    h.get_by_label("mesh: no picture");
+    h.state_mut().preview.pins.remove(&mesh);
+
     // Clicking again unpins it.
     click_leftmost(&mut h, "image 👁");
     assert!(!h.state().preview.pins.contains(&port));
@@ -1226,5 +1238,54 @@ fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
     assert_eq!(
         bunny.params.get("path"),
         Some(&ron::Value::String("tri.obj".into()))
+    );
+}
+
+#[test]
+fn closing_the_window_with_unsaved_changes_asks_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let close = |h: &mut Harness<EditorApp>| {
+        h.input_mut()
+            .viewports
+            .entry(egui::ViewportId::ROOT)
+            .or_default()
+            .events
+            .push(egui::ViewportEvent::Close);
+        h.step();
+        h.output()
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .map(|v| v.commands.clone())
+            .unwrap_or_default()
+    };
+    // Without edits the window just closes.
+    assert!(!close(&mut h).contains(&egui::ViewportCommand::CancelClose));
+    h.state_mut()
+        .state
+        .set_param("camera", "azimuth", ParamValue::Float(45.0), false)
+        .unwrap();
+    h.run();
+    let commands = close(&mut h);
+    assert!(
+        commands.contains(&egui::ViewportCommand::CancelClose),
+        "{commands:?}"
+    );
+    assert_eq!(
+        h.state().pending(),
+        Some(&hatchery_editor::app::Pending::Quit)
+    );
+    h.run();
+    h.get_by_label("Discard changes").click();
+    h.step();
+    h.step();
+    let commands = h.output().viewport_output[&egui::ViewportId::ROOT]
+        .commands
+        .clone();
+    assert!(
+        commands.contains(&egui::ViewportCommand::Close),
+        "{commands:?}"
     );
 }
