@@ -21,6 +21,9 @@ fn main() -> anyhow::Result<()> {
     setup.device_descriptor = Arc::new(GpuContext::device_descriptor);
     let options = eframe::NativeOptions {
         renderer: eframe::Renderer::Wgpu,
+        viewport: eframe::egui::ViewportBuilder::default()
+            .with_title("hatchery editor")
+            .with_inner_size([1400.0, 900.0]),
         wgpu_options: egui_wgpu::WgpuConfiguration {
             wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
             ..Default::default()
