@@ -39,6 +39,8 @@ struct Ray {
     // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its value range
     // (the texture is normalised like the volume's); w = width of the label → row table.
     labels: vec4<f32>,
+    // x = 1 to skip empty bricks (DVR); y = voxels per brick side; z = visibility bins.
+    skip: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> ray: Ray;
@@ -56,6 +58,10 @@ struct Ray {
 @group(0) @binding(7) var label_volume: texture_3d<f32>;
 // Row 0: table row of each label; row 1: (domain lo, hi, node count N, 0) of each table row.
 @group(0) @binding(8) var label_rows: texture_2d<f32>;
+// [min, max] of the values trilinear samples can take in each brick (hatchery_data::bricks).
+@group(0) @binding(9) var bricks: texture_3d<f32>;
+// Cumulative count of visible bins over the volume's value range (any table row, any object).
+@group(0) @binding(10) var visibility: texture_2d<f32>;
 
 const LUT_SIZE: f32 = 256.0;
 const LIGHTING_SIZE: f32 = 64.0;
@@ -137,6 +143,38 @@ fn hash(p: vec2<f32>) -> f32 {
     return fract(sin(dot(p, vec2<f32>(12.9898, 78.233))) * 43758.5453);
 }
 
+// Whether every sample in the brick holding voxel-space position q is transparent: no value in
+// the brick's range is visible under any row of the transfer function.
+fn brick_is_empty(q: vec3<f32>) -> bool {
+    let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
+    let range = textureLoad(bricks, brick, 0).xy;
+    let lo = ray.origin.w;
+    let span = max(ray.spacing.w - lo, 1e-30);
+    let last = i32(ray.skip.z) - 1;
+    let a = clamp(i32(floor((range.x - lo) / span * ray.skip.z)), 0, last);
+    let b = clamp(i32(floor((range.y - lo) / span * ray.skip.z)), 0, last);
+    var before = 0.0;
+    if a > 0 {
+        before = textureLoad(visibility, vec2<i32>(a - 1, 0), 0).r;
+    }
+    return textureLoad(visibility, vec2<i32>(b, 0), 0).r - before == 0.0;
+}
+
+// The ray parameter where the ray leaves the brick holding q (p = p0 + dir·t).
+fn brick_exit(q: vec3<f32>, dir: vec3<f32>, t: f32) -> f32 {
+    let brick = floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y);
+    let dq = dir / ray.spacing.xyz;
+    var exit = 1e30;
+    for (var axis = 0; axis < 3; axis++) {
+        if dq[axis] > 1e-12 {
+            exit = min(exit, t + ((brick[axis] + 1.0) * ray.skip.y - q[axis]) / dq[axis]);
+        } else if dq[axis] < -1e-12 {
+            exit = min(exit, t + (brick[axis] * ray.skip.y - q[axis]) / dq[axis]);
+        }
+    }
+    return exit;
+}
+
 fn to_window_depth(p: vec3<f32>) -> f32 {
     let clip = ray.view_proj * vec4<f32>(p, 1.0);
     return clip.z / clip.w;
@@ -195,10 +233,21 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
     var hit_t = -1.0;
     let count = min(u32(max(floor((t_out - start) / h), -1.0) + 1.0), 65536u);
 
+    let skipping = mode == 0 && ray.skip.x > 0.5;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
         let p = p0 + dir * t;
         let q = (p - ray.origin.xyz) / ray.spacing.xyz;
+        if skipping && brick_is_empty(q) {
+            // Jump to the first sample past the brick (on the same lattice of t, so the samples
+            // taken are exactly those taken without skipping); the skipped ones were transparent.
+            let exit = brick_exit(q, dir, t) - 1e-4 * h;
+            let next = max(ceil((exit - start) / h), f32(k + 1u));
+            k = u32(min(next, f32(count))) - 1u;
+            // κv restarts after a gap, as after any transparent sample.
+            previous_normal = vec3<f32>(0.0);
+            continue;
+        }
         let v = value_at(q);
 
         if mode == 1 {

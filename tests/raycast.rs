@@ -766,3 +766,55 @@ fn two_dimensional_style_tf_picks_styles_per_object_label() {
         "common function must be green"
     );
 }
+
+/// Renders `ray.image` of a preset with empty-space skipping on and off.
+fn with_and_without_skipping(preset: &str, size: (u32, u32)) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
+    let path = common::repo_root().join("graphs").join(preset);
+    let mut session = Session::open(&path, size.0, size.1).expect("preset opens");
+    let mut render = |skip: bool| {
+        session
+            .graph
+            .set_param(
+                &session.registry,
+                "ray",
+                "skip_empty",
+                ParamValue::Bool(skip),
+            )
+            .unwrap();
+        let image = session.evaluate("ray", "image").expect("renders");
+        rgba(&session, &image)
+    };
+    (render(true), render(false))
+}
+
+#[test]
+fn empty_space_skipping_leaves_the_picture_unchanged_on_the_shared_volumes() {
+    // A colour TF (MRI), a style TF with contours (MRI), a 2-D style TF over object labels (frog).
+    for preset in [
+        "tf1d_phong_brain.ron",
+        "style_tf_brain.ron",
+        "style_tf_frog.ron",
+    ] {
+        let (skipped, full) = with_and_without_skipping(preset, (160, 120));
+        let covered = full.iter().filter(|p| p[3] > 0.05).count();
+        assert!(
+            covered > 1000,
+            "{preset}: the volume covers only {covered} pixels"
+        );
+        let (mut worst, mut at) = (0.0f32, 0);
+        for (i, (a, b)) in skipped.iter().zip(&full).enumerate() {
+            let d = (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
+            if d > worst {
+                (worst, at) = (d, i);
+            }
+        }
+        assert!(
+            worst <= 1e-6,
+            "{preset}: skipping changed pixel ({}, {}) by {worst}: {:?} vs {:?}",
+            at % 160,
+            at / 160,
+            skipped[at],
+            full[at]
+        );
+    }
+}

@@ -2,6 +2,7 @@
 //! (NIfTI, VTK ImageData, OBJ, PLY, STL), label masks, procedural default data sets and
 //! marching cubes.
 
+pub mod bricks;
 pub mod error;
 pub mod gradient;
 pub mod labels;

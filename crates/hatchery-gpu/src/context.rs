@@ -313,16 +313,44 @@ impl GpuContext {
         format: wgpu::TextureFormat,
         data: &[u8],
     ) -> wgpu::Texture {
+        self.texture_init(
+            label,
+            [width, height, 1],
+            wgpu::TextureDimension::D2,
+            format,
+            data,
+        )
+    }
+
+    /// A 3-D texture of `size` texels (x fastest, then y, then z) initialised with `data`.
+    pub fn texture_3d_init(
+        &self,
+        label: &str,
+        size: [u32; 3],
+        format: wgpu::TextureFormat,
+        data: &[u8],
+    ) -> wgpu::Texture {
+        self.texture_init(label, size, wgpu::TextureDimension::D3, format, data)
+    }
+
+    fn texture_init(
+        &self,
+        label: &str,
+        [width, height, depth]: [u32; 3],
+        dimension: wgpu::TextureDimension,
+        format: wgpu::TextureFormat,
+        data: &[u8],
+    ) -> wgpu::Texture {
         let desc = wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d {
                 width,
                 height,
-                depth_or_array_layers: 1,
+                depth_or_array_layers: depth,
             },
             mip_level_count: 1,
             sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+            dimension,
             format,
             usage: wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_DST

@@ -7,7 +7,7 @@ use crate::screen_pass::IMAGE_FORMAT;
 use crate::value::{GBuffer, Image, TransferFunction, Volume};
 use crate::{Ctx, Value};
 use glam::{Vec3, Vec4Swizzles};
-use hatchery_data::lighting;
+use hatchery_data::{bricks, lighting};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
@@ -209,6 +209,8 @@ pub struct RayOptions<'a> {
     pub early_termination: f32,
     pub hit_opacity: f32,
     pub light_view: Vec3,
+    /// Jump over bricks no visible value can be sampled in (DVR; the picture is unchanged).
+    pub skip_empty: bool,
 }
 
 /// Nearest and farthest distance from the eye (perspective) or the near plane (orthographic) to
@@ -320,6 +322,36 @@ pub fn cast(
         }
         None => None,
     };
+    // Which values the transfer function shows, for empty-space skipping.
+    let visible_rows: Vec<(Vec<f32>, [f32; 2])> = match tf {
+        Some(TransferFunction::Color(f)) => vec![(f.lut.iter().map(|e| e[3]).collect(), f.domain)],
+        Some(TransferFunction::Style {
+            function,
+            per_label,
+            ..
+        }) => std::iter::once(function)
+            .chain(per_label.iter().map(|(_, f)| f))
+            .map(|f| (f.tft.iter().map(|e| e[1]).collect(), f.domain))
+            .collect(),
+        None => Vec::new(),
+    };
+    let rows: Vec<bricks::OpacityRow> = visible_rows
+        .iter()
+        .map(|(opacity, domain)| bricks::OpacityRow {
+            domain: *domain,
+            opacity,
+        })
+        .collect();
+    let skip_empty = o.skip_empty && o.mode == 0 && !rows.is_empty();
+    let visibility = floats_texture(
+        gpu,
+        "visibility",
+        bricks::VISIBILITY_BINS as u32,
+        wgpu::TextureFormat::R32Float,
+        &bricks::visibility_prefix(data.value_range, &rows),
+    );
+    let bricks_texture = volume.bricks(gpu);
+
     let lighting_model = lighting::lighting_tf(o.lighting_model)
         .ok_or_else(|| NodeError::new(format!("unknown lighting model `{}`", o.lighting_model)))?;
     let lighting_flat: Vec<f32> = lighting_model.table.iter().flatten().copied().collect();
@@ -335,7 +367,7 @@ pub fn cast(
     let distances = corner_distances(camera, lo, hi);
     let view_proj = camera.view_proj();
     let bool_f = |b: bool| if b { 1.0 } else { 0.0 };
-    let mut u: Vec<f32> = Vec::with_capacity(100);
+    let mut u: Vec<f32> = Vec::with_capacity(104);
     u.extend_from_slice(&view_proj.inverse().to_cols_array());
     u.extend_from_slice(&camera.view.to_cols_array());
     u.extend_from_slice(&view_proj.to_cols_array());
@@ -392,6 +424,12 @@ pub fn cast(
         label_range[1],
         label_count,
     ]);
+    u.extend_from_slice(&[
+        bool_f(skip_empty),
+        bricks::BRICK as f32,
+        bricks::VISIBILITY_BINS as f32,
+        0.0,
+    ]);
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::cast_slice(&u),
@@ -434,6 +472,8 @@ pub fn cast(
         .as_ref()
         .unwrap_or(&st.blank_label_rows)
         .create_view(&Default::default());
+    let bricks_view = bricks_texture.create_view(&Default::default());
+    let visibility_view = visibility.create_view(&Default::default());
     let texture_views = [
         (1, &volume_view),
         (3, &table_view),
@@ -442,6 +482,8 @@ pub fn cast(
         (6, &index_view),
         (7, &labels_view),
         (8, &label_rows_view),
+        (9, &bricks_view),
+        (10, &visibility_view),
     ];
     let mut entries = vec![
         wgpu::BindGroupEntry {
@@ -636,6 +678,12 @@ impl Node<Value, Ctx> for RaycastNode {
                     1.0,
                     "accumulated opacity that defines the G-buffer depth",
                 ),
+                ParamSpec::bool(
+                    "skip_empty",
+                    true,
+                    "DVR: jump over 8³-voxel bricks whose values the transfer function makes \
+                     transparent (same picture, fewer samples)",
+                ),
             ],
             frame_dependent: true,
             sink: false,
@@ -676,6 +724,7 @@ impl Node<Value, Ctx> for RaycastNode {
             mip_bias: p.f32("mip_bias"),
             jitter: p.bool("jitter"),
             early_termination: p.f32("early_termination"),
+            skip_empty: p.bool("skip_empty"),
             hit_opacity: p.f32("hit_opacity"),
             light_view: light_direction(inputs, &camera)?,
         };
@@ -750,6 +799,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             early_termination: 1.0,
             hit_opacity: 1.0,
             light_view: Vec3::Z,
+            skip_empty: false,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])

@@ -11,6 +11,8 @@ pub struct Volume {
     pub data: Arc<VolumeData>,
     texture: OnceLock<wgpu::Texture>,
     max_gradient: OnceLock<f32>,
+    /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
+    bricks: OnceLock<wgpu::Texture>,
 }
 
 impl Volume {
@@ -19,6 +21,7 @@ impl Volume {
             data: Arc::new(data),
             texture: OnceLock::new(),
             max_gradient: OnceLock::new(),
+            bricks: OnceLock::new(),
         }
     }
     /// The R16Float 3-D texture of (v − lo) / (hi − lo) over the value range, uploaded on first use.
@@ -33,6 +36,21 @@ impl Volume {
             self.data.value_range,
         )?;
         Ok(self.texture.get_or_init(|| t))
+    }
+    /// The `[min, max]` value of each brick of voxels (see `hatchery_data::bricks`), computed and
+    /// uploaded once. Ranges are widened by 1/1000 of the value range: the volume texture stores
+    /// values in half precision.
+    pub fn bricks(&self, gpu: &GpuContext) -> &wgpu::Texture {
+        self.bricks.get_or_init(|| {
+            let [lo, hi] = self.data.value_range;
+            let bricks = hatchery_data::bricks::brick_ranges(&self.data, (hi - lo) * 1e-3);
+            gpu.texture_3d_init(
+                "bricks",
+                bricks.dims,
+                wgpu::TextureFormat::Rg32Float,
+                bytemuck::cast_slice(&bricks.ranges),
+            )
+        })
     }
     /// The largest gradient magnitude (world units), computed once: normalises |g| to [0, 1].
     pub fn max_gradient(&self) -> f32 {
