@@ -544,6 +544,7 @@ impl EditorApp {
         // Editors for the parameters that are more than a number.
         match node.kind.as_str() {
             "TransferFunction1D" => self.transfer_function_section(ui, &id, &node),
+            "StyleTransferFunction" => self.style_function_section(ui, &id, &node),
             "StyleSet" => self.styles_section(ui, &id, &node),
             _ => {}
         }
@@ -695,16 +696,21 @@ impl EditorApp {
         ui.label("Transfer function").on_hover_text(
             "drag a point to move it, double-click to add one, right-click a point to remove it",
         );
-        let mut points = match crate::tf_editor::node_points(&preset, &text(value("points")), range)
-        {
-            Ok(points) => points,
-            Err(e) => {
-                ui.colored_label(Color32::LIGHT_RED, format!("cannot draw the curve: {e}"));
-                return;
-            }
-        };
+        let mut points =
+            match crate::curve_editor::node_points(&preset, &text(value("points")), range) {
+                Ok(points) => points,
+                Err(e) => {
+                    ui.colored_label(Color32::LIGHT_RED, format!("cannot draw the curve: {e}"));
+                    return;
+                }
+            };
         let context = self.preview.tf_domains.get(id).copied();
-        if crate::tf_editor::tf_editor(ui, Id::new(("tf editor", id)), &mut points, context) {
+        if crate::curve_editor::transfer_function_editor(
+            ui,
+            Id::new(("tf editor", id)),
+            &mut points,
+            context,
+        ) {
             let values = [
                 ("preset", ParamValue::Choice("custom".into())),
                 (
@@ -713,6 +719,47 @@ impl EditorApp {
                 ),
             ];
             let _ = self.state.set_params(id, &values, "transfer function edit");
+        }
+        ui.separator();
+    }
+
+    /// The curve editor of a `StyleTransferFunction` node's `nodes` (per-label rows stay text),
+    /// its points named and coloured after the connected `StyleSet`.
+    fn style_function_section(&mut self, ui: &mut Ui, id: &str, node: &hatchery_graph::NodeDoc) {
+        let Some(ParamValue::Text(text)) = node_param(&self.state, node, "nodes") else {
+            return;
+        };
+        ui.label("Style transfer function").on_hover_text(
+            "drag a point to move it, double-click to add one, right-click a point to remove it; \
+             click a point to pick its style",
+        );
+        let mut nodes = match hatchery_data::style::StyleTransferFunction::parse(&text) {
+            Ok(nodes) => nodes,
+            Err(e) => {
+                ui.colored_label(Color32::LIGHT_RED, format!("cannot draw the curve: {e}"));
+                return;
+            }
+        };
+        let doc = self.state.doc();
+        let styles = doc
+            .edges
+            .iter()
+            .find(|e| e.to.0 == id && e.to.1 == "styles")
+            .and_then(|e| doc.nodes.iter().find(|n| n.id == e.from.0))
+            .and_then(|set| match node_param(&self.state, set, "styles") {
+                Some(ParamValue::Text(styles)) => Some(crate::style_picker::style_looks(&styles)),
+                _ => None,
+            })
+            .unwrap_or_default();
+        let context = self.preview.tf_domains.get(id).copied();
+        let editor_id = Id::new(("style tf editor", id));
+        if crate::curve_editor::style_curve_editor(ui, editor_id, &mut nodes, context, &styles) {
+            let text = hatchery_data::style::StyleTransferFunction::format(&nodes);
+            let _ = self.state.set_params(
+                id,
+                &[("nodes", ParamValue::Text(text))],
+                "style function edit",
+            );
         }
         ui.separator();
     }

@@ -8,12 +8,12 @@
 //!   so the UI never waits for a frame.
 
 pub mod app;
+pub mod curve_editor;
 pub mod files;
 pub mod preview;
 pub mod render_worker;
 pub mod state;
 pub mod style_picker;
-pub mod tf_editor;
 
 pub use app::EditorApp;
 pub use state::EditorState;

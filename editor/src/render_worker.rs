@@ -56,8 +56,8 @@ pub struct Rendered {
     /// The node whose execution failed, with the message (shown on the node).
     pub failed_node: Option<(String, String)>,
     pub times: BTreeMap<String, NodeTime>,
-    /// The value range each evaluated `TransferFunction1D` node spans (its presets follow the
-    /// connected volume's range, which only the executed graph knows).
+    /// The value range each evaluated transfer function node spans (a `TransferFunction1D`'s
+    /// presets follow the connected volume's range, which only the executed graph knows).
     pub tf_domains: BTreeMap<String, [f32; 2]>,
     /// Wall time of the whole request on the worker.
     pub elapsed: Duration,
@@ -246,10 +246,12 @@ impl Worker {
             );
         }
         for node in answer.times.keys() {
-            if let Ok(Value::TransferFunction(tf)) = session.output(node, "tf")
-                && let TransferFunction::Color(f) = tf.as_ref()
-            {
-                answer.tf_domains.insert(node.clone(), f.domain);
+            if let Ok(Value::TransferFunction(tf)) = session.output(node, "tf") {
+                let domain = match tf.as_ref() {
+                    TransferFunction::Color(f) => f.domain,
+                    TransferFunction::Style { function, .. } => function.domain,
+                };
+                answer.tf_domains.insert(node.clone(), domain);
             }
         }
         answer.elapsed = started.elapsed();

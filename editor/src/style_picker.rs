@@ -91,6 +91,26 @@ fn format(entries: &[Entry]) -> String {
         .join(", ")
 }
 
+/// Name and representative colour (the lit sphere at a normal facing the light) of each style
+/// of a `StyleSet`'s `styles` text; PNG entries are grey.
+pub fn style_looks(text: &str) -> Vec<(String, [f32; 3])> {
+    parse(text)
+        .into_iter()
+        .map(|e| match e {
+            Entry::Procedural { name, tint } => {
+                let colour = lit_sphere::procedural(&name, 16, tint)
+                    .map(|s| {
+                        let t = s.texels[(5 * 16 + 10) as usize];
+                        [t[0], t[1], t[2]]
+                    })
+                    .unwrap_or(tint);
+                (name, colour)
+            }
+            Entry::Other(text) => (text, [0.6; 3]),
+        })
+        .collect()
+}
+
 /// Shows the styles of `text` and returns the new text when the user changed them.
 pub fn style_picker(ui: &mut Ui, thumbnails: &mut Thumbnails, text: &str) -> Option<String> {
     let mut entries = parse(text);

@@ -990,16 +990,22 @@ fn ui_frame_time_with_the_brain_preset() {
     }
 }
 
+/// A text parameter of a node as written in the document.
+fn text_param(h: &Harness<EditorApp>, node: &str, name: &str) -> String {
+    let doc = h.state().state.doc();
+    let node = doc.nodes.iter().find(|n| n.id == node).unwrap();
+    match node.params.get(name) {
+        Some(ron::Value::String(text)) => text.clone(),
+        other => panic!("{name} is {other:?}"),
+    }
+}
+
 /// The `points` text of node `tf`, parsed.
 fn tf_points(h: &Harness<EditorApp>) -> Vec<hatchery_data::transfer_function::ControlPoint> {
-    let doc = h.state().state.doc();
-    let node = doc.nodes.iter().find(|n| n.id == "tf").unwrap();
-    match node.params.get("points") {
-        Some(ron::Value::String(text)) => {
-            hatchery_data::transfer_function::TransferFunction1D::parse_points(text).unwrap()
-        }
-        other => panic!("points is {other:?}"),
-    }
+    hatchery_data::transfer_function::TransferFunction1D::parse_points(&text_param(
+        h, "tf", "points",
+    ))
+    .unwrap()
 }
 
 fn click_with(h: &mut Harness<EditorApp>, at: egui::Pos2, button: egui::PointerButton) {
@@ -1080,14 +1086,7 @@ fn the_style_picker_swaps_adds_and_removes_lit_sphere_styles() {
     app.state.selection = ["styles".to_string()].into();
     let mut h = harness(app);
     h.run();
-    let styles = |h: &Harness<EditorApp>| {
-        let doc = h.state().state.doc();
-        let node = doc.nodes.iter().find(|n| n.id == "styles").unwrap();
-        match node.params.get("styles") {
-            Some(ron::Value::String(text)) => text.clone(),
-            other => panic!("styles is {other:?}"),
-        }
-    };
+    let styles = |h: &Harness<EditorApp>| text_param(h, "styles", "styles");
     let original = styles(&h);
     assert_eq!(original, "gooch:0.6,0.7,0.9, toon3:0.9,0.45,0.35");
     // Each style is a thumbnail button; clicking it opens the gallery of every style.
@@ -1288,4 +1287,45 @@ fn closing_the_window_with_unsaved_changes_asks_first() {
         commands.contains(&egui::ViewportCommand::Close),
         "{commands:?}"
     );
+}
+
+#[test]
+fn the_style_transfer_function_editor_moves_points_and_picks_their_styles() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/style_tf_brain.ron", dir.path());
+    app.state.selection = ["tf".to_string()].into();
+    let mut h = harness(app);
+    h.run();
+    let nodes = |h: &Harness<EditorApp>| {
+        hatchery_data::style::StyleTransferFunction::parse(&text_param(h, "tf", "nodes")).unwrap()
+    };
+    let before = nodes(&h);
+    assert_eq!(before.len(), 4);
+    let curve = h.get_by_label("style transfer function curve").rect();
+    // Dragging point 3 down by a tenth of the curve's height lowers its opacity by 0.1.
+    let handle = h
+        .get_by_label("style transfer function point 3")
+        .rect()
+        .center();
+    drag(
+        &mut h,
+        handle,
+        handle + egui::vec2(0.0, curve.height() * 0.1),
+    );
+    let after = nodes(&h);
+    assert!(
+        (after[2].opacity - (before[2].opacity - 0.1)).abs() < 0.01,
+        "{after:?}"
+    );
+    assert_eq!(
+        (after[2].value, after[2].style),
+        (before[2].value, before[2].style)
+    );
+    // The picked point's style is chosen by name from the connected StyleSet.
+    // (The combo box shows "1: toon3"; it is the only one in this inspector.)
+    h.get_by_role(Role::ComboBox).click();
+    h.run();
+    h.get_by_label("2: shaded").click();
+    h.run();
+    assert_eq!(nodes(&h)[2].style, 2);
 }

@@ -124,6 +124,16 @@ impl StyleTransferFunction {
         Ok(nodes)
     }
 
+    /// Writes nodes the way [`StyleTransferFunction::parse`] reads them (shortest round-tripping
+    /// numbers).
+    pub fn format(nodes: &[StyleNode]) -> String {
+        nodes
+            .iter()
+            .map(|n| format!("{}: {} {}", n.value, n.style, n.opacity))
+            .collect::<Vec<_>>()
+            .join("; ")
+    }
+
     /// `(i, α_u)` at data value `v`, by exactly the rule of
     /// [`crate::transfer_function::TransferFunction1D::lookup`].
     pub fn lookup_tft(&self, v: f32) -> (f32, f32) {
@@ -219,6 +229,24 @@ pub fn curvature_estimate(n: [f32; 3], previous: [f32; 3], step_world: f32) -> f
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn formatted_nodes_parse_back_to_the_same_nodes() {
+        let nodes = vec![
+            StyleNode {
+                value: 40.0,
+                style: 0,
+                opacity: 0.02,
+            },
+            StyleNode {
+                value: 1.0 / 3.0,
+                style: 2,
+                opacity: 0.123_456_79,
+            },
+        ];
+        let text = StyleTransferFunction::format(&nodes);
+        assert_eq!(StyleTransferFunction::parse(&text).unwrap(), nodes);
+    }
     use crate::lit_sphere::procedural;
 
     fn node(value: f32, style: usize, opacity: f32) -> StyleNode {
