@@ -143,11 +143,14 @@ fn hash(p: vec2<f32>) -> f32 {
     return fract(sin(dot(p, vec2<f32>(12.9898, 78.233))) * 43758.5453);
 }
 
-// Whether every sample in the brick holding voxel-space position q is transparent: no value in
-// the brick's range is visible under any row of the transfer function.
-fn brick_is_empty(q: vec3<f32>) -> bool {
+// [min, max] of the values trilinear samples can take in the brick holding voxel-space q.
+fn brick_range(q: vec3<f32>) -> vec2<f32> {
     let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
-    let range = textureLoad(bricks, brick, 0).xy;
+    return textureLoad(bricks, brick, 0).xy;
+}
+
+// Whether no value in `range` is visible under any row of the transfer function.
+fn range_is_invisible(range: vec2<f32>) -> bool {
     let lo = ray.origin.w;
     let span = max(ray.spacing.w - lo, 1e-30);
     let last = i32(ray.skip.z) - 1;
@@ -233,20 +236,39 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
     var hit_t = -1.0;
     let count = min(u32(max(floor((t_out - start) / h), -1.0) + 1.0), 65536u);
 
-    let skipping = mode == 0 && ray.skip.x > 0.5;
+    let skipping = ray.skip.x > 0.5;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
         let p = p0 + dir * t;
         let q = (p - ray.origin.xyz) / ray.spacing.xyz;
-        if skipping && brick_is_empty(q) {
-            // Jump to the first sample past the brick (on the same lattice of t, so the samples
-            // taken are exactly those taken without skipping); the skipped ones were transparent.
-            let exit = brick_exit(q, dir, t) - 1e-4 * h;
-            let next = max(ceil((exit - start) / h), f32(k + 1u));
-            k = u32(min(next, f32(count))) - 1u;
-            // κv restarts after a gap, as after any transparent sample.
-            previous_normal = vec3<f32>(0.0);
-            continue;
+        if skipping {
+            // Bricks whose samples cannot change the result: DVR, all transparent; MIP, none
+            // above the maximum so far; iso, all below the iso value.
+            let range = brick_range(q);
+            var skip = false;
+            if mode == 0 {
+                skip = range_is_invisible(range);
+            } else if mode == 1 {
+                skip = range.y <= best;
+            } else {
+                skip = range.y < ray.mode.y;
+            }
+            if skip {
+                // Jump to the first sample past the brick, on the same lattice of t, so the
+                // samples taken are exactly those taken without skipping.
+                let exit = brick_exit(q, dir, t) - 1e-4 * h;
+                let next = min(max(ceil((exit - start) / h), f32(k + 1u)), f32(count));
+                if mode == 2 {
+                    // The iso hit interpolates from the sample before it: take that one.
+                    let t_before = start + (next - 1.0) * h;
+                    previous_value = value_at((p0 + dir * t_before - ray.origin.xyz) / ray.spacing.xyz);
+                    previous_t = t_before;
+                }
+                k = u32(next) - 1u;
+                // κv restarts after a gap, as after any transparent sample.
+                previous_normal = vec3<f32>(0.0);
+                continue;
+            }
         }
         let v = value_at(q);
 

@@ -91,6 +91,7 @@ fn node_params(
     p
 }
 
+/// Runs a Raycast node; returns its outputs: image, G-buffer.
 fn raycast(
     session: &mut Session,
     volume: &Arc<Volume>,
@@ -98,7 +99,7 @@ fn raycast(
     tf: TransferFunction,
     params: &[(String, ParamValue)],
     light: Vec3,
-) -> Value {
+) -> Vec<Value> {
     let light_value = hatchery_nodes::light::Light {
         direction: light,
         view_space: true,
@@ -110,7 +111,7 @@ fn raycast(
         .iter()
         .map(|(n, v)| (n.as_str(), v.clone()))
         .collect();
-    let out = common::run_node(
+    common::run_node(
         session,
         "Raycast",
         vec![
@@ -120,8 +121,7 @@ fn raycast(
             ("light", Value::Light(Arc::new(light_value))),
         ],
         &p,
-    );
-    out[0].clone()
+    )
 }
 
 /// RMS error per channel ≤ 2/255, reporting the worst pixel.
@@ -280,7 +280,7 @@ fn gpu_ray_caster_matches_the_cpu_reference_on_procedural_volumes() {
             &params,
             light,
         );
-        let gpu = rgba(&s, &gpu_value);
+        let gpu = rgba(&s, &gpu_value[0]);
         let cpu = reference::render(
             data,
             &colour_tf,
@@ -331,7 +331,7 @@ fn axis_aligned_columns_equal_closed_form_mip_and_front_to_back_over() {
             &params,
             Vec3::Z,
         );
-        let gpu = rgba(&s, &value);
+        let gpu = rgba(&s, &value[0]);
         let mut worst = 0.0f32;
         for y in 0..n {
             for x in 0..n {
@@ -467,7 +467,7 @@ fn centre_row(
         &params,
         Vec3::Z,
     );
-    let image = rgba(session, &value);
+    let image = rgba(session, &value[0]);
     image[(w / 2 * w) as usize..(w / 2 * w + w) as usize].to_vec()
 }
 
@@ -767,10 +767,21 @@ fn two_dimensional_style_tf_picks_styles_per_object_label() {
     );
 }
 
-/// Renders `ray.image` of a preset with empty-space skipping on and off.
-fn with_and_without_skipping(preset: &str, size: (u32, u32)) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
+/// Renders `ray.image` of a preset (with some parameters of `ray` set) with empty-space skipping
+/// on and off.
+fn with_and_without_skipping(
+    preset: &str,
+    params: &[(&str, ParamValue)],
+    size: (u32, u32),
+) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
     let path = common::repo_root().join("graphs").join(preset);
     let mut session = Session::open(&path, size.0, size.1).expect("preset opens");
+    for (name, value) in params {
+        session
+            .graph
+            .set_param(&session.registry, "ray", name, value.clone())
+            .unwrap();
+    }
     let mut render = |skip: bool| {
         session
             .graph
@@ -789,17 +800,26 @@ fn with_and_without_skipping(preset: &str, size: (u32, u32)) -> (Vec<[f32; 4]>, 
 
 #[test]
 fn empty_space_skipping_leaves_the_picture_unchanged_on_the_shared_volumes() {
-    // A colour TF (MRI), a style TF with contours (MRI), a 2-D style TF over object labels (frog).
-    for preset in [
-        "tf1d_phong_brain.ron",
-        "style_tf_brain.ron",
-        "style_tf_frog.ron",
-    ] {
-        let (skipped, full) = with_and_without_skipping(preset, (160, 120));
+    let mode = |m: &str| ("mode", ParamValue::Choice(m.into()));
+    let cases: [(&str, Vec<(&str, ParamValue)>); 5] = [
+        // A colour TF (MRI), a style TF with contours (MRI), a 2-D style TF over labels (frog).
+        ("tf1d_phong_brain.ron", vec![]),
+        ("style_tf_brain.ron", vec![]),
+        ("style_tf_frog.ron", vec![]),
+        // MIP skips bricks not above the maximum so far; iso, bricks below the iso value.
+        ("tf1d_phong_brain.ron", vec![mode("mip")]),
+        (
+            "tf1d_phong_brain.ron",
+            vec![mode("iso"), ("iso", ParamValue::Float(80.0))],
+        ),
+    ];
+    for (preset, params) in cases {
+        let name = format!("{preset} {params:?}");
+        let (skipped, full) = with_and_without_skipping(preset, &params, (160, 120));
         let covered = full.iter().filter(|p| p[3] > 0.05).count();
         assert!(
             covered > 1000,
-            "{preset}: the volume covers only {covered} pixels"
+            "{name}: the volume covers only {covered} pixels"
         );
         let (mut worst, mut at) = (0.0f32, 0);
         for (i, (a, b)) in skipped.iter().zip(&full).enumerate() {
@@ -810,11 +830,74 @@ fn empty_space_skipping_leaves_the_picture_unchanged_on_the_shared_volumes() {
         }
         assert!(
             worst <= 1e-6,
-            "{preset}: skipping changed pixel ({}, {}) by {worst}: {:?} vs {:?}",
+            "{name}: skipping changed pixel ({}, {}) by {worst}: {:?} vs {:?}",
             at % 160,
             at / 160,
             skipped[at],
             full[at]
+        );
+    }
+}
+
+/// The first iso hit after a skipped brick interpolates from the sample before it (inside the
+/// skipped brick), exactly as without skipping. A step along x: 20 up to voxel 16, 100 from 17;
+/// with 1.5-voxel steps from x = 0 the samples at 0 … 15 lie in bricks 0–1 (all values 20 < 50,
+/// skipped) and the one at 16.5 (value 60) is the hit: t = 15 + 1.5 · (50 − 20) / (60 − 20).
+#[test]
+fn an_iso_hit_right_after_a_skipped_brick_interpolates_from_the_skipped_sample() {
+    let dims = [40u32, 8, 8];
+    let values = (0..dims.iter().product::<u32>())
+        .map(|i| if i % dims[0] <= 16 { 20.0 } else { 100.0 })
+        .collect();
+    let data = VolumeData::new(dims, [1.0; 3], [0.0; 3], values).unwrap();
+    let volume = Arc::new(Volume::new(data));
+    let mut session = session();
+    // Orthographic, looking along +x through the middle of the slab.
+    let cam = camera(
+        &mut session,
+        16,
+        16,
+        true,
+        -90.0,
+        0.0,
+        30.0,
+        10.0,
+        Vec3::new(20.0, 3.5, 3.5),
+    );
+    let depth_and_normal = |session: &mut Session, skip: bool| {
+        let tf = TransferFunction::Color(tf_of(&[(0.0, [1.0; 4]), (100.0, [1.0; 4])]));
+        let params = node_params(
+            "iso",
+            "none",
+            1.5,
+            &[
+                ("iso", ParamValue::Float(50.0)),
+                ("skip_empty", ParamValue::Bool(skip)),
+            ],
+        );
+        let out = raycast(session, &volume, &cam, tf, &params, Vec3::Z);
+        export::to_array(&out[1], &session.ctx.gpu).unwrap().data
+    };
+    let skipped = depth_and_normal(&mut session, true);
+    let full = depth_and_normal(&mut session, false);
+    // The hit at x = 16.125, as window depth of the orthographic camera.
+    let eye_x = 20.0 - 30.0;
+    let expected_depth = (16.125 - eye_x - 0.05) / (50.0 - 0.05);
+    for (i, (a, b)) in skipped
+        .chunks_exact(4)
+        .zip(full.chunks_exact(4))
+        .enumerate()
+    {
+        assert!(
+            (a[0] - b[0]).abs() <= 1e-6,
+            "pixel {i}: depth {} with skipping, {} without",
+            a[0],
+            b[0]
+        );
+        assert!(
+            (a[0] - expected_depth).abs() < 1e-4,
+            "pixel {i}: depth {}, expected {expected_depth}",
+            a[0]
         );
     }
 }

@@ -92,7 +92,9 @@ pub fn visibility_prefix(value_range: [f32; 2], rows: &[OpacityRow]) -> Vec<f32>
             let last = (entry(b).ceil() as usize).min(last_entry);
             row.opacity[first..=last].iter().any(|&o| o > 0.0)
         });
-        if visible || !(width > 0.0) {
+        // A constant volume (no value range) counts as visible everywhere.
+        let degenerate = width.is_nan() || width <= 0.0;
+        if visible || degenerate {
             count += 1.0;
         }
         prefix.push(count);

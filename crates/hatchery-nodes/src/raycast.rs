@@ -342,7 +342,8 @@ pub fn cast(
             opacity,
         })
         .collect();
-    let skip_empty = o.skip_empty && o.mode == 0 && !rows.is_empty();
+    // DVR skips by the transfer function's visible values, so it needs one.
+    let skip_empty = o.skip_empty && (o.mode != 0 || !rows.is_empty());
     let visibility = floats_texture(
         gpu,
         "visibility",
@@ -681,8 +682,9 @@ impl Node<Value, Ctx> for RaycastNode {
                 ParamSpec::bool(
                     "skip_empty",
                     true,
-                    "DVR: jump over 8³-voxel bricks whose values the transfer function makes \
-                     transparent (same picture, fewer samples)",
+                    "jump over 8³-voxel bricks that cannot change the picture (DVR: values the \
+                     transfer function makes transparent; MIP: none above the maximum so far; \
+                     iso: all below the iso value) — same picture, fewer samples",
                 ),
             ],
             frame_dependent: true,
@@ -799,7 +801,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             early_termination: 1.0,
             hit_opacity: 1.0,
             light_view: Vec3::Z,
-            skip_empty: false,
+            skip_empty: true,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])
