@@ -9,12 +9,14 @@ struct Ray {
     inv_view_proj: mat4x4<f32>,
     view: mat4x4<f32>,
     view_proj: mat4x4<f32>,
-    // xyz world box of the voxel centres; box_min.w = step in world units, box_max.w = step in voxels.
+    // xyz voxel-space box of the voxel centres (slightly widened); box_min.w = step in world
+    // units, box_max.w = step in voxels.
     box_min: vec4<f32>,
     box_max: vec4<f32>,
-    // xyz volume origin (centre of voxel 0); w = lowest value (the texture stores (v - lo) / (hi - lo)).
+    // xyz world origin (centre of voxel 0, informative); w = lowest value (the texture stores
+    // (v - lo) / (hi - lo)).
     origin: vec4<f32>,
-    // xyz voxel spacing; w = highest value.
+    // xyz voxel spacing (informative); w = highest value.
     spacing: vec4<f32>,
     // xyz voxel counts; w = largest gradient magnitude (normalises |g| to [0, 1]).
     dims: vec4<f32>,
@@ -41,6 +43,10 @@ struct Ray {
     labels: vec4<f32>,
     // x = 1 to skip empty bricks (DVR); y = voxels per brick side; z = visibility bins.
     skip: vec4<f32>,
+    // World → voxel transform (voxel centres at integers); rays march in voxel space.
+    to_voxel: mat4x4<f32>,
+    // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
+    grad_to_world: mat4x4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> ray: Ray;
@@ -79,7 +85,8 @@ fn value_at(q: vec3<f32>) -> f32 {
     return ray.origin.w + normalised * (ray.spacing.w - ray.origin.w);
 }
 
-// World-space gradient by central differences in voxel space (one-sided at the border).
+// World-space gradient by central differences in voxel space (one-sided at the border), mapped
+// to world units through the transform. NaN where a neighbour is "no data".
 fn gradient_at(q: vec3<f32>) -> vec3<f32> {
     let top = ray.dims.xyz - 1.0;
     let p = clamp(q, vec3<f32>(0.0), top);
@@ -89,9 +96,14 @@ fn gradient_at(q: vec3<f32>) -> vec3<f32> {
         var hi = p;
         lo[axis] = max(p[axis] - 1.0, 0.0);
         hi[axis] = min(p[axis] + 1.0, top[axis]);
-        g[axis] = (value_at(hi) - value_at(lo)) / ((hi[axis] - lo[axis]) * ray.spacing[axis]);
+        g[axis] = (value_at(hi) - value_at(lo)) / (hi[axis] - lo[axis]);
     }
-    return g;
+    return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
+}
+
+// NaN / ±inf voxels are "no data": such samples are transparent.
+fn no_data(v: f32) -> bool {
+    return v != v || abs(v) > 3.0e38;
 }
 
 // The LUT rule of hatchery_data::transfer_function::TransferFunction1D::lookup, on table row `row`.
@@ -163,10 +175,9 @@ fn range_is_invisible(range: vec2<f32>) -> bool {
     return textureLoad(visibility, vec2<i32>(b, 0), 0).r - before == 0.0;
 }
 
-// The ray parameter where the ray leaves the brick holding q (p = p0 + dir·t).
-fn brick_exit(q: vec3<f32>, dir: vec3<f32>, t: f32) -> f32 {
+// The ray parameter where the ray leaves the brick holding q (q = q0 + dq·t).
+fn brick_exit(q: vec3<f32>, dq: vec3<f32>, t: f32) -> f32 {
     let brick = floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y);
-    let dq = dir / ray.spacing.xyz;
     var exit = 1e30;
     for (var axis = 0; axis < 3; axis++) {
         if dq[axis] > 1e-12 {
@@ -195,18 +206,21 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
     let far4 = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
     let p0 = near4.xyz / near4.w;
     let dir = normalize(far4.xyz / far4.w - p0);
+    // The same ray in voxel space; t stays in world units.
+    let q0 = (ray.to_voxel * vec4<f32>(p0, 1.0)).xyz;
+    let dq = (ray.to_voxel * vec4<f32>(dir, 0.0)).xyz;
 
-    // Slab test against the box of voxel centres.
+    // Slab test against the box of voxel centres, in voxel space.
     var t_in = 0.0;
     var t_out = 1e30;
     for (var axis = 0; axis < 3; axis++) {
-        if abs(dir[axis]) < 1e-12 {
-            if p0[axis] < ray.box_min[axis] || p0[axis] > ray.box_max[axis] {
+        if abs(dq[axis]) < 1e-12 {
+            if q0[axis] < ray.box_min[axis] || q0[axis] > ray.box_max[axis] {
                 return out;
             }
         } else {
-            let a = (ray.box_min[axis] - p0[axis]) / dir[axis];
-            let b = (ray.box_max[axis] - p0[axis]) / dir[axis];
+            let a = (ray.box_min[axis] - q0[axis]) / dq[axis];
+            let b = (ray.box_max[axis] - q0[axis]) / dq[axis];
             t_in = max(t_in, min(a, b));
             t_out = min(t_out, max(a, b));
         }
@@ -240,28 +254,29 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
         let p = p0 + dir * t;
-        let q = (p - ray.origin.xyz) / ray.spacing.xyz;
+        let q = q0 + dq * t;
         if skipping {
             // Bricks whose samples cannot change the result: DVR, all transparent; MIP, none
             // above the maximum so far; iso, all below the iso value.
             let range = brick_range(q);
-            var skip = false;
-            if mode == 0 {
+            // An empty range (min > max) holds only "no data".
+            var skip = range.x > range.y;
+            if !skip && mode == 0 {
                 skip = range_is_invisible(range);
-            } else if mode == 1 {
+            } else if !skip && mode == 1 {
                 skip = range.y <= best;
-            } else {
+            } else if !skip {
                 skip = range.y < ray.mode.y;
             }
             if skip {
                 // Jump to the first sample past the brick, on the same lattice of t, so the
                 // samples taken are exactly those taken without skipping.
-                let exit = brick_exit(q, dir, t) - 1e-4 * h;
+                let exit = brick_exit(q, dq, t) - 1e-4 * h;
                 let next = min(max(ceil((exit - start) / h), f32(k + 1u)), f32(count));
                 if mode == 2 {
                     // The iso hit interpolates from the sample before it: take that one.
                     let t_before = start + (next - 1.0) * h;
-                    previous_value = value_at((p0 + dir * t_before - ray.origin.xyz) / ray.spacing.xyz);
+                    previous_value = value_at(q0 + dq * t_before);
                     previous_t = t_before;
                 }
                 k = u32(next) - 1u;
@@ -271,6 +286,12 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             }
         }
         let v = value_at(q);
+        if no_data(v) {
+            // Transparent; the next iso crossing starts afresh, κv restarts after the gap.
+            previous_value = -3.0e38;
+            previous_normal = vec3<f32>(0.0);
+            continue;
+        }
 
         if mode == 1 {
             if v > best {
@@ -282,7 +303,7 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
         if mode == 2 {
             if v >= ray.mode.y {
                 var t_hit = t;
-                if k > 0u && v != previous_value {
+                if k > 0u && v != previous_value && previous_value > -3.0e38 {
                     t_hit = previous_t + h * (ray.mode.y - previous_value) / (v - previous_value);
                 }
                 hit_t = t_hit;
@@ -320,7 +341,11 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             continue;
         }
         let g = gradient_at(q);
-        let g_length = length(g);
+        var g_length = length(g);
+        if g_length != g_length {
+            // A neighbour is "no data": no direction to shade with.
+            g_length = 0.0;
+        }
         var n_world = vec3<f32>(0.0);
         if g_length > 1e-12 {
             // Unit normal towards lower values (outward for bright objects).
@@ -441,7 +466,7 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             return out;
         }
         let p = p0 + dir * hit_t;
-        let q = (p - ray.origin.xyz) / ray.spacing.xyz;
+        let q = q0 + dq * hit_t;
         let g = gradient_at(q);
         var n_world = vec3<f32>(0.0);
         if length(g) > 1e-12 {

@@ -2,6 +2,7 @@
 
 mod bench;
 mod catalogue;
+mod info;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
@@ -64,6 +65,9 @@ enum Command {
         #[arg(long, value_name = "NODE.PARAM=VALUE")]
         set: Vec<String>,
     },
+    /// Describe a volume or mesh file: dims, spacing, the voxel → world affine (RAS+ mm),
+    /// value range, voxel type and which header rule placed it.
+    Info { file: PathBuf },
     /// Rewrite a graph file in the canonical layout (what saving writes).
     Fmt {
         graph: PathBuf,
@@ -230,6 +234,10 @@ fn run(cli: Cli) -> Result<()> {
                 sessions.push(session);
             }
             bench::run(&graphs, &mut sessions, &scenarios, &size, frames.max(1))
+        }
+        Command::Info { file } => {
+            print!("{}", info::describe(&file)?);
+            Ok(())
         }
         Command::Fmt { graph, check } => {
             let (doc, _) = GraphDocument::load(&graph)?;

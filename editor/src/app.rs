@@ -6,7 +6,8 @@ use crate::preview::{Preview, Shown};
 use crate::render_worker::{NodeTime, Port};
 use crate::state::EditorState;
 use egui::{Color32, Id, Key, Modifiers, Pos2, Ui};
-use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer, SnarlWidget, get_selected_nodes};
+use crate::selection::{CanvasSelection, SelectionChange};
+use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer, SnarlWidget};
 use egui_snarl::{InPin, NodeId, OutPin, Snarl};
 use hatchery_graph::{EditorPos, ParamKind, ParamSpec, ParamValue, PortType, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet};
@@ -49,7 +50,8 @@ pub struct EditorApp {
     /// position get a grid place, written to the document only when moved).
     placed: BTreeMap<String, Pos2>,
     synced_revision: Option<u64>,
-    last_ui_selection: Vec<String>,
+    /// Selection by the mouse (see [`crate::selection`]).
+    selecting: CanvasSelection,
     search: String,
     clipboard: String,
     /// Why the last wire drop was refused, where and when (shown as a tooltip for a while).
@@ -118,7 +120,7 @@ impl EditorApp {
             snarl_ids: BTreeMap::new(),
             placed: BTreeMap::new(),
             synced_revision: None,
-            last_ui_selection: Vec::new(),
+            selecting: CanvasSelection::default(),
             search: String::new(),
             clipboard: String::new(),
             refusal: None,
@@ -329,6 +331,11 @@ impl EditorApp {
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F)) {
             self.frame_all = true;
         }
+        // Esc clears the selection unless a popup, menu or text field takes it.
+        let popup = egui::Popup::is_any_open(ui.ctx());
+        if !typing && !popup && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Escape)) {
+            self.state.clear_selection();
+        }
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Delete)) {
             let ids: Vec<String> = self.state.selection.iter().cloned().collect();
             let _ = self.state.remove_nodes(&ids);
@@ -464,9 +471,11 @@ impl EditorApp {
         for (port, e) in &self.preview.thumbnail_errors {
             thumbnails.insert(port.clone(), Err(e.clone()));
         }
+        self.selecting.begin_frame();
         let mut viewer = Viewer {
             frame_into,
             transform: self.canvas_transform,
+            selecting: &mut self.selecting,
             state: &mut self.state,
             search: &mut self.search,
             clipboard: &mut self.clipboard,
@@ -479,8 +488,32 @@ impl EditorApp {
         };
         // Dragging a node's title moves the node instead of selecting its text.
         ui.style_mut().interaction.selectable_labels = false;
+        // Snarl sees no modifiers, so its own (Shift-click) selection never starts: the editor
+        // owns selection (see crate::selection).
+        let modifiers = ui.input(|i| i.modifiers);
+        ui.ctx().input_mut(|i| i.modifiers = Modifiers::NONE);
+        let canvas_rect = ui.available_rect_before_wrap();
         widget.show(&mut self.snarl, &mut viewer, ui);
+        ui.ctx().input_mut(|i| i.modifiers = modifiers);
         self.canvas_transform = viewer.transform;
+        let free = ui
+            .input(|i| i.pointer.interact_pos())
+            .is_some_and(|p| ui.ctx().layer_id_at(p).is_none_or(|l| l == ui.layer_id()));
+        let change = self.selecting.update(
+            ui.ctx(),
+            canvas_rect,
+            free,
+            self.canvas_transform,
+            modifiers,
+        );
+        match change {
+            Some(SelectionChange::Click { node, mode }) => self.state.select_click(&node, mode),
+            Some(SelectionChange::ClickEmpty) if modifiers.is_none() => {
+                self.state.clear_selection()
+            }
+            Some(SelectionChange::Box { nodes, add }) => self.state.select_box(&nodes, add),
+            _ => {}
+        }
         if let Some(reason) = viewer.refused.take() {
             let now = ui.input(|i| i.time);
             let at = ui
@@ -505,6 +538,27 @@ impl EditorApp {
                     (old.distance(p) > 0.25).then(|| (id.clone(), p))
                 })
                 .collect();
+            // Dragging one selected node carries the rest of the selection along.
+            let mut moved = moved;
+            if let [(dragged, to)] = moved.as_slice()
+                && self.state.selection.contains(dragged)
+                && let Some(&from) = self.placed.get(dragged)
+            {
+                let delta = *to - from;
+                for other in &self.state.selection {
+                    if other == dragged {
+                        continue;
+                    }
+                    let (Some(&n), Some(&at)) = (self.snarl_ids.get(other), self.placed.get(other))
+                    else {
+                        continue;
+                    };
+                    if let Some(info) = self.snarl.get_node_info_mut(n) {
+                        info.pos = at + delta;
+                        moved.push((other.clone(), at + delta));
+                    }
+                }
+            }
             for (id, p) in moved {
                 self.state.move_node(&id, pos(p));
                 self.placed.insert(id, p);
@@ -512,23 +566,20 @@ impl EditorApp {
             // The canvas already shows these positions: no rebuild needed.
             self.synced_revision = Some(self.state.revision());
         }
-
-        let selected: Vec<String> = get_selected_nodes(Id::new(SNARL_ID), ui.ctx())
-            .into_iter()
-            .filter_map(|n| self.snarl.get_node(n).cloned())
-            .collect();
-        if selected != self.last_ui_selection {
-            self.state.selection = selected.iter().cloned().collect();
-            self.last_ui_selection = selected;
-        }
     }
 
     fn inspector(&mut self, ui: &mut Ui) {
         ui.heading("Inspector");
-        let Some(id) = self.state.selection.iter().next().cloned() else {
-            ui.label("Select a node to edit its parameters.");
+        let Some(id) = self.state.inspected().map(str::to_owned) else {
+            ui.label("Click a node to edit its parameters.");
             return;
         };
+        if self.state.selection.len() > 1 {
+            ui.weak(format!(
+                "{} nodes selected; showing the last clicked",
+                self.state.selection.len()
+            ));
+        }
         let Some(node) = self.state.doc().nodes.iter().find(|n| n.id == id).cloned() else {
             return;
         };
@@ -1024,6 +1075,8 @@ struct Viewer<'a> {
     /// "Frame all" requested: the canvas rectangle (screen space) to fit the nodes into.
     frame_into: Option<egui::Rect>,
     transform: egui::emath::TSTransform,
+    /// Where nodes are drawn (for selection by the mouse).
+    selecting: &'a mut CanvasSelection,
     state: &'a mut EditorState,
     search: &'a mut String,
     clipboard: &'a mut String,
@@ -1382,6 +1435,10 @@ impl SnarlViewer<String> for Viewer<'_> {
         to_global: &mut egui::emath::TSTransform,
         snarl: &mut Snarl<String>,
     ) {
+        // The canvas holds still while a box selection is dragged (the drag would pan it).
+        if let Some(held) = self.selecting.box_transform {
+            *to_global = held;
+        }
         self.transform = *to_global;
         let Some(rect) = self.frame_into.take() else {
             return;
@@ -1407,6 +1464,39 @@ impl SnarlViewer<String> for Viewer<'_> {
 
     fn has_node_menu(&mut self, _node: &String) -> bool {
         true
+    }
+
+    fn node_frame(
+        &mut self,
+        default: egui::Frame,
+        node: NodeId,
+        _inputs: &[InPin],
+        _outputs: &[OutPin],
+        snarl: &Snarl<String>,
+    ) -> egui::Frame {
+        let Some(id) = snarl.get_node(node) else {
+            return default;
+        };
+        if !self.state.selection.contains(id) {
+            return default;
+        }
+        let mut stroke = crate::selection::selected_stroke();
+        if self.state.inspected() == Some(id.as_str()) {
+            stroke.color = crate::selection::active_color();
+        }
+        default.stroke(stroke)
+    }
+
+    fn final_node_rect(
+        &mut self,
+        node: NodeId,
+        rect: egui::Rect,
+        _ui: &mut Ui,
+        snarl: &mut Snarl<String>,
+    ) {
+        if let Some(id) = snarl.get_node(node) {
+            self.selecting.node_drawn(id, rect);
+        }
     }
 
     fn show_node_menu(

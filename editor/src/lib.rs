@@ -12,6 +12,7 @@ pub mod curve_editor;
 pub mod files;
 pub mod preview;
 pub mod render_worker;
+pub mod selection;
 pub mod state;
 pub mod style_picker;
 

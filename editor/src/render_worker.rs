@@ -65,6 +65,22 @@ pub struct Rendered {
     pub adapter: String,
 }
 
+impl Rendered {
+    /// An answer carrying only an error.
+    fn failed(id: u64, message: String) -> Self {
+        Rendered {
+            id,
+            viewport: Some(Err(message)),
+            thumbnails: Vec::new(),
+            failed_node: None,
+            times: BTreeMap::new(),
+            tf_domains: BTreeMap::new(),
+            elapsed: Duration::ZERO,
+            adapter: String::new(),
+        }
+    }
+}
+
 /// The worker thread's handle. Dropping it ends the thread after its current frame.
 pub struct RenderWorker {
     requests: Sender<Request>,
@@ -98,7 +114,20 @@ impl RenderWorker {
                             Err(TryRecvError::Disconnected) => return,
                         }
                     }
-                    let answer = worker.render(request);
+                    let id = request.id;
+                    // A bug in a node must not end the previews: report it and start afresh.
+                    let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        worker.render(request)
+                    }));
+                    let answer = rendered.unwrap_or_else(|panic| {
+                        worker.session = None;
+                        let what = panic
+                            .downcast_ref::<String>()
+                            .map(String::as_str)
+                            .or_else(|| panic.downcast_ref::<&str>().copied())
+                            .unwrap_or("unknown");
+                        Rendered::failed(id, format!("internal error while rendering: {what}"))
+                    });
                     if outbox.send(answer).is_err() {
                         return;
                     }
@@ -130,7 +159,7 @@ impl RenderWorker {
 }
 
 struct Worker {
-    /// The device to open the session on (taken when the session is made).
+    /// The device sessions are opened on (opened on first use when not given).
     gpu: Option<GpuContext>,
     session: Option<Session>,
     /// Read pictures back as pixels (the worker's device is not the window's).
@@ -147,9 +176,11 @@ impl Worker {
                 }
             }
             None => {
-                let gpu = match self.gpu.take() {
-                    Some(gpu) => gpu,
-                    None => GpuContext::new()?,
+                // The device is kept: a new session (after a failure) renders on the same one,
+                // so textures still belong to the window's device when it is shared.
+                let gpu = match &self.gpu {
+                    Some(gpu) => gpu.clone(),
+                    None => self.gpu.insert(GpuContext::new()?).clone(),
                 };
                 self.session = Some(Session::with_gpu(registry(), graph, gpu, size.0, size.1)?);
             }
@@ -159,16 +190,8 @@ impl Worker {
 
     fn render(&mut self, request: Request) -> Rendered {
         let started = Instant::now();
-        let mut answer = Rendered {
-            id: request.id,
-            viewport: None,
-            thumbnails: Vec::new(),
-            failed_node: None,
-            times: BTreeMap::new(),
-            tf_domains: BTreeMap::new(),
-            elapsed: Duration::ZERO,
-            adapter: String::new(),
-        };
+        let mut answer = Rendered::failed(request.id, String::new());
+        answer.viewport = None;
         let copy_back = self.copy_back;
         let session = match self.session(request.graph, request.size) {
             Ok(session) => session,

@@ -22,6 +22,8 @@ pub struct EditorState {
     /// with the same key do not push another undo step.
     open_group: Option<String>,
     pub selection: BTreeSet<String>,
+    /// The node the Inspector shows: the last one clicked (if still selected).
+    active: Option<String>,
     /// Validation errors by node id (several joined by newlines).
     errors: BTreeMap<String, String>,
     /// Errors that concern no single node.
@@ -56,6 +58,7 @@ impl EditorState {
             redo: Vec::new(),
             open_group: None,
             selection: BTreeSet::new(),
+            active: None,
             errors: BTreeMap::new(),
             graph_errors: Vec::new(),
             status: String::new(),
@@ -233,6 +236,49 @@ impl EditorState {
         self.validate();
     }
 
+    // Selection (by the mouse: see `crate::selection`).
+
+    /// The node the Inspector shows: the last clicked if still selected, else the first.
+    pub fn inspected(&self) -> Option<&str> {
+        self.active
+            .as_deref()
+            .filter(|a| self.selection.contains(*a))
+            .or_else(|| self.selection.iter().next().map(String::as_str))
+    }
+
+    /// A click on node `id`.
+    pub fn select_click(&mut self, id: &str, mode: crate::selection::ClickMode) {
+        use crate::selection::ClickMode;
+        match mode {
+            ClickMode::Replace => self.selection = BTreeSet::from([id.to_owned()]),
+            ClickMode::Add => {
+                self.selection.insert(id.to_owned());
+            }
+            ClickMode::Toggle => {
+                if !self.selection.remove(id) {
+                    self.selection.insert(id.to_owned());
+                }
+            }
+        }
+        self.active = self.selection.contains(id).then(|| id.to_owned());
+    }
+
+    /// A finished box selection.
+    pub fn select_box(&mut self, ids: &[String], add: bool) {
+        if !add {
+            self.selection.clear();
+        }
+        self.selection.extend(ids.iter().cloned());
+        if let Some(last) = ids.last() {
+            self.active = Some(last.clone());
+        }
+    }
+
+    pub fn clear_selection(&mut self) {
+        self.selection.clear();
+        self.active = None;
+    }
+
     // Edits: thin wrappers over `hatchery_graph::edit` with undo.
 
     pub fn add_node(&mut self, kind: &str, at: EditorPos) -> Result<String, String> {
@@ -320,10 +366,10 @@ impl EditorState {
         })
     }
 
-    /// Moves a node; a move during one drag is one undo step.
+    /// Moves a node; every move during one drag (of one node or of a selection) is one undo
+    /// step.
     pub fn move_node(&mut self, id: &str, at: EditorPos) {
-        let key = format!("move:{id}");
-        let _ = self.apply(Some(&key), |d, _| {
+        let _ = self.apply(Some("move"), |d, _| {
             if edit::move_node(d, id, at) {
                 Ok(())
             } else {

@@ -3,8 +3,9 @@
 //!
 //! Per pixel `(x, y)`: `ndc = ((x + 0.5) / W * 2 − 1, 1 − (y + 0.5) / H * 2)`; `P0`, `P1` =
 //! `inverse(view_proj)` applied to `(ndc, 0)` and `(ndc, 1)` (divided by w); `dir =
-//! normalize(P1 − P0)`. The ray `P0 + t dir` is clipped against the box of voxel centres
-//! `[world_min, world_max]` (slab test, `t_in` clamped to >= 0). Samples at `t = t_in + k h`,
+//! normalize(P1 − P0)`. The ray, taken to voxel space (`world_to_voxel`, with `t` still in world
+//! units), is clipped against the box of voxel centres `[0, dims − 1]` (slab test, `t_in`
+//! clamped to >= 0). Samples at `t = t_in + k h`,
 //! `k = 0, 1, …` while `t <= t_out`, `h = step_voxels · min(spacing)`; each `t` is computed from
 //! `k` (not accumulated).
 //!
@@ -136,7 +137,7 @@ pub fn intersect_box(lo: Vec3, hi: Vec3, origin: Vec3, dir: Vec3) -> Option<(f32
 
 /// The world step `h` of the parameters for this volume.
 pub fn world_step(volume: &VolumeData, p: &RayParams) -> f32 {
-    let min_spacing = volume.spacing.iter().copied().fold(f32::INFINITY, f32::min);
+    let min_spacing = volume.spacing().iter().copied().fold(f32::INFINITY, f32::min);
     p.step_voxels * min_spacing
 }
 
@@ -245,8 +246,8 @@ impl<'a> Caster<'a> {
             } else {
                 0.0
             },
-            lo: volume.world_min() - box_margin(volume),
-            hi: volume.world_max() + box_margin(volume),
+            lo: -box_margin(volume),
+            hi: last_voxel(volume) + box_margin(volume),
             eye: p.view.inverse().transform_point3(Vec3::ZERO),
             light: p.light_dir_view.normalize_or_zero(),
         }
@@ -254,7 +255,10 @@ impl<'a> Caster<'a> {
 
     fn ray(&self, x: u32, y: u32) -> Option<Ray> {
         let (origin, dir) = pixel_ray(self.p, x, y);
-        let (t_in, t_out) = intersect_box(self.lo, self.hi, origin, dir)?;
+        // March in voxel space (t stays in world units), as the shader does.
+        let q0 = self.volume.world_to_voxel(origin);
+        let dq = self.volume.world_to_voxel(origin + dir) - q0;
+        let (t_in, t_out) = intersect_box(self.lo, self.hi, q0, dq)?;
         Some(Ray {
             origin,
             dir,
@@ -272,7 +276,7 @@ impl<'a> Caster<'a> {
     }
 
     fn voxel(&self, pos: Vec3) -> Vec3 {
-        (pos - Vec3::from_array(self.volume.origin)) / Vec3::from_array(self.volume.spacing)
+        self.volume.world_to_voxel(pos)
     }
 
     fn value(&self, pos: Vec3) -> f32 {
@@ -400,12 +404,13 @@ impl<'a> Caster<'a> {
 
     /// Normalised context-preserving distance of the sample at `t` on `ray`.
     fn distance_norm(&self, ray: &Ray, t: f32) -> f32 {
+        let last = last_voxel(self.volume);
         let corners = (0..8).map(|i| {
-            Vec3::new(
-                if i & 1 == 0 { self.lo.x } else { self.hi.x },
-                if i & 2 == 0 { self.lo.y } else { self.hi.y },
-                if i & 4 == 0 { self.lo.z } else { self.hi.z },
-            )
+            self.volume.voxel_to_world(Vec3::new(
+                if i & 1 == 0 { 0.0 } else { last.x },
+                if i & 2 == 0 { 0.0 } else { last.y },
+                if i & 4 == 0 { 0.0 } else { last.z },
+            ))
         });
         let (d, measure): (f32, Box<dyn Fn(Vec3) -> f32>) = if self.p.orthographic {
             let (o, dir) = (ray.origin, ray.dir);
@@ -508,8 +513,18 @@ impl<'a> Caster<'a> {
     }
 }
 
-/// The box of voxel centres is widened by this much on every side, so that rays running exactly
-/// along a face (axis-aligned orthographic views) hit it despite rounding; the shader does the same.
-pub fn box_margin(volume: &VolumeData) -> Vec3 {
-    Vec3::splat(1e-4 * volume.spacing.iter().copied().fold(f32::INFINITY, f32::min))
+/// The box of voxel centres (in voxel space) is widened by this much on every side, so that rays
+/// running exactly along a face (axis-aligned orthographic views) hit it despite rounding; the
+/// shader does the same.
+pub fn box_margin(_volume: &VolumeData) -> Vec3 {
+    Vec3::splat(1e-4)
+}
+
+/// Voxel-space position of the last voxel centre.
+fn last_voxel(volume: &VolumeData) -> Vec3 {
+    Vec3::new(
+        (volume.dims[0] - 1) as f32,
+        (volume.dims[1] - 1) as f32,
+        (volume.dims[2] - 1) as f32,
+    )
 }

@@ -25,7 +25,8 @@ pub struct BrickRanges {
 /// the grid) lies in brick `floor(q / BRICK)` and interpolates voxels `floor(q)` and
 /// `floor(q) + 1` along each axis, so a brick's range covers its voxels plus one more layer on
 /// its upper sides. `pad` (data units) widens every range, for a GPU that stores the volume in a
-/// lower precision than the data.
+/// lower precision than the data. Non-finite values ("no data") are left out; a brick of only
+/// no data gets the empty range `[f32::MAX, f32::MIN]` (min > max).
 pub fn brick_ranges(volume: &VolumeData, pad: f32) -> BrickRanges {
     let [nx, ny, nz] = volume.dims;
     let dims = [nx, ny, nz].map(|n| n.div_ceil(BRICK));
@@ -44,10 +45,16 @@ pub fn brick_ranges(volume: &VolumeData, pad: f32) -> BrickRanges {
                 for y in span(1, ny) {
                     for x in span(0, nx) {
                         let v = volume.value(x, y, z);
-                        lo = lo.min(v);
-                        hi = hi.max(v);
+                        if v.is_finite() {
+                            lo = lo.min(v);
+                            hi = hi.max(v);
+                        }
                     }
                 }
+            }
+            if lo > hi {
+                // Only "no data": every sample in the brick is transparent.
+                return [f32::MAX, f32::MIN];
             }
             [lo - pad, hi + pad]
         })

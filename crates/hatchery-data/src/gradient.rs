@@ -12,31 +12,41 @@ pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
     let [nx, ny, nz] = volume.dims.map(|d| d as usize);
     let slice = nx * ny;
     let values = &volume.values;
-    let spacing = volume.spacing;
+    // Voxel-step differences → world gradient: M^-T of the voxel → world linear part.
+    let to_world = {
+        let g = &volume.geometry;
+        (g.direction * glam::DMat3::from_diagonal(g.spacing))
+            .inverse()
+            .transpose()
+            .as_mat3()
+    };
     (0..nz)
         .into_par_iter()
         .map(|z| {
             let mut max2 = 0.0f32;
-            // Neighbour offsets and world distances per axis at index i of n.
-            let span = |i: usize, n: usize, stride: usize, spacing: f32| {
+            // Neighbour offsets and voxel distances per axis at index i of n.
+            let span = |i: usize, n: usize, stride: usize| {
                 let lo = i.saturating_sub(1);
                 let hi = (i + 1).min(n - 1);
-                (
-                    (i - lo) * stride,
-                    (hi - i) * stride,
-                    (hi - lo) as f32 * spacing,
-                )
+                ((i - lo) * stride, (hi - i) * stride, (hi - lo) as f32)
             };
-            let (zl, zh, zd) = span(z, nz, slice, spacing[2]);
+            let (zl, zh, zd) = span(z, nz, slice);
             for y in 0..ny {
-                let (yl, yh, yd) = span(y, ny, nx, spacing[1]);
+                let (yl, yh, yd) = span(y, ny, nx);
                 for x in 0..nx {
-                    let (xl, xh, xd) = span(x, nx, 1, spacing[0]);
+                    let (xl, xh, xd) = span(x, nx, 1);
                     let i = x + nx * (y + ny * z);
-                    let gx = (values[i + xh] - values[i - xl]) / xd;
-                    let gy = (values[i + yh] - values[i - yl]) / yd;
-                    let gz = (values[i + zh] - values[i - zl]) / zd;
-                    max2 = max2.max(gx * gx + gy * gy + gz * gz);
+                    let g = to_world
+                        * glam::Vec3::new(
+                            (values[i + xh] - values[i - xl]) / xd,
+                            (values[i + yh] - values[i - yl]) / yd,
+                            (values[i + zh] - values[i - zl]) / zd,
+                        );
+                    let m2 = g.length_squared();
+                    // Differences across "no data" are not gradients.
+                    if m2.is_finite() {
+                        max2 = max2.max(m2);
+                    }
                 }
             }
             max2

@@ -70,7 +70,7 @@ pub fn label_mask(
     {
         mask = blur_within(mask, volume.dims, bounds, smooth_sigma);
     }
-    VolumeData::new(volume.dims, volume.spacing, volume.origin, mask)
+    volume.with_values(mask)
 }
 
 /// The nearest integer, ties away from zero: `v.round() as i64` without the libm call that
@@ -422,7 +422,7 @@ mod tests {
         for labels in [&[1][..], &[2], &[1, 2], &[0], &[2, 2, 1]] {
             let m = label_mask(&v, labels, 0.0).unwrap();
             assert_eq!(m.values, expected(&v, labels), "{labels:?}");
-            assert_eq!((m.dims, m.spacing, m.origin), (v.dims, v.spacing, v.origin));
+            assert_eq!((m.dims, m.geometry), (v.dims, v.geometry));
         }
         let ball = label_mask(&v, &[1], 0.0).unwrap();
         assert_eq!(ball.values.iter().sum::<f32>() as u64, label_counts(&v)[&1]);
@@ -522,7 +522,7 @@ mod tests {
             env!("CARGO_MANIFEST_DIR"),
             "/../../../shared/data/volumes/frog_tissues.vti"
         );
-        let frog = crate::vti_file::load_vti(std::path::Path::new(path)).unwrap();
+        let frog = crate::vti_file::load_vti(std::path::Path::new(path), None).unwrap();
         let counts = label_counts(&frog);
         let (&largest, &count) = counts
             .iter()

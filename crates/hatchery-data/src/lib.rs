@@ -4,6 +4,7 @@
 
 pub mod bricks;
 pub mod error;
+pub mod geometry;
 pub mod gradient;
 pub mod labels;
 pub mod lighting;
@@ -17,6 +18,7 @@ pub mod style;
 pub mod transfer_function;
 pub mod volume;
 pub mod volume_file;
+pub mod voxels;
 pub mod vti_file;
 
 pub use error::DataError;

@@ -13,6 +13,10 @@
 //!   Triangles are counter-clockwise seen from the side their normal points to.
 //! * Where a grid value equals the iso value exactly, several vertices land on that grid point;
 //!   the zero-area triangles between them are dropped (the surface stays geometrically closed).
+//! * Non-finite values are "no data": cells touching one make no triangles and edges to one no
+//!   vertex, so no wall grows along a no-data border.
+//! * Positions and normals are in world space (the volume's voxel → world transform); a
+//!   mirroring transform reverses the triangles so they stay counter-clockwise.
 
 use std::sync::LazyLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -61,6 +65,16 @@ pub fn marching_cubes_with_progress(
         .collect();
 
     let mut mesh = weld_slabs(slabs);
+    if volume.has_no_data() {
+        // Edges between valid voxels whose every cell touches no data made vertices no
+        // triangle uses.
+        drop_unused_vertices(&mut mesh);
+    }
+    if volume.geometry.direction.determinant() < 0.0 {
+        for triangle in mesh.indices.chunks_exact_mut(3) {
+            triangle.swap(1, 2);
+        }
+    }
     repair_zero_normals(&mut mesh);
     mesh
 }
@@ -123,11 +137,16 @@ fn march_slab(volume: &VolumeData, iso: f32, z0: u32, z1: u32) -> Slab {
         for y in 0..ny - 1 {
             for x in 0..nx - 1 {
                 let mut case = 0usize;
+                let mut no_data = false;
                 for c in 0..8 {
                     let v = volume.value(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2));
+                    no_data |= !v.is_finite();
                     if v > iso {
                         case |= 1 << c;
                     }
+                }
+                if no_data {
+                    continue;
                 }
                 let edges = &table[case];
                 for triangle in edges.chunks_exact(3).take_while(|t| t[0] >= 0) {
@@ -186,7 +205,7 @@ fn edge_vertex(volume: &VolumeData, iso: f32, p: UVec3, axis: usize, out: &mut S
     }
     let a = volume.value(p.x, p.y, p.z);
     let b = volume.value(q.x, q.y, q.z);
-    if (a > iso) == (b > iso) {
+    if !a.is_finite() || !b.is_finite() || (a > iso) == (b > iso) {
         return NONE;
     }
     // a != b here because exactly one of them is above iso.
@@ -225,6 +244,30 @@ fn weld_slabs(slabs: Vec<Slab>) -> MeshData {
 
 /// A vanishing gradient (flat region exactly at the iso value) gives no normal; use the
 /// geometry there so every normal is unit length.
+fn drop_unused_vertices(mesh: &mut MeshData) {
+    let mut new_index = vec![NONE; mesh.positions.len()];
+    let mut kept = 0u32;
+    for &i in &mesh.indices {
+        if new_index[i as usize] == NONE {
+            new_index[i as usize] = kept;
+            kept += 1;
+        }
+    }
+    let mut positions = vec![[0.0; 3]; kept as usize];
+    let mut normals = vec![[0.0; 3]; kept as usize];
+    for (old, &new) in new_index.iter().enumerate() {
+        if new != NONE {
+            positions[new as usize] = mesh.positions[old];
+            normals[new as usize] = mesh.normals[old];
+        }
+    }
+    for i in &mut mesh.indices {
+        *i = new_index[*i as usize];
+    }
+    mesh.positions = positions;
+    mesh.normals = normals;
+}
+
 fn repair_zero_normals(mesh: &mut MeshData) {
     if mesh.normals.iter().all(|n| *n != [0.0; 3]) {
         return;

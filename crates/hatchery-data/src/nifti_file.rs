@@ -6,6 +6,7 @@ use std::path::Path;
 
 use nifti::{InMemNiftiVolume, IntoNdArray, NiftiError, NiftiHeader, NiftiType};
 
+use crate::geometry::Geometry;
 use crate::{DataError, VolumeData};
 
 /// Volumes claiming more voxels than this are refused before anything is allocated.
@@ -18,12 +19,12 @@ const HEADER_SIZE: u64 = 348;
 ///
 /// * Every integer and float datatype is read (u/i 8, 16, 32, 64, f32, f64) and converted to
 ///   f32 with `scl_slope`/`scl_inter` applied (slope 0 means no scaling, per the standard).
-/// * Spacing is `|pixdim[1..4]|` (0 or non-finite -> 1). The origin is the translation of the
-///   sform if set, else of the qform, else 0; rotations and axis flips are not applied, the
-///   grid is kept axis-aligned in voxel order.
+/// * The voxel → world transform follows the standard (and nibabel): the sform when
+///   `sform_code > 0`, else the qform quaternion with `qfac = pixdim[0]` when `qform_code > 0`,
+///   else `pixdim` scaling with the origin at 0 ("method 1"). NIfTI's world is RAS+, which is
+///   hatchery's (see [`crate::geometry`]). A degenerate sform falls back to the qform.
 /// * Of 4-D (and higher) files only the first 3-D volume is read.
-/// * Non-finite voxel values (NaN is common as "no data" in float maps) are replaced by the
-///   smallest finite value, since [`VolumeData`] holds finite values only.
+/// * Non-finite voxel values (NaN is common in float maps) are kept: they mean "no data".
 pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
     let mut buffered = BufReader::new(file);
@@ -97,13 +98,32 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
         .into_ndarray::<f32>()
         .map_err(|e| DataError::format(path, format!("cannot convert voxel data: {e}")))?
         .reversed_axes();
-    let mut values: Vec<f32> = match array.as_slice() {
+    let values: Vec<f32> = match array.as_slice() {
         Some(slice) => slice.to_vec(),
         None => array.iter().copied().collect(),
     };
-    replace_non_finite(path, &mut values)?;
 
-    VolumeData::new(layout.dims, layout.spacing, layout.origin, values).map_err(|e| e.in_file(path))
+    let mut volume = VolumeData::with_geometry(layout.dims, layout.geometry, values)
+        .map_err(|e| e.in_file(path))?;
+    volume.stored_type = stored_type_name(layout.datatype);
+    volume.placement = layout.placement;
+    Ok(volume)
+}
+
+fn stored_type_name(t: NiftiType) -> &'static str {
+    use NiftiType::*;
+    match t {
+        Uint8 => "uint8",
+        Int8 => "int8",
+        Uint16 => "uint16",
+        Int16 => "int16",
+        Uint32 => "uint32",
+        Int32 => "int32",
+        Uint64 => "uint64",
+        Int64 => "int64",
+        Float64 => "float64",
+        _ => "float32",
+    }
 }
 
 /// What the header tells us, validated.
@@ -113,8 +133,9 @@ struct Layout {
     datatype: NiftiType,
     slope: f32,
     intercept: f32,
-    spacing: [f32; 3],
-    origin: [f32; 3],
+    geometry: Geometry,
+    /// Which header rule placed the voxels.
+    placement: String,
     data_offset: u64,
 }
 
@@ -189,19 +210,7 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
         (0.0, 0.0)
     };
 
-    let spacing = std::array::from_fn(|i| {
-        let s = h.pixdim[i + 1].abs();
-        if s.is_finite() && s > 0.0 { s } else { 1.0 }
-    });
-
-    let translation = if h.sform_code > 0 {
-        [h.srow_x[3], h.srow_y[3], h.srow_z[3]]
-    } else if h.qform_code > 0 {
-        [h.quatern_x, h.quatern_y, h.quatern_z]
-    } else {
-        [0.0; 3]
-    };
-    let origin = translation.map(|t| if t.is_finite() { t } else { 0.0 });
+    let (geometry, placement) = nifti_geometry(path, h)?;
 
     // vox_offset is a float in the format; it must leave room for the 4-byte extender. Some
     // writers leave it 0 for single files, meaning "right after the extender".
@@ -220,27 +229,67 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
         datatype,
         slope,
         intercept,
-        spacing,
-        origin,
+        geometry,
+        placement,
         data_offset,
     })
 }
 
-/// Shared with the VTK loader: [`VolumeData`] holds finite values only.
-pub(crate) fn replace_non_finite(path: &Path, values: &mut [f32]) -> Result<(), DataError> {
-    if values.iter().all(|v| v.is_finite()) {
-        return Ok(());
+/// The voxel → world transform by the standard's rules (nifti1.h, "3 different methods"), as
+/// nibabel's `get_best_affine` applies them, and a note of which rule was used.
+fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), DataError> {
+    let pixdim = |i: usize| {
+        let s = h.pixdim[i] as f64;
+        if s.is_finite() && s != 0.0 { s } else { 1.0 }
+    };
+    if h.sform_code > 0 {
+        let rows = [h.srow_x, h.srow_y, h.srow_z].map(|r| r.map(f64::from));
+        match Geometry::from_affine(rows) {
+            Ok(g) => return Ok((g, format!("sform (sform_code {})", h.sform_code))),
+            Err(e) if h.qform_code <= 0 => {
+                return Err(DataError::format(path, format!("bad sform: {e}")));
+            }
+            Err(_) => {}
+        }
     }
-    let min = values
-        .iter()
-        .copied()
-        .filter(|v| v.is_finite())
-        .reduce(f32::min)
-        .ok_or_else(|| DataError::format(path, "no voxel has a finite value"))?;
-    for v in values.iter_mut().filter(|v| !v.is_finite()) {
-        *v = min;
+    if h.qform_code > 0 {
+        // Quaternion (b, c, d) with a = sqrt(1 - b² - c² - d²); a sum above 1 (rounding in
+        // writers) is renormalised with a = 0, as nifti1_io does.
+        let (mut b, mut c, mut d) = (
+            h.quatern_b as f64,
+            h.quatern_c as f64,
+            h.quatern_d as f64,
+        );
+        let sum = b * b + c * c + d * d;
+        let a = if sum > 1.0 {
+            let n = sum.sqrt();
+            (b, c, d) = (b / n, c / n, d / n);
+            0.0
+        } else {
+            (1.0 - sum).sqrt()
+        };
+        let r = [
+            [a * a + b * b - c * c - d * d, 2.0 * (b * c - a * d), 2.0 * (b * d + a * c)],
+            [2.0 * (b * c + a * d), a * a + c * c - b * b - d * d, 2.0 * (c * d - a * b)],
+            [2.0 * (b * d - a * c), 2.0 * (c * d + a * b), a * a + d * d - c * c - b * b],
+        ];
+        let qfac = if h.pixdim[0] < 0.0 { -1.0 } else { 1.0 };
+        let zoom = [pixdim(1), pixdim(2), qfac * pixdim(3)];
+        let offset = [h.quatern_x, h.quatern_y, h.quatern_z].map(f64::from);
+        let rows: [[f64; 4]; 3] = std::array::from_fn(|row| {
+            [
+                r[row][0] * zoom[0],
+                r[row][1] * zoom[1],
+                r[row][2] * zoom[2],
+                offset[row],
+            ]
+        });
+        let g = Geometry::from_affine(rows)
+            .map_err(|e| DataError::format(path, format!("bad qform: {e}")))?;
+        return Ok((g, format!("qform (qform_code {}, qfac {qfac})", h.qform_code)));
     }
-    Ok(())
+    let g = Geometry::axis_aligned([pixdim(1).abs(), pixdim(2).abs(), pixdim(3).abs()], [0.0; 3]);
+    Ok((g, "pixdim scaling (sform_code and qform_code are 0)".into()))
 }
 
 fn truncated(path: &Path, gzip: bool) -> DataError {

@@ -127,7 +127,7 @@ mod tests {
     fn grid_covers_unit_cube() {
         let v = sphere(5, 0.5).unwrap();
         assert_eq!(v.dims, [5, 5, 5]);
-        assert_eq!(v.spacing, [0.5; 3]);
+        assert_eq!(v.spacing(), [0.5; 3]);
         assert_eq!(v.world_min(), Vec3::splat(-1.0));
         assert_eq!(v.world_max(), Vec3::splat(1.0));
         // Centre voxel is the origin.

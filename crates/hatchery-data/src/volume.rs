@@ -1,32 +1,65 @@
-//! Scalar volumes on a regular, axis-aligned grid.
+//! Scalar volumes on a regular grid placed in the world by a voxel → world transform.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::DataError;
+use crate::geometry::Geometry;
+use crate::voxels::Voxels;
 
-/// A scalar field sampled on a regular grid, x fastest.
+/// A scalar field sampled on a regular grid, i (x) fastest, placed in the world (RAS+ mm, see
+/// [`crate::geometry`]) by `geometry`. Non-finite values (NaN, ±inf) mean "no data".
 #[derive(Debug, Clone, PartialEq)]
 pub struct VolumeData {
-    /// Voxel counts along x, y, z.
+    /// Voxel counts along i, j, k.
     pub dims: [u32; 3],
-    /// World units (mm for NIfTI) per voxel along x, y, z.
-    pub spacing: [f32; 3],
-    /// World position of the centre of voxel (0, 0, 0).
-    pub origin: [f32; 3],
-    /// `dims[0] * dims[1] * dims[2]` values, index = `x + dims[0] * (y + dims[1] * z)`.
+    /// Voxel → world transform (origin, spacing, direction).
+    pub geometry: Geometry,
+    /// `dims[0] * dims[1] * dims[2]` values, index = `i + dims[0] * (j + dims[1] * k)`.
     pub values: Vec<f32>,
-    /// `[min, max]` of `values`.
+    /// `[min, max]` of the finite values (`[0, 0]` when there are none).
     pub value_range: [f32; 2],
+    /// Name of the voxel type in the file (`uint8`, `float32`, ...), for `hatchery info`.
+    pub stored_type: &'static str,
+    /// How the file's header placed the voxels (e.g. "sform (sform_code 2)"), for
+    /// `hatchery info`; empty for volumes made in memory.
+    pub placement: String,
 }
 
 impl VolumeData {
-    /// Checks the invariants (length, every dim >= 2, positive finite spacing, finite origin and
-    /// values) and computes the value range.
+    /// An axis-aligned volume (identity direction); see [`Self::with_geometry`].
     pub fn new(
         dims: [u32; 3],
         spacing: [f32; 3],
         origin: [f32; 3],
+        values: Vec<f32>,
+    ) -> Result<Self, DataError> {
+        if spacing.iter().any(|s| !s.is_finite() || *s <= 0.0) {
+            return Err(DataError::Invalid(format!(
+                "volume spacing must be positive and finite, got {spacing:?}"
+            )));
+        }
+        let geometry = Geometry::axis_aligned(spacing.map(f64::from), origin.map(f64::from));
+        Self::with_geometry(dims, geometry, values)
+    }
+
+    /// A volume from a file's typed voxels (kept as f32 for now; the type is remembered).
+    pub fn from_voxels(
+        dims: [u32; 3],
+        geometry: Geometry,
+        voxels: Voxels,
+    ) -> Result<Self, DataError> {
+        let stored_type = voxels.type_name();
+        let mut v = Self::with_geometry(dims, geometry, voxels.into_f32())?;
+        v.stored_type = stored_type;
+        Ok(v)
+    }
+
+    /// Checks the invariants (length, every dim >= 2, a finite invertible transform) and
+    /// computes the value range over the finite values.
+    pub fn with_geometry(
+        dims: [u32; 3],
+        geometry: Geometry,
         values: Vec<f32>,
     ) -> Result<Self, DataError> {
         if dims.iter().any(|&d| d < 2) {
@@ -44,34 +77,43 @@ impl VolumeData {
                 values.len()
             )));
         }
-        if spacing.iter().any(|s| !s.is_finite() || *s <= 0.0) {
-            return Err(DataError::Invalid(format!(
-                "volume spacing must be positive and finite, got {spacing:?}"
-            )));
-        }
-        if origin.iter().any(|o| !o.is_finite()) {
-            return Err(DataError::Invalid(format!(
-                "volume origin must be finite, got {origin:?}"
-            )));
-        }
+        geometry.check()?;
         // In parallel: this runs over every voxel each time a volume is loaded or derived.
-        let (range, finite) = values.par_chunks(1 << 16).map(range_and_finite).reduce(
+        let (range, _) = values.par_chunks(1 << 16).map(range_and_finite).reduce(
             || ([f32::INFINITY, f32::NEG_INFINITY], true),
             |(a, fa), (b, fb)| ([a[0].min(b[0]), a[1].max(b[1])], fa && fb),
         );
-        if !finite && let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(DataError::Invalid(format!(
-                "volume value {} at index {i} is not finite",
-                values[i]
-            )));
-        }
+        let value_range = if range[0] <= range[1] { range } else { [0.0, 0.0] };
         Ok(Self {
             dims,
-            spacing,
-            origin,
+            geometry,
             values,
-            value_range: range,
+            value_range,
+            stored_type: "float32",
+            placement: String::new(),
         })
+    }
+
+    /// The same grid and transform with other values (a mask, a filtered copy).
+    pub fn with_values(&self, values: Vec<f32>) -> Result<Self, DataError> {
+        let mut v = Self::with_geometry(self.dims, self.geometry, values)?;
+        v.placement.clone_from(&self.placement);
+        Ok(v)
+    }
+
+    /// Spacing along i, j, k in world units.
+    pub fn spacing(&self) -> [f32; 3] {
+        self.geometry.spacing.as_vec3().to_array()
+    }
+
+    /// World position of voxel (0, 0, 0).
+    pub fn origin(&self) -> [f32; 3] {
+        self.geometry.origin.as_vec3().to_array()
+    }
+
+    /// Whether some voxels are "no data" (non-finite).
+    pub fn has_no_data(&self) -> bool {
+        !self.values.par_iter().all(|v| v.is_finite())
     }
 
     pub fn voxel_count(&self) -> usize {
@@ -104,8 +146,8 @@ impl VolumeData {
     }
 
     /// World-space gradient at a voxel-space position: central differences one voxel either side
-    /// of trilinear samples, divided by the world distance. At the grid boundary the difference
-    /// becomes one-sided (the sample positions are clamped and the real distance is used).
+    /// of trilinear samples (a gradient per voxel step), mapped to world units through the
+    /// transform. At the grid boundary, and next to "no data", the difference becomes one-sided.
     pub fn gradient(&self, voxel: Vec3) -> Vec3 {
         let max = self.max_voxel();
         let p = voxel.clamp(Vec3::ZERO, max);
@@ -115,25 +157,44 @@ impl VolumeData {
             let mut hi = p;
             lo[axis] = (p[axis] - 1.0).max(0.0);
             hi[axis] = (p[axis] + 1.0).min(max[axis]);
-            // dims >= 2, so hi - lo >= 1 always.
-            let dist = (hi[axis] - lo[axis]) * self.spacing[axis];
-            *g = (self.sample_trilinear(hi) - self.sample_trilinear(lo)) / dist;
+            let (a, b) = (self.sample_trilinear(lo), self.sample_trilinear(hi));
+            // Next to "no data" the difference becomes one-sided; 0 with no data either side.
+            *g = match (a.is_finite(), b.is_finite()) {
+                // dims >= 2, so hi - lo >= 1 always.
+                (true, true) => (b - a) / (hi[axis] - lo[axis]),
+                (true, false) if p[axis] > lo[axis] => {
+                    (self.sample_trilinear(p) - a) / (p[axis] - lo[axis])
+                }
+                (false, true) if hi[axis] > p[axis] => {
+                    (b - self.sample_trilinear(p)) / (hi[axis] - p[axis])
+                }
+                _ => 0.0,
+            };
+            if !g.is_finite() {
+                *g = 0.0;
+            }
         }
-        Vec3::from_array(g)
+        self.geometry.gradient_to_world(Vec3::from_array(g))
     }
 
-    /// World position of the first voxel centre.
+    /// Lower corner of the world bounding box of the voxel centres.
     pub fn world_min(&self) -> Vec3 {
-        Vec3::from_array(self.origin)
+        self.geometry.world_bounds(self.dims)[0]
     }
 
-    /// World position of the last voxel centre.
+    /// Upper corner of the world bounding box of the voxel centres.
     pub fn world_max(&self) -> Vec3 {
-        self.voxel_to_world(self.max_voxel())
+        self.geometry.world_bounds(self.dims)[1]
     }
 
+    /// World position of a voxel-space point.
     pub fn voxel_to_world(&self, v: Vec3) -> Vec3 {
-        Vec3::from_array(self.origin) + v * Vec3::from_array(self.spacing)
+        self.geometry.voxel_to_world(v)
+    }
+
+    /// Voxel-space position of a world point.
+    pub fn world_to_voxel(&self, p: Vec3) -> Vec3 {
+        self.geometry.world_to_voxel(p)
     }
 
     fn max_voxel(&self) -> Vec3 {
@@ -172,15 +233,17 @@ fn range_and_finite(values: &[f32]) -> ([f32; 2], bool) {
     for chunk in &mut chunks {
         for k in 0..LANES {
             let v = chunk[k];
-            finite &= v.is_finite();
-            lo[k] = if v < lo[k] { v } else { lo[k] };
-            hi[k] = if v > hi[k] { v } else { hi[k] };
+            let f = v.is_finite();
+            finite &= f;
+            lo[k] = if f && v < lo[k] { v } else { lo[k] };
+            hi[k] = if f && v > hi[k] { v } else { hi[k] };
         }
     }
     for &v in chunks.remainder() {
-        finite &= v.is_finite();
-        lo[0] = if v < lo[0] { v } else { lo[0] };
-        hi[0] = if v > hi[0] { v } else { hi[0] };
+        let f = v.is_finite();
+        finite &= f;
+        lo[0] = if f && v < lo[0] { v } else { lo[0] };
+        hi[0] = if f && v > hi[0] { v } else { hi[0] };
     }
     let lo = lo.into_iter().fold(f32::INFINITY, f32::min);
     let hi = hi.into_iter().fold(f32::NEG_INFINITY, f32::max);
@@ -213,9 +276,16 @@ mod tests {
         assert!(VolumeData::new([1, 2, 2], [1.0; 3], [0.0; 3], vec![0.0; 4]).is_err());
         assert!(VolumeData::new([2, 2, 2], [0.0, 1.0, 1.0], [0.0; 3], vec![0.0; 8]).is_err());
         assert!(VolumeData::new([2, 2, 2], [f32::NAN, 1.0, 1.0], [0.0; 3], vec![0.0; 8]).is_err());
+        // Non-finite values are "no data": allowed, and left out of the value range.
         let mut v = vec![0.0; 8];
         v[3] = f32::NAN;
-        assert!(VolumeData::new([2, 2, 2], [1.0; 3], [0.0; 3], v).is_err());
+        v[4] = 2.0;
+        v[5] = f32::NEG_INFINITY;
+        let nd = VolumeData::new([2, 2, 2], [1.0; 3], [0.0; 3], v).unwrap();
+        assert_eq!(nd.value_range, [0.0, 2.0]);
+        assert!(nd.has_no_data());
+        let all_nan = VolumeData::new([2, 2, 2], [1.0; 3], [0.0; 3], vec![f32::NAN; 8]).unwrap();
+        assert_eq!(all_nan.value_range, [0.0, 0.0]);
         let v = VolumeData::new(
             [2, 2, 2],
             [1.0; 3],
@@ -234,8 +304,8 @@ mod tests {
         assert_eq!(big.value_range, [-3.0, 200.0]);
         values[100_000] = f32::NAN;
         values[130_000] = f32::INFINITY;
-        let e = VolumeData::new([40, 50, 70], [1.0; 3], [0.0; 3], values).unwrap_err();
-        assert!(e.to_string().contains("at index 100000"), "{e}");
+        let nd = VolumeData::new([40, 50, 70], [1.0; 3], [0.0; 3], values).unwrap();
+        assert_eq!(nd.value_range, [-3.0, 200.0]);
     }
 
     #[test]

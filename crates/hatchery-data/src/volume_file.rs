@@ -9,9 +9,23 @@ use crate::{DataError, VolumeData};
 /// File name endings [`load_volume`] reads (matched case-insensitively).
 pub const VOLUME_ENDINGS: [&str; 3] = [".nii", ".nii.gz", ".vti"];
 
-/// Loads a volume, choosing the format by the (case-insensitive) end of the file name:
-/// `.nii` and `.nii.gz` with [`load_nifti`], `.vti` with [`load_vti`].
+/// Choices a user can make when loading a volume (the VolumeFile node's parameters).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    /// The named data array to read, for formats with several (VTK); `None`: the file's active
+    /// scalars, else the first array.
+    pub array: Option<String>,
+}
+
+/// Loads a volume with default options; see [`load_volume_with`].
 pub fn load_volume(path: &Path) -> Result<VolumeData, DataError> {
+    load_volume_with(path, &LoadOptions::default())
+}
+
+/// Loads a volume, choosing the format by the (case-insensitive) end of the file name:
+/// `.nii` and `.nii.gz` with [`load_nifti`], `.vti` with [`load_vti`]. Every format's voxels
+/// are placed in hatchery's RAS+ world (see [`crate::geometry`]).
+pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData, DataError> {
     // The whole name, not `extension()`: `.nii.gz` has two parts.
     let name = path
         .file_name()
@@ -20,7 +34,7 @@ pub fn load_volume(path: &Path) -> Result<VolumeData, DataError> {
     if name.ends_with(".nii") || name.ends_with(".nii.gz") {
         load_nifti(path)
     } else if name.ends_with(".vti") {
-        load_vti(path)
+        load_vti(path, options.array.as_deref())
     } else {
         Err(DataError::unsupported(
             path,

@@ -12,7 +12,7 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::reader::Reader;
 use rayon::prelude::*;
 
-use crate::nifti_file::{MAX_VOXELS, replace_non_finite};
+use crate::nifti_file::MAX_VOXELS;
 use crate::{DataError, VolumeData};
 
 /// Loads the first point-data array of a VTK XML ImageData file (or, if there is no point
@@ -26,9 +26,9 @@ use crate::{DataError, VolumeData};
 ///   placed at the cell centre.
 /// * Spacing is `|Spacing|` (0 or non-finite -> 1); `Direction` is not applied, the grid is
 ///   kept axis-aligned in index order (x fastest, as VTK stores it).
-/// * Only single-piece files are read. Non-finite values are replaced by the smallest finite
-///   one, as for NIfTI.
-pub fn load_vti(path: &Path) -> Result<VolumeData, DataError> {
+/// * Only single-piece files are read. Non-finite values are kept ("no data").
+pub fn load_vti(path: &Path, array: Option<&str>) -> Result<VolumeData, DataError> {
+    let _ = array; // TODO(issue 9): pick the named array
     let bytes = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
     let file = parse_markup(path, &bytes)?;
 
@@ -83,11 +83,10 @@ pub fn load_vti(path: &Path) -> Result<VolumeData, DataError> {
         ));
     }
 
-    let mut values =
+    let values =
         read_values(&array, voxels as usize, &file.encoding, file.appended).map_err(|message| {
             DataError::format(path, format!("data array `{}`: {message}", array.name))
         })?;
-    replace_non_finite(path, &mut values)?;
 
     // VTK places point (i, j, k) at Origin + Spacing * (i, j, k) with indices counted from the
     // extent's lower corner, so our voxel 0 sits at that corner (or at the first cell centre).
@@ -858,9 +857,9 @@ mod tests {
 
     fn check_small(v: &VolumeData) {
         assert_eq!(v.dims, [4, 3, 2]);
-        assert_eq!(v.spacing, [0.5, 2.0, 1.5]);
+        assert_eq!(v.spacing(), [0.5, 2.0, 1.5]);
         // Extent starts at (2, 0, 1): origin = Origin + Spacing * lower corner.
-        assert_eq!(v.origin, [2.0, 2.0, 4.5]);
+        assert_eq!(v.origin(), [2.0, 2.0, 4.5]);
         assert_eq!(v.values, small_values());
         assert_eq!(v.value(3, 2, 1), 123.0);
     }
@@ -882,10 +881,10 @@ mod tests {
 
     #[test]
     fn frog_labels() {
-        let v = load_vti(Path::new(FROG)).unwrap();
+        let v = load_vti(Path::new(FROG), None).unwrap();
         assert_eq!(v.dims, [500, 470, 136]);
-        assert_eq!(v.spacing, [1.0, 1.0, 1.5]);
-        assert_eq!(v.origin, [0.0; 3]);
+        assert_eq!(v.spacing(), [1.0, 1.0, 1.5]);
+        assert_eq!(v.origin(), [0.0; 3]);
         assert_eq!(v.value_range, [0.0, 29.0]);
         assert!(v.values.iter().all(|x| x.fract() == 0.0));
         // Counted independently (Python: xml + base64 + zlib from the standard library).
@@ -910,7 +909,7 @@ mod tests {
             r#"type="Float32" format="ascii""#,
             &format!("\n  {}\n", text.join(" ")),
         );
-        check_small(&load_vti(&write(&dir, "a.vti", body.as_bytes())).unwrap());
+        check_small(&load_vti(&write(&dir, "a.vti", body.as_bytes()), None).unwrap());
     }
 
     #[test]
@@ -939,7 +938,7 @@ mod tests {
                     r#"type="Float32" format="binary""#,
                     &text,
                 );
-                check_small(&load_vti(&write(&dir, "b.vti", body.as_bytes())).unwrap());
+                check_small(&load_vti(&write(&dir, "b.vti", body.as_bytes()), None).unwrap());
             }
         }
     }
@@ -982,7 +981,7 @@ mod tests {
                 r#"type="Float32" format="binary""#,
                 &compressed(&data, block, wide),
             );
-            check_small(&load_vti(&write(&dir, "c.vti", body.as_bytes())).unwrap());
+            check_small(&load_vti(&write(&dir, "c.vti", body.as_bytes()), None).unwrap());
         }
     }
 
@@ -1008,14 +1007,14 @@ mod tests {
         file.extend([b'<', 0xff, 0, b'&', b'>']);
         file.extend(&raw);
         file.extend(b"\n</AppendedData>\n</VTKFile>\n");
-        check_small(&load_vti(&write(&dir, "raw.vti", &file)).unwrap());
+        check_small(&load_vti(&write(&dir, "raw.vti", &file), None).unwrap());
 
         let text = base64(&raw);
         let file = format!(
             "{}AAAA{text}\n</AppendedData>\n</VTKFile>\n",
             head("base64", 4)
         );
-        check_small(&load_vti(&write(&dir, "b64.vti", file.as_bytes())).unwrap());
+        check_small(&load_vti(&write(&dir, "b64.vti", file.as_bytes()), None).unwrap());
     }
 
     #[test]
@@ -1035,10 +1034,10 @@ mod tests {
             r#"type="Int16" format="binary""#,
             &base64(&raw),
         );
-        let v = load_vti(&write(&dir, "cells.vti", body.as_bytes())).unwrap();
+        let v = load_vti(&write(&dir, "cells.vti", body.as_bytes()), None).unwrap();
         assert_eq!(v.dims, [4, 3, 2]);
         // First cell centre: Origin + Spacing * (0.5, -0.5, 0.5).
-        assert_eq!(v.origin, [1.25, 1.0, 3.75]);
+        assert_eq!(v.origin(), [1.25, 1.0, 3.75]);
         assert_eq!(v.value(0, 0, 0), -50.0);
         assert_eq!(v.value(3, 2, 1), 73.0);
     }
@@ -1115,7 +1114,7 @@ mod tests {
         ));
         for (what, content) in cases {
             let path = write(&dir, "bad.vti", &content);
-            let e = load_vti(&path).expect_err(&what).to_string();
+            let e = load_vti(&path, None).expect_err(&what).to_string();
             assert!(e.starts_with(&path.display().to_string()), "{what}: {e}");
             assert!(!e.contains('\n'), "{what}: {e}");
             match what.as_str() {
@@ -1126,6 +1125,6 @@ mod tests {
             }
         }
         let missing = dir.path().join("missing.vti");
-        assert!(matches!(load_vti(&missing), Err(DataError::Io { .. })));
+        assert!(matches!(load_vti(&missing, None), Err(DataError::Io { .. })));
     }
 }

@@ -78,7 +78,7 @@ fn assert_relative(what: &str, got: f64, want: f64, tolerance: f64) {
 fn sphere_is_accurate_closed_and_outward() {
     let r = 0.7f32;
     let volume = procedural::sphere(96, r).unwrap();
-    let voxel = volume.spacing[0];
+    let voxel = volume.spacing()[0];
     let mesh = marching_cubes(&volume, 0.0);
     eprintln!(
         "sphere: {} vertices, {} triangles",

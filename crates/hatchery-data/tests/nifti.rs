@@ -135,9 +135,9 @@ fn check_int16_volume(v: &hatchery_data::VolumeData) {
 fn mni152_t1() {
     let v = load_nifti(&data("volumes/mni152_t1.nii.gz")).unwrap();
     assert_eq!(v.dims, [197, 233, 189]);
-    assert_eq!(v.spacing, [1.0, 1.0, 1.0]);
+    assert_eq!(v.spacing(), [1.0, 1.0, 1.0]);
     // sform translation of the MNI152 2009a template.
-    assert_eq!(v.origin, [-98.0, -134.0, -72.0]);
+    assert_eq!(v.origin(), [-98.0, -134.0, -72.0]);
     assert_eq!(v.value_range, [0.0, 255.0]);
     assert_eq!(v.voxel_count(), 197 * 233 * 189);
     // Spot values checked independently (gzip + byte offset 352 + x + 197 (y + 233 z)).
@@ -176,8 +176,8 @@ fn int16_with_slope_and_intercept() {
 
     let v = load_nifti(&write(dir.path(), "a.nii", &bytes)).unwrap();
     check_int16_volume(&v);
-    assert_eq!(v.spacing, [0.5, 2.0, 3.0]);
-    assert_eq!(v.origin, [1.0, 2.0, 3.0]);
+    assert_eq!(v.spacing(), [0.5, 2.0, 3.0]);
+    assert_eq!(v.origin(), [1.0, 2.0, 3.0]);
 
     // The same, compressed; the name does not matter, the content is sniffed.
     let gz = load_nifti(&write(dir.path(), "a.nii.gz", &gzip(&bytes))).unwrap();
@@ -210,8 +210,8 @@ fn float32_axis_order_spacing_and_sform() {
     h.qform_offset = Some([1.0, 1.0, 1.0]); // sform wins
     let v = load_nifti(&write(dir.path(), "f.nii", &h.file(&raw))).unwrap();
     assert_eq!(v.dims, [3, 4, 2]);
-    assert_eq!(v.spacing, [0.5, 2.0, 3.0]);
-    assert_eq!(v.origin, [-10.0, 20.0, 5.5]);
+    assert_eq!(v.spacing(), [0.5, 2.0, 3.0]);
+    assert_eq!(v.origin(), [-10.0, 20.0, 5.5]);
     for z in 0..2 {
         for y in 0..4 {
             for x in 0..3 {

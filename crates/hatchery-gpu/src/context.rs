@@ -23,7 +23,8 @@ pub enum GpuError {
     },
 }
 
-/// The one device hatchery renders with.
+/// The one device hatchery renders with. Clones share the device (wgpu handles are shared).
+#[derive(Clone)]
 pub struct GpuContext {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,

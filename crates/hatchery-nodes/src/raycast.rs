@@ -7,7 +7,7 @@ use crate::screen_pass::IMAGE_FORMAT;
 use crate::value::{GBuffer, Image, TransferFunction, Volume};
 use crate::{Ctx, Value};
 use glam::{Vec3, Vec4Swizzles};
-use hatchery_data::{bricks, lighting};
+use hatchery_data::{VolumeData, bricks, lighting};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
@@ -215,14 +215,20 @@ pub struct RayOptions<'a> {
 
 /// Nearest and farthest distance from the eye (perspective) or the near plane (orthographic) to
 /// the corners of the volume's box: the normalisation of ‖P − E‖ in eq. 5.
-fn corner_distances(camera: &Camera, lo: Vec3, hi: Vec3) -> [f32; 2] {
+fn corner_distances(camera: &Camera, data: &VolumeData) -> [f32; 2] {
     let mut range = [f32::INFINITY, 0.0f32];
+    let last = Vec3::new(
+        (data.dims[0] - 1) as f32,
+        (data.dims[1] - 1) as f32,
+        (data.dims[2] - 1) as f32,
+    );
     for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
+        // The corners of the (possibly rotated) box of voxel centres.
+        let corner = data.voxel_to_world(Vec3::new(
+            if i & 1 == 0 { 0.0 } else { last.x },
+            if i & 2 == 0 { 0.0 } else { last.y },
+            if i & 4 == 0 { 0.0 } else { last.z },
+        ));
         let d = if camera.orthographic {
             -(camera.view * corner.extend(1.0)).z - camera.near
         } else {
@@ -247,11 +253,17 @@ pub fn cast(
     let gpu = &ctx.gpu;
     let data = &volume.data;
     let volume_texture = volume.texture(gpu).map_err(err)?;
-    let min_spacing = data.spacing.iter().copied().fold(f32::INFINITY, f32::min);
-    // Widen the box of voxel centres a little so rays running exactly along a face (axis-aligned
-    // orthographic views) still hit it; sampling clamps to the grid anyway.
-    let margin = Vec3::splat(1e-4 * min_spacing);
-    let (lo, hi) = (data.world_min() - margin, data.world_max() + margin);
+    let min_spacing = data.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+    // Rays march in voxel space (through the world → voxel transform, so rotated and mirrored
+    // grids work) against the box of voxel centres, widened a little so rays running exactly
+    // along a face (axis-aligned orthographic views) still hit it; sampling clamps to the grid.
+    let margin = Vec3::splat(1e-4);
+    let last = Vec3::new(
+        (data.dims[0] - 1) as f32,
+        (data.dims[1] - 1) as f32,
+        (data.dims[2] - 1) as f32,
+    );
+    let (lo, hi) = (-margin, last + margin);
     let step_world = o.step_voxels * min_spacing;
 
     // Tables: colour TF or style TF, lighting TF, styles, index function.
@@ -365,7 +377,7 @@ pub fn cast(
         bytemuck::cast_slice(&lighting_flat),
     );
 
-    let distances = corner_distances(camera, lo, hi);
+    let distances = corner_distances(camera, data);
     let view_proj = camera.view_proj();
     let bool_f = |b: bool| if b { 1.0 } else { 0.0 };
     let mut u: Vec<f32> = Vec::with_capacity(104);
@@ -375,15 +387,15 @@ pub fn cast(
     u.extend_from_slice(&[lo.x, lo.y, lo.z, step_world]);
     u.extend_from_slice(&[hi.x, hi.y, hi.z, o.step_voxels]);
     u.extend_from_slice(&[
-        data.origin[0],
-        data.origin[1],
-        data.origin[2],
+        data.origin()[0],
+        data.origin()[1],
+        data.origin()[2],
         data.value_range[0],
     ]);
     u.extend_from_slice(&[
-        data.spacing[0],
-        data.spacing[1],
-        data.spacing[2],
+        data.spacing()[0],
+        data.spacing()[1],
+        data.spacing()[2],
         data.value_range[1],
     ]);
     let max_gradient = if shading >= 2.0 {
@@ -431,6 +443,11 @@ pub fn cast(
         bricks::VISIBILITY_BINS as f32,
         0.0,
     ]);
+    // World → voxel, and voxel-space gradients → world (M^-T of the linear part).
+    u.extend_from_slice(&data.geometry.to_voxel().as_mat4().to_cols_array());
+    let linear = data.geometry.to_world().as_mat4();
+    let normal_matrix = glam::Mat4::from_mat3(glam::Mat3::from_mat4(linear).inverse().transpose());
+    u.extend_from_slice(&normal_matrix.to_cols_array());
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::cast_slice(&u),

@@ -49,7 +49,7 @@ impl Node<Value, Ctx> for VolumeFileNode {
         tracing::info!(
             path = %path.display(),
             dims = ?data.dims,
-            spacing = ?data.spacing,
+            spacing = ?data.spacing(),
             range = ?data.value_range,
             world_min = ?data.world_min(),
             world_max = ?data.world_max(),

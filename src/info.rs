@@ -1,0 +1,69 @@
+//! `hatchery info FILE`: what a volume or mesh file holds and where it lies in the world.
+
+use anyhow::Result;
+use hatchery_data::mesh_file::load_mesh;
+use hatchery_data::volume_file::{VOLUME_ENDINGS, load_volume};
+use std::path::Path;
+
+/// A multi-line description of a volume (dims, spacing, voxel → world affine in RAS+ mm, value
+/// range, stored type, the header rule that placed it) or a mesh (counts, world bounds).
+pub fn describe(path: &Path) -> Result<String> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    let is_volume = VOLUME_ENDINGS.iter().any(|e| name.ends_with(e)) || path.is_dir();
+    if !is_volume {
+        let mesh = load_mesh(path)?;
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for p in &mesh.positions {
+            for a in 0..3 {
+                lo[a] = lo[a].min(p[a]);
+                hi[a] = hi[a].max(p[a]);
+            }
+        }
+        return Ok(format!(
+            "{}\n  mesh: {} vertices, {} triangles\n  bounds: {:?} .. {:?}\n",
+            path.display(),
+            mesh.positions.len(),
+            mesh.triangle_count(),
+            lo,
+            hi
+        ));
+    }
+    let v = load_volume(path)?;
+    let g = &v.geometry;
+    let no_data = v.values.iter().filter(|x| !x.is_finite()).count();
+    let [lo, hi] = g.world_bounds(v.dims);
+    let mut out = format!("{}\n", path.display());
+    out += &format!("  dims: {} x {} x {}\n", v.dims[0], v.dims[1], v.dims[2]);
+    out += &format!(
+        "  spacing: {:.6} {:.6} {:.6}\n",
+        g.spacing.x, g.spacing.y, g.spacing.z
+    );
+    out += &format!("  voxel -> world (RAS+ mm): {}\n", g.describe());
+    out += &format!(
+        "  world bounds of voxel centres: [{:.3}, {:.3}, {:.3}] .. [{:.3}, {:.3}, {:.3}]\n",
+        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+    );
+    out += &format!(
+        "  placed by: {}\n",
+        if v.placement.is_empty() {
+            "-"
+        } else {
+            &v.placement
+        }
+    );
+    out += &format!("  stored type: {}\n", v.stored_type);
+    out += &format!(
+        "  value range: {} .. {}{}\n",
+        v.value_range[0],
+        v.value_range[1],
+        if no_data > 0 {
+            format!(" ({no_data} voxels are no data: NaN/inf)")
+        } else {
+            String::new()
+        }
+    );
+    Ok(out)
+}
