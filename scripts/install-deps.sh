@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what hatchery needs at run time on a Debian machine: a Vulkan driver. Machines without
-# a GPU get Mesa's software driver (lavapipe). Does nothing when a Vulkan driver is already there.
+# Installs what hatchery needs on a Debian machine: a Vulkan driver (machines without a GPU get
+# Mesa's software driver, lavapipe; nothing is installed when a driver is already there), and
+# for the editor's scripted check (scripts/editor-smoke.sh) an X server (Xvfb) and xdotool.
 set -euo pipefail
 
 if ! command -v cargo >/dev/null 2>&1; then
@@ -16,16 +17,22 @@ have_vulkan_driver() {
     [[ "$libs" == *libvulkan.so.1* && -n "$manifests" ]]
 }
 
-if have_vulkan_driver; then
+packages=()
+if ! have_vulkan_driver; then
+    echo "install-deps: no Vulkan driver found; installing Mesa's software driver (lavapipe)" >&2
+    packages+=(mesa-vulkan-drivers libvulkan1)
+fi
+command -v Xvfb >/dev/null 2>&1 || packages+=(xvfb)
+command -v xdotool >/dev/null 2>&1 || packages+=(xdotool)
+if [ ${#packages[@]} -eq 0 ]; then
     exit 0
 fi
 
-echo "install-deps: no Vulkan driver found; installing Mesa's software driver (lavapipe)" >&2
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then
     SUDO="sudo"
 fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends mesa-vulkan-drivers libvulkan1 >/dev/null
+$SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
 have_vulkan_driver || { echo "install-deps: the Vulkan driver is still missing after installing" >&2; exit 1; }

@@ -52,6 +52,8 @@ pub struct EditorApp {
     synced_revision: Option<u64>,
     /// Selection by the mouse (see [`crate::selection`]).
     selecting: CanvasSelection,
+    /// Screen positions for scripted checks (off unless asked for).
+    layout: crate::layout_dump::LayoutDump,
     search: String,
     clipboard: String,
     /// Why the last wire drop was refused, where and when (shown as a tooltip for a while).
@@ -121,6 +123,7 @@ impl EditorApp {
             placed: BTreeMap::new(),
             synced_revision: None,
             selecting: CanvasSelection::default(),
+            layout: crate::layout_dump::LayoutDump::from_env(),
             search: String::new(),
             clipboard: String::new(),
             refusal: None,
@@ -215,6 +218,16 @@ impl EditorApp {
         self.snarl_ids.get(id).copied()
     }
 
+    /// Where node `id` was drawn last frame (screen points), if it was.
+    pub fn node_screen_rect(&self, id: &str) -> Option<egui::Rect> {
+        self.selecting.node_rect(self.canvas_transform, id)
+    }
+
+    /// The topmost node drawn at a screen position last frame.
+    pub fn node_at(&self, at: Pos2) -> Option<&str> {
+        self.selecting.node_at(self.canvas_transform, at)
+    }
+
     /// Rebuilds the canvas from the document (Snarl is only a view of it).
     fn rebuild_snarl(&mut self) {
         let mut snarl = Snarl::new();
@@ -283,6 +296,14 @@ impl EditorApp {
             self.picked(purpose, &path);
         }
         self.confirm_discard(ui);
+        if self.layout.enabled() {
+            for id in self.snarl_ids.keys() {
+                if let Some(r) = self.node_screen_rect(id) {
+                    self.layout.record(format!("node:{id}"), r);
+                }
+            }
+            self.layout.flush(ui.ctx().pixels_per_point());
+        }
 
         // A drag (of a slider, a node, ...) ends when the pointer is released.
         let busy = ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
@@ -484,6 +505,7 @@ impl EditorApp {
             thumbnails,
             times: self.preview.show_times.then_some(&self.preview.times),
             refused: None,
+            warnings: self.preview.warnings.clone(),
             failed,
         };
         // Dragging a node's title moves the node instead of selecting its text.
@@ -496,6 +518,7 @@ impl EditorApp {
         widget.show(&mut self.snarl, &mut viewer, ui);
         ui.ctx().input_mut(|i| i.modifiers = modifiers);
         self.canvas_transform = viewer.transform;
+        let refused = viewer.refused.take();
         let free = ui
             .input(|i| i.pointer.interact_pos())
             .is_some_and(|p| ui.ctx().layer_id_at(p).is_none_or(|l| l == ui.layer_id()));
@@ -514,7 +537,7 @@ impl EditorApp {
             Some(SelectionChange::Box { nodes, add }) => self.state.select_box(&nodes, add),
             _ => {}
         }
-        if let Some(reason) = viewer.refused.take() {
+        if let Some(reason) = refused {
             let now = ui.input(|i| i.time);
             let at = ui
                 .input(|i| i.pointer.latest_pos())
@@ -540,7 +563,7 @@ impl EditorApp {
                 .collect();
             // Dragging one selected node carries the rest of the selection along.
             let mut moved = moved;
-            if let [(dragged, to)] = moved.as_slice()
+            if let [(dragged, to)] = moved.clone().as_slice()
                 && self.state.selection.contains(dragged)
                 && let Some(&from) = self.placed.get(dragged)
             {
@@ -607,7 +630,10 @@ impl EditorApp {
                     .and_then(|raw| spec.convert(raw).ok())
                     .unwrap_or_else(|| spec.default.clone());
                 ui.label(spec.name).on_hover_text(spec.doc);
-                if let Some(value) = param_widget(ui, spec, &current) {
+                let widget = ui.scope(|ui| param_widget(ui, spec, &current));
+                self.layout
+                    .record(format!("param:{}", spec.name), widget.response.rect);
+                if let Some(value) = widget.inner {
                     let dragging =
                         ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
                     let _ = self.state.set_param(&id, spec.name, value, dragging);
@@ -1089,6 +1115,8 @@ struct Viewer<'a> {
     times: Option<&'a BTreeMap<String, NodeTime>>,
     /// Why a wire drop was refused this frame.
     refused: Option<String>,
+    /// Warnings of the last render, by node.
+    warnings: BTreeMap<String, String>,
     failed: Option<(String, String)>,
 }
 
@@ -1221,7 +1249,7 @@ impl SnarlViewer<String> for Viewer<'_> {
     }
 
     fn has_body(&mut self, node: &String) -> bool {
-        self.error(node).is_some()
+        self.error(node).is_some() || self.warnings.contains_key(node)
     }
 
     fn has_footer(&mut self, node: &String) -> bool {
@@ -1243,6 +1271,10 @@ impl SnarlViewer<String> for Viewer<'_> {
             let first = e.lines().next().unwrap_or_default().to_owned();
             ui.colored_label(Color32::LIGHT_RED, format!("⚠ {first}"))
                 .on_hover_text(e);
+        }
+        if let Some(w) = self.warnings.get(&id) {
+            ui.colored_label(Color32::YELLOW, format!("⚠ {w}"))
+                .on_hover_text(w);
         }
     }
 

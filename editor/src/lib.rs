@@ -10,6 +10,7 @@
 pub mod app;
 pub mod curve_editor;
 pub mod files;
+pub mod layout_dump;
 pub mod preview;
 pub mod render_worker;
 pub mod selection;

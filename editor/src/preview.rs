@@ -85,6 +85,8 @@ pub struct Preview {
     /// The node whose execution failed, with the message (shown on the node).
     pub failed_node: Option<(String, String)>,
     pub times: BTreeMap<String, NodeTime>,
+    /// Warnings by node from the last answer.
+    pub warnings: BTreeMap<String, String>,
     /// Value ranges of the evaluated `TransferFunction1D` nodes.
     pub tf_domains: BTreeMap<String, [f32; 2]>,
     /// Wall time of the last answered request on the render thread, and the adapter.
@@ -236,6 +238,7 @@ impl Preview {
         self.answers += 1;
         self.failed_node = answer.failed_node;
         self.times = answer.times;
+        self.warnings = answer.warnings;
         self.tf_domains.extend(answer.tf_domains);
         self.last_render = Some((answer.elapsed, answer.adapter));
         self.error = None;

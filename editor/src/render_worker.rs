@@ -56,6 +56,8 @@ pub struct Rendered {
     /// The node whose execution failed, with the message (shown on the node).
     pub failed_node: Option<(String, String)>,
     pub times: BTreeMap<String, NodeTime>,
+    /// Warnings of the nodes the requested ports depend on (a constant volume, no surface).
+    pub warnings: BTreeMap<String, String>,
     /// The value range each evaluated transfer function node spans (a `TransferFunction1D`'s
     /// presets follow the connected volume's range, which only the executed graph knows).
     pub tf_domains: BTreeMap<String, [f32; 2]>,
@@ -74,6 +76,7 @@ impl Rendered {
             thumbnails: Vec::new(),
             failed_node: None,
             times: BTreeMap::new(),
+            warnings: BTreeMap::new(),
             tf_domains: BTreeMap::new(),
             elapsed: Duration::ZERO,
             adapter: String::new(),
@@ -269,6 +272,9 @@ impl Worker {
             );
         }
         for node in answer.times.keys() {
+            if let Some(w) = session.ctx.warnings().get(node) {
+                answer.warnings.insert(node.clone(), w.clone());
+            }
             if let Ok(Value::TransferFunction(tf)) = session.output(node, "tf") {
                 let domain = match tf.as_ref() {
                     TransferFunction::Color(f) => f.domain,

@@ -157,7 +157,7 @@ impl CanvasSelection {
     fn paint_box(&self, ctx: &egui::Context, canvas: Rect, area: Rect) {
         let layer = egui::LayerId::new(egui::Order::Foreground, egui::Id::new("box-select"));
         let painter = ctx.layer_painter(layer).with_clip_rect(canvas);
-        let accent = ctx.style().visuals.selection.stroke.color;
+        let accent = ctx.global_style().visuals.selection.stroke.color;
         painter.rect(
             area,
             0.0,

@@ -3,7 +3,7 @@
 use hatchery_gpu::{GpuContext, GpuError, GpuTimer};
 use hatchery_graph::ExecContext;
 use std::any::Any;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
 use std::sync::Arc;
@@ -18,6 +18,9 @@ pub struct RenderContext {
     current_node: Option<String>,
     /// Pipelines and other static GPU objects, built once per kind (not per execution).
     statics: HashMap<String, Arc<dyn Any + Send + Sync>>,
+    /// The last execution's warning of each node that gave one (a constant volume, an iso value
+    /// with no surface): shown on stderr and on the node in the editor.
+    warnings: BTreeMap<String, String>,
 }
 
 impl RenderContext {
@@ -30,6 +33,7 @@ impl RenderContext {
             timer: None,
             current_node: None,
             statics: HashMap::new(),
+            warnings: BTreeMap::new(),
         })
     }
 
@@ -42,6 +46,20 @@ impl RenderContext {
         self.width = width;
         self.height = height;
         Ok(())
+    }
+
+    /// A warning about the executing node's result: one line on stderr (through `tracing`),
+    /// kept until the node runs again (see [`Self::warnings`]).
+    pub fn warn(&mut self, message: impl Into<String>) {
+        let message = message.into();
+        let node = self.current_node.clone().unwrap_or_default();
+        tracing::warn!("{node}: {message}");
+        self.warnings.insert(node, message);
+    }
+
+    /// Warnings by node id, from each node's last execution.
+    pub fn warnings(&self) -> &BTreeMap<String, String> {
+        &self.warnings
     }
 
     /// Turns per-node GPU timestamps on (where the adapter has them). Returns whether they are on.
@@ -152,6 +170,7 @@ impl ExecContext for RenderContext {
     }
     fn begin_node(&mut self, node: &str) {
         self.current_node = Some(node.to_owned());
+        self.warnings.remove(node);
     }
     fn end_node(&mut self, _node: &str) {
         self.current_node = None;

@@ -41,7 +41,7 @@ impl Node<Value, Ctx> for MarchingCubesNode {
 
     fn execute(
         &self,
-        _ctx: &mut Ctx,
+        ctx: &mut Ctx,
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
@@ -56,6 +56,13 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         }
         let mesh = hatchery_data::marching_cubes::marching_cubes(&volume.data, iso);
         tracing::info!(iso, triangles = mesh.triangle_count(), "marching cubes");
+        if mesh.triangle_count() == 0 {
+            ctx.warn(if range[0] == range[1] {
+                format!("the volume is constant ({}): no surface", range[0])
+            } else {
+                format!("iso value {iso} gives no surface")
+            });
+        }
         Ok(vec![Value::Mesh(Arc::new(Mesh::new(mesh)))])
     }
 }

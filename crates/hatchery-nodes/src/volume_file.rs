@@ -1,4 +1,4 @@
-//! `VolumeFile`: a scalar volume read from a NIfTI file.
+//! `VolumeFile`: a scalar volume read from a file, placed in the world (RAS+ mm).
 
 use crate::value::Volume;
 use crate::{Ctx, Value};
@@ -15,19 +15,25 @@ impl Node<Value, Ctx> for VolumeFileNode {
             kind: "VolumeFile",
             category: "Data",
             doc: "Reads a volume: NIfTI-1 (.nii, .nii.gz) of any integer or float type with \
-                  scl_slope/scl_inter applied, or VTK XML image data (.vti, e.g. label volumes). Voxel \
-                  spacing and origin are kept. Relative paths are relative to the graph file's folder.",
+                  scl_slope/scl_inter applied, or VTK XML image data (.vti, e.g. label volumes). \
+                  The voxel → world transform (origin, spacing, direction; NIfTI sform/qform) \
+                  places the voxels in hatchery's RAS+ world in mm. NaN voxels are \"no data\". \
+                  Relative paths are relative to the graph file's folder.",
             inputs: vec![],
             outputs: vec![PortSpec::output(
                 "volume",
                 PortType::Volume,
                 "the volume, in world units (mm)",
             )],
-            params: vec![ParamSpec::path(
-                "path",
-                "",
-                "the .nii, .nii.gz or .vti file",
-            )],
+            params: vec![
+                ParamSpec::path("path", "", "the .nii, .nii.gz or .vti file"),
+                ParamSpec::text(
+                    "array",
+                    "",
+                    "the named data array to read from a file with several (VTK); empty: the \
+                     file's active scalars, else the first array",
+                ),
+            ],
             frame_dependent: false,
             sink: false,
         }
@@ -35,7 +41,7 @@ impl Node<Value, Ctx> for VolumeFileNode {
 
     fn execute(
         &self,
-        _ctx: &mut Ctx,
+        ctx: &mut Ctx,
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
@@ -45,7 +51,19 @@ impl Node<Value, Ctx> for VolumeFileNode {
                 "parameter `path` is empty: name a .nii, .nii.gz or .vti file",
             ));
         }
-        let data = hatchery_data::load_volume(&path).map_err(|e| NodeError::new(e.to_string()))?;
+        let array = p.text("array").trim();
+        let options = hatchery_data::volume_file::LoadOptions {
+            array: (!array.is_empty()).then(|| array.to_owned()),
+        };
+        let data = hatchery_data::volume_file::load_volume_with(&path, &options)
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        if data.value_range[0] == data.value_range[1] {
+            ctx.warn(format!(
+                "{}: the volume is constant ({}): nothing to tell apart",
+                path.display(),
+                data.value_range[0]
+            ));
+        }
         tracing::info!(
             path = %path.display(),
             dims = ?data.dims,

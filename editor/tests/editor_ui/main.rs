@@ -10,6 +10,9 @@ use hatchery_editor::{EditorApp, EditorState};
 use hatchery_graph::{EditorPos, GraphDocument, ParamValue, SchemaLookup};
 use std::path::{Path, PathBuf};
 
+mod selection;
+use selection::select_by_click;
+
 fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path)
 }
@@ -101,9 +104,8 @@ fn open_add_connect_refuse_edit_undo_redo_save_and_reload() {
     let edges = h.state().state.doc().edges.len();
     assert_eq!(edges, 8);
 
-    // Change a parameter through the inspector: select the silhouette, untick `use_depth`.
-    h.state_mut().state.selection = [silhouette.clone()].into();
-    h.run();
+    // Change a parameter through the inspector: click the silhouette, untick `use_depth`.
+    select_by_click(&mut h, &silhouette);
     // The title on the canvas and the inspector's heading.
     assert_eq!(h.get_all_by_label("silhouette_1 (Silhouette)").count(), 2);
     let before = h.state().state.doc().clone();
@@ -530,9 +532,10 @@ fn the_node_menu_duplicates_previews_and_deletes() {
         Some(("shells".to_string(), "volume".to_string()))
     );
 
-    // The duplicate is selected (its title is also the inspector's heading): deselect.
-    h.state_mut().state.selection.clear();
+    // The duplicate is selected (its title is also the inspector's heading): deselect (Esc).
+    h.key_press(Key::Escape);
     h.run();
+    assert!(h.state().state.selection.is_empty());
     let at = on_title(&h, "surface_1 (MarchingCubes)");
     right_click_at(&h, at);
     h.run();
@@ -639,8 +642,9 @@ fn dragging_a_wire_between_compatible_pins_connects_them() {
         .state
         .add_node("MarchingCubes", EditorPos { x: 280.0, y: 520.0 })
         .unwrap();
-    app.state.selection.clear();
     let mut h = harness(app);
+    h.run();
+    h.key_press(Key::Escape);
     h.run();
     let t = h.state().canvas_transform;
     let volumes: Vec<egui::Rect> = h.get_all_by_label("volume").map(|n| n.rect()).collect();
@@ -1024,8 +1028,7 @@ fn click_with(h: &mut Harness<EditorApp>, at: egui::Pos2, button: egui::PointerB
 #[test]
 fn the_transfer_function_editor_moves_adds_and_removes_points() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut app, _) = open_copy("graphs/tf1d_phong_brain.ron", dir.path());
-    app.state.selection = ["tf".to_string()].into();
+    let (app, _) = open_copy("graphs/tf1d_phong_brain.ron", dir.path());
     // Frames 1/60 s apart (kittest's default 1/4 s is too slow for a double-click).
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
@@ -1033,6 +1036,7 @@ fn the_transfer_function_editor_moves_adds_and_removes_points() {
         .with_max_steps(200)
         .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
     h.run();
+    select_by_click(&mut h, "tf");
     let before = tf_points(&h);
     assert_eq!(before.len(), 5);
     let curve = h.get_by_label("transfer function curve").rect();
@@ -1061,6 +1065,11 @@ fn the_transfer_function_editor_moves_adds_and_removes_points() {
     assert_eq!(tf_points(&h), before);
 
     // A double-click on an empty part of the curve adds a point there, between its neighbours.
+    // A pause first: egui counts a click within 0.6 s of the click before last (the one that
+    // selected the node) as a triple click.
+    for _ in 0..45 {
+        h.step();
+    }
     let x = curve.left() + curve.width() * 0.05;
     let at = egui::pos2(x, curve.bottom() - curve.height() * 0.5);
     click_with(&mut h, at, egui::PointerButton::Primary);
@@ -1082,10 +1091,10 @@ fn the_transfer_function_editor_moves_adds_and_removes_points() {
 #[test]
 fn the_style_picker_swaps_adds_and_removes_lit_sphere_styles() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut app, _) = open_copy("graphs/volume_styles.ron", dir.path());
-    app.state.selection = ["styles".to_string()].into();
+    let (app, _) = open_copy("graphs/volume_styles.ron", dir.path());
     let mut h = harness(app);
     h.run();
+    select_by_click(&mut h, "styles");
     let styles = |h: &Harness<EditorApp>| text_param(h, "styles", "styles");
     let original = styles(&h);
     assert_eq!(original, "gooch:0.6,0.7,0.9, toon3:0.9,0.45,0.35");
@@ -1199,15 +1208,15 @@ fn dropped_files_open_graphs_and_add_source_nodes_where_they_land() {
 #[test]
 fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut app, _) = open_copy("graphs/bunny_surface.ron", dir.path());
+    let (app, _) = open_copy("graphs/bunny_surface.ron", dir.path());
     std::fs::write(
         dir.path().join("tri.obj"),
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
     )
     .unwrap();
-    app.state.selection = ["bunny".to_string()].into();
     let mut h = harness(app);
     h.run();
+    select_by_click(&mut h, "bunny");
     h.get_by_label("📂").click();
     // The dialog reads the folder on a thread of its own: step until it lists the file.
     for _ in 0..400 {
@@ -1292,10 +1301,10 @@ fn closing_the_window_with_unsaved_changes_asks_first() {
 #[test]
 fn the_style_transfer_function_editor_moves_points_and_picks_their_styles() {
     let dir = tempfile::tempdir().unwrap();
-    let (mut app, _) = open_copy("graphs/style_tf_brain.ron", dir.path());
-    app.state.selection = ["tf".to_string()].into();
+    let (app, _) = open_copy("graphs/style_tf_brain.ron", dir.path());
     let mut h = harness(app);
     h.run();
+    select_by_click(&mut h, "tf");
     let nodes = |h: &Harness<EditorApp>| {
         hatchery_data::style::StyleTransferFunction::parse(&text_param(h, "tf", "nodes")).unwrap()
     };
