@@ -1,10 +1,13 @@
 //! Triangle meshes from OBJ, PLY and STL files.
+//!
+//! The readers aim to take whatever the common readers (trimesh, VTK, MeshLab) take, and to
+//! refuse, with an error naming the file and where possible the line, what they cannot read
+//! whole: a file is never loaded in part without saying so.
 
-use std::io::Cursor;
+mod ply;
+mod stl;
+
 use std::path::Path;
-
-use ply_rs::parser::Parser;
-use ply_rs::ply::{Property, PropertyAccess};
 
 use crate::{DataError, MeshData};
 
@@ -13,10 +16,24 @@ const SUPPORTED: &str = ".obj, .ply, .stl";
 /// Loads a mesh, choosing the format by the (case-insensitive) extension:
 ///
 /// * `.obj`: all objects merged, polygons triangulated, normals used if every vertex has one.
+///   Comments anywhere, also after data on a line (`v 1 2 3 # note`), blank lines, lines
+///   continued with a trailing `\`, LF, CRLF or CR line ends, text that is not UTF-8.
+///   Materials are not read.
 /// * `.ply`: ASCII and binary (both endiannesses); polygons fan-triangulated; faces from a
-///   `vertex_indices` or `vertex_index` list; normals from `nx`, `ny`, `nz` if present.
-/// * `.stl`: ASCII and binary; identical positions are welded. STL only has face normals, so
-///   vertex normals are computed.
+///   `vertex_indices` or `vertex_index` list; normals from `nx`, `ny`, `nz` if present; other
+///   elements and properties skipped. The header may have blank lines, indented lines and
+///   `comment`/`obj_info` lines anywhere; ASCII data is read as white-space separated words,
+///   so blank lines and entries spread over lines or run together do not matter, and numbers
+///   may be written `1.`, `.5`, `1e3` or (in integer properties) `3.0`. Data after the last
+///   declared entry is an error, not dropped.
+/// * `.stl`: binary, or ASCII with one or more `solid … endsolid` blocks (all read), a bare
+///   `solid` or `endsolid`, keywords in any case, any mix of spaces, tabs, blank lines and
+///   line ends, with or without a final line end or final `endsolid`. A file is binary when its
+///   size is exactly 84 + 50 × the triangle count in its header (so a binary header starting
+///   with "solid" is no trouble), or when it does not start with "solid"; a binary triangle
+///   count smaller than the data (some writers leave it 0) is overridden by the data, as VTK
+///   does, while a count larger than the data is an error (truncated file). Identical
+///   positions are welded. STL only has face normals, so vertex normals are computed.
 ///
 /// Missing or degenerate normals are computed from the triangles (area-weighted). A file
 /// without any triangle is an error.
@@ -25,10 +42,11 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, DataError> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
+    let read = || std::fs::read(path).map_err(|e| DataError::io(path, e));
     let mesh = match extension.as_str() {
-        "obj" => load_obj(path),
-        "ply" => load_ply(path),
-        "stl" => load_stl(path),
+        "obj" => load_obj(path, &read()?),
+        "ply" => ply::read(path, &read()?),
+        "stl" => stl::read(path, &read()?),
         _ => Err(DataError::unsupported(
             path,
             format!("unknown mesh file extension, supported are {SUPPORTED}"),
@@ -40,19 +58,32 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, DataError> {
     Ok(mesh)
 }
 
-fn load_obj(path: &Path) -> Result<MeshData, DataError> {
-    let file = std::fs::File::open(path).map_err(|e| DataError::io(path, e))?;
+fn load_obj(path: &Path, bytes: &[u8]) -> Result<MeshData, DataError> {
+    let text = clean_obj(bytes);
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ..Default::default()
     };
+    // tobj reads line by line and stops at a bad one, so what it has consumed tells the line.
+    let mut rest = text.as_bytes();
     // Materials are irrelevant here; do not go looking for .mtl files.
-    let (models, _materials) =
-        tobj::load_obj_buf(&mut std::io::BufReader::new(file), &options, |_| {
-            Err(tobj::LoadError::OpenFileFailed)
-        })
-        .map_err(|e| DataError::format(path, format!("invalid OBJ: {e}")))?;
+    let result = tobj::load_obj_buf(&mut rest, &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    });
+    let (models, _materials) = result.map_err(|e| {
+        use tobj::LoadError::*;
+        let line = match e {
+            // Found when an object is finished, after its faces were read.
+            FaceVertexOutOfBounds => first_bad_face(&text, 0),
+            FaceTexCoordOutOfBounds => first_bad_face(&text, 1),
+            FaceNormalOutOfBounds => first_bad_face(&text, 2),
+            FaceColorOutOfBounds | InvalidPolygon => None,
+            _ => Some(text[..text.len() - rest.len()].matches('\n').count()),
+        };
+        let at = line.map(|n| format!("line {n}: ")).unwrap_or_default();
+        DataError::format(path, format!("{at}invalid OBJ: {e}"))
+    })?;
 
     let mut positions = Vec::new();
     let mut normals = Vec::new();
@@ -76,231 +107,151 @@ fn load_obj(path: &Path) -> Result<MeshData, DataError> {
         .map_err(|e| e.in_file(path))
 }
 
-fn load_stl(path: &Path) -> Result<MeshData, DataError> {
-    let mut bytes = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
-    // Many binary STL writers start the 80-byte header with "solid", which stl_io takes for
-    // ASCII. A file whose size is exactly that of a binary STL with the stated triangle count is
-    // binary; hide the misleading word from stl_io.
-    if bytes.len() >= 84 && bytes.starts_with(b"solid") {
-        let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
-        if bytes.len() as u64 == 84 + 50 * count {
-            bytes[..5].copy_from_slice(b"SOLID");
+/// Prepares OBJ text for tobj, keeping one line per file line so line numbers hold: text that
+/// is not UTF-8 is read (tobj refuses it), CRLF and CR line ends become LF, comments (from `#`
+/// to the end of the line) are removed (tobj only knows `#` as a line's first word), lines
+/// ending in `\` are joined to the next, and `mtllib`/`usemtl` lines are dropped (materials
+/// are not read, and tobj refuses a `usemtl` without a name).
+fn clean_obj(bytes: &[u8]) -> String {
+    let text = String::from_utf8_lossy(bytes)
+        .replace("\r\n", "\n")
+        .replace('\r', "\n");
+    let mut out = String::with_capacity(text.len());
+    let mut joined = String::new();
+    let mut continued = 0;
+    for line in text.split('\n') {
+        let code = line.split('#').next().unwrap_or_default().trim_end();
+        if let Some(head) = code.strip_suffix('\\') {
+            joined += head;
+            joined.push(' ');
+            continued += 1;
+            continue;
         }
-    }
-    let stl = stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| {
-        let reason = if e.kind() == std::io::ErrorKind::UnexpectedEof {
-            ENDS_EARLY.to_string()
-        } else {
-            e.to_string()
-        };
-        DataError::format(path, format!("invalid STL: {reason}"))
-    })?;
-    let positions = stl.vertices.iter().map(|v| v.0).collect();
-    let mut indices = Vec::with_capacity(stl.faces.len() * 3);
-    for face in &stl.faces {
-        for &i in &face.vertices {
-            indices
-                .push(u32::try_from(i).map_err(|_| DataError::format(path, "too many vertices"))?);
+        joined += code;
+        if !matches!(joined.split_whitespace().next(), Some("mtllib" | "usemtl")) {
+            out += &joined;
         }
+        // The joined line stands at its first line; the lines it took in stay, empty.
+        out.extend(std::iter::repeat_n('\n', continued + 1));
+        joined.clear();
+        continued = 0;
     }
-    MeshData::new(positions, None, indices).map_err(|e| e.in_file(path))
+    out + &joined
 }
 
-fn load_ply(path: &Path) -> Result<MeshData, DataError> {
-    let bytes = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
-    precheck_ply_header(path, &bytes)?;
-    let file_len = bytes.len();
-    let mut reader = Cursor::new(bytes);
-    let ply_error = |what: &str, e: std::io::Error| {
-        DataError::format(path, format!("invalid PLY {what}: {}", ply_message(&e)))
-    };
-
-    let header = Parser::<Skip>::new()
-        .read_header(&mut reader)
-        .map_err(|e| ply_error("header", e))?;
-    for (name, element) in &header.elements {
-        // Each element takes at least one byte, so larger counts are lies; and an element
-        // without properties would make the parser loop `count` times reading nothing.
-        if element.count > file_len || (element.count > 0 && element.properties.is_empty()) {
-            return Err(DataError::format(
-                path,
-                format!(
-                    "element '{name}' declares {} entries the file cannot hold",
-                    element.count
-                ),
-            ));
+/// The line of the first face whose `slot` (0 position, 1 texture coordinate, 2 normal)
+/// index names nothing: 0, past the last in the file, or relative and before the first.
+fn first_bad_face(text: &str, slot: usize) -> Option<usize> {
+    let keyword = ["v", "vt", "vn"][slot];
+    let total = text
+        .lines()
+        .filter(|l| l.split_whitespace().next() == Some(keyword))
+        .count() as i64;
+    let mut seen = 0;
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some(k) if k == keyword => seen += 1,
+            Some("f" | "l") => {
+                let bad = words.any(|w| {
+                    let index = w.split('/').nth(slot).unwrap_or_default();
+                    index
+                        .parse::<i64>()
+                        .is_ok_and(|i| i == 0 || i > total || i < -seen)
+                });
+                if bad {
+                    return Some(n + 1);
+                }
+            }
+            _ => {}
         }
     }
-
-    let mut vertices = None;
-    let mut faces = None;
-    // Elements must be read in header order; skip the ones we do not use.
-    for (name, element) in &header.elements {
-        match name.as_str() {
-            "vertex" => {
-                let has_normals = ["nx", "ny", "nz"]
-                    .iter()
-                    .all(|k| element.properties.contains_key(*k));
-                let list = Parser::<PlyVertex>::new()
-                    .read_payload_for_element(&mut reader, element, &header)
-                    .map_err(|e| ply_error("vertex data", e))?;
-                vertices = Some((list, has_normals));
-            }
-            "face" => {
-                let list = Parser::<PlyFace>::new()
-                    .read_payload_for_element(&mut reader, element, &header)
-                    .map_err(|e| ply_error("face data", e))?;
-                faces = Some(list);
-            }
-            _ => {
-                Parser::<Skip>::new()
-                    .read_payload_for_element(&mut reader, element, &header)
-                    .map_err(|e| ply_error(&format!("'{name}' data"), e))?;
-            }
-        }
-    }
-    let (vertices, has_normals) =
-        vertices.ok_or_else(|| DataError::format(path, "no vertex element"))?;
-    let faces = faces.ok_or_else(|| DataError::format(path, "no face element"))?;
-
-    let positions = vertices.iter().map(|v| v.position).collect();
-    let normals = has_normals.then(|| vertices.iter().map(|v| v.normal).collect());
-    let mut indices = Vec::new();
-    for (f, face) in faces.iter().enumerate() {
-        let polygon = face
-            .indices
-            .iter()
-            .map(|&i| u32::try_from(i))
-            .collect::<Result<Vec<u32>, _>>()
-            .map_err(|_| {
-                DataError::format(path, format!("face {f} has a negative vertex index"))
-            })?;
-        // Fan triangulation: fine for the convex polygons PLY files hold in practice.
-        for i in 1..polygon.len().saturating_sub(1) {
-            indices.extend([polygon[0], polygon[i], polygon[i + 1]]);
-        }
-    }
-    MeshData::new(positions, normals, indices).map_err(|e| e.in_file(path))
+    None
 }
 
 const ENDS_EARLY: &str = "file ends early (truncated?)";
 
-/// ply-rs messages span several lines and end in Debug dumps of the inner error; keep the first
-/// line, without its line number (counted from the start of each element, so misleading).
-fn ply_message(e: &std::io::Error) -> String {
-    let text = e.to_string();
-    if e.kind() == std::io::ErrorKind::UnexpectedEof || text.contains("UnexpectedEof") {
-        return ENDS_EARLY.to_string();
-    }
-    let first = text.lines().next().unwrap_or_default().trim();
-    match first.split_once(": ") {
-        Some((line, rest)) if line.starts_with("Line ") => rest.to_string(),
-        _ => first.to_string(),
-    }
+/// White-space separated words of a text format, with their line numbers.
+struct Words<'a> {
+    text: &'a str,
+    pos: usize,
+    /// Line of `pos`.
+    line: usize,
+    /// Line of the last word returned.
+    last: usize,
 }
 
-/// ply-rs panics on integers in `element`/`format` lines that overflow u64; catch those first.
-fn precheck_ply_header(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
-    for line in bytes.split(|&b| b == b'\n').take(10_000) {
-        let line = String::from_utf8_lossy(line);
-        let line = line.trim();
-        if line.starts_with("end_header") {
-            return Ok(());
+impl<'a> Words<'a> {
+    /// Words of `text`, whose first line is line `line` of the file.
+    fn new(text: &'a str, line: usize) -> Self {
+        Words {
+            text,
+            pos: 0,
+            line,
+            last: line,
         }
-        if (line.starts_with("element") || line.starts_with("format"))
-            && line
-                .split(|c: char| !c.is_ascii_digit())
-                .any(|digits| digits.len() > 18)
+    }
+
+    fn next(&mut self) -> Option<(&'a str, usize)> {
+        let bytes = self.text.as_bytes();
+        while let Some(&b) = bytes.get(self.pos) {
+            if !b.is_ascii_whitespace() {
+                break;
+            }
+            // CRLF counts once, at its LF; a lone CR (old Mac files) counts too.
+            if b == b'\n' || (b == b'\r' && bytes.get(self.pos + 1) != Some(&b'\n')) {
+                self.line += 1;
+            }
+            self.pos += 1;
+        }
+        let start = self.pos;
+        while bytes
+            .get(self.pos)
+            .is_some_and(|b| !b.is_ascii_whitespace())
         {
-            return Err(DataError::format(
-                path,
-                format!("number too large in PLY header line '{line}'"),
-            ));
+            self.pos += 1;
+        }
+        if self.pos == start {
+            return None;
+        }
+        self.last = self.line;
+        // Cutting at ASCII bytes keeps to char boundaries.
+        Some((&self.text[start..self.pos], self.line))
+    }
+
+    /// Moves to the end of the current line (the line end is left to `next`).
+    fn skip_line(&mut self) {
+        let rest = &self.text.as_bytes()[self.pos..];
+        self.pos += rest
+            .iter()
+            .position(|&b| b == b'\n' || b == b'\r')
+            .unwrap_or(rest.len());
+    }
+
+    /// The next word, or an error saying what was expected if the text ends.
+    fn required(&mut self, what: &str) -> Result<(&'a str, usize), String> {
+        self.next()
+            .ok_or_else(|| format!("{ENDS_EARLY} after line {}, expected {what}", self.last))
+    }
+
+    /// The next word, which must be `keyword` in any case.
+    fn expect(&mut self, keyword: &str) -> Result<(), String> {
+        let (word, line) = self.required(&format!("'{keyword}'"))?;
+        if word.eq_ignore_ascii_case(keyword) {
+            Ok(())
+        } else {
+            Err(self.unexpected(word, line, &format!("'{keyword}'")))
         }
     }
-    Ok(())
-}
 
-/// Reads any scalar property as f64; lists give `None`.
-fn scalar(property: &Property) -> Option<f64> {
-    Some(match *property {
-        Property::Char(v) => v as f64,
-        Property::UChar(v) => v as f64,
-        Property::Short(v) => v as f64,
-        Property::UShort(v) => v as f64,
-        Property::Int(v) => v as f64,
-        Property::UInt(v) => v as f64,
-        Property::Float(v) => v as f64,
-        Property::Double(v) => v,
-        _ => return None,
-    })
-}
-
-/// Reads any integer list as indices.
-fn index_list(property: Property) -> Option<Vec<i64>> {
-    fn conv<T: Into<i64>>(v: Vec<T>) -> Vec<i64> {
-        v.into_iter().map(Into::into).collect()
-    }
-    Some(match property {
-        Property::ListChar(v) => conv(v),
-        Property::ListUChar(v) => conv(v),
-        Property::ListShort(v) => conv(v),
-        Property::ListUShort(v) => conv(v),
-        Property::ListInt(v) => conv(v),
-        Property::ListUInt(v) => conv(v),
-        _ => return None,
-    })
-}
-
-#[derive(Default)]
-struct PlyVertex {
-    position: [f32; 3],
-    normal: [f32; 3],
-}
-
-impl PropertyAccess for PlyVertex {
-    fn new() -> Self {
-        Self::default()
-    }
-    fn set_property(&mut self, name: String, property: Property) {
-        let Some(v) = scalar(&property) else { return };
-        let v = v as f32;
-        match name.as_str() {
-            "x" => self.position[0] = v,
-            "y" => self.position[1] = v,
-            "z" => self.position[2] = v,
-            "nx" => self.normal[0] = v,
-            "ny" => self.normal[1] = v,
-            "nz" => self.normal[2] = v,
-            _ => {}
+    /// The message for a wrong `word` just read: if it is the last word of the text, the file
+    /// was probably cut short in the middle of it.
+    fn unexpected(&self, word: &str, line: usize, expected: &str) -> String {
+        if self.text[self.pos..].trim_ascii().is_empty() {
+            format!("{ENDS_EARLY} at line {line} in '{word}', expected {expected}")
+        } else {
+            format!("line {line}: expected {expected}, found '{word}'")
         }
-    }
-}
-
-#[derive(Default)]
-struct PlyFace {
-    indices: Vec<i64>,
-}
-
-impl PropertyAccess for PlyFace {
-    fn new() -> Self {
-        Self::default()
-    }
-    fn set_property(&mut self, name: String, property: Property) {
-        if (name == "vertex_indices" || name == "vertex_index")
-            && let Some(list) = index_list(property)
-        {
-            self.indices = list;
-        }
-    }
-}
-
-/// Element type that keeps nothing, for elements we only need to get past.
-struct Skip;
-
-impl PropertyAccess for Skip {
-    fn new() -> Self {
-        Skip
     }
 }
 

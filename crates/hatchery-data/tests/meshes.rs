@@ -333,3 +333,448 @@ fn bad_files_are_errors_naming_the_file() {
     // Non-finite position.
     assert_error_names(&write("nan.obj", b"v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Tolerance: every variant that common writers produce and common readers (trimesh, VTK,
+// MeshLab) take must load whole; what cannot be read whole must be an error.
+
+fn case(name: &str) -> PathBuf {
+    Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/cases"
+    ))
+    .join(name)
+}
+
+#[test]
+fn stl_with_two_solids_loads_both() {
+    let m = load_mesh(&case("two_bodies.stl")).unwrap();
+    assert_eq!(m.positions.len(), 8, "distinct vertices");
+    assert_eq!(m.triangle_count(), 8);
+    let (lo, hi) = m.bounds().unwrap();
+    assert_eq!((lo.x, hi.x), (0.0, 3.0));
+    assert_unit_normals(&m);
+}
+
+#[test]
+fn stl_with_bare_solid_line_loads() {
+    let m = load_mesh(&case("solid_no_name.stl")).unwrap();
+    assert_eq!(m.positions.len(), 4, "distinct vertices");
+    assert_eq!(m.triangle_count(), 2);
+    assert_eq!(m.bounds().unwrap(), (Vec3::ZERO, Vec3::ONE));
+}
+
+#[test]
+fn stl_with_upper_case_keywords_loads() {
+    let m = load_mesh(&case("uppercase_keywords.stl")).unwrap();
+    assert_eq!(m.positions.len(), 4, "distinct vertices");
+    assert_eq!(m.triangle_count(), 2);
+}
+
+/// Writes `bytes` to the file `name` in `dir` and loads it.
+fn load_written(dir: &Path, name: &str, bytes: &[u8]) -> Result<MeshData, DataError> {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    load_mesh(&path)
+}
+
+#[test]
+fn ascii_stl_variants_load_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let plain = stl_ascii();
+    // Split after the fourth facet into a second solid.
+    let (first, rest) = plain.split_at(plain.match_indices("endfacet\n").nth(3).unwrap().0 + 9);
+    let variants: Vec<(&str, String)> = vec![
+        ("upper case", plain.to_uppercase()),
+        (
+            "mixed case",
+            plain
+                .replace("facet normal", "Facet Normal")
+                .replace("outer", "OUTER")
+                .replace("vertex", "Vertex")
+                .replace("solid", "Solid"),
+        ),
+        ("tabs", plain.replace("  ", "\t").replace(' ', " \t ")),
+        ("CRLF", plain.replace('\n', "\r\n")),
+        ("CR", plain.replace('\n', "\r")),
+        (
+            "blank lines",
+            plain
+                .replace("endfacet\n", "endfacet\n\n  \t\n")
+                .replace("outer loop\n", "outer loop\n\r\n"),
+        ),
+        (
+            "bare solid and endsolid",
+            plain
+                .replace("solid octahedron", "solid")
+                .replace("endsolid\n", "endsolid"),
+        ),
+        (
+            "endsolid without name",
+            plain.replace("endsolid octahedron", "endsolid"),
+        ),
+        ("no final line end", plain.trim_end().to_string()),
+        (
+            "no final endsolid",
+            plain.replace("endsolid octahedron\n", ""),
+        ),
+        (
+            "two solids",
+            format!("{first}endsolid octahedron\nsolid other half\n{rest}"),
+        ),
+        (
+            "name glued to solid, BOM, leading blank line",
+            format!("\u{feff}\n{}", plain.replacen("solid ", "solid_", 1)),
+        ),
+        (
+            "one facet per line",
+            plain
+                .replace("\n    ", " ")
+                .replace("\n      ", " ")
+                .replace("\n  endfacet", " endfacet"),
+        ),
+        (
+            "nan face normals",
+            plain.replace("normal 0 0 0", "normal -nan nan 1.#QNAN"),
+        ),
+    ];
+    for (i, (what, text)) in variants.iter().enumerate() {
+        let m = load_written(dir.path(), &format!("v{i}.stl"), text.as_bytes())
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_is_octahedron(&m);
+        assert_eq!(m.positions.len(), 6, "{what}: vertices welded");
+    }
+}
+
+#[test]
+fn stl_welds_negative_zero_and_fans_polygon_loops() {
+    let dir = tempfile::tempdir().unwrap();
+    // Facets on one line (the solid's name is the rest of its line); -0 and 0 are the same
+    // position.
+    let text = "solid t\nfacet normal 0 0 -1 outer loop vertex 0 0 0 vertex 0 1 0 vertex 1 0 0 \
+                endloop endfacet facet normal 0 -1 0 outer loop vertex -0 -0 -0 vertex 1 0 -0 \
+                vertex 0 -0 1 endloop endfacet endsolid t";
+    let m = load_written(dir.path(), "zeros.stl", text.as_bytes()).unwrap();
+    assert_eq!(m.positions.len(), 4);
+    assert_eq!(m.triangle_count(), 2);
+    // A loop of four vertices (some old writers) is two triangles.
+    let text = "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+                vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
+    let m = load_written(dir.path(), "quad.stl", text.as_bytes()).unwrap();
+    assert_eq!((m.positions.len(), m.triangle_count()), (4, 2));
+    assert!((m.surface_area() - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn binary_stl_variants() {
+    let dir = tempfile::tempdir().unwrap();
+    let load = |name: &str, bytes: &[u8]| load_written(dir.path(), name, bytes);
+    let with_count = |word: &[u8], count: u32| {
+        let mut b = stl_binary(word);
+        b[80..84].copy_from_slice(&count.to_le_bytes());
+        b
+    };
+    // A count of 0 or too small (streaming writers) is overridden by the data, as VTK does;
+    // also with a header starting with "solid", which is not then taken for ASCII.
+    assert_is_octahedron(&load("zero.stl", &with_count(b"binary", 0)).unwrap());
+    assert_is_octahedron(&load("five.stl", &with_count(b"solid made by x", 5)).unwrap());
+    assert_is_octahedron(&load("SOLID.stl", &with_count(b"SOLID", 0)).unwrap());
+    // Bytes after the last triangle too few to be another one.
+    let mut padded = stl_binary(b"solid x");
+    padded.extend([0u8; 10]);
+    assert_is_octahedron(&load("padded.stl", &padded).unwrap());
+    // More triangles declared than present: truncated.
+    let e = load("more.stl", &with_count(b"binary", 9))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("more.stl") && e.contains("9 triangles"), "{e}");
+    // A count that fits neither the data nor a whole number of triangles.
+    let mut odd = with_count(b"binary", 5);
+    odd.extend([1u8; 10]);
+    let e = load("odd.stl", &odd).unwrap_err().to_string();
+    assert!(e.contains("odd.stl") && e.contains("5 triangles"), "{e}");
+}
+
+#[test]
+fn bad_ascii_stl_is_an_error_with_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let plain = stl_ascii();
+    let cases = [
+        ("cut.stl", plain[..plain.len() / 2].to_string(), "truncated"),
+        (
+            "cut2.stl",
+            plain[..plain.len() / 2 + 3].to_string(),
+            "truncated",
+        ),
+        (
+            "word.stl",
+            plain.replacen("vertex 1e0", "vertex one", 1),
+            "line 4: expected a finite vertex coordinate, found 'one'",
+        ),
+        (
+            "after.stl",
+            plain.clone() + "extra words\n",
+            "line 59: expected 'solid', found 'extra'",
+        ),
+        (
+            "keyword.stl",
+            plain.replacen("outer loop", "outer lop", 1),
+            "line 3: expected 'loop'",
+        ),
+        (
+            "two.stl",
+            plain.replacen("      vertex 0e0 2e0 0e0\n", "", 1),
+            "line 2: facet has 2 vertices",
+        ),
+    ];
+    for (name, text, want) in cases {
+        let msg = load_written(dir.path(), name, text.as_bytes())
+            .unwrap_err()
+            .to_string();
+        eprintln!("{msg}");
+        assert!(msg.contains(name) && msg.contains(want), "{msg}");
+    }
+}
+
+#[test]
+fn obj_with_comments_blank_lines_and_continuations() {
+    let dir = tempfile::tempdir().unwrap();
+    let (p, t) = octahedron();
+    let mut obj = b"# octahedron\r\n\r\nmtllib materials.mtl # not there\r\nusemtl\r\n".to_vec();
+    obj.extend(b"# caf\xe9 (Latin-1, not UTF-8)\r\no first # object name\r\n");
+    for (i, [x, y, z]) in p.iter().enumerate() {
+        let line = match i {
+            0 => format!("v {x} {y} {z} # note"),
+            1 => format!("  v {x} {y} {z}#glued note"),
+            2 => format!("v {x} \\\r\n   {y} {z}"),
+            _ => format!("\tv\t{x}\t{y}\t{z}\t"),
+        };
+        obj.extend(line.as_bytes());
+        obj.extend(b"\r\n\r\n   \r\n");
+    }
+    for (i, tri) in t.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| v + 1);
+        obj.extend(format!("f {a} {b} {c} # face {i}\n").as_bytes());
+        obj.extend(b"# a comment between faces\n\n");
+    }
+    obj.extend(b"# last line, no line end");
+    let m = load_written(dir.path(), "comments.obj", &obj).unwrap();
+    assert_is_octahedron(&m);
+    assert_eq!(m.positions.len(), 6);
+}
+
+#[test]
+fn bad_obj_line_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text, line) in [
+        ("word.obj", "v 0 0 0\nv 1 0 0\n# x\nv 0 one 0\nf 1 2 3\n", 4),
+        ("cont.obj", "v 0 0 \\\n 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", 5),
+        (
+            "range.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\nf 1 2 7\n",
+            6,
+        ),
+        (
+            "zero.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 0 1 2\n",
+            5,
+        ),
+        ("relative.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n", 3),
+        (
+            "normal.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n",
+            5,
+        ),
+    ] {
+        let msg = load_written(dir.path(), name, text.as_bytes())
+            .unwrap_err()
+            .to_string();
+        eprintln!("{msg}");
+        assert!(
+            msg.contains(name) && msg.contains(&format!("line {line}:")),
+            "{msg}"
+        );
+    }
+}
+
+/// The octahedron as ASCII PLY in an untidy but valid layout: blank lines, indented lines,
+/// comments and obj_info anywhere in the header; entries split over lines and run together;
+/// numbers like `1.` and `.5`.
+fn ply_ascii_untidy() -> String {
+    let (p, t) = octahedron();
+    let mut s = String::from(
+        "ply\n\ncomment before the format\n  format   ascii  1.0  \n\
+         obj_info\tmade by hand\nelement vertex 6\ncomment between element and property\n\
+         property float x\n\nproperty float y\nobj_info between properties\n\
+         property float z\n   comment indented\nelement face 8\n\
+         property list uchar int vertex_indices\ncomment just before the end\nend_header\n\n",
+    );
+    for (i, [x, y, z]) in p.iter().enumerate() {
+        let [x, y, z] = [x, y, z].map(|v| match *v {
+            1.0 => "1.".to_string(),
+            0.5 => ".5".to_string(),
+            -0.5 => "-.5e0".to_string(),
+            v => format!("{v}"),
+        });
+        s += &match i {
+            0 => format!("{x} {y}\n{z}\n\n"),
+            1 | 2 => format!("{x} {y} {z} "),
+            _ => format!("\t{x}\t{y}\t{z}\r\n"),
+        };
+    }
+    for (i, [a, b, c]) in t.iter().enumerate() {
+        s += &if i == 3 {
+            format!("3\n{a}\n{b} {c}\n\n")
+        } else {
+            format!("3 {a} {b} {c}\n")
+        };
+    }
+    s + "\n\n"
+}
+
+#[test]
+fn ply_untidy_ascii_loads_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = ply_ascii_untidy();
+    assert_is_octahedron(&load_written(dir.path(), "untidy.ply", text.as_bytes()).unwrap());
+    let crlf = text.replace('\n', "\r\n");
+    assert_is_octahedron(&load_written(dir.path(), "crlf.ply", crlf.as_bytes()).unwrap());
+    // Integer properties written as floats (trimesh reads them so).
+    let floats = text.replace("3 0 2 4", "3.0 0.0 2 4.0");
+    assert_is_octahedron(&load_written(dir.path(), "floats.ply", floats.as_bytes()).unwrap());
+}
+
+#[test]
+fn ply_binary_with_untidy_header_loads_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    for big_endian in [false, true] {
+        let bytes = ply_binary(big_endian);
+        let end = bytes
+            .windows(11)
+            .position(|w| w == b"end_header\n")
+            .unwrap();
+        let header = String::from_utf8(bytes[..end].to_vec()).unwrap();
+        let mut untidy = b"ply\r\n\r\ncomment caf\xe9 (Latin-1)\r\n".to_vec();
+        let header = header
+            .strip_prefix("ply\n")
+            .unwrap()
+            .replace("element face", "obj_info x\n\n  element   face")
+            .replace('\n', "\r\n");
+        untidy.extend(header.as_bytes());
+        untidy.extend(b"comment last\r\nend_header\r\n");
+        untidy.extend(&bytes[end + 11..]);
+        let m = load_written(dir.path(), "untidy.ply", &untidy).unwrap();
+        assert_is_octahedron(&m);
+    }
+}
+
+#[test]
+fn bad_ply_is_an_error_with_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = ply_ascii_untidy();
+    let cases = [
+        (
+            "extra.ply",
+            text.clone() + "1 2 3\n",
+            "data after the last element",
+        ),
+        (
+            "word.ply",
+            text.replacen("3 0 2 4", "3 0 two 4", 1),
+            "line 25: expected int for property 'vertex_indices' of element 'face', found 'two'",
+        ),
+        ("cut.ply", text[..text.len() - 30].to_string(), "truncated"),
+        (
+            "header.ply",
+            text.replacen("element face", "elemnt face", 1),
+            "line 14: invalid PLY header line 'elemnt face 8'",
+        ),
+        (
+            "twice.ply",
+            text.replacen("property float y", "property float x", 1),
+            "line 10:",
+        ),
+        (
+            "noz.ply",
+            text.replacen("property float z", "property float w", 1),
+            "no scalar property 'z'",
+        ),
+        (
+            "noend.ply",
+            text.replacen("end_header", "", 1),
+            "no 'end_header'",
+        ),
+    ];
+    for (name, text, want) in cases {
+        let msg = load_written(dir.path(), name, text.as_bytes())
+            .unwrap_err()
+            .to_string();
+        eprintln!("{msg}");
+        assert!(msg.contains(name) && msg.contains(want), "{msg}");
+        assert!(!msg.contains('\n'), "{msg}");
+    }
+    // Binary data longer than the header says.
+    let mut bytes = ply_binary(false);
+    bytes.extend([7u8; 13]);
+    let msg = load_written(dir.path(), "long.ply", &bytes)
+        .unwrap_err()
+        .to_string();
+    assert!(msg.contains("13 bytes of data after"), "{msg}");
+}
+
+#[test]
+fn mangled_files_are_errors_or_meshes_never_panics() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut obj = String::new();
+    let (p, t) = octahedron();
+    for [x, y, z] in &p {
+        obj += &format!("v {x} {y} {z} # c\n");
+    }
+    for tri in &t {
+        obj += &format!("f {}//1 {} {}\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    }
+    let bases: [(&str, Vec<u8>); 6] = [
+        ("stl", stl_ascii().into_bytes()),
+        ("stl", stl_binary(b"solid x")),
+        ("ply", ply_ascii_untidy().into_bytes()),
+        ("ply", ply_binary(false)),
+        ("ply", ply_binary(true)),
+        ("obj", format!("vn 0 0 1\n{obj}").into_bytes()),
+    ];
+    let mut state = 7u32;
+    let mut random = |n: usize| {
+        state = state.wrapping_mul(1_103_515_245).wrapping_add(12345);
+        (state >> 8) as usize % n.max(1)
+    };
+    let (mut loaded, mut refused) = (0, 0);
+    for (b, (ext, base)) in bases.iter().enumerate() {
+        for i in 0..150 {
+            let mut bytes = base.clone();
+            match i % 3 {
+                0 => bytes.truncate(random(bytes.len())),
+                1 => {
+                    let at = random(bytes.len());
+                    bytes[at] = random(256) as u8;
+                }
+                _ => {
+                    let at = random(bytes.len());
+                    let choices = b" \n0-9e.#\x00\xff";
+                    let byte = choices[random(choices.len())];
+                    bytes.insert(at, byte);
+                }
+            }
+            match load_written(dir.path(), &format!("m{b}_{i}.{ext}"), &bytes) {
+                Ok(m) => {
+                    assert!(m.triangle_count() > 0);
+                    loaded += 1;
+                }
+                Err(e) => {
+                    let msg = e.to_string();
+                    assert!(msg.contains(&format!("m{b}_{i}.{ext}")) && !msg.contains('\n'));
+                    refused += 1;
+                }
+            }
+        }
+    }
+    eprintln!("mangled files: {loaded} loaded, {refused} refused");
+}
