@@ -1,6 +1,6 @@
 //! hatchery's CPU-side data: volumes and triangle meshes, the file formats they come from
-//! (NIfTI, VTK ImageData, OBJ, PLY, STL), label masks, procedural default data sets and
-//! marching cubes.
+//! (NIfTI, NRRD, MetaImage, TIFF stacks, VTK ImageData, OBJ, PLY, STL), label masks, procedural
+//! default data sets and marching cubes.
 
 pub mod bricks;
 pub mod error;
@@ -12,9 +12,13 @@ pub mod lit_sphere;
 pub mod marching_cubes;
 pub mod mesh;
 pub mod mesh_file;
+pub mod metaimage_file;
 pub mod nifti_file;
+pub mod nrrd_file;
 pub mod procedural;
+pub(crate) mod raw_voxels;
 pub mod style;
+pub mod tiff_stack;
 pub mod transfer_function;
 pub mod volume;
 pub mod volume_file;

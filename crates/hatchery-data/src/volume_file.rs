@@ -2,12 +2,17 @@
 
 use std::path::Path;
 
+use crate::metaimage_file::load_metaimage;
 use crate::nifti_file::load_nifti;
+use crate::nrrd_file::load_nrrd;
+use crate::tiff_stack::load_tiff_stack;
 use crate::vti_file::load_vti;
 use crate::{DataError, VolumeData};
 
 /// File name endings [`load_volume`] reads (matched case-insensitively).
-pub const VOLUME_ENDINGS: [&str; 3] = [".nii", ".nii.gz", ".vti"];
+pub const VOLUME_ENDINGS: [&str; 9] = [
+    ".nii", ".nii.gz", ".vti", ".nrrd", ".nhdr", ".mha", ".mhd", ".tif", ".tiff",
+];
 
 /// Choices a user can make when loading a volume (the VolumeFile node's parameters).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -23,7 +28,9 @@ pub fn load_volume(path: &Path) -> Result<VolumeData, DataError> {
 }
 
 /// Loads a volume, choosing the format by the (case-insensitive) end of the file name:
-/// `.nii` and `.nii.gz` with [`load_nifti`], `.vti` with [`load_vti`]. Every format's voxels
+/// `.nii` and `.nii.gz` with [`load_nifti`], `.vti` with [`load_vti`], `.nrrd` and `.nhdr` with
+/// [`load_nrrd`], `.mha` and `.mhd` with [`load_metaimage`], `.tif` and `.tiff` with
+/// [`load_tiff_stack`]. Every format's voxels
 /// are placed in hatchery's RAS+ world (see [`crate::geometry`]).
 pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData, DataError> {
     // The whole name, not `extension()`: `.nii.gz` has two parts.
@@ -35,6 +42,12 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         load_nifti(path)
     } else if name.ends_with(".vti") {
         load_vti(path, options.array.as_deref())
+    } else if name.ends_with(".nrrd") || name.ends_with(".nhdr") {
+        load_nrrd(path)
+    } else if name.ends_with(".mha") || name.ends_with(".mhd") {
+        load_metaimage(path)
+    } else if name.ends_with(".tif") || name.ends_with(".tiff") {
+        load_tiff_stack(path)
     } else {
         Err(DataError::unsupported(
             path,
@@ -75,13 +88,13 @@ mod tests {
             );
         }
 
-        for name in ["a.mhd", "a.vti.gz", "nii", "a.gz"] {
+        for name in ["a.vti.gz", "nii", "a.gz", "a.nrrd.gz"] {
             let path = dir.path().join(name);
             let e = load_volume(&path).unwrap_err();
             assert!(matches!(e, DataError::Unsupported { .. }), "{name}: {e}");
             let e = e.to_string();
             assert!(e.starts_with(&path.display().to_string()), "{e}");
-            assert!(e.contains(".nii, .nii.gz, .vti"), "{e}");
+            assert!(e.contains(".nii, .nii.gz, .vti, .nrrd"), "{e}");
         }
     }
 }

@@ -1,0 +1,218 @@
+#!/usr/bin/env python3
+"""Writes tests/fixtures/world/: one small asymmetric synthetic anatomy written by independent
+writers (nibabel, SimpleITK, tifffile) in several volume formats, and truth.json with, for each
+file, the voxel -> world affine in RAS+ mm as an independent reader reports it and the world
+centroid of the object's voxels. The truth comes from the writer side, never from hatchery.
+
+Usage (Python 3.11):  pip install SimpleITK nibabel tifffile numpy
+                      python3 scripts/make_world_fixtures.py
+
+To add a format, write one `write_<format>(out_dir) -> dict` function that writes the file(s),
+reads them back with an independent reader and returns `entry(...)`, and list it in WRITERS.
+"""
+
+import json
+import sys
+from pathlib import Path
+
+import nibabel
+import numpy as np
+import SimpleITK as sitk
+import tifffile
+
+OUT = Path(__file__).resolve().parent.parent / "tests" / "fixtures" / "world"
+
+DIMS = (20, 16, 12)  # i, j, k
+OBJECT_VALUE = 200
+# Voxels above this count as the object (half the object value).
+THRESHOLD = OBJECT_VALUE / 2
+
+
+def anatomy() -> np.ndarray:
+    """An off-centre box with a smaller knob on its +i side, indexed [i, j, k]: mirroring any
+    axis moves the object's centroid, so a flipped reader is caught."""
+    a = np.zeros(DIMS, np.uint8)
+    a[4:12, 3:10, 2:8] = OBJECT_VALUE  # box
+    a[12:15, 5:7, 4:6] = OBJECT_VALUE  # knob
+    return a
+
+
+def rotation(axis, degrees) -> np.ndarray:
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    t = np.radians(degrees)
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + np.sin(t) * k + (1 - np.cos(t)) * (k @ k)
+
+
+def voxel_centroid(data_ijk: np.ndarray, affine: np.ndarray) -> list:
+    """Mean world position (affine . ijk) of the voxels above THRESHOLD."""
+    ijk = np.argwhere(data_ijk > THRESHOLD).astype(float)
+    world = ijk @ affine[:3, :3].T + affine[:3, 3]
+    return world.mean(axis=0).tolist()
+
+
+def entry(name, fmt, writer, reader, data_ijk, affine, note) -> dict:
+    """One truth.json record; checks first that the independent reader got the anatomy back."""
+    if not np.array_equal(np.asarray(data_ijk, float), anatomy().astype(float)):
+        sys.exit(f"{name}: {reader} did not read back the anatomy that was written")
+    return {
+        "file": name,
+        "format": fmt,
+        "writer": writer,
+        "reader": reader,
+        "note": note,
+        "dims": list(DIMS),
+        "affine_ras": np.asarray(affine, float).tolist(),
+        "centroid_ras": voxel_centroid(np.asarray(data_ijk), np.asarray(affine, float)),
+        # Half the length of a voxel's diagonal, in mm.
+        "half_voxel_diagonal": 0.5 * float(np.linalg.norm(np.linalg.norm(affine[:3, :3], axis=0))),
+    }
+
+
+# --- NIfTI (nibabel writes, nibabel reads: its affine is RAS+ already) -------------------------
+
+
+def write_nifti(out, name, data, affine, note, qform=True) -> dict:
+    img = nibabel.Nifti1Image(data, affine)
+    img.set_sform(affine, code=2)
+    if qform:
+        img.set_qform(affine, code=1)
+    else:
+        img.set_qform(None, code=0)
+    nibabel.save(img, out / name)
+    back = nibabel.load(out / name)
+    return entry(name, "nifti", f"nibabel {nibabel.__version__}", "nibabel",
+                 back.get_fdata(), back.affine, note)
+
+
+def write_nifti_ras(out) -> dict:
+    affine = np.diag([1.5, 1.2, 2.0, 1.0])
+    affine[:3, 3] = [-14.0, -9.0, -11.0]
+    return write_nifti(out, "nifti_ras.nii", anatomy(), affine, "uint8, axis-aligned RAS sform")
+
+
+def write_nifti_las(out) -> dict:
+    affine = np.diag([-1.5, 1.2, 2.0, 1.0])
+    affine[:3, 3] = [14.0, -9.0, -11.0]
+    return write_nifti(out, "nifti_las.nii.gz", anatomy().astype(np.int16), affine,
+                       "int16, radiological (negative x) sform and qform")
+
+
+def write_nifti_oblique(out) -> dict:
+    affine = np.eye(4)
+    affine[:3, :3] = rotation([1.0, 0.4, 0.2], 25.0) @ np.diag([1.5, 1.2, 2.0])
+    affine[:3, 3] = [-12.0, 6.0, -4.0]
+    return write_nifti(out, "nifti_oblique.nii.gz", anatomy().astype(np.float32), affine,
+                       "float32, rotated sform (code 2) and qform (code 1)")
+
+
+# --- ITK formats (SimpleITK writes and reads; ITK's physical space is LPS) ---------------------
+
+
+def sitk_image(data_ijk, spacing, direction_lps, origin_lps):
+    img = sitk.GetImageFromArray(np.ascontiguousarray(data_ijk.transpose(2, 1, 0)))
+    img.SetSpacing([float(s) for s in spacing])
+    img.SetDirection([float(v) for v in np.asarray(direction_lps).flatten()])
+    img.SetOrigin([float(o) for o in origin_lps])
+    return img
+
+
+def sitk_truth(out, name, fmt, note) -> dict:
+    """Reads a file back with SimpleITK and turns its LPS geometry into a RAS+ affine."""
+    img = sitk.ReadImage(str(out / name))
+    direction = np.array(img.GetDirection()).reshape(3, 3)
+    lps = np.eye(4)
+    lps[:3, :3] = direction @ np.diag(img.GetSpacing())
+    lps[:3, 3] = img.GetOrigin()
+    ras = np.diag([-1.0, -1.0, 1.0, 1.0]) @ lps
+    data = sitk.GetArrayFromImage(img).transpose(2, 1, 0)
+    return entry(name, fmt, f"SimpleITK {sitk.Version_VersionString()}", "SimpleITK (LPS -> RAS)",
+                 data, ras, note)
+
+
+def write_nrrd(out) -> dict:
+    img = sitk_image(anatomy().astype(np.int16), [1.1, 0.9, 1.7],
+                     rotation([0.3, -0.5, 1.0], 30.0), [5.0, -3.0, 20.0])
+    sitk.WriteImage(img, str(out / "sitk.nrrd"))
+    return sitk_truth(out, "sitk.nrrd", "nrrd",
+                      "int16, attached raw, space left-posterior-superior, oblique")
+
+
+def write_nhdr(out) -> dict:
+    img = sitk_image(anatomy().astype(np.uint16), [0.7, 1.3, 1.0],
+                     np.diag([-1.0, 1.0, -1.0]), [-8.0, 4.0, 15.0])
+    sitk.WriteImage(img, str(out / "sitk_gzip.nhdr"), useCompression=True)
+    return sitk_truth(out, "sitk_gzip.nhdr", "nrrd",
+                      "uint16, detached gzip data file, flipped axes in LPS")
+
+
+def write_mha(out) -> dict:
+    img = sitk_image(anatomy(), [1.2, 1.0, 1.5], rotation([-0.2, 1.0, 0.4], 35.0),
+                     [-10.0, 12.0, -6.0])
+    sitk.WriteImage(img, str(out / "sitk.mha"), useCompression=True)
+    return sitk_truth(out, "sitk.mha", "metaimage",
+                      "uint8, LOCAL zlib-compressed data, oblique TransformMatrix")
+
+
+def write_mhd(out) -> dict:
+    img = sitk_image(anatomy().astype(np.int16), [0.8, 0.8, 2.5], np.eye(3), [3.0, -7.0, -12.0])
+    sitk.WriteImage(img, str(out / "sitk.mhd"))
+    return sitk_truth(out, "sitk.mhd", "metaimage", "int16, raw data file beside the header")
+
+
+# --- TIFF stack (tifffile writes an ImageJ hyperstack; no anatomical frame) --------------------
+
+
+def write_tiff(out) -> dict:
+    spacing = [0.5, 0.5, 1.25]  # mm: XResolution/YResolution 2 px/mm, ImageJ spacing=1.25
+    pages = np.ascontiguousarray(anatomy().astype(np.uint16).transpose(2, 1, 0))  # [z, y, x]
+    name = "imagej_stack.tif"
+    tifffile.imwrite(out / name, pages, imagej=True,
+                     resolution=(1 / spacing[0], 1 / spacing[1]),
+                     metadata={"spacing": spacing[2], "unit": "mm", "axes": "ZYX"})
+    with tifffile.TiffFile(out / name) as tif:
+        meta = tif.imagej_metadata
+        page = tif.pages[0]
+        x_res = page.tags["XResolution"].value
+        y_res = page.tags["YResolution"].value
+        back = tif.asarray().transpose(2, 1, 0)
+    read = [x_res[1] / x_res[0], y_res[1] / y_res[0], float(meta["spacing"])]
+    if meta.get("unit") != "mm" or not np.allclose(read, spacing):
+        sys.exit(f"{name}: tifffile reads spacing {read} {meta.get('unit')}, wrote {spacing} mm")
+    affine = np.diag(read + [1.0])
+    return entry(name, "tiff", f"tifffile {tifffile.__version__}", "tifffile (ImageJ metadata)",
+                 back, affine, "uint16 pages, ImageJ spacing/unit=mm, axis-aligned")
+
+
+WRITERS = [
+    write_nifti_ras,
+    write_nifti_las,
+    write_nifti_oblique,
+    write_nrrd,
+    write_nhdr,
+    write_mha,
+    write_mhd,
+    write_tiff,
+]
+
+
+def main():
+    OUT.mkdir(parents=True, exist_ok=True)
+    files = [write(OUT) for write in WRITERS]
+    truth = {
+        "about": "Written by scripts/make_world_fixtures.py. affine_ras: voxel -> world, RAS+ mm, "
+                 "as the independent reader reports it. centroid_ras: mean of affine . ijk over "
+                 "the voxels above threshold.",
+        "object_value": OBJECT_VALUE,
+        "threshold": THRESHOLD,
+        "voxels_above": int((anatomy() > THRESHOLD).sum()),
+        "files": files,
+    }
+    (OUT / "truth.json").write_text(json.dumps(truth, indent=1) + "\n")
+    for f in files:
+        size = (OUT / f["file"]).stat().st_size
+        print(f"{f['file']:24} {size:6} bytes  centroid {np.round(f['centroid_ras'], 3)}")
+
+
+if __name__ == "__main__":
+    main()
