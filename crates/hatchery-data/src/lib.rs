@@ -1,8 +1,9 @@
 //! hatchery's CPU-side data: volumes and triangle meshes, the file formats they come from
-//! (NIfTI, VTK ImageData, OBJ, PLY, STL), label masks, procedural default data sets and
-//! marching cubes.
+//! (NIfTI, VTK ImageData, DICOM series, OBJ, PLY, STL), label masks, procedural default data
+//! sets and marching cubes.
 
 pub mod bricks;
+pub mod dicom_series;
 pub mod error;
 pub mod geometry;
 pub mod gradient;
