@@ -1,8 +1,9 @@
 //! hatchery's CPU-side data: volumes and triangle meshes, the file formats they come from
-//! (NIfTI, NRRD, MetaImage, TIFF stacks, VTK ImageData, OBJ, PLY, STL), label masks, procedural
-//! default data sets and marching cubes.
+//! (NIfTI, NRRD, MetaImage, TIFF stacks, DICOM series, VTK ImageData, OBJ, PLY, STL), label
+//! masks, procedural default data sets and marching cubes.
 
 pub mod bricks;
+pub mod dicom_series;
 pub mod error;
 pub mod geometry;
 pub mod gradient;

@@ -3,15 +3,17 @@
 use std::path::Path;
 
 use crate::metaimage_file::load_metaimage;
+use crate::dicom_series::load_dicom_series;
 use crate::nifti_file::load_nifti;
 use crate::nrrd_file::load_nrrd;
 use crate::tiff_stack::load_tiff_stack;
 use crate::vti_file::load_vti;
 use crate::{DataError, VolumeData};
 
-/// File name endings [`load_volume`] reads (matched case-insensitively).
-pub const VOLUME_ENDINGS: [&str; 9] = [
-    ".nii", ".nii.gz", ".vti", ".nrrd", ".nhdr", ".mha", ".mhd", ".tif", ".tiff",
+/// File name endings [`load_volume`] reads (matched case-insensitively); folders are read as
+/// DICOM series too.
+pub const VOLUME_ENDINGS: [&str; 10] = [
+    ".nii", ".nii.gz", ".vti", ".nrrd", ".nhdr", ".mha", ".mhd", ".tif", ".tiff", ".dcm",
 ];
 
 /// Choices a user can make when loading a volume (the VolumeFile node's parameters).
@@ -30,7 +32,8 @@ pub fn load_volume(path: &Path) -> Result<VolumeData, DataError> {
 /// Loads a volume, choosing the format by the (case-insensitive) end of the file name:
 /// `.nii` and `.nii.gz` with [`load_nifti`], `.vti` with [`load_vti`], `.nrrd` and `.nhdr` with
 /// [`load_nrrd`], `.mha` and `.mhd` with [`load_metaimage`], `.tif` and `.tiff` with
-/// [`load_tiff_stack`]. Every format's voxels
+/// [`load_tiff_stack`]; a folder, or a `.dcm` file meaning the series it belongs to, with
+/// [`load_dicom_series`]. Every format's voxels
 /// are placed in hatchery's RAS+ world (see [`crate::geometry`]).
 pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData, DataError> {
     // The whole name, not `extension()`: `.nii.gz` has two parts.
@@ -38,7 +41,9 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    if name.ends_with(".nii") || name.ends_with(".nii.gz") {
+    if path.is_dir() || name.ends_with(".dcm") {
+        load_dicom_series(path)
+    } else if name.ends_with(".nii") || name.ends_with(".nii.gz") {
         load_nifti(path)
     } else if name.ends_with(".vti") {
         load_vti(path, options.array.as_deref())
@@ -52,7 +57,7 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         Err(DataError::unsupported(
             path,
             format!(
-                "unknown volume file type, supported endings are {}",
+                "unknown volume file type, supported endings are {} (or a folder of DICOM files)",
                 VOLUME_ENDINGS.join(", ")
             ),
         ))
@@ -96,5 +101,9 @@ mod tests {
             assert!(e.starts_with(&path.display().to_string()), "{e}");
             assert!(e.contains(".nii, .nii.gz, .vti, .nrrd"), "{e}");
         }
+
+        // A folder is a DICOM series (this one has none).
+        let e = load_volume(dir.path()).unwrap_err().to_string();
+        assert!(e.contains("no DICOM image files"), "{e}");
     }
 }

@@ -1,0 +1,552 @@
+//! DICOM series: the fixture written by scripts/make_dicom_fixture.py (pydicom, checked against
+//! SimpleITK), and small series written here with dicom-object.
+
+use std::path::{Path, PathBuf};
+
+use dicom_core::value::PrimitiveValue;
+use dicom_core::{DataElement, VR};
+use dicom_dictionary_std::{tags, uids};
+use dicom_object::{FileMetaTableBuilder, InMemDicomObject};
+use glam::{DVec3, Vec3};
+use hatchery_data::dicom_series::load_dicom_series;
+use hatchery_data::marching_cubes::marching_cubes;
+use hatchery_data::volume_file::load_volume;
+use hatchery_data::{DataError, VolumeData};
+
+fn fixture(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/fixtures/world")
+        .join(rel)
+}
+
+/// The numbers of the JSON value under `key`, flattened (the truth file is written by our
+/// script, so a full JSON parser is not needed).
+fn json_numbers(json: &str, key: &str) -> Vec<f64> {
+    let at = json.find(&format!("\"{key}\":")).expect(key) + key.len() + 3;
+    let rest = json[at..].trim_start();
+    let end = if rest.starts_with('[') {
+        let mut depth = 0;
+        rest.char_indices()
+            .find(|&(_, c)| {
+                depth += match c {
+                    '[' => 1,
+                    ']' => -1,
+                    _ => 0,
+                };
+                depth == 0
+            })
+            .unwrap()
+            .0
+    } else {
+        rest.find([',', '}', '\n']).unwrap()
+    };
+    rest[..end]
+        .split(|c: char| c == '[' || c == ']' || c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap())
+        .collect()
+}
+
+/// Mean world position of the voxels above `threshold`.
+fn centroid_above(v: &VolumeData, threshold: f32) -> DVec3 {
+    let (mut sum, mut n) = (DVec3::ZERO, 0);
+    for z in 0..v.dims[2] {
+        for y in 0..v.dims[1] {
+            for x in 0..v.dims[0] {
+                if v.value(x, y, z) > threshold {
+                    sum += v
+                        .voxel_to_world(Vec3::new(x as f32, y as f32, z as f32))
+                        .as_dvec3();
+                    n += 1;
+                }
+            }
+        }
+    }
+    sum / n as f64
+}
+
+#[test]
+fn fixture_matches_simpleitk() {
+    let truth = std::fs::read_to_string(fixture("dicom_truth.json")).unwrap();
+    let v = load_dicom_series(&fixture("dicom_series")).unwrap();
+    let dims = json_numbers(&truth, "dims");
+    assert_eq!(v.dims.map(f64::from).to_vec(), dims);
+    assert_eq!(v.stored_type, "int16");
+    assert_eq!(
+        v.value_range.map(f64::from).to_vec(),
+        json_numbers(&truth, "value_range")
+    );
+    assert!(v.placement.contains("12 slices"), "{}", v.placement);
+
+    // Row-major 4x4 in the file; to_world() is column-major.
+    let affine = json_numbers(&truth, "affine");
+    let m = v.geometry.to_world();
+    for r in 0..4 {
+        for c in 0..4 {
+            let (got, want) = (m.col(c)[r], affine[4 * r + c]);
+            assert!(
+                (got - want).abs() < 1e-3,
+                "affine[{r}][{c}] = {got}, SimpleITK: {want}"
+            );
+        }
+    }
+
+    let want = DVec3::from_slice(&json_numbers(&truth, "centroid"));
+    let iso = json_numbers(&truth, "iso")[0] as f32;
+    let got = centroid_above(&v, iso);
+    assert!(
+        (got - want).length() < 1e-2,
+        "voxel centroid {got}, truth {want}"
+    );
+
+    // Marching cubes vertices are in world space. Their mean is the centroid of the surface
+    // points, not of the solid: for this box with a knob the two differ by a fraction of a
+    // voxel (0.28 mm when written), so the bound is half a voxel diagonal (0.94 mm); flipping
+    // or swapping an axis moves the object by millimetres.
+    let mesh = marching_cubes(&v, iso);
+    assert!(mesh.triangle_count() > 100);
+    let sum = mesh
+        .positions
+        .iter()
+        .fold(DVec3::ZERO, |s, p| s + Vec3::from_array(*p).as_dvec3());
+    let mesh_centroid = sum / mesh.positions.len() as f64;
+    let half_diagonal = v.geometry.spacing.length() / 2.0;
+    assert!(
+        (mesh_centroid - want).length() < half_diagonal,
+        "mesh centroid {mesh_centroid}, truth {want} (bound {half_diagonal})"
+    );
+
+    // load_volume routes the folder, and any one of its files, here.
+    assert_eq!(load_volume(&fixture("dicom_series")).unwrap(), v);
+    assert_eq!(load_volume(&fixture("dicom_series/IM1024.dcm")).unwrap(), v);
+}
+
+/// One slice to write; `axial` gives a 4 x 3 int16 slice that the tests then vary.
+#[derive(Clone)]
+struct Slice {
+    series: String,
+    instance: i32,
+    position: [f64; 3],
+    orientation: [f64; 6],
+    /// (between rows, between columns), as in the file.
+    pixel_spacing: [f64; 2],
+    rows: u16,
+    columns: u16,
+    bits: u16,
+    stored: u16,
+    signed: bool,
+    samples: u16,
+    photometric: &'static str,
+    rescale: Option<(f64, f64)>,
+    syntax: &'static str,
+    /// Raw sample bit patterns, rows × columns × samples of them.
+    pixels: Vec<u32>,
+}
+
+impl Slice {
+    /// An axial slice at height `z` whose pixels all hold `value`.
+    fn axial(series: &str, z: f64, value: u32) -> Self {
+        Slice {
+            series: series.into(),
+            instance: 1,
+            position: [-10.0, 20.0, z],
+            orientation: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+            pixel_spacing: [0.5, 0.25],
+            rows: 3,
+            columns: 4,
+            bits: 16,
+            stored: 16,
+            signed: true,
+            samples: 1,
+            photometric: "MONOCHROME2",
+            rescale: None,
+            syntax: uids::EXPLICIT_VR_LITTLE_ENDIAN,
+            pixels: vec![value; 12],
+        }
+    }
+
+    /// Writes the slice; `n` makes its SOPInstanceUID unique.
+    fn write(&self, path: &Path, n: usize) {
+        let strs = |v: &[f64]| PrimitiveValue::Strs(v.iter().map(|x| x.to_string()).collect());
+        let us = |v: u16| PrimitiveValue::from(v);
+        let sop = format!("{}.99.{n}", self.series);
+        let mut o = InMemDicomObject::new_empty();
+        let mut put = |tag, vr, value: PrimitiveValue| {
+            o.put(DataElement::new(tag, vr, value));
+        };
+        put(tags::SOP_CLASS_UID, VR::UI, uids::CT_IMAGE_STORAGE.into());
+        put(tags::SOP_INSTANCE_UID, VR::UI, sop.as_str().into());
+        put(tags::MODALITY, VR::CS, "CT".into());
+        put(
+            tags::SERIES_INSTANCE_UID,
+            VR::UI,
+            self.series.as_str().into(),
+        );
+        put(
+            tags::INSTANCE_NUMBER,
+            VR::IS,
+            self.instance.to_string().as_str().into(),
+        );
+        put(tags::IMAGE_POSITION_PATIENT, VR::DS, strs(&self.position));
+        put(
+            tags::IMAGE_ORIENTATION_PATIENT,
+            VR::DS,
+            strs(&self.orientation),
+        );
+        put(tags::PIXEL_SPACING, VR::DS, strs(&self.pixel_spacing));
+        put(tags::SAMPLES_PER_PIXEL, VR::US, us(self.samples));
+        put(
+            tags::PHOTOMETRIC_INTERPRETATION,
+            VR::CS,
+            self.photometric.into(),
+        );
+        put(tags::ROWS, VR::US, us(self.rows));
+        put(tags::COLUMNS, VR::US, us(self.columns));
+        put(tags::BITS_ALLOCATED, VR::US, us(self.bits));
+        put(tags::BITS_STORED, VR::US, us(self.stored));
+        put(tags::HIGH_BIT, VR::US, us(self.stored - 1));
+        put(tags::PIXEL_REPRESENTATION, VR::US, us(self.signed as u16));
+        if let Some((slope, intercept)) = self.rescale {
+            put(tags::RESCALE_SLOPE, VR::DS, strs(&[slope]));
+            put(tags::RESCALE_INTERCEPT, VR::DS, strs(&[intercept]));
+        }
+        let (vr, value) = match self.bits {
+            8 => (
+                VR::OB,
+                PrimitiveValue::U8(self.pixels.iter().map(|&p| p as u8).collect()),
+            ),
+            16 => (
+                VR::OW,
+                PrimitiveValue::U16(self.pixels.iter().map(|&p| p as u16).collect()),
+            ),
+            _ => (
+                VR::OB,
+                PrimitiveValue::U8(self.pixels.iter().flat_map(|p| p.to_le_bytes()).collect()),
+            ),
+        };
+        put(tags::PIXEL_DATA, vr, value);
+        o.with_meta(FileMetaTableBuilder::new().transfer_syntax(self.syntax))
+            .unwrap()
+            .write_to_file(path)
+            .unwrap();
+    }
+}
+
+/// Writes `slices` into a new folder as `name(i)`.
+fn write_series(slices: &[Slice], name: impl Fn(usize) -> String) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (i, s) in slices.iter().enumerate() {
+        s.write(&dir.path().join(name(i)), i);
+    }
+    dir
+}
+
+fn stack(series: &str, zs: &[f64]) -> Vec<Slice> {
+    zs.iter()
+        .enumerate()
+        .map(|(k, &z)| Slice::axial(series, z, 100 * k as u32))
+        .collect()
+}
+
+fn error(dir: &Path) -> String {
+    let e = load_dicom_series(dir).unwrap_err().to_string();
+    assert!(!e.contains('\n'), "{e}");
+    e
+}
+
+#[test]
+fn slices_are_ordered_by_position_along_the_normal() {
+    // Sagittal: rows along +y, columns along -z, so the normal is -x (LPS): slices at x = 10,
+    // 8, 6, 4 are in normal order. Neither file names (x = 6, 10, 4, 8) nor InstanceNumber
+    // (3, 4, 1, 2 in normal order) follow it.
+    let xs = [6.0, 10.0, 4.0, 8.0];
+    let slices: Vec<Slice> = xs
+        .iter()
+        .enumerate()
+        .map(|(n, &x)| Slice {
+            position: [x, -5.0, 30.0],
+            orientation: [0.0, 1.0, 0.0, 0.0, 0.0, -1.0],
+            instance: [1, 3, 2, 4][n],
+            ..Slice::axial("1.2.3", 0.0, x as u32)
+        })
+        .collect();
+    let dir = write_series(&slices, |i| format!("slice{i}.dcm"));
+    let v = load_dicom_series(dir.path()).unwrap();
+    assert_eq!(v.dims, [4, 3, 4]);
+    assert_eq!(
+        (0..4).map(|k| v.value(0, 0, k)).collect::<Vec<_>>(),
+        [10.0, 8.0, 6.0, 4.0]
+    );
+    let g = v.geometry;
+    // RAS: LPS (10, -5, 30) is (-10, 5, 30); i along LPS +y = RAS -y; j along -z; k along
+    // LPS -x = RAS +x. PixelSpacing (0.5, 0.25): 0.25 between columns (i), 0.5 between rows (j).
+    assert!(
+        g.origin.abs_diff_eq(DVec3::new(-10.0, 5.0, 30.0), 1e-9),
+        "{g:?}"
+    );
+    assert!(
+        g.spacing.abs_diff_eq(DVec3::new(0.25, 0.5, 2.0), 1e-9),
+        "{g:?}"
+    );
+    let m = g.to_world();
+    assert!(
+        m.col(0)
+            .truncate()
+            .abs_diff_eq(DVec3::new(0.0, -0.25, 0.0), 1e-9)
+    );
+    assert!(
+        m.col(1)
+            .truncate()
+            .abs_diff_eq(DVec3::new(0.0, 0.0, -0.5), 1e-9)
+    );
+    assert!(
+        m.col(2)
+            .truncate()
+            .abs_diff_eq(DVec3::new(2.0, 0.0, 0.0), 1e-9)
+    );
+}
+
+#[test]
+fn stray_files_are_skipped() {
+    let dir = write_series(&stack("1.2.3", &[0.0, 1.5, 3.0]), |i| format!("{i}.dcm"));
+    std::fs::write(dir.path().join("notes.txt"), "not DICOM").unwrap();
+    std::fs::write(dir.path().join("tiny"), "x").unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    // A DICOM file without an image (like DICOMDIR).
+    let mut o = InMemDicomObject::new_empty();
+    o.put(DataElement::new(
+        tags::SOP_CLASS_UID,
+        VR::UI,
+        PrimitiveValue::from("1.2.840.10008.1.3.10"),
+    ));
+    o.put(DataElement::new(
+        tags::SOP_INSTANCE_UID,
+        VR::UI,
+        PrimitiveValue::from("1.2.9"),
+    ));
+    o.with_meta(FileMetaTableBuilder::new().transfer_syntax(uids::EXPLICIT_VR_LITTLE_ENDIAN))
+        .unwrap()
+        .write_to_file(dir.path().join("DICOMDIR"))
+        .unwrap();
+    let v = load_dicom_series(dir.path()).unwrap();
+    assert_eq!(v.dims, [4, 3, 3]);
+    assert_eq!(v.value_range, [0.0, 200.0]);
+    assert_eq!(v.stored_type, "int16");
+
+    // A file with the DICM marker that does not parse is an error, not a silent gap.
+    let mut junk = vec![0u8; 128];
+    junk.extend_from_slice(b"DICMgarbage");
+    std::fs::write(dir.path().join("broken.dcm"), junk).unwrap();
+    let e = error(dir.path());
+    assert!(
+        e.contains("broken.dcm") && e.contains("unreadable DICOM"),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_biggest_series_is_read_unless_a_file_chooses() {
+    let mut slices = stack("1.2.3", &[0.0, 1.0, 2.0, 3.0]);
+    slices.extend(stack("1.2.4", &[10.0, 12.0, 14.0]));
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let v = load_dicom_series(dir.path()).unwrap();
+    assert_eq!(v.dims, [4, 3, 4]);
+    assert!(v.placement.contains("series 1.2.3"), "{}", v.placement);
+    assert!(
+        v.placement.contains("also holds 1.2.4 (3 files)"),
+        "{}",
+        v.placement
+    );
+    // A file of the smaller series picks that one.
+    let v = load_volume(&dir.path().join("5.dcm")).unwrap();
+    assert_eq!(v.dims, [4, 3, 3]);
+    assert_eq!(v.geometry.origin.z, 10.0);
+    assert!(
+        v.placement.contains("also holds 1.2.3 (4 files)"),
+        "{}",
+        v.placement
+    );
+
+    // Two series of equal size: refused, both named.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices.extend(stack("1.2.4", &[10.0, 12.0]));
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(
+        e.contains("1.2.3 (2 files)") && e.contains("1.2.4 (2 files)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn irregular_stacks_are_refused() {
+    let dir = write_series(&stack("1.2.3", &[0.0, 1.0, 2.0, 4.0]), |i| {
+        format!("{i}.dcm")
+    });
+    let e = error(dir.path());
+    assert!(
+        e.contains("not uniform") && e.contains("0.dcm to 1.dcm"),
+        "{e}"
+    );
+
+    let dir = write_series(&stack("1.2.3", &[0.0, 1.0, 1.0]), |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(e.contains("same position"), "{e}");
+
+    // Gantry tilt: each slice shifted 0.3 mm along y per 1 mm step in z.
+    let mut slices = stack("1.2.3", &[0.0, 1.0, 2.0]);
+    for (k, s) in slices.iter_mut().enumerate() {
+        s.position[1] += 0.3 * k as f64;
+    }
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(e.contains("gantry tilt"), "{e}");
+
+    // Slices of different orientation.
+    let mut slices = stack("1.2.3", &[0.0, 1.0, 2.0]);
+    slices[1].orientation = [1.0, 0.0, 0.0, 0.0, 0.8, 0.6];
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(
+        e.contains("1.dcm") && e.contains("ImageOrientationPatient"),
+        "{e}"
+    );
+
+    let dir = write_series(&stack("1.2.3", &[0.0]), |i| format!("{i}.dcm"));
+    assert!(error(dir.path()).contains("single slice"));
+}
+
+#[test]
+fn colour_compressed_and_odd_files_are_refused() {
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for s in &mut slices {
+        (s.samples, s.photometric, s.bits, s.stored, s.signed) = (3, "RGB", 8, 8, false);
+        s.pixels = vec![7; 36];
+    }
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(e.contains("colour") && e.contains("RGB"), "{e}");
+
+    // Compressed transfer syntaxes are named.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices[1].syntax = uids::JPEG_BASELINE8_BIT;
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(e.contains("1.dcm") && e.contains("JPEG Baseline"), "{e}");
+
+    // Missing geometry.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices[0].pixel_spacing = [0.5, 0.0];
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    assert!(error(dir.path()).contains("PixelSpacing must be positive"));
+
+    // Truncated pixel data.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices[1].pixels.truncate(6);
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(
+        e.contains("1.dcm") && e.contains("truncated pixel data"),
+        "{e}"
+    );
+
+    // Too large: refused from the header, before any allocation.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for s in &mut slices {
+        (s.rows, s.columns) = (60000, 60000);
+    }
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = load_dicom_series(dir.path()).unwrap_err();
+    assert!(matches!(e, DataError::TooLarge { .. }), "{e}");
+}
+
+#[test]
+fn empty_folders_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = error(dir.path());
+    assert!(
+        e.contains("no DICOM image files") && e.contains("looked at: 0"),
+        "{e}"
+    );
+    std::fs::write(dir.path().join("readme.txt"), "hello").unwrap();
+    let e = error(dir.path());
+    assert!(e.starts_with(&dir.path().display().to_string()), "{e}");
+    assert!(e.contains("looked at: 1"), "{e}");
+    // A .dcm path that does not exist.
+    let e = load_volume(&dir.path().join("missing.dcm")).unwrap_err();
+    assert!(matches!(e, DataError::Io { .. }), "{e}");
+}
+
+#[test]
+fn pixel_formats_and_rescaling() {
+    // 8-bit unsigned in implicit VR little endian (read back as OW words): kept as uint8.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for (k, s) in slices.iter_mut().enumerate() {
+        (s.bits, s.stored, s.signed, s.syntax) = (8, 8, false, uids::IMPLICIT_VR_LITTLE_ENDIAN);
+        s.pixels = (0..12).map(|i| i * 20 + k as u32).collect();
+    }
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!(v.stored_type, "uint8");
+    assert_eq!((v.value(1, 0, 0), v.value(3, 2, 1)), (20.0, 221.0));
+
+    // 16-bit signed in explicit VR big endian.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for s in &mut slices {
+        s.syntax = "1.2.840.10008.1.2.2"; // Explicit VR Big Endian (retired)
+        s.pixels = (0..12)
+            .map(|i| (i as i16 * 300 - 1000) as u16 as u32)
+            .collect();
+    }
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!(v.stored_type, "int16");
+    assert_eq!(v.value_range, [-1000.0, 2300.0]);
+    assert_eq!(v.value(1, 0, 1), -700.0);
+
+    // 12 of 16 bits: junk above bit 11 is dropped, the sign comes from bit 11.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for (k, s) in slices.iter_mut().enumerate() {
+        (s.stored, s.signed) = (12, k == 1);
+        s.pixels = vec![0xF800 | 0x0FFF; 12]; // 4095 unsigned, -1 signed
+    }
+    // Signedness must agree between slices.
+    let e = error(write_series(&slices, |i| format!("{i}.dcm")).path());
+    assert!(e.contains("pixel format"), "{e}");
+    for s in &mut slices {
+        s.signed = false;
+    }
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!((v.stored_type, v.value_range), ("uint16", [4095.0, 4095.0]));
+    for s in &mut slices {
+        s.signed = true;
+    }
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!((v.stored_type, v.value_range), ("int16", [-1.0, -1.0]));
+
+    // One rescale for all slices: float32, value * slope + intercept.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for s in &mut slices {
+        s.rescale = Some((2.0, -1024.0));
+    }
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!(
+        (v.stored_type, v.value_range),
+        ("float32", [-1024.0, -824.0])
+    );
+    assert!(v.placement.contains("rescaled"), "{}", v.placement);
+    // Per-slice rescale.
+    slices[1].rescale = Some((0.5, 10.0));
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!((v.value(0, 0, 0), v.value(0, 0, 1)), (-1024.0, 60.0));
+
+    // 32-bit unsigned: float32.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    for s in &mut slices {
+        (s.bits, s.stored, s.signed) = (32, 32, false);
+        s.pixels = vec![70000; 12];
+    }
+    let v = load_dicom_series(write_series(&slices, |i| format!("{i}.dcm")).path()).unwrap();
+    assert_eq!(
+        (v.stored_type, v.value_range),
+        ("float32", [70000.0, 70000.0])
+    );
+}
