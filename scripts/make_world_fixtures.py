@@ -51,9 +51,11 @@ def voxel_centroid(data_ijk: np.ndarray, affine: np.ndarray) -> list:
     return world.mean(axis=0).tolist()
 
 
-def entry(name, fmt, writer, reader, data_ijk, affine, note) -> dict:
-    """One truth.json record; checks first that the independent reader got the anatomy back."""
-    if not np.array_equal(np.asarray(data_ijk, float), anatomy().astype(float)):
+def entry(name, fmt, writer, reader, data_ijk, affine, note, expected=None) -> dict:
+    """One truth.json record; checks first that the independent reader got the anatomy back
+    (`expected`: the voxel array written, default the anatomy as is)."""
+    expected = anatomy() if expected is None else expected
+    if not np.array_equal(np.asarray(data_ijk, float), expected.astype(float)):
         sys.exit(f"{name}: {reader} did not read back the anatomy that was written")
     return {
         "file": name,
@@ -73,6 +75,7 @@ def entry(name, fmt, writer, reader, data_ijk, affine, note) -> dict:
 
 
 def write_nifti(out, name, data, affine, note, qform=True) -> dict:
+    """Writes and reads back with nibabel; `data` is the voxel array in the file's ijk order."""
     img = nibabel.Nifti1Image(data, affine)
     img.set_sform(affine, code=2)
     if qform:
@@ -82,7 +85,7 @@ def write_nifti(out, name, data, affine, note, qform=True) -> dict:
     nibabel.save(img, out / name)
     back = nibabel.load(out / name)
     return entry(name, "nifti", f"nibabel {nibabel.__version__}", "nibabel",
-                 back.get_fdata(), back.affine, note)
+                 back.get_fdata(), back.affine, note, expected=data)
 
 
 def write_nifti_ras(out) -> dict:
@@ -92,10 +95,13 @@ def write_nifti_ras(out) -> dict:
 
 
 def write_nifti_las(out) -> dict:
+    """The RAS copy's object in the same place of the world, stored radiologically: voxels
+    mirrored along i, x axis negated (as a radiological scanner export of the same subject)."""
     affine = np.diag([-1.5, 1.2, 2.0, 1.0])
-    affine[:3, 3] = [14.0, -9.0, -11.0]
-    return write_nifti(out, "nifti_las.nii.gz", anatomy().astype(np.int16), affine,
-                       "int16, radiological (negative x) sform and qform")
+    affine[:3, 3] = [-14.0 + (DIMS[0] - 1) * 1.5, -9.0, -11.0]
+    return write_nifti(out, "nifti_las.nii.gz", anatomy()[::-1].astype(np.int16), affine,
+                       "int16, radiological (negative x) sform and qform; same world object as "
+                       "nifti_ras.nii")
 
 
 def write_nifti_oblique(out) -> dict:

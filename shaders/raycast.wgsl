@@ -78,15 +78,27 @@ struct FragmentOut {
     @builtin(frag_depth) depth: f32,
 };
 
-// Data value at continuous voxel coordinates q (clamped to the grid, trilinear).
+// Returned by value_at where the sample leans on a "no data" voxel (the texture holds
+// NO_DATA_TEXEL = -1000 there; NaN is not used because shader compilers may assume no NaN).
+const NO_DATA: f32 = -1.0e30;
+
+// Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
 fn value_at(q: vec3<f32>) -> f32 {
     let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
     let normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+    if normalised < -0.5 {
+        return NO_DATA;
+    }
     return ray.origin.w + normalised * (ray.spacing.w - ray.origin.w);
 }
 
-// World-space gradient by central differences in voxel space (one-sided at the border), mapped
-// to world units through the transform. NaN where a neighbour is "no data".
+// Whether a value from value_at is "no data" (transparent).
+fn no_data(v: f32) -> bool {
+    return v <= NO_DATA;
+}
+
+// World-space gradient by central differences in voxel space (one-sided at the border and next
+// to "no data", 0 with no data on both sides), mapped to world units through the transform.
 fn gradient_at(q: vec3<f32>) -> vec3<f32> {
     let top = ray.dims.xyz - 1.0;
     let p = clamp(q, vec3<f32>(0.0), top);
@@ -96,14 +108,17 @@ fn gradient_at(q: vec3<f32>) -> vec3<f32> {
         var hi = p;
         lo[axis] = max(p[axis] - 1.0, 0.0);
         hi[axis] = min(p[axis] + 1.0, top[axis]);
-        g[axis] = (value_at(hi) - value_at(lo)) / (hi[axis] - lo[axis]);
+        let a = value_at(lo);
+        let b = value_at(hi);
+        if !no_data(a) && !no_data(b) {
+            g[axis] = (b - a) / (hi[axis] - lo[axis]);
+        } else if !no_data(a) && p[axis] > lo[axis] {
+            g[axis] = (value_at(p) - a) / (p[axis] - lo[axis]);
+        } else if !no_data(b) && hi[axis] > p[axis] {
+            g[axis] = (b - value_at(p)) / (hi[axis] - p[axis]);
+        }
     }
     return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
-}
-
-// NaN / ±inf voxels are "no data": such samples are transparent.
-fn no_data(v: f32) -> bool {
-    return v != v || abs(v) > 3.0e38;
 }
 
 // The LUT rule of hatchery_data::transfer_function::TransferFunction1D::lookup, on table row `row`.
@@ -288,7 +303,7 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
         let v = value_at(q);
         if no_data(v) {
             // Transparent; the next iso crossing starts afresh, κv restarts after the gap.
-            previous_value = -3.0e38;
+            previous_value = NO_DATA;
             previous_normal = vec3<f32>(0.0);
             continue;
         }
@@ -303,7 +318,7 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
         if mode == 2 {
             if v >= ray.mode.y {
                 var t_hit = t;
-                if k > 0u && v != previous_value && previous_value > -3.0e38 {
+                if k > 0u && v != previous_value && !no_data(previous_value) {
                     t_hit = previous_t + h * (ray.mode.y - previous_value) / (v - previous_value);
                 }
                 hit_t = t_hit;
@@ -341,11 +356,7 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
             continue;
         }
         let g = gradient_at(q);
-        var g_length = length(g);
-        if g_length != g_length {
-            // A neighbour is "no data": no direction to shade with.
-            g_length = 0.0;
-        }
+        let g_length = length(g);
         var n_world = vec3<f32>(0.0);
         if g_length > 1e-12 {
             // Unit normal towards lower values (outward for bright objects).

@@ -4,9 +4,9 @@
 use crate::files::{FileKind, FilePicker, Purpose};
 use crate::preview::{Preview, Shown};
 use crate::render_worker::{NodeTime, Port};
+use crate::selection::{CanvasSelection, SelectionChange};
 use crate::state::EditorState;
 use egui::{Color32, Id, Key, Modifiers, Pos2, Ui};
-use crate::selection::{CanvasSelection, SelectionChange};
 use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer, SnarlWidget};
 use egui_snarl::{InPin, NodeId, OutPin, Snarl};
 use hatchery_graph::{EditorPos, ParamKind, ParamSpec, ParamValue, PortType, SchemaLookup};

@@ -5,8 +5,11 @@
 use egui_file_dialog::{DialogState, FileDialog};
 use std::path::{Path, PathBuf};
 
-/// Extensions of the volumes `VolumeFile` reads (`.nii.gz` ends in `gz`).
-pub const VOLUME_EXTENSIONS: &[&str] = &["nii", "gz", "vti"];
+/// Extensions of the volumes `VolumeFile` reads (`.nii.gz` ends in `gz`); see
+/// `hatchery_data::volume_file::VOLUME_ENDINGS`.
+pub const VOLUME_EXTENSIONS: &[&str] = &[
+    "nii", "gz", "vti", "nrrd", "nhdr", "mha", "mhd", "tif", "tiff", "dcm",
+];
 /// Extensions of the meshes `MeshFile` reads.
 pub const MESH_EXTENSIONS: &[&str] = &["obj", "ply", "stl"];
 
@@ -24,7 +27,10 @@ impl FileKind {
         let ext = name.rsplit('.').next()?;
         if name.ends_with(".ron") {
             Some(FileKind::Graph)
-        } else if name.ends_with(".nii") || name.ends_with(".nii.gz") || ext == "vti" {
+        } else if hatchery_data::volume_file::VOLUME_ENDINGS
+            .iter()
+            .any(|e| name.ends_with(e))
+        {
             Some(FileKind::Volume)
         } else if MESH_EXTENSIONS.contains(&ext) {
             Some(FileKind::Mesh)
@@ -96,7 +102,10 @@ impl FilePicker {
         let filter = match kind {
             Some(FileKind::Graph) => Some(("Graphs (.ron)", vec!["ron"])),
             Some(FileKind::Volume) => {
-                Some(("Volumes (.nii, .nii.gz, .vti)", VOLUME_EXTENSIONS.to_vec()))
+                Some((
+                    "Volumes (.nii, .nii.gz, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm)",
+                    VOLUME_EXTENSIONS.to_vec(),
+                ))
             }
             Some(FileKind::Mesh) => Some(("Meshes (.obj, .ply, .stl)", MESH_EXTENSIONS.to_vec())),
             None => None,

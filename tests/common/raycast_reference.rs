@@ -137,7 +137,11 @@ pub fn intersect_box(lo: Vec3, hi: Vec3, origin: Vec3, dir: Vec3) -> Option<(f32
 
 /// The world step `h` of the parameters for this volume.
 pub fn world_step(volume: &VolumeData, p: &RayParams) -> f32 {
-    let min_spacing = volume.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+    let min_spacing = volume
+        .spacing()
+        .iter()
+        .copied()
+        .fold(f32::INFINITY, f32::min);
     p.step_voxels * min_spacing
 }
 

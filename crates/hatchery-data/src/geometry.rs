@@ -194,7 +194,10 @@ mod tests {
         ])
         .unwrap();
         assert_eq!(g.spacing, DVec3::splat(2.0));
-        assert_eq!(g.voxel_to_world(Vec3::new(2.0, 4.0, 4.0)), Vec3::new(19.0, -7.0, -7.0));
+        assert_eq!(
+            g.voxel_to_world(Vec3::new(2.0, 4.0, 4.0)),
+            Vec3::new(19.0, -7.0, -7.0)
+        );
         let back = g.world_to_voxel(Vec3::new(19.0, -7.0, -7.0));
         assert!((back - Vec3::new(2.0, 4.0, 4.0)).abs().max_element() < 1e-5);
         // The same grid in LPS: x and y negated.

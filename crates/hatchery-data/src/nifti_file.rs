@@ -255,11 +255,7 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
     if h.qform_code > 0 {
         // Quaternion (b, c, d) with a = sqrt(1 - b² - c² - d²); a sum above 1 (rounding in
         // writers) is renormalised with a = 0, as nifti1_io does.
-        let (mut b, mut c, mut d) = (
-            h.quatern_b as f64,
-            h.quatern_c as f64,
-            h.quatern_d as f64,
-        );
+        let (mut b, mut c, mut d) = (h.quatern_b as f64, h.quatern_c as f64, h.quatern_d as f64);
         let sum = b * b + c * c + d * d;
         let a = if sum > 1.0 {
             let n = sum.sqrt();
@@ -269,9 +265,21 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
             (1.0 - sum).sqrt()
         };
         let r = [
-            [a * a + b * b - c * c - d * d, 2.0 * (b * c - a * d), 2.0 * (b * d + a * c)],
-            [2.0 * (b * c + a * d), a * a + c * c - b * b - d * d, 2.0 * (c * d - a * b)],
-            [2.0 * (b * d - a * c), 2.0 * (c * d + a * b), a * a + d * d - c * c - b * b],
+            [
+                a * a + b * b - c * c - d * d,
+                2.0 * (b * c - a * d),
+                2.0 * (b * d + a * c),
+            ],
+            [
+                2.0 * (b * c + a * d),
+                a * a + c * c - b * b - d * d,
+                2.0 * (c * d - a * b),
+            ],
+            [
+                2.0 * (b * d - a * c),
+                2.0 * (c * d + a * b),
+                a * a + d * d - c * c - b * b,
+            ],
         ];
         let qfac = if h.pixdim[0] < 0.0 { -1.0 } else { 1.0 };
         let zoom = [pixdim(1), pixdim(2), qfac * pixdim(3)];
@@ -286,9 +294,15 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
         });
         let g = Geometry::from_affine(rows)
             .map_err(|e| DataError::format(path, format!("bad qform: {e}")))?;
-        return Ok((g, format!("qform (qform_code {}, qfac {qfac})", h.qform_code)));
+        return Ok((
+            g,
+            format!("qform (qform_code {}, qfac {qfac})", h.qform_code),
+        ));
     }
-    let g = Geometry::axis_aligned([pixdim(1).abs(), pixdim(2).abs(), pixdim(3).abs()], [0.0; 3]);
+    let g = Geometry::axis_aligned(
+        [pixdim(1).abs(), pixdim(2).abs(), pixdim(3).abs()],
+        [0.0; 3],
+    );
     Ok((g, "pixdim scaling (sform_code and qform_code are 0)".into()))
 }
 

@@ -83,7 +83,11 @@ impl VolumeData {
             || ([f32::INFINITY, f32::NEG_INFINITY], true),
             |(a, fa), (b, fb)| ([a[0].min(b[0]), a[1].max(b[1])], fa && fb),
         );
-        let value_range = if range[0] <= range[1] { range } else { [0.0, 0.0] };
+        let value_range = if range[0] <= range[1] {
+            range
+        } else {
+            [0.0, 0.0]
+        };
         Ok(Self {
             dims,
             geometry,

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use crate::metaimage_file::load_metaimage;
 use crate::dicom_series::load_dicom_series;
+use crate::metaimage_file::load_metaimage;
 use crate::nifti_file::load_nifti;
 use crate::nrrd_file::load_nrrd;
 use crate::tiff_stack::load_tiff_stack;

@@ -112,10 +112,7 @@ mod tests {
         assert_eq!(v.type_name(), "int16");
         assert_eq!(v.bytes_per_voxel(), 2);
         assert_eq!(v.clone().rescaled(1.0, 0.0), v);
-        assert_eq!(
-            v.rescaled(0.5, 10.0),
-            Voxels::F32(vec![9.0, 10.0, 160.0])
-        );
+        assert_eq!(v.rescaled(0.5, 10.0), Voxels::F32(vec![9.0, 10.0, 160.0]));
         assert_eq!(Voxels::from(vec![1.5f64]).into_f32(), vec![1.5f32]);
     }
 }

@@ -270,7 +270,7 @@ fn four_d_file_gives_first_volume() {
 }
 
 #[test]
-fn non_finite_values_become_the_minimum() {
+fn non_finite_values_are_kept_as_no_data() {
     let dir = tempfile::tempdir().unwrap();
     let vals = [1.0f32, f32::NAN, 3.0, -2.0, f32::INFINITY, 0.0, 5.0, 6.0];
     let raw: Vec<u8> = vals.iter().flat_map(|v| v.to_le_bytes()).collect();
@@ -280,7 +280,68 @@ fn non_finite_values_become_the_minimum() {
         &Header::new(&[2, 2, 2], 16, 32).file(&raw),
     ))
     .unwrap();
-    assert_eq!(v.values, vec![1.0, -2.0, 3.0, -2.0, -2.0, 0.0, 5.0, 6.0]);
+    assert!(v.values[1].is_nan());
+    assert_eq!(v.values[4], f32::INFINITY);
+    assert_eq!(
+        v.value_range,
+        [-2.0, 6.0],
+        "the range is over finite values"
+    );
+}
+
+/// Writes quaternion, offsets and qfac into a header made by `Header::file` (qform_code 1,
+/// sform_code 0).
+fn with_qform(mut file: Vec<u8>, bcd: [f32; 3], offset: [f32; 3], qfac: f32) -> Vec<u8> {
+    let f32_at =
+        |file: &mut Vec<u8>, at: usize, v: f32| file[at..at + 4].copy_from_slice(&v.to_le_bytes());
+    file[252..254].copy_from_slice(&1i16.to_le_bytes());
+    file[254..256].copy_from_slice(&0i16.to_le_bytes());
+    f32_at(&mut file, 76, qfac);
+    for i in 0..3 {
+        f32_at(&mut file, 256 + 4 * i, bcd[i]);
+        f32_at(&mut file, 268 + 4 * i, offset[i]);
+    }
+    file
+}
+
+#[test]
+fn qform_quaternion_qfac_and_pixdim_rules() {
+    let dir = tempfile::tempdir().unwrap();
+    let raw = vec![0u8; 3 * 4 * 2];
+    let mut h = Header::new(&[3, 4, 2], 2, 8);
+    h.pixdim = [0.5, 2.0, 3.0];
+    // 90° about z: (b, c, d) = (0, 0, sin 45°); qfac −1 flips k.
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let file = with_qform(h.file(&raw), [0.0, 0.0, s], [10.0, -5.0, 2.0], -1.0);
+    let v = load_nifti(&write(dir.path(), "q.nii", &file)).unwrap();
+    assert!(v.placement.starts_with("qform"), "{}", v.placement);
+    let at = |ijk: [f32; 3]| v.voxel_to_world(glam::Vec3::from_array(ijk));
+    let close =
+        |a: glam::Vec3, b: [f32; 3]| (a - glam::Vec3::from_array(b)).abs().max_element() < 1e-4;
+    // i (0.5 mm) turns to +y, j (2 mm) to −x, k (3 mm) to −z.
+    assert!(close(at([0.0, 0.0, 0.0]), [10.0, -5.0, 2.0]));
+    assert!(
+        close(at([1.0, 0.0, 0.0]), [10.0, -4.5, 2.0]),
+        "{}",
+        at([1.0, 0.0, 0.0])
+    );
+    assert!(
+        close(at([0.0, 1.0, 0.0]), [8.0, -5.0, 2.0]),
+        "{}",
+        at([0.0, 1.0, 0.0])
+    );
+    assert!(
+        close(at([0.0, 0.0, 1.0]), [10.0, -5.0, -1.0]),
+        "{}",
+        at([0.0, 0.0, 1.0])
+    );
+    assert_eq!(v.spacing(), [0.5, 2.0, 3.0]);
+
+    // Neither code: pixdim scaling, origin 0.
+    let v = load_nifti(&write(dir.path(), "p.nii", &h.file(&raw))).unwrap();
+    assert!(v.placement.starts_with("pixdim"), "{}", v.placement);
+    assert_eq!(v.origin(), [0.0; 3]);
+    assert!(v.geometry.is_axis_aligned());
 }
 
 /// Asserts the error message is one line and names the file.

@@ -23,6 +23,10 @@ pub enum GpuError {
     },
 }
 
+/// What a "no data" voxel holds in a normalised volume texture: far below [0, 1], so a filtered
+/// sample with any noticeable weight on one is below -0.5.
+pub const NO_DATA_TEXEL: f32 = -1000.0;
+
 /// The one device hatchery renders with. Clones share the device (wgpu handles are shared).
 #[derive(Clone)]
 pub struct GpuContext {
@@ -253,7 +257,8 @@ impl GpuContext {
 
     /// Uploads a scalar volume (x fastest) as a filterable R16Float 3-D texture holding
     /// (v - lo) / (hi - lo), so that hardware trilinear filtering works on every adapter and the
-    /// relative precision (2^-11 of the range) is the same for any value range.
+    /// relative precision (2^-11 of the range) is the same for any value range. Non-finite
+    /// ("no data") voxels hold [`NO_DATA_TEXEL`].
     pub fn upload_volume_normalized(
         &self,
         label: &str,
@@ -274,9 +279,18 @@ impl GpuContext {
         } else {
             0.0
         };
+        // "No data" (non-finite) voxels get a sentinel far below the normalised range, so any
+        // trilinear sample that leans on one is recognisably below -0.5 (shaders test that; NaN
+        // itself is unreliable in shaders, which may assume no NaN).
         let halves: Vec<half::f16> = values
             .iter()
-            .map(|v| half::f16::from_f32((v - range[0]) * scale))
+            .map(|v| {
+                if v.is_finite() {
+                    half::f16::from_f32((v - range[0]) * scale)
+                } else {
+                    half::f16::from_f32(NO_DATA_TEXEL)
+                }
+            })
             .collect();
         let desc = wgpu::TextureDescriptor {
             label: Some(label),

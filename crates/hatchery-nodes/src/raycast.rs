@@ -481,6 +481,20 @@ pub fn cast(
                     ),
                 ));
             }
+            // Labels are read at the volume's voxels: the grids must lie in the same place.
+            let (a, b) = (l.data.geometry.to_world(), data.geometry.to_world());
+            let tolerance = 1e-3 * data.geometry.spacing.min_element();
+            if !a.abs_diff_eq(b, tolerance) {
+                return Err(NodeError::at_port(
+                    "labels",
+                    format!(
+                        "label volume lies elsewhere in the world ({}) than the volume ({}): \
+                         they must share the voxel → world transform",
+                        l.data.geometry.describe(),
+                        data.geometry.describe()
+                    ),
+                ));
+            }
             l.texture(gpu).map_err(err)?
         }
         None => &st.blank_labels,

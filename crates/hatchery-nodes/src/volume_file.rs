@@ -14,11 +14,13 @@ impl Node<Value, Ctx> for VolumeFileNode {
         NodeSchema {
             kind: "VolumeFile",
             category: "Data",
-            doc: "Reads a volume: NIfTI-1 (.nii, .nii.gz) of any integer or float type with \
-                  scl_slope/scl_inter applied, or VTK XML image data (.vti, e.g. label volumes). \
-                  The voxel → world transform (origin, spacing, direction; NIfTI sform/qform) \
-                  places the voxels in hatchery's RAS+ world in mm. NaN voxels are \"no data\". \
-                  Relative paths are relative to the graph file's folder.",
+            doc: "Reads a volume: NIfTI-1 (.nii, .nii.gz, scl_slope/scl_inter applied), VTK \
+                  XML image data (.vti), NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd), a \
+                  multi-page TIFF stack (.tif) or a DICOM series (a folder, or one .dcm of it). \
+                  The file's voxel → world transform (origin, spacing, direction; NIfTI \
+                  sform/qform) places the voxels in hatchery's RAS+ world in mm (LPS formats \
+                  are converted; see docs/data.md). NaN voxels are \"no data\". Relative paths \
+                  are relative to the graph file's folder.",
             inputs: vec![],
             outputs: vec![PortSpec::output(
                 "volume",
@@ -26,7 +28,7 @@ impl Node<Value, Ctx> for VolumeFileNode {
                 "the volume, in world units (mm)",
             )],
             params: vec![
-                ParamSpec::path("path", "", "the .nii, .nii.gz or .vti file"),
+                ParamSpec::path("path", "", "the volume file, or a folder holding a DICOM series"),
                 ParamSpec::text(
                     "array",
                     "",
@@ -48,7 +50,8 @@ impl Node<Value, Ctx> for VolumeFileNode {
         let path = p.path("path");
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
-                "parameter `path` is empty: name a .nii, .nii.gz or .vti file",
+                "parameter `path` is empty: name a volume file (.nii, .nii.gz, .vti, .nrrd, \
+                 .mha, .tif, ...) or a DICOM folder",
             ));
         }
         let array = p.text("array").trim();

@@ -58,7 +58,11 @@ pub fn title_pos(h: &Harness<EditorApp>, id: &str) -> egui::Pos2 {
 pub fn body_pos(h: &Harness<EditorApp>, id: &str) -> egui::Pos2 {
     let r = node_rect(h, id);
     let p = egui::pos2(r.center().x, r.bottom() - 6.0);
-    assert_eq!(h.state().node_at(p), Some(id), "body point of {id} is covered");
+    assert_eq!(
+        h.state().node_at(p),
+        Some(id),
+        "body point of {id} is covered"
+    );
     p
 }
 
@@ -217,7 +221,9 @@ fn shift_drag_on_empty_canvas_box_selects_without_panning() {
     });
     h.step();
     for i in 1..=10 {
-        h.event(egui::Event::PointerMoved(from + (to - from) * (i as f32 / 10.0)));
+        h.event(egui::Event::PointerMoved(
+            from + (to - from) * (i as f32 / 10.0),
+        ));
         h.step();
     }
     h.event(egui::Event::PointerButton {
@@ -275,4 +281,3 @@ fn dragging_a_selected_node_moves_the_selection_as_one_undo_step() {
     h.run();
     assert_eq!(h.state().state.doc(), &before, "one undo step");
 }
-

@@ -1,0 +1,154 @@
+//! Volumes land where they are in the world, on the GPU too: the ray caster marches in voxel
+//! space through the voxel → world transform, so a radiological (LAS) and a neurological (RAS)
+//! copy of one object look the same, and "no data" voxels are transparent.
+
+mod common;
+
+use glam::Vec3;
+use hatchery_data::load_volume;
+use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
+use hatchery_graph::ParamValue;
+use hatchery_nodes::camera::Camera;
+use hatchery_nodes::value::{TransferFunction, Volume};
+use hatchery_nodes::{Session, Value, export};
+use std::sync::Arc;
+
+const SIZE: u32 = 96;
+
+fn session() -> Session {
+    common::session_from_text(
+        r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
+        SIZE,
+        SIZE,
+    )
+}
+
+/// An orthographic camera around `target`, `half` world units from the centre to the top.
+fn ortho(target: Vec3, azimuth: f32, elevation: f32, half: f32) -> Camera {
+    let distance = 200.0;
+    let fov = 2.0 * (half / distance).atan().to_degrees();
+    Camera::orbit(
+        target, azimuth, elevation, distance, fov, true, 1.0, 400.0, true, SIZE, SIZE,
+    )
+}
+
+/// Shaded DVR of `volume` seen by `cam`: premultiplied RGBA per pixel.
+fn render(
+    session: &mut Session,
+    volume: &Arc<Volume>,
+    cam: &Camera,
+    tf: TransferFunction1D,
+) -> Vec<[f32; 4]> {
+    let light = hatchery_nodes::light::Light {
+        direction: Vec3::new(0.3, 0.5, 1.0).normalize(),
+        view_space: true,
+        color: [1.0; 3],
+        intensity: 1.0,
+        ambient: 0.15,
+    };
+    let out = common::run_node(
+        session,
+        "Raycast",
+        vec![
+            ("volume", Value::Volume(volume.clone())),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+            (
+                "tf",
+                Value::TransferFunction(Arc::new(TransferFunction::Color(tf))),
+            ),
+            ("light", Value::Light(Arc::new(light))),
+        ],
+        &[
+            ("mode", ParamValue::Choice("dvr".into())),
+            ("shading", ParamValue::Choice("phong".into())),
+            ("step", ParamValue::Float(0.5)),
+            ("jitter", ParamValue::Bool(false)),
+        ],
+    );
+    let a = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+    a.data
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
+}
+
+fn tf(points: &[(f32, [f32; 4])]) -> TransferFunction1D {
+    let points: Vec<ControlPoint> = points
+        .iter()
+        .map(|&(value, rgba)| ControlPoint { value, rgba })
+        .collect();
+    TransferFunction1D::from_points(&points).unwrap()
+}
+
+fn fixture(name: &str) -> Arc<Volume> {
+    let path = common::repo_root().join("tests/fixtures/world").join(name);
+    Arc::new(Volume::new(load_volume(&path).unwrap()))
+}
+
+#[test]
+fn las_and_ras_copies_of_one_object_ray_cast_alike() {
+    let mut s = session();
+    let ras = fixture("nifti_ras.nii");
+    let las = fixture("nifti_las.nii.gz");
+    // Stored mirrored, placed the same: the transforms differ, the worlds do not.
+    assert_ne!(ras.data.geometry, las.data.geometry);
+    assert!((ras.data.world_min() - las.data.world_min()).length() < 1e-4);
+    let f = tf(&[
+        (0.0, [0.2, 0.3, 0.9, 0.0]),
+        (90.0, [0.9, 0.6, 0.2, 0.0]),
+        (110.0, [0.95, 0.9, 0.8, 0.6]),
+        (200.0, [1.0, 0.3, 0.2, 0.9]),
+    ]);
+    let centre = (ras.data.world_min() + ras.data.world_max()) / 2.0;
+    for (azimuth, elevation) in [(0.0, 0.0), (90.0, 0.0), (30.0, 40.0), (200.0, -60.0)] {
+        let cam = ortho(centre, azimuth, elevation, 18.0);
+        let a = render(&mut s, &ras, &cam, f.clone());
+        let b = render(&mut s, &las, &cam, f.clone());
+        let (mut worst, mut at) = (0.0f32, 0usize);
+        for (i, (p, q)) in a.iter().zip(&b).enumerate() {
+            for c in 0..4 {
+                if (p[c] - q[c]).abs() > worst {
+                    (worst, at) = ((p[c] - q[c]).abs(), i);
+                }
+            }
+        }
+        let covered = a.iter().filter(|p| p[3] > 0.1).count();
+        assert!(covered > 100, "az {azimuth}: the object is not in view");
+        assert!(
+            worst <= 1.0 / 255.0,
+            "az {azimuth} el {elevation}: LAS and RAS differ by {worst} at pixel ({}, {}): {:?} vs {:?}",
+            at as u32 % SIZE,
+            at as u32 / SIZE,
+            a[at],
+            b[at]
+        );
+    }
+}
+
+#[test]
+fn no_data_voxels_are_transparent_to_the_ray_caster() {
+    let mut s = session();
+    let path = common::repo_root().join("../shared/cases/nan_outside.nii.gz");
+    let volume = Arc::new(Volume::new(load_volume(&path).unwrap()));
+    let data = &volume.data;
+    // Every finite value opaque: without no-data handling the whole box would show.
+    let f = tf(&[(-1.0, [0.8, 0.8, 0.8, 1.0]), (1.0, [0.8, 0.8, 0.8, 1.0])]);
+    let centre = data.voxel_to_world(Vec3::splat(9.5));
+    let voxel = data.spacing()[0];
+    let half = 12.0 * voxel;
+    for (azimuth, elevation) in [(0.0, 0.0), (45.0, 30.0)] {
+        let cam = ortho(centre, azimuth, elevation, half);
+        let image = render(&mut s, &volume, &cam, f.clone());
+        let pixel = 2.0 * half / SIZE as f32;
+        for (i, p) in image.iter().enumerate() {
+            let (x, y) = ((i as u32 % SIZE) as f32 + 0.5, (i as u32 / SIZE) as f32 + 0.5);
+            let r = ((x - SIZE as f32 / 2.0).hypot(y - SIZE as f32 / 2.0)) * pixel / voxel;
+            if r > 9.0 {
+                assert_eq!(p[3], 0.0, "pixel ({x}, {y}) {r} voxels out shows {p:?}");
+            }
+            if r < 6.0 {
+                assert!(p[3] > 0.9, "pixel ({x}, {y}) inside the ball is {p:?}");
+            }
+        }
+    }
+}
