@@ -13,10 +13,10 @@ struct Ray {
     // units, box_max.w = step in voxels.
     box_min: vec4<f32>,
     box_max: vec4<f32>,
-    // xyz world origin (centre of voxel 0, informative); w = lowest value (the texture stores
-    // (v - lo) / (hi - lo)).
+    // xyz world origin (centre of voxel 0, informative); w = lowest finite value (the
+    // visibility table's range).
     origin: vec4<f32>,
-    // xyz voxel spacing (informative); w = highest value.
+    // xyz voxel spacing (informative); w = highest finite value.
     spacing: vec4<f32>,
     // xyz voxel counts; w = largest gradient magnitude (normalises |g| to [0, 1]).
     dims: vec4<f32>,
@@ -38,7 +38,7 @@ struct Ray {
     style: vec4<f32>,
     // xyz world eye position (perspective cameras).
     eye: vec4<f32>,
-    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its value range
+    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its texel range
     // (the texture is normalised like the volume's); w = width of the label → row table.
     labels: vec4<f32>,
     // x = 1 to skip empty bricks (DVR); y = voxels per brick side; z = visibility bins.
@@ -47,6 +47,10 @@ struct Ray {
     to_voxel: mat4x4<f32>,
     // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
     grad_to_world: mat4x4<f32>,
+    // x, y: data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format
+    // follows the voxel type, see hatchery_nodes::volume_texture); z = 1 to interpolate in the
+    // shader (8-bit textures on CPU adapters, whose filtering rounds results to 8 bits).
+    texel: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> ray: Ray;
@@ -82,14 +86,42 @@ struct FragmentOut {
 // NO_DATA_TEXEL = -1000 there; NaN is not used because shader compilers may assume no NaN).
 const NO_DATA: f32 = -1.0e30;
 
+// Trilinear interpolation of the texels around q done here in f32 (what the sampler does, at
+// full precision).
+fn texel_trilinear(q: vec3<f32>) -> f32 {
+    let top = ray.dims.xyz - 1.0;
+    let p = clamp(q, vec3<f32>(0.0), top);
+    let base = min(floor(p), max(top - 1.0, vec3<f32>(0.0)));
+    let f = p - base;
+    let b = vec3<i32>(base);
+    let c000 = textureLoad(volume, b, 0).r;
+    let c100 = textureLoad(volume, b + vec3<i32>(1, 0, 0), 0).r;
+    let c010 = textureLoad(volume, b + vec3<i32>(0, 1, 0), 0).r;
+    let c110 = textureLoad(volume, b + vec3<i32>(1, 1, 0), 0).r;
+    let c001 = textureLoad(volume, b + vec3<i32>(0, 0, 1), 0).r;
+    let c101 = textureLoad(volume, b + vec3<i32>(1, 0, 1), 0).r;
+    let c011 = textureLoad(volume, b + vec3<i32>(0, 1, 1), 0).r;
+    let c111 = textureLoad(volume, b + vec3<i32>(1, 1, 1), 0).r;
+    let x00 = mix(c000, c100, f.x);
+    let x10 = mix(c010, c110, f.x);
+    let x01 = mix(c001, c101, f.x);
+    let x11 = mix(c011, c111, f.x);
+    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+}
+
 // Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
 fn value_at(q: vec3<f32>) -> f32 {
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
-    let normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+    var normalised = 0.0;
+    if ray.texel.z > 0.5 {
+        normalised = texel_trilinear(q);
+    } else {
+        let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+        normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+    }
     if normalised < -0.5 {
         return NO_DATA;
     }
-    return ray.origin.w + normalised * (ray.spacing.w - ray.origin.w);
+    return ray.texel.x + normalised * (ray.texel.y - ray.texel.x);
 }
 
 // Whether a value from value_at is "no data" (transparent).
