@@ -48,8 +48,7 @@ struct Ray {
     // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
     grad_to_world: mat4x4<f32>,
     // x, y: data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format
-    // follows the voxel type, see hatchery_nodes::volume_texture); z = 1 to interpolate in the
-    // shader (8-bit textures on CPU adapters, whose filtering rounds results to 8 bits).
+    // follows the voxel type, see hatchery_nodes::volume_texture).
     texel: vec4<f32>,
 };
 
@@ -86,38 +85,10 @@ struct FragmentOut {
 // NO_DATA_TEXEL = -1000 there; NaN is not used because shader compilers may assume no NaN).
 const NO_DATA: f32 = -1.0e30;
 
-// Trilinear interpolation of the texels around q done here in f32 (what the sampler does, at
-// full precision).
-fn texel_trilinear(q: vec3<f32>) -> f32 {
-    let top = ray.dims.xyz - 1.0;
-    let p = clamp(q, vec3<f32>(0.0), top);
-    let base = min(floor(p), max(top - 1.0, vec3<f32>(0.0)));
-    let f = p - base;
-    let b = vec3<i32>(base);
-    let c000 = textureLoad(volume, b, 0).r;
-    let c100 = textureLoad(volume, b + vec3<i32>(1, 0, 0), 0).r;
-    let c010 = textureLoad(volume, b + vec3<i32>(0, 1, 0), 0).r;
-    let c110 = textureLoad(volume, b + vec3<i32>(1, 1, 0), 0).r;
-    let c001 = textureLoad(volume, b + vec3<i32>(0, 0, 1), 0).r;
-    let c101 = textureLoad(volume, b + vec3<i32>(1, 0, 1), 0).r;
-    let c011 = textureLoad(volume, b + vec3<i32>(0, 1, 1), 0).r;
-    let c111 = textureLoad(volume, b + vec3<i32>(1, 1, 1), 0).r;
-    let x00 = mix(c000, c100, f.x);
-    let x10 = mix(c010, c110, f.x);
-    let x01 = mix(c001, c101, f.x);
-    let x11 = mix(c011, c111, f.x);
-    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
-}
-
 // Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
 fn value_at(q: vec3<f32>) -> f32 {
-    var normalised = 0.0;
-    if ray.texel.z > 0.5 {
-        normalised = texel_trilinear(q);
-    } else {
-        let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
-        normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
-    }
+    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+    let normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
     if normalised < -0.5 {
         return NO_DATA;
     }

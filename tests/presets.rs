@@ -77,8 +77,14 @@ fn shared_data_presets_render_as_before_the_world_space_change() {
     assert!(names.len() >= 10, "the reference renders are missing");
     let mut failures = Vec::new();
     for reference in names {
-        let name = reference.file_stem().unwrap().to_string_lossy().into_owned();
-        let graph = common::repo_root().join("graphs").join(format!("{name}.ron"));
+        let name = reference
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        let graph = common::repo_root()
+            .join("graphs")
+            .join(format!("{name}.ron"));
         let mut session = Session::open(&graph, 256, 192).unwrap();
         let saver = session
             .graph

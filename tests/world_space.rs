@@ -155,4 +155,3 @@ fn no_data_voxels_are_transparent_to_the_ray_caster() {
         }
     }
 }
-

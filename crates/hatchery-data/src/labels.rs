@@ -202,27 +202,27 @@ pub fn label_counts(volume: &VolumeData) -> BTreeMap<i64, u64> {
         // The usual case (8- or 16-bit labels): dense per-thread histograms.
         let bins = span as usize + 1;
         let counts = crate::with_voxels!(&volume.voxels, values => values
-            .par_chunks(CHUNK)
-            .fold(
-                || vec![0u64; bins],
-                |mut counts, chunk| {
-                    for &v in chunk {
-                        let v = v.to_f32();
-                        // No data counts as no label.
-                        if v.is_finite() {
-                            counts[(round_label(v) - lo) as usize] += 1;
-                        }
+        .par_chunks(CHUNK)
+        .fold(
+            || vec![0u64; bins],
+            |mut counts, chunk| {
+                for &v in chunk {
+                    let v = v.to_f32();
+                    // No data counts as no label.
+                    if v.is_finite() {
+                        counts[(round_label(v) - lo) as usize] += 1;
                     }
-                    counts
-                },
-            )
-            .reduce(
-                || vec![0u64; bins],
-                |mut a, b| {
-                    a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
-                    a
-                },
-            ));
+                }
+                counts
+            },
+        )
+        .reduce(
+            || vec![0u64; bins],
+            |mut a, b| {
+                a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+                a
+            },
+        ));
         counts
             .into_iter()
             .enumerate()
@@ -231,22 +231,22 @@ pub fn label_counts(volume: &VolumeData) -> BTreeMap<i64, u64> {
             .collect()
     } else {
         let counts = crate::with_voxels!(&volume.voxels, values => values
-            .par_chunks(CHUNK)
-            .fold(HashMap::new, |mut counts, chunk| {
-                for &v in chunk {
-                    let v = v.to_f32();
-                    if v.is_finite() {
-                        *counts.entry(round_label(v)).or_insert(0u64) += 1;
-                    }
+        .par_chunks(CHUNK)
+        .fold(HashMap::new, |mut counts, chunk| {
+            for &v in chunk {
+                let v = v.to_f32();
+                if v.is_finite() {
+                    *counts.entry(round_label(v)).or_insert(0u64) += 1;
                 }
-                counts
-            })
-            .reduce(HashMap::new, |mut a, b| {
-                for (k, n) in b {
-                    *a.entry(k).or_insert(0) += n;
-                }
-                a
-            }));
+            }
+            counts
+        })
+        .reduce(HashMap::new, |mut a, b| {
+            for (k, n) in b {
+                *a.entry(k).or_insert(0) += n;
+            }
+            a
+        }));
         counts.into_iter().collect()
     }
 }
@@ -431,7 +431,10 @@ mod tests {
             assert_eq!((m.dims, m.geometry), (v.dims, v.geometry));
         }
         let ball = label_mask(&v, &[1], 0.0).unwrap();
-        assert_eq!(ball.values_f32().iter().sum::<f32>() as u64, label_counts(&v)[&1]);
+        assert_eq!(
+            ball.values_f32().iter().sum::<f32>() as u64,
+            label_counts(&v)[&1]
+        );
         // Absent labels: all zero, not an error.
         let none = label_mask(&v, &[7, 9], 0.0).unwrap();
         assert_eq!(none.value_range, [0.0, 0.0]);

@@ -79,7 +79,11 @@ impl VolumeData {
         geometry.check()?;
         // In parallel: this runs over every voxel each time a volume is loaded or derived.
         let range = crate::with_voxels!(&voxels, v => finite_range(v));
-        let value_range = if range[0] <= range[1] { range } else { [0.0, 0.0] };
+        let value_range = if range[0] <= range[1] {
+            range
+        } else {
+            [0.0, 0.0]
+        };
         Ok(Self {
             dims,
             geometry,

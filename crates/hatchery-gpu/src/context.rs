@@ -343,7 +343,6 @@ impl GpuContext {
         Ok(texture)
     }
 
-
     /// A 2-D texture initialised with `data` (tightly packed rows), e.g. lookup tables.
     pub fn texture_2d_init(
         &self,

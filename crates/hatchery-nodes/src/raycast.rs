@@ -258,7 +258,6 @@ pub fn cast(
     let data = &volume.data;
     let volume_texture = volume.texture(gpu).map_err(err)?;
     let texel_range = volume_texture.texel_range;
-    let manual_filter = volume_texture.interpolate_in_shader;
     let volume_texture = &volume_texture.texture;
     let min_spacing = data.spacing().iter().copied().fold(f32::INFINITY, f32::min);
     // Rays march in voxel space (through the world → voxel transform, so rotated and mirrored
@@ -458,12 +457,7 @@ pub fn cast(
     let linear = data.geometry.to_world().as_mat4();
     let normal_matrix = glam::Mat4::from_mat3(glam::Mat3::from_mat4(linear).inverse().transpose());
     u.extend_from_slice(&normal_matrix.to_cols_array());
-    u.extend_from_slice(&[
-        texel_range[0],
-        texel_range[1],
-        bool_f(manual_filter),
-        0.0,
-    ]);
+    u.extend_from_slice(&[texel_range[0], texel_range[1], 0.0, 0.0]);
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::cast_slice(&u),

@@ -1,8 +1,8 @@
 //! The data flowing along edges: one variant per [`PortType`], cheap to clone (shared handles).
 
+use crate::volume_texture::VolumeTexture;
 use hatchery_data::{MeshData, VolumeData};
 use hatchery_gpu::{GpuContext, GpuError};
-use crate::volume_texture::VolumeTexture;
 use hatchery_graph::PortType;
 use std::sync::{Arc, OnceLock};
 

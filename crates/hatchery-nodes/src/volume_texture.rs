@@ -9,8 +9,12 @@
 //! | i16 | R16Unorm of `v + 32768` | `−32768 + 65535 n` (exact) |
 //! | f32 | R32Float (`FLOAT32_FILTERABLE`) of `(v − lo) / (hi − lo)` | `lo + (hi − lo) n` |
 //!
-//! On CPU adapters 8-bit textures are interpolated in the shader (see
-//! [`VolumeTexture::interpolate_in_shader`]). Fallbacks where the adapter lacks the feature: 16-bit integers and f32 become R16Float of
+//! On CPU adapters (llvmpipe/lavapipe) 8-bit volumes are uploaded as R16Unorm of `257 v`
+//! (`v + 128` for i8) instead: their sampler filters 8-bit textures in 8-bit arithmetic and rounds
+//! the result to 1/255 (measured: up to 0.05 colour error against the same data in a float
+//! texture), while interpolating in the shader instead made ray casting 3–5× slower there. This
+//! costs a second byte per voxel on CPU adapters only (`HATCHERY_LOW_MEMORY=1` declines it).
+//! Fallbacks where the adapter lacks the feature: 16-bit integers and f32 become R16Float of
 //! `(v − lo) / (hi − lo)` over the value range (11 significant bits: a relative precision of
 //! 2⁻¹¹ of the range). "No data" (non-finite f32) texels hold `NO_DATA_TEXEL` (−1000) in the
 //! normalised formats; shaders treat a sample below −0.5 as no data.
@@ -24,11 +28,6 @@ use wgpu::TextureFormat;
 pub struct VolumeTexture {
     pub texture: wgpu::Texture,
     pub texel_range: [f32; 2],
-    /// Interpolate in the shader rather than with the sampler: llvmpipe/lavapipe filter 8-bit
-    /// textures in 8-bit arithmetic and round the result to 1/255 (measured: up to 0.05 colour
-    /// error against the same data in a float texture), so 8-bit textures on CPU adapters are
-    /// read texel by texel and interpolated in f32.
-    pub interpolate_in_shader: bool,
 }
 
 /// Uploads `data` in the format of the table above.
@@ -60,11 +59,28 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
         }
     }
     let half = |v: f32| half::f16::from_f32(v).to_le_bytes();
+    // HATCHERY_LOW_MEMORY=1 keeps 8-bit textures at 8 bits on CPU adapters too (half the
+    // texture memory, filtered values rounded to 1/255 by llvmpipe).
+    let low_memory = std::env::var("HATCHERY_LOW_MEMORY").is_ok_and(|v| v == "1");
+    let widen_8bit = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu && norm16 && !low_memory;
     let (format, range, texture) = match &data.voxels {
+        Voxels::U8(v) if widen_8bit => {
+            let fill = slabs(v, slice, |x: u8| (x as u16 * 257).to_le_bytes());
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            ("R16Unorm (8-bit widened)", [0.0, 255.0], t)
+        }
+        Voxels::I8(v) if widen_8bit => {
+            let fill = slabs(v, slice, |x: i8| {
+                ((x as i16 + 128) as u16 * 257).to_le_bytes()
+            });
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            ("R16Unorm (8-bit widened, +128)", [-128.0, 127.0], t)
+        }
         Voxels::U8(v) => {
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R8Unorm, |z0, z1, out| {
-                out.extend_from_slice(&v[z0 as usize * slice..z1 as usize * slice]);
-            })?;
+            let t =
+                gpu.volume_texture_by_slabs(label, dims, TextureFormat::R8Unorm, |z0, z1, out| {
+                    out.extend_from_slice(&v[z0 as usize * slice..z1 as usize * slice]);
+                })?;
             ("R8Unorm", [0.0, 255.0], t)
         }
         Voxels::I8(v) => {
@@ -109,12 +125,9 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
     } else {
         [lo, lo + 1.0]
     };
-    let cpu_adapter = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu;
-    let interpolate_in_shader = cpu_adapter && format.starts_with("R8");
-    tracing::debug!(label, format, ?dims, interpolate_in_shader, "volume texture");
+    tracing::debug!(label, format, ?dims, "volume texture");
     Ok(VolumeTexture {
         texture,
         texel_range,
-        interpolate_in_shader,
     })
 }
