@@ -65,6 +65,8 @@ pub struct EditorApp {
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
     pub frame_all: bool,
+    /// Frame once more when every node has been drawn (their sizes are known then).
+    frame_all_again: bool,
     /// The canvas's graph → screen transform of the last frame.
     pub canvas_transform: egui::emath::TSTransform,
     /// An action that would discard unsaved changes, waiting for the user's answer.
@@ -80,6 +82,11 @@ pub struct Refusal {
     pub at: Pos2,
     pub until: f64,
 }
+
+/// Node titles are drawn at egui's body size (13 points at zoom 1).
+const TITLE_FONT_PX: f32 = 13.0;
+/// The smallest title height *Frame all* zooms out to.
+pub const LEGIBLE_TITLE_PX: f32 = 11.0;
 
 /// How long a refusal tooltip stays up, seconds.
 const REFUSAL_SECONDS: f64 = 4.0;
@@ -134,6 +141,7 @@ impl EditorApp {
             pending: None,
             quitting: false,
             frame_all: true,
+            frame_all_again: false,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
         }
     }
@@ -216,6 +224,14 @@ impl EditorApp {
     /// The snarl node showing graph node `id`, if any.
     pub fn snarl_node(&self, id: &str) -> Option<NodeId> {
         self.snarl_ids.get(id).copied()
+    }
+
+    /// Lays the graph out in columns by rank, with the drawn node sizes (one undo step), and
+    /// frames it.
+    pub fn arrange(&mut self) {
+        let positions = crate::arrange::layered_layout(self.state.doc(), &self.selecting.sizes());
+        self.state.move_nodes(&positions);
+        self.frame_all = true;
     }
 
     /// Where node `id` was drawn last frame (screen points), if it was.
@@ -448,6 +464,14 @@ impl EditorApp {
                     self.frame_all = true;
                     ui.close();
                 }
+                if ui
+                    .button("Arrange")
+                    .on_hover_text("lay the graph out in columns by topological rank")
+                    .clicked()
+                {
+                    self.arrange();
+                    ui.close();
+                }
             });
             ui.menu_button("Legend", |ui| {
                 for ty in PortType::ALL {
@@ -483,6 +507,14 @@ impl EditorApp {
         let failed = self.preview.failed_node.clone();
         let frame_into =
             std::mem::take(&mut self.frame_all).then(|| ui.available_rect_before_wrap());
+        // Node sizes as drawn last frame, for framing (before this frame's are recorded).
+        let node_sizes = self.selecting.sizes();
+        if frame_into.is_some() && node_sizes.len() < self.snarl_ids.len() {
+            // Not all nodes drawn yet (the first frame): frame again once they are.
+            self.frame_all_again = true;
+        } else if frame_into.is_none() && std::mem::take(&mut self.frame_all_again) {
+            self.frame_all = true;
+        }
         let mut thumbnails: BTreeMap<Port, Result<(egui::TextureId, egui::Vec2), String>> = self
             .preview
             .thumbnails
@@ -495,6 +527,7 @@ impl EditorApp {
         self.selecting.begin_frame();
         let mut viewer = Viewer {
             frame_into,
+            node_sizes,
             transform: self.canvas_transform,
             selecting: &mut self.selecting,
             state: &mut self.state,
@@ -1100,6 +1133,8 @@ fn param_widget(ui: &mut Ui, spec: &ParamSpec, current: &ParamValue) -> Option<P
 struct Viewer<'a> {
     /// "Frame all" requested: the canvas rectangle (screen space) to fit the nodes into.
     frame_into: Option<egui::Rect>,
+    /// Node sizes as drawn last frame (graph units).
+    node_sizes: BTreeMap<String, [f32; 2]>,
     transform: egui::emath::TSTransform,
     /// Where nodes are drawn (for selection by the mouse).
     selecting: &'a mut CanvasSelection,
@@ -1475,21 +1510,33 @@ impl SnarlViewer<String> for Viewer<'_> {
         let Some(rect) = self.frame_into.take() else {
             return;
         };
-        // Node positions are top-left corners; assume a typical node size for the far side.
+        // Node positions are top-left corners; sizes as drawn (or typical, before drawing).
         let mut bounds = egui::Rect::NOTHING;
-        for (p, _) in snarl.nodes_pos() {
-            bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(220.0, 120.0)));
+        for (p, id) in snarl.nodes_pos() {
+            let [w, h] = self
+                .node_sizes
+                .get(id)
+                .copied()
+                .unwrap_or(crate::arrange::DEFAULT_SIZE);
+            bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(w, h)));
         }
         if !bounds.is_positive() {
             return;
         }
-        let bounds = bounds.expand(40.0);
-        let scaling = (rect.width() / bounds.width())
-            .min(rect.height() / bounds.height())
-            .clamp(0.2, 1.0);
+        let bounds = bounds.expand(30.0);
+        let fit = (rect.width() / bounds.width()).min(rect.height() / bounds.height());
+        // Never so small that titles fall below LEGIBLE_TITLE_PX: scroll instead.
+        let legible = LEGIBLE_TITLE_PX / TITLE_FONT_PX;
+        let scaling = fit.clamp(legible, 1.0);
+        let translation = if scaling <= fit {
+            rect.center().to_vec2() - bounds.center().to_vec2() * scaling
+        } else {
+            // Too big to fit legibly: show its top-left part (where the sources are).
+            rect.min.to_vec2() - bounds.min.to_vec2() * scaling
+        };
         *to_global = egui::emath::TSTransform {
             scaling,
-            translation: rect.center().to_vec2() - bounds.center().to_vec2() * scaling,
+            translation,
         };
         self.transform = *to_global;
     }

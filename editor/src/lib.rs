@@ -8,6 +8,7 @@
 //!   so the UI never waits for a frame.
 
 pub mod app;
+pub mod arrange;
 pub mod curve_editor;
 pub mod files;
 pub mod layout_dump;
