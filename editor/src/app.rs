@@ -52,6 +52,8 @@ pub struct EditorApp {
     synced_revision: Option<u64>,
     /// Selection by the mouse (see [`crate::selection`]).
     selecting: CanvasSelection,
+    /// *File → Export image…*.
+    pub export: crate::export_dialog::ExportDialog,
     /// Screen positions for scripted checks (off unless asked for).
     layout: crate::layout_dump::LayoutDump,
     search: String,
@@ -131,6 +133,7 @@ impl EditorApp {
             synced_revision: None,
             selecting: CanvasSelection::default(),
             layout: crate::layout_dump::LayoutDump::from_env(),
+            export: Default::default(),
             search: String::new(),
             clipboard: String::new(),
             refusal: None,
@@ -312,6 +315,16 @@ impl EditorApp {
             self.picked(purpose, &path);
         }
         self.confirm_discard(ui);
+        if self.export.show(ui.ctx(), self.state.doc()) {
+            let graph = self.state.validate();
+            let base = self.state.base_dir();
+            self.export.start(graph, base.as_deref());
+        }
+        match self.export.poll() {
+            Some(Ok(path)) => self.state.status = format!("exported {}", path.display()),
+            Some(Err(e)) => self.state.status = format!("export failed: {e}"),
+            None => {}
+        }
         if self.layout.enabled() {
             for id in self.snarl_ids.keys() {
                 if let Some(r) = self.node_screen_rect(id) {
@@ -393,6 +406,18 @@ impl EditorApp {
                         .or_else(|| Some(self.presets_dir.clone()));
                     self.picker
                         .open(Purpose::OpenGraph, Some(FileKind::Graph), folder);
+                    ui.close();
+                }
+                if ui.button("Export image…").clicked() {
+                    self.export.open = true;
+                    if self.export.port.is_none() {
+                        self.export.port = self.preview.chosen.clone().or_else(|| {
+                            let doc = self.state.doc();
+                            let saver = doc.nodes.iter().find(|n| n.kind == "SaveImage")?;
+                            let edge = doc.edges.iter().find(|e| e.to.0 == saver.id)?;
+                            Some(edge.from.clone())
+                        });
+                    }
                     ui.close();
                 }
                 if ui.button("Save as…").clicked() {

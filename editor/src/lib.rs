@@ -10,6 +10,7 @@
 pub mod app;
 pub mod arrange;
 pub mod curve_editor;
+pub mod export_dialog;
 pub mod files;
 pub mod layout_dump;
 pub mod preview;

@@ -10,6 +10,7 @@ use hatchery_editor::{EditorApp, EditorState};
 use hatchery_graph::{EditorPos, GraphDocument, ParamValue, SchemaLookup};
 use std::path::{Path, PathBuf};
 
+mod export;
 mod layout;
 mod selection;
 use selection::select_by_click;
