@@ -54,6 +54,10 @@ pub struct EditorApp {
     selecting: CanvasSelection,
     /// *File → Export image…*.
     pub export: crate::export_dialog::ExportDialog,
+    /// Where the picture is shown and its own zoom/pan.
+    pub picture: crate::picture::PictureView,
+    /// The canvas's screen rectangle last frame.
+    pub canvas_rect: egui::Rect,
     /// Screen positions for scripted checks (off unless asked for).
     layout: crate::layout_dump::LayoutDump,
     search: String,
@@ -134,6 +138,8 @@ impl EditorApp {
             selecting: CanvasSelection::default(),
             layout: crate::layout_dump::LayoutDump::from_env(),
             export: Default::default(),
+            picture: Default::default(),
+            canvas_rect: egui::Rect::NOTHING,
             search: String::new(),
             clipboard: String::new(),
             refusal: None,
@@ -298,18 +304,30 @@ impl EditorApp {
         if self.synced_revision != Some(self.state.revision()) {
             self.rebuild_snarl();
         }
-        egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
-        egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
-        egui::Panel::right("inspector")
-            .default_size(320.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    self.inspector(ui);
-                    ui.separator();
-                    self.viewport(ui);
+        use crate::picture::Placement;
+        let placement = self.picture.placement;
+        if placement == Placement::FullWindow {
+            egui::CentralPanel::default().show(ui, |ui| self.viewport(ui));
+        } else {
+            egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
+            egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
+            egui::Panel::right("inspector")
+                .default_size(320.0)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector(ui));
                 });
-            });
-        egui::CentralPanel::default().show(ui, |ui| self.canvas(ui));
+            if placement == Placement::Maximised {
+                egui::CentralPanel::default().show(ui, |ui| self.viewport(ui));
+            } else {
+                // The picture beside the canvas, in a panel the user can widen.
+                let wide = (ui.max_rect().width() * 0.4).max(240.0);
+                egui::Panel::right("viewport")
+                    .resizable(true)
+                    .default_size(wide)
+                    .show(ui, |ui| self.viewport(ui));
+                egui::CentralPanel::default().show(ui, |ui| self.canvas(ui));
+            }
+        }
         self.dropped_files(ui);
         if let Some((purpose, path)) = self.picker.update(ui.ctx()) {
             self.picked(purpose, &path);
@@ -381,10 +399,23 @@ impl EditorApp {
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F)) {
             self.frame_all = true;
         }
+        // F11: the picture fills the window (again: back); Esc leaves that too.
+        use crate::picture::Placement;
+        if ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F11)) {
+            self.picture.placement = if self.picture.placement == Placement::FullWindow {
+                Placement::Beside
+            } else {
+                Placement::FullWindow
+            };
+        }
         // Esc clears the selection unless a popup, menu or text field takes it.
         let popup = egui::Popup::is_any_open(ui.ctx());
         if !typing && !popup && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Escape)) {
-            self.state.clear_selection();
+            if self.picture.placement == Placement::FullWindow {
+                self.picture.placement = Placement::Beside;
+            } else {
+                self.state.clear_selection();
+            }
         }
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Delete)) {
             let ids: Vec<String> = self.state.selection.iter().cloned().collect();
@@ -573,6 +604,7 @@ impl EditorApp {
         let modifiers = ui.input(|i| i.modifiers);
         ui.ctx().input_mut(|i| i.modifiers = Modifiers::NONE);
         let canvas_rect = ui.available_rect_before_wrap();
+        self.canvas_rect = canvas_rect;
         widget.show(&mut self.snarl, &mut viewer, ui);
         ui.ctx().input_mut(|i| i.modifiers = modifiers);
         self.canvas_transform = viewer.transform;
@@ -993,12 +1025,49 @@ impl EditorApp {
     }
 
     fn viewport(&mut self, ui: &mut Ui) {
-        ui.heading("Viewport");
+        use crate::picture::Placement;
         let target = self.preview.target(self.state.doc());
+        ui.horizontal(|ui| {
+            ui.heading("Viewport");
+            let placement = &mut self.picture.placement;
+            let maximised = *placement == Placement::Maximised;
+            if ui
+                .selectable_label(maximised, "⛶ Maximise")
+                .on_hover_text("the picture instead of the canvas")
+                .clicked()
+            {
+                *placement = if maximised {
+                    Placement::Beside
+                } else {
+                    Placement::Maximised
+                };
+            }
+            if ui
+                .selectable_label(*placement == Placement::FullWindow, "Full window (F11)")
+                .on_hover_text("the picture fills the window; Esc or F11 leaves")
+                .clicked()
+            {
+                *placement = if *placement == Placement::FullWindow {
+                    Placement::Beside
+                } else {
+                    Placement::FullWindow
+                };
+            }
+            if self.picture.is_zoomed() {
+                ui.label(format!("picture {:.1}×", self.picture.zoom));
+                if ui.button("Fit").clicked() {
+                    self.picture.fit();
+                }
+            }
+        });
         ui.label(match &target {
             Some((n, p)) => format!("showing {n}.{p}"),
             None => "nothing to show".into(),
-        });
+        })
+        .on_hover_text(
+            "drag: orbit the camera; right/middle/Shift-drag: pan it; wheel: its distance. \
+             Alt+wheel / Alt+drag: zoom / move the picture itself (the camera stays)",
+        );
         if self.preview.chosen.is_some() && ui.button("Show the SaveImage input").clicked() {
             self.preview.chosen = None;
         }
@@ -1015,8 +1084,8 @@ impl EditorApp {
                     ));
             }
         });
-        let width = ui.available_width().max(64.0);
-        let size = egui::vec2(width, width * 0.75);
+        // The picture fills the space left (its size follows the panel).
+        let size = ui.available_size().max(egui::vec2(64.0, 48.0));
         if self.preview_enabled {
             let ppp = ui.ctx().pixels_per_point();
             let (w, h) = ((size.x * ppp) as u32, (size.y * ppp) as u32);
@@ -1027,11 +1096,32 @@ impl EditorApp {
         }
         let sense = egui::Sense::drag();
         let response = match &self.preview.viewport {
-            Some(shown) => ui.add(egui::Image::new((shown.id(), size)).sense(sense)),
+            Some(shown) => {
+                let mut image = egui::Image::new((shown.id(), size)).uv(self.picture.uv_rect());
+                if self.picture.is_zoomed() {
+                    // Pixels as squares when inspecting hatching up close.
+                    image = image.texture_options(egui::TextureOptions::NEAREST);
+                }
+                ui.add(image.sense(sense))
+            }
             None => ui.allocate_response(size, sense),
         };
         self.viewport_rect = response.rect;
-        self.orbit_camera(ui, &response);
+        // Alt: the picture's own zoom and pan; otherwise the camera.
+        if ui.input(|i| i.modifiers.alt) {
+            if response.dragged() {
+                self.picture.pan(response.drag_delta(), response.rect);
+            }
+            if let Some(at) = response.hover_pos() {
+                let scroll = ui.input(|i| i.smooth_scroll_delta.y + i.smooth_scroll_delta.x);
+                if scroll != 0.0 {
+                    self.picture
+                        .zoom_at((scroll * 0.004).exp(), at, response.rect);
+                }
+            }
+        } else {
+            self.orbit_camera(ui, &response);
+        }
     }
 }
 

@@ -13,6 +13,7 @@ pub mod curve_editor;
 pub mod export_dialog;
 pub mod files;
 pub mod layout_dump;
+pub mod picture;
 pub mod preview;
 pub mod render_worker;
 pub mod selection;

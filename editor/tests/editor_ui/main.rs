@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod export;
 mod layout;
+mod picture;
 mod selection;
 use selection::select_by_click;
 
@@ -49,9 +50,11 @@ fn wait_for_render(h: &mut Harness<EditorApp>) {
     h.step();
 }
 
+/// A window wide enough that the canvas beside the picture panel shows a preset's nodes at a
+/// legible zoom.
 fn harness(app: EditorApp) -> Harness<'static, EditorApp> {
     Harness::builder()
-        .with_size([1280.0, 800.0])
+        .with_size([2200.0, 1000.0])
         .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app)
 }
 
@@ -846,8 +849,9 @@ fn the_viewport_renders_off_the_ui_thread_and_output_pins_show_thumbnails_and_ti
         .get(&port)
         .expect("a thumbnail")
         .size();
+    // Within the 160×120 bound, touching it on one side.
     assert!(
-        thumb[0] <= 160 && thumb[1] <= 120 && thumb[0] >= 150,
+        thumb[0] <= 160 && thumb[1] <= 120 && (thumb[0] >= 150 || thumb[1] >= 112),
         "{thumb:?}"
     );
     let aspect = |s: [u32; 2]| s[0] as f64 / s[1] as f64;
@@ -1328,10 +1332,9 @@ fn the_style_transfer_function_editor_moves_points_and_picks_their_styles() {
         (after[2].opacity - (before[2].opacity - 0.1)).abs() < 0.01,
         "{after:?}"
     );
-    assert_eq!(
-        (after[2].value, after[2].style),
-        (before[2].value, before[2].style)
-    );
+    // A vertical drag keeps the value (up to float rounding of the screen mapping).
+    assert!((after[2].value - before[2].value).abs() < 1e-3, "{after:?}");
+    assert_eq!(after[2].style, before[2].style);
     // The picked point's style is chosen by name from the connected StyleSet.
     // (The combo box shows "1: toon3"; it is the only one in this inspector.)
     h.get_by_role(Role::ComboBox).click();
