@@ -286,20 +286,18 @@ fn read_data(path: &Path, layout: &Layout) -> Result<Vec<u8>, DataError> {
     };
     let io = |e| DataError::io(data_path, e);
     let mut file = File::open(data_path).map_err(io)?;
+    let len = file.metadata().map_err(io)?.len();
     let start = match layout.offset {
         Some(offset) => offset,
-        None => {
-            let len = file.metadata().map_err(io)?.len();
-            len.checked_sub(layout.byte_count as u64).ok_or_else(|| {
-                DataError::format(
-                    data_path,
-                    format!(
-                        "truncated data: {what} is shorter than {} bytes",
-                        layout.byte_count
-                    ),
-                )
-            })?
-        }
+        None => len.checked_sub(layout.byte_count as u64).ok_or_else(|| {
+            DataError::format(
+                data_path,
+                format!(
+                    "truncated data: {what} is shorter than {} bytes",
+                    layout.byte_count
+                ),
+            )
+        })?,
     };
     file.seek(SeekFrom::Start(start)).map_err(io)?;
     let mut source: Box<dyn Read> = if layout.compressed {
@@ -307,7 +305,8 @@ fn read_data(path: &Path, layout: &Layout) -> Result<Vec<u8>, DataError> {
     } else {
         Box::new(file)
     };
-    raw_voxels::read_bytes(data_path, &mut source, layout.byte_count, what)
+    let available = raw_voxels::decoded_bound(len.saturating_sub(start), layout.compressed);
+    raw_voxels::read_bytes(data_path, &mut source, layout.byte_count, what, available)
 }
 
 /// A `True`/`False` field (MetaIO writes these; `1`/`0` are accepted too).

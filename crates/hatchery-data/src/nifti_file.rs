@@ -7,6 +7,7 @@ use std::path::Path;
 use nifti::{InMemNiftiVolume, IntoNdArray, NiftiError, NiftiHeader, NiftiType};
 
 use crate::geometry::Geometry;
+use crate::raw_voxels;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
@@ -30,6 +31,7 @@ const HEADER_SIZE: u64 = 348;
 /// * Non-finite voxel values (NaN is common in float maps) are kept: they mean "no data".
 pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
     let mut buffered = BufReader::new(file);
     let head = buffered.fill_buf().map_err(|e| DataError::io(path, e))?;
     let gzip = head.starts_with(&[0x1f, 0x8b]);
@@ -58,11 +60,19 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     }
 
     let byte_count = layout.voxels as usize * layout.datatype.size_of();
+    // Reserve no more than the file can hold (a gzip stream at deflate's best ratio): a header
+    // may promise gigabytes that are not there.
+    let available = if gzip {
+        raw_voxels::decoded_bound(file_len, true)
+    } else {
+        file_len.saturating_sub(layout.data_offset)
+    };
+    let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
     let mut raw = Vec::new();
-    raw.try_reserve_exact(byte_count).map_err(|_| {
+    raw.try_reserve_exact(room).map_err(|_| {
         DataError::format(
             path,
-            format!("cannot allocate {byte_count} bytes for the voxel data"),
+            format!("cannot allocate {room} bytes for the voxel data"),
         )
     })?;
     (&mut source)

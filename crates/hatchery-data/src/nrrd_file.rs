@@ -435,8 +435,8 @@ fn read_source(
         "the data file"
     };
     let mut file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
     if layout.byte_skip.is_none() {
-        let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
         let start = file_len
             .checked_sub(len as u64)
             .filter(|&s| s >= source.offset);
@@ -448,8 +448,13 @@ fn read_source(
         })?;
         file.seek(SeekFrom::Start(start))
             .map_err(|e| DataError::io(path, e))?;
-        return raw_voxels::read_bytes(path, &mut file, len, what);
+        return raw_voxels::read_bytes(path, &mut file, len, what, len as u64);
     }
+    // What the file can hold after the offset (line and byte skips only take from it).
+    let available = raw_voxels::decoded_bound(
+        file_len.saturating_sub(source.offset),
+        layout.encoding == Encoding::Gzip,
+    );
     file.seek(SeekFrom::Start(source.offset))
         .map_err(|e| DataError::io(path, e))?;
     let mut reader = BufReader::new(file);
@@ -469,7 +474,7 @@ fn read_source(
             .map_err(|e| DataError::io(path, e))?;
         return Ok(text);
     }
-    raw_voxels::read_bytes(path, &mut data, len, what)
+    raw_voxels::read_bytes(path, &mut data, len, what, available)
 }
 
 fn parse<T: std::str::FromStr>(path: &Path, field: &str, value: &str) -> Result<T, DataError> {

@@ -104,10 +104,13 @@ pub(crate) fn parse_ascii(
     element: Element,
     count: usize,
 ) -> Result<Vec<u8>, DataError> {
+    // Each value takes a character and a separator, so a short text cannot fill a huge count:
+    // reserve no more than the text can hold (a header may promise anything).
+    let room = count.min(text.len() / 2 + 1) * element.size();
     let mut bytes = Vec::new();
     bytes
-        .try_reserve_exact(count * element.size())
-        .map_err(|_| cannot_allocate(path, count * element.size()))?;
+        .try_reserve_exact(room)
+        .map_err(|_| cannot_allocate(path, room))?;
     let mut found = 0;
     // Some writers separate values with commas as well as whitespace.
     let tokens = text
@@ -148,17 +151,36 @@ pub(crate) fn parse_ascii(
     Ok(bytes)
 }
 
+/// A deflate stream (zlib or gzip data) decodes to at most 1032 times its length (the
+/// format's best case: 258-byte matches coded in about two bits each; see zlib's technical
+/// details, "Maximum compression factor").
+pub(crate) const MAX_DEFLATE_RATIO: u64 = 1032;
+
+/// The most bytes `n` bytes of a file can decode to: `n` for raw data, `n` times
+/// [`MAX_DEFLATE_RATIO`] for deflate data.
+pub(crate) fn decoded_bound(n: u64, deflate: bool) -> u64 {
+    if deflate {
+        n.saturating_mul(MAX_DEFLATE_RATIO)
+    } else {
+        n
+    }
+}
+
 /// Reads exactly `len` bytes, or says how many there were (`what` names the data source).
+/// `available` bounds what `source` can yield (see [`decoded_bound`]): no more than that is
+/// allocated up front, so a header promising more data than the file holds costs nothing.
 pub(crate) fn read_bytes(
     path: &Path,
     source: &mut dyn Read,
     len: usize,
     what: &str,
+    available: u64,
 ) -> Result<Vec<u8>, DataError> {
+    let room = usize::try_from(available).map_or(len, |a| a.min(len));
     let mut bytes = Vec::new();
     bytes
-        .try_reserve_exact(len)
-        .map_err(|_| cannot_allocate(path, len))?;
+        .try_reserve_exact(room)
+        .map_err(|_| cannot_allocate(path, room))?;
     source
         .take(len as u64)
         .read_to_end(&mut bytes)

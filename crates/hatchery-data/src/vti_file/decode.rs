@@ -122,6 +122,23 @@ fn read_compressed(
             .ok_or("compressed blocks are larger than the rest of the file")?;
         offsets.push(end);
     }
+    // Each block must be able to hold its share: refuse a header promising more than its
+    // compressed blocks can decode to, before allocating for it.
+    let ratio = max_ratio(compressor);
+    for (i, range) in offsets.windows(2).enumerate() {
+        let size = if i + 1 == blocks as usize {
+            byte_count as u64 - (blocks - 1) * block_size
+        } else {
+            block_size
+        };
+        let stored = (range[1] - range[0]) as u64;
+        if size > stored.saturating_mul(ratio) {
+            return Err(format!(
+                "compressed block {i} has {stored} bytes, too few to hold the {size} bytes the \
+                 header says it decompresses to"
+            ));
+        }
+    }
     let compressed = source.take(*offsets.last().unwrap_or(&0))?;
 
     let mut out = Vec::new();
@@ -159,6 +176,19 @@ fn decompress_block(compressor: &Compressor, block: &[u8], out: &mut [u8]) -> Re
             Err(e) => Err(format!("lz4: {e}")),
         },
         Compressor::None | Compressor::Unknown(_) => Err("not compressed".into()),
+    }
+}
+
+/// The most bytes one compressed byte of a block can decode to. zlib (deflate): 1032, the
+/// format's best case. LZ4 blocks: 255, a match length grows by at most 255 per byte. LZMA (one
+/// .xz stream per block): LZMA2 codes at most 2 MiB per chunk and a chunk takes at least six
+/// bytes (control, sizes and data); real streams stay far below this loose bound.
+fn max_ratio(compressor: &Compressor) -> u64 {
+    match compressor {
+        Compressor::Zlib => 1032,
+        Compressor::Lz4 => 255,
+        Compressor::Lzma => (2 << 20) / 6,
+        Compressor::None | Compressor::Unknown(_) => 1,
     }
 }
 
@@ -292,10 +322,13 @@ fn parse_tokens<T>(
     count: usize,
     mut parse: impl FnMut(&str) -> Result<T, String>,
 ) -> Result<Vec<T>, String> {
+    // Each value takes a character and a separator: reserve no more than the text can hold,
+    // whatever count the extent promises.
+    let room = count.min(text.len() / 2 + 1);
     let mut values = Vec::new();
     values
-        .try_reserve_exact(count)
-        .map_err(|_| format!("cannot allocate {count} values"))?;
+        .try_reserve_exact(room)
+        .map_err(|_| format!("cannot allocate {room} values"))?;
     for token in text.split_ascii_whitespace() {
         if values.len() == count {
             return Err(format!("has more than the {count} values the extent needs"));
@@ -379,9 +412,11 @@ impl<'a> Base64<'a> {
     }
 
     fn take(&mut self, n: usize) -> Result<Vec<u8>, String> {
+        // No more than the rest of the text can hold: a header may promise anything.
+        let room = n.min((self.text.len() - self.pos) / 4 * 3 + 3);
         let mut out = Vec::new();
-        out.try_reserve_exact(n)
-            .map_err(|_| format!("cannot allocate {n} bytes"))?;
+        out.try_reserve_exact(room)
+            .map_err(|_| format!("cannot allocate {room} bytes"))?;
         while out.len() < n {
             let Some(&c) = self.text.get(self.pos) else {
                 return Err(format!(

@@ -26,6 +26,12 @@ use crate::{DataError, VolumeData};
 use decode::{Loss, read_array};
 use markup::{ArrayInfo, DataSet, Markup, Piece, parse_markup};
 
+/// The grid the pieces span may be this many times the voxels they hold (pieces missing from a
+/// tiling leave NaN gaps) ...
+const MAX_SPARSITY: u64 = 16;
+/// ... or this many voxels larger, whatever the factor (small grids cost little).
+const SPARSE_VOXELS: u64 = 1 << 24;
+
 /// Loads one data array of a VTK XML ImageData file as a volume, as VTK's
 /// `vtkXMLImageDataReader` reads it.
 ///
@@ -50,7 +56,8 @@ use markup::{ArrayInfo, DataSet, Markup, Piece, parse_markup};
 ///   uncompressed or compressed by `vtkZLibDataCompressor`, `vtkLZ4DataCompressor` or
 ///   `vtkLZMADataCompressor`, with UInt32 or UInt64 headers, either byte order.
 /// * Pieces: the volume covers the bounding box of the pieces' extents, each piece's values in
-///   their place; voxels no piece covers are NaN (noted in `placement`).
+///   their place; voxels no piece covers are NaN (noted in `placement`). A grid more than 16
+///   times (and 2^24 voxels) larger than the voxels its pieces hold is refused.
 pub fn load_vti(path: &Path, array: Option<&str>) -> Result<VolumeData, DataError> {
     let bytes = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
     let file = parse_markup(path, &bytes)?;
@@ -118,6 +125,22 @@ pub fn load_vti(path: &Path, array: Option<&str>) -> Result<VolumeData, DataErro
             voxels: voxel_count,
             limit: MAX_VOXELS,
         });
+    }
+    // Voxels no piece covers become NaN, memory the file does not pay for: a few small pieces
+    // far apart would span a huge grid of nothing. Allow the gaps of a tiling with pieces
+    // missing, not more.
+    let held = pieces
+        .iter()
+        .map(|(_, p)| extent_dims(&data_extent(&p.extent)).iter().product::<u64>())
+        .fold(0u64, u64::saturating_add);
+    if voxel_count > (held.saturating_mul(MAX_SPARSITY)).max(held.saturating_add(SPARSE_VOXELS)) {
+        return Err(DataError::unsupported(
+            path,
+            format!(
+                "the pieces hold {held} voxels but span a grid of {voxel_count}; grids more \
+                 than {MAX_SPARSITY} times larger than their pieces are not read"
+            ),
+        ));
     }
     // Each dim is at most MAX_VOXELS / 4 here, so it fits u32.
     let dims = dims_u64.map(|d| d as u32);
