@@ -985,7 +985,7 @@ impl EditorApp {
         if panning {
             let delta = response.drag_delta();
             if delta != egui::Vec2::ZERO {
-                let target = pan_target(&self.state, &camera, delta, response.rect.height());
+                let target = pan_target(&self.state, &camera, delta, response.rect.size());
                 let _ = self.state.set_params(
                     &camera,
                     &[("target", ParamValue::Vec3(target))],
@@ -1131,9 +1131,10 @@ fn thumbnail_size(shown: &Shown) -> egui::Vec2 {
     egui::vec2(w as f32, h as f32)
 }
 
-/// The Camera target after panning by `delta` screen points in a viewport `height` points
-/// tall: the scene follows the pointer (at the target's depth).
-fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, height: f32) -> [f64; 3] {
+/// The Camera target after panning by `delta` screen points in a viewport of `size` points:
+/// the scene follows the pointer (at the target's depth; the field of view spans the shorter
+/// side).
+fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, size: egui::Vec2) -> [f64; 3] {
     let get = |name: &str| camera_param(state, camera, name) as f32;
     let up_z = camera_choice(state, camera, "up").as_deref() == Some("z");
     let orbit = hatchery_nodes::camera::Camera::orbit(
@@ -1153,7 +1154,7 @@ fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, height: f32)
     let right = orbit.view.row(0).truncate();
     let up = orbit.view.row(1).truncate();
     let world_per_point =
-        2.0 * get("distance") * (get("fov").to_radians() / 2.0).tan() / height.max(1.0);
+        2.0 * get("distance") * (get("fov").to_radians() / 2.0).tan() / size.min_elem().max(1.0);
     let shift = (-right * delta.x + up * delta.y) * world_per_point;
     let target = camera_target(state, camera);
     [0, 1, 2].map(|i| target[i] + shift[i] as f64)

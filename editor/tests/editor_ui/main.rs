@@ -750,10 +750,11 @@ fn right_dragging_in_the_viewport_pans_the_camera_target() {
         },
         None => panic!("panning set no target"),
     };
-    // Camera at azimuth 30°, elevation 20°, distance 3.5, fov 40°: the scene follows the pointer,
-    // so the target moves left along the camera's right axis by 40 points' worth of world units.
+    // Camera at azimuth 30°, elevation 20°, distance 3.5, fov 40° (across the viewport's shorter
+    // side): the scene follows the pointer, so the target moves left along the camera's right
+    // axis by 40 points' worth of world units.
     let (az, fov, distance) = (30f64.to_radians(), 40f64.to_radians(), 3.5);
-    let world = 40.0 * 2.0 * distance * (fov / 2.0).tan() / r.height() as f64;
+    let world = 40.0 * 2.0 * distance * (fov / 2.0).tan() / r.width().min(r.height()) as f64;
     let right = [az.cos(), 0.0, -az.sin()];
     for i in 0..3 {
         assert!(
