@@ -25,6 +25,7 @@ use crate::nifti_file::MAX_VOXELS;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
+mod lengths;
 mod pixels;
 
 /// Slices may deviate this much (as a fraction of the slice spacing) from a uniform stack along
@@ -207,6 +208,7 @@ fn read_header(path: &Path) -> Result<Option<DefaultDicomObject>, DataError> {
     if filled < head.len() || &head[128..] != b"DICM" {
         return Ok(None);
     }
+    lengths::check_lengths(path)?;
     OpenFileOptions::new()
         .read_until(tags::PIXEL_DATA)
         .open_file(path)

@@ -36,7 +36,8 @@ const MAX_HEADER_BYTES: u64 = 1 << 20;
 ///
 /// Errors: [`DataError::Format`] for a malformed header or truncated data,
 /// [`DataError::Unsupported`] for valid files we do not read (other dimensions, several
-/// channels, ASCII data, file lists), [`DataError::TooLarge`] above
+/// channels, ASCII data, file lists, a data file that is not a regular file such as
+/// `/dev/zero`), [`DataError::TooLarge`] above
 /// [`crate::nifti_file::MAX_VOXELS`] voxels (checked before anything is allocated),
 /// [`DataError::Io`] when a file cannot be read.
 pub fn load_metaimage(path: &Path) -> Result<VolumeData, DataError> {
@@ -285,8 +286,7 @@ fn read_data(path: &Path, layout: &Layout) -> Result<Vec<u8>, DataError> {
         "the data file"
     };
     let io = |e| DataError::io(data_path, e);
-    let mut file = File::open(data_path).map_err(io)?;
-    let len = file.metadata().map_err(io)?.len();
+    let (mut file, len) = raw_voxels::open_data_file(data_path, what)?;
     let start = match layout.offset {
         Some(offset) => offset,
         None => len.checked_sub(layout.byte_count as u64).ok_or_else(|| {

@@ -53,7 +53,7 @@ const KNOWN_FIELDS: &str = "content number type blocksize dimension space spaced
 ///
 /// Errors: [`DataError::Format`] for a malformed header or truncated data,
 /// [`DataError::Unsupported`] for valid files we do not read (bzip2, block type, other
-/// spaces, components), [`DataError::TooLarge`] above [`crate::nifti_file::MAX_VOXELS`] values
+/// spaces, components, a data file that is not a regular file such as `/dev/zero`), [`DataError::TooLarge`] above [`crate::nifti_file::MAX_VOXELS`] values
 /// (checked before anything is allocated), [`DataError::Io`] when a file cannot be read.
 pub fn load_nrrd(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
@@ -434,8 +434,7 @@ fn read_source(
     } else {
         "the data file"
     };
-    let mut file = File::open(path).map_err(|e| DataError::io(path, e))?;
-    let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
+    let (mut file, file_len) = raw_voxels::open_data_file(path, what)?;
     if layout.byte_skip.is_none() {
         let start = file_len
             .checked_sub(len as u64)

@@ -1,6 +1,7 @@
 //! Voxel bytes as the header-plus-raw-data formats (NRRD, MetaImage) store them: element types,
 //! byte order, ASCII values, zlib/gzip streams and the size checks shared by their readers.
 
+use std::fs::File;
 use std::io::{self, BufRead, Read};
 use std::path::Path;
 
@@ -164,6 +165,22 @@ pub(crate) fn decoded_bound(n: u64, deflate: bool) -> u64 {
     } else {
         n
     }
+}
+
+/// Opens a data file named by a header and returns it with its length. Anything but a regular
+/// file is refused before it is opened: a header may name `/dev/zero` or `/dev/urandom` (which
+/// never end), a pipe or a terminal (which block).
+pub(crate) fn open_data_file(path: &Path, what: &str) -> Result<(File, u64), DataError> {
+    let metadata = std::fs::metadata(path).map_err(|e| DataError::io(path, e))?;
+    if !metadata.is_file() {
+        return Err(DataError::unsupported(
+            path,
+            format!("{what} is not a regular file"),
+        ));
+    }
+    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
+    Ok((file, len))
 }
 
 /// Reads exactly `len` bytes, or says how many there were (`what` names the data source).

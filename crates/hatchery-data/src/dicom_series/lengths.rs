@@ -1,0 +1,359 @@
+//! A check of a DICOM file's element lengths and sequence nesting before dicom-rs parses it.
+//!
+//! dicom-parser (0.10) allocates and zero-fills a value's declared length before reading it, so
+//! a 2 kB file declaring a 4 GB element costs 4 GB of memory; and dicom-object builds nested
+//! sequences recursively, so sequences nested deep enough overflow the stack (an abort, not an
+//! error). This walk reads only the element headers, skipping values, and refuses a file
+//! whose declared lengths exceed what is left of it, or whose sequences nest deeper than
+//! [`MAX_DEPTH`]. Where it cannot tell what dicom-rs would make of the bytes (undefined-length
+//! values other than sequences and encapsulated pixel data), it stops and leaves the file to
+//! dicom-rs.
+
+use std::fs::File;
+use std::io::{self, BufReader, Read, Seek};
+
+use std::path::Path;
+
+use dicom_dictionary_std::uids;
+
+use crate::DataError;
+use crate::raw_voxels::decoded_bound;
+
+/// Sequences and items (two levels per nested sequence) open at once beyond this are refused;
+/// real data sets nest a handful of sequences.
+pub(super) const MAX_DEPTH: usize = 64;
+
+const UNDEFINED: u32 = 0xFFFF_FFFF;
+const ITEM: (u16, u16) = (0xFFFE, 0xE000);
+const ITEM_END: (u16, u16) = (0xFFFE, 0xE00D);
+const SEQUENCE_END: (u16, u16) = (0xFFFE, 0xE0DD);
+const PIXEL_DATA: (u16, u16) = (0x7FE0, 0x0010);
+const TRANSFER_SYNTAX: (u16, u16) = (0x0002, 0x0010);
+/// Explicit VR Big Endian (retired, so not in `uids`).
+const EXPLICIT_VR_BIG_ENDIAN: &str = "1.2.840.10008.1.2.2";
+
+/// Checks a file that has the `DICM` marker at byte 128.
+pub(super) fn check_lengths(path: &Path) -> Result<(), DataError> {
+    let io_error = |e: io::Error| DataError::io(path, e);
+    let file = File::open(path).map_err(io_error)?;
+    let file_len = file.metadata().map_err(io_error)?.len();
+    let mut input = Input {
+        reader: Reader::File(BufReader::new(file)),
+        pos: 0,
+        end: file_len,
+    };
+    input.skip(132).map_err(io_error)?;
+
+    // The file meta group: explicit VR little endian, defined lengths.
+    let mut syntax = String::new();
+    let walk = Walk::new(path, Encoding::ExplicitLittle);
+    loop {
+        match input.peek_group(false) {
+            Ok(Some(0x0002)) => {}
+            Ok(_) => break,
+            Err(e) => return walk.ended(e),
+        }
+        let header = match walk.header(&mut input) {
+            Ok(h) => h,
+            Err(e) => return walk.ended(e),
+        };
+        walk.check_length(&input, header)?;
+        if header.tag == TRANSFER_SYNTAX && header.len <= 1024 {
+            let mut value = vec![0; header.len as usize];
+            if let Err(e) = input.read_exact(&mut value) {
+                return walk.ended(e);
+            }
+            syntax = String::from_utf8_lossy(&value)
+                .trim_end_matches(['\0', ' '])
+                .to_string();
+        } else if let Err(e) = input.skip(header.len.into()) {
+            return walk.ended(e);
+        }
+    }
+
+    let encoding = match syntax.as_str() {
+        uids::IMPLICIT_VR_LITTLE_ENDIAN => Encoding::ImplicitLittle,
+        EXPLICIT_VR_BIG_ENDIAN => Encoding::ExplicitBig,
+        uids::DEFLATED_EXPLICIT_VR_LITTLE_ENDIAN => {
+            // The rest of the file is a raw deflate stream of an explicit VR little endian
+            // data set, at most deflate's best ratio larger.
+            let left = input.end - input.pos;
+            let Reader::File(file) = input.reader else {
+                return Ok(());
+            };
+            input = Input {
+                reader: Reader::Inflated(Box::new(flate2::bufread::DeflateDecoder::new(file))),
+                pos: 0,
+                end: decoded_bound(left, true),
+            };
+            Encoding::ExplicitLittle
+        }
+        // Explicit VR little endian, and the encapsulated (compressed) syntaxes, whose data
+        // sets are explicit VR little endian too.
+        _ => Encoding::ExplicitLittle,
+    };
+    let mut walk = Walk::new(path, encoding);
+    walk.data_set(&mut input)
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Encoding {
+    ImplicitLittle,
+    ExplicitLittle,
+    ExplicitBig,
+}
+
+#[derive(Clone, Copy)]
+struct Header {
+    tag: (u16, u16),
+    vr: [u8; 2],
+    len: u32,
+}
+
+enum Reader {
+    File(BufReader<File>),
+    Inflated(Box<flate2::bufread::DeflateDecoder<BufReader<File>>>),
+}
+
+/// The bytes being walked, with the position in them and an upper bound of their end.
+struct Input {
+    reader: Reader,
+    pos: u64,
+    end: u64,
+}
+
+impl Input {
+    fn read_exact(&mut self, buf: &mut [u8]) -> io::Result<()> {
+        match &mut self.reader {
+            Reader::File(r) => r.read_exact(buf)?,
+            Reader::Inflated(r) => r.read_exact(buf)?,
+        }
+        self.pos += buf.len() as u64;
+        Ok(())
+    }
+
+    fn skip(&mut self, n: u64) -> io::Result<()> {
+        if n > self.end.saturating_sub(self.pos) {
+            return Err(io::ErrorKind::UnexpectedEof.into());
+        }
+        match &mut self.reader {
+            Reader::File(r) => r.seek_relative(n as i64)?,
+            Reader::Inflated(r) => {
+                let skipped = io::copy(&mut r.take(n), &mut io::sink())?;
+                if skipped < n {
+                    return Err(io::ErrorKind::UnexpectedEof.into());
+                }
+            }
+        }
+        self.pos += n;
+        Ok(())
+    }
+
+    /// The group of the next tag, without consuming it; `None` at the end of the data.
+    fn peek_group(&mut self, big_endian: bool) -> io::Result<Option<u16>> {
+        let Reader::File(r) = &mut self.reader else {
+            return Ok(None);
+        };
+        let buf = peek(r)?;
+        Ok(match buf {
+            [a, b, ..] if big_endian => Some(u16::from_be_bytes([*a, *b])),
+            [a, b, ..] => Some(u16::from_le_bytes([*a, *b])),
+            _ => None,
+        })
+    }
+}
+
+/// The next bytes of a buffered file without consuming them: at least four unless the file
+/// ends first.
+fn peek(r: &mut BufReader<File>) -> io::Result<&[u8]> {
+    if r.buffer().len() < 4 {
+        // Seeking drops the buffer, so the next fill starts here.
+        let here = r.stream_position()?;
+        r.seek(io::SeekFrom::Start(here))?;
+    }
+    io::BufRead::fill_buf(r)
+}
+
+/// The walk through a data set: open sequences and items, and whether the current undefined
+/// length value holds pixel data fragments.
+struct Walk<'a> {
+    path: &'a Path,
+    encoding: Encoding,
+    /// Where each open sequence or item ends (`None`: undefined length, ended by a delimiter).
+    open: Vec<Option<u64>>,
+    fragments: bool,
+}
+
+impl<'a> Walk<'a> {
+    fn new(path: &'a Path, encoding: Encoding) -> Self {
+        Walk {
+            path,
+            encoding,
+            open: Vec::new(),
+            fragments: false,
+        }
+    }
+
+    /// The end of the data, or a cut in it, ends the walk: reading the file is dicom-rs's job,
+    /// and it reports truncation itself.
+    fn ended(&self, e: io::Error) -> Result<(), DataError> {
+        match e.kind() {
+            io::ErrorKind::UnexpectedEof
+            | io::ErrorKind::InvalidInput
+            | io::ErrorKind::InvalidData => Ok(()),
+            _ => Err(DataError::io(self.path, e)),
+        }
+    }
+
+    fn header(&self, input: &mut Input) -> io::Result<Header> {
+        let big = self.encoding == Encoding::ExplicitBig;
+        let u16_at = |b: &[u8]| {
+            if big {
+                u16::from_be_bytes([b[0], b[1]])
+            } else {
+                u16::from_le_bytes([b[0], b[1]])
+            }
+        };
+        let u32_at = |b: &[u8]| {
+            if big {
+                u32::from_be_bytes([b[0], b[1], b[2], b[3]])
+            } else {
+                u32::from_le_bytes([b[0], b[1], b[2], b[3]])
+            }
+        };
+        let mut buf = [0u8; 8];
+        input.read_exact(&mut buf)?;
+        let tag = (u16_at(&buf[0..2]), u16_at(&buf[2..4]));
+        // Items and delimiters have no VR, in every encoding; neither has implicit VR.
+        if tag.0 == 0xFFFE || self.encoding == Encoding::ImplicitLittle {
+            return Ok(Header {
+                tag,
+                vr: *b"  ",
+                len: u32_at(&buf[4..8]),
+            });
+        }
+        let vr = [buf[4], buf[5]];
+        // As dicom-encoding reads it: these VRs have a 16-bit length, all others (unknown ones
+        // included) two reserved bytes and a 32-bit length.
+        const SHORT: [&[u8; 2]; 21] = [
+            b"AE", b"AS", b"AT", b"CS", b"DA", b"DS", b"DT", b"FL", b"FD", b"IS", b"LO", b"LT",
+            b"PN", b"SH", b"SL", b"SS", b"ST", b"TM", b"UI", b"UL", b"US",
+        ];
+        let len = if SHORT.contains(&&vr) {
+            u16_at(&buf[6..8]) as u32
+        } else {
+            let mut long = [0u8; 4];
+            input.read_exact(&mut long)?;
+            u32_at(&long)
+        };
+        Ok(Header { tag, vr, len })
+    }
+
+    fn check_length(&self, input: &Input, header: Header) -> Result<(), DataError> {
+        let left = input.end.saturating_sub(input.pos);
+        if header.len != UNDEFINED && u64::from(header.len) > left {
+            let (group, element) = header.tag;
+            return Err(DataError::format(
+                self.path,
+                format!(
+                    "unreadable DICOM file: element ({group:04X},{element:04X}) declares {} \
+                     bytes, more than the {left} left in the file",
+                    header.len
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn open(&mut self, input: &Input, len: u32) -> Result<(), DataError> {
+        if self.open.len() >= MAX_DEPTH {
+            return Err(DataError::unsupported(
+                self.path,
+                format!("DICOM sequences nested more than {MAX_DEPTH} deep"),
+            ));
+        }
+        self.open
+            .push((len != UNDEFINED).then(|| input.pos + u64::from(len)));
+        Ok(())
+    }
+
+    fn data_set(&mut self, input: &mut Input) -> Result<(), DataError> {
+        loop {
+            // Close the defined-length sequences and items that end here.
+            while let Some(&Some(end)) = self.open.last() {
+                if input.pos < end {
+                    break;
+                }
+                self.open.pop();
+            }
+            let header = match self.header(input) {
+                Ok(h) => h,
+                Err(e) => return self.ended(e),
+            };
+            // Delimiters have no value (their length is not used); everything else is read.
+            if !matches!(header.tag, ITEM_END | SEQUENCE_END) {
+                self.check_length(input, header)?;
+            }
+            let skip = match header.tag {
+                ITEM if self.fragments => true,
+                ITEM => {
+                    self.open(input, header.len)?;
+                    false
+                }
+                ITEM_END => {
+                    if matches!(self.open.last(), Some(None)) {
+                        self.open.pop();
+                    }
+                    false
+                }
+                SEQUENCE_END => {
+                    if self.fragments {
+                        self.fragments = false;
+                    } else if matches!(self.open.last(), Some(None)) {
+                        self.open.pop();
+                    }
+                    false
+                }
+                _ if header.len == UNDEFINED => {
+                    let sequence = &header.vr == b"SQ" || self.encoding == Encoding::ImplicitLittle;
+                    if header.tag == PIXEL_DATA {
+                        self.fragments = true;
+                    } else if sequence {
+                        self.open(input, header.len)?;
+                    } else {
+                        // An undefined-length UN, OB or OW: not modelled here.
+                        return Ok(());
+                    }
+                    false
+                }
+                _ if &header.vr == b"SQ" => {
+                    self.open(input, header.len)?;
+                    false
+                }
+                // Implicit VR does not say which elements are sequences; one whose value starts
+                // with an item tag is walked into, as dicom-rs would (by its dictionary).
+                _ if self.encoding == Encoding::ImplicitLittle
+                    && header.len >= 8
+                    && input.peek_item() =>
+                {
+                    self.open(input, header.len)?;
+                    false
+                }
+                _ => true,
+            };
+            if skip && let Err(e) = input.skip(header.len.into()) {
+                return self.ended(e);
+            }
+        }
+    }
+}
+
+impl Input {
+    /// Whether the next bytes are an item tag (little endian).
+    fn peek_item(&mut self) -> bool {
+        let Reader::File(r) = &mut self.reader else {
+            return false;
+        };
+        matches!(peek(r), Ok([0xFE, 0xFF, 0x00, 0xE0, ..]))
+    }
+}
