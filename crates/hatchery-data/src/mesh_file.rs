@@ -65,6 +65,21 @@ fn load_obj(path: &Path, bytes: &[u8]) -> Result<MeshData, DataError> {
         single_index: true,
         ..Default::default()
     };
+    // tobj 4.0.5 multiplies texture coordinate and normal indices unchecked, so an index out of
+    // range (e.g. `f 1/-9 ...` after three `vt`) overflows: a panic in debug builds, a wrong or
+    // refused index in release ones. Refuse those faces first, as tobj refuses the others.
+    for (slot, error) in [
+        (0, tobj::LoadError::FaceVertexOutOfBounds),
+        (1, tobj::LoadError::FaceTexCoordOutOfBounds),
+        (2, tobj::LoadError::FaceNormalOutOfBounds),
+    ] {
+        if let Some(line) = first_bad_face(&text, slot) {
+            return Err(DataError::format(
+                path,
+                format!("line {line}: invalid OBJ: {error}"),
+            ));
+        }
+    }
     // tobj reads line by line and stops at a bad one, so what it has consumed tells the line.
     let mut rest = text.as_bytes();
     // Materials are irrelevant here; do not go looking for .mtl files.
@@ -141,12 +156,17 @@ fn clean_obj(bytes: &[u8]) -> String {
 
 /// The line of the first face whose `slot` (0 position, 1 texture coordinate, 2 normal)
 /// index names nothing: 0, past the last in the file, or relative and before the first.
+/// Texture coordinate and normal indices count only when the file has some (tobj ignores
+/// them otherwise).
 fn first_bad_face(text: &str, slot: usize) -> Option<usize> {
     let keyword = ["v", "vt", "vn"][slot];
     let total = text
         .lines()
         .filter(|l| l.split_whitespace().next() == Some(keyword))
         .count() as i64;
+    if total == 0 && slot > 0 {
+        return None;
+    }
     let mut seen = 0;
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
@@ -258,6 +278,29 @@ impl<'a> Words<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn out_of_range_face_indices_are_errors_with_their_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("faces.obj");
+        let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 1 0 0\nvn 0 1 0\nvn 0 0 1\nvn 0 0 -1\n";
+        for (face, what) in [
+            // Relative, before the first texture coordinate: tobj's unchecked index arithmetic
+            // overflowed (a panic in debug builds).
+            ("f 1/-9 2/1 3/1", "texcoord"),
+            // Relative, wrapping: 3 x the index wrapped to 1, so release builds read a normal
+            // made of parts of normals 1 and 2 instead of refusing the face.
+            ("f 1//-6148914691236517209 2//1 3//1", "normal"),
+            ("f 1//9223372036854775807 2//1 3//1", "normal"),
+        ] {
+            std::fs::write(&p, format!("{head}# faces\n{face}\n")).unwrap();
+            let msg = load_mesh(&p).unwrap_err().to_string();
+            assert!(
+                msg.contains("faces.obj: line 10: invalid OBJ") && msg.contains(what),
+                "{face}: {msg}"
+            );
+        }
+    }
 
     #[test]
     fn unknown_extension_lists_supported_ones() {

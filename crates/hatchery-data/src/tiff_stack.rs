@@ -28,19 +28,18 @@ use crate::{DataError, VolumeData};
 /// * Geometry: axis-aligned with the origin at 0. A TIFF stack has no anatomical frame: i, j, k
 ///   are taken as hatchery's x, y, z as they are. [`VolumeData::placement`] says what was used.
 ///
-/// Errors: [`DataError::Format`] for a corrupt file or pages of different sizes,
+/// Errors: [`DataError::Format`] for a corrupt file, pages of different sizes or pages larger
+/// than the file could hold at the best compression ratio,
 /// [`DataError::Unsupported`] for the refused kinds of image above, [`DataError::TooLarge`]
 /// above [`crate::nifti_file::MAX_VOXELS`] voxels (checked on the page headers, before any
 /// pixel is decoded), [`DataError::Io`] when the file cannot be read.
 pub fn load_tiff_stack(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
     let terr = |e: TiffError| tiff_error(path, e);
-    let mut limits = Limits::default();
-    // Our own voxel limit is checked first; a single slice may exceed the crate's 256 MiB.
-    limits.decoding_buffer_size = usize::MAX;
     let mut decoder = Decoder::new(BufReader::new(file))
         .map_err(terr)?
-        .with_limits(limits);
+        .with_limits(file_limits(file_len));
 
     let (width, height) = decoder.dimensions().map_err(terr)?;
     let colour = decoder.colortype().map_err(terr)?;
@@ -117,6 +116,29 @@ pub fn load_tiff_stack(path: &Path) -> Result<VolumeData, DataError> {
         ));
     }
 
+    // Every page decodes to width x height samples. Refuse pages the file cannot hold (at the
+    // best compression ratio) before the crate allocates them; then let it decode a whole page.
+    let sample_bytes = match colour {
+        ColorType::Gray(bits) => u64::from(bits) / 8,
+        _ => 1,
+    };
+    let page_bytes = u64::from(width) * u64::from(height) * sample_bytes;
+    let total = page_bytes * pages;
+    if total > file_len.saturating_mul(MAX_RATIO) {
+        return Err(DataError::format(
+            path,
+            format!(
+                "{width}x{height} pixels on {pages} pages need {total} bytes, more than a \
+                 {file_len}-byte file can hold"
+            ),
+        ));
+    }
+    let mut limits = file_limits(file_len);
+    limits.decoding_buffer_size = limits
+        .decoding_buffer_size
+        .max(usize::try_from(page_bytes).unwrap_or(usize::MAX));
+    decoder = decoder.with_limits(limits);
+
     decoder.seek_to_image(0).map_err(terr)?;
     let mut voxels: Option<Voxels> = None;
     for page in 0..pages {
@@ -135,6 +157,22 @@ pub fn load_tiff_stack(path: &Path) -> Result<VolumeData, DataError> {
         VolumeData::from_voxels(dims, geometry, voxels).map_err(|e| e.in_file(path))?;
     volume.placement = placement;
     Ok(volume)
+}
+
+/// The most bytes one byte of a page's strips can decode to: TIFF LZW emits at most a
+/// 4 kB-entry table's longest string (under 4096 bytes) per code of at least 9 bits, deflate
+/// at most 1032 bytes per byte, PackBits 64; the other compressions are not decoded here.
+const MAX_RATIO: u64 = 4096;
+
+/// The crate's limits while it reads directories. It allocates a tag's values (and a chunk's
+/// compressed bytes) before reading them, bounded only by these limits, and those must be in
+/// the file: so no more than the file's length (in values) is allowed.
+fn file_limits(file_len: u64) -> Limits {
+    let len = usize::try_from(file_len).unwrap_or(usize::MAX);
+    let mut limits = Limits::default();
+    limits.decoding_buffer_size = len.saturating_mul(size_of::<tiff::decoder::ifd::Value>());
+    limits.intermediate_buffer_size = len;
+    limits
 }
 
 /// Adds one decoded page to the stack; pages must keep the first page's sample type.
@@ -319,6 +357,11 @@ fn tiff_error(path: &Path, e: TiffError) -> DataError {
             DataError::format(path, "truncated TIFF file")
         }
         TiffError::IoError(e) => DataError::io(path, e),
+        // The limits are the file's length (see `file_limits`).
+        TiffError::LimitsExceeded => DataError::format(
+            path,
+            "bad TIFF file: a tag or strip declares more data than the file holds",
+        ),
         TiffError::UnsupportedError(e) => {
             DataError::unsupported(path, format!("TIFF feature not supported: {e}"))
         }
