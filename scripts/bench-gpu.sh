@@ -11,6 +11,7 @@ bin=${1:-target/release/hatchery}
 out=${2:-bench-gpu}
 frames=${3:-50}
 mkdir -p "$out"
+# (The MRI graphs need mni152_t1, mni152_wm and mni152_gm from ../shared/data/volumes/.)
 
 # Sizes of the issue; QUICK shrinks them so the script itself can be tried on lavapipe.
 if [ "${QUICK:-0}" = 1 ]; then
