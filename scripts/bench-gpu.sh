@@ -46,18 +46,25 @@ run hidden_layers_brain \
     --scenario orbit:camera --size "$hd" --size "$xga"
 
 # 3. Ray casting the MRI at 1024²: MIP at 1-voxel steps, shaded DVR at 0.5, context-preserving
-# (same TF and camera as shaded DVR), each with and without empty-space skipping.
+# (same TF and camera as shaded DVR), each as fragment shader and as compute kernel.
 run raycast_mri \
     graphs/tf1d_phong_brain.ron graphs/tf1d_phong_brain.ron graphs/tf1d_phong_brain.ron \
+    graphs/tf1d_phong_brain.ron graphs/context_preserving_brain.ron \
     graphs/context_preserving_brain.ron \
-    --set 1:ray.mode=mip --set 1:ray.step=1 \
-    --set 3:ray.skip_empty=false \
+    --set 1:ray.mode=mip --set 1:ray.step=1 --set 1:ray.kernel=fragment \
+    --set 2:ray.mode=mip --set 2:ray.step=1 --set 2:ray.kernel=compute \
+    --set 3:ray.kernel=fragment --set 4:ray.kernel=compute \
+    --set 5:ray.kernel=fragment --set 6:ray.kernel=compute \
     --scenario orbit:camera --size "$sq"
 
-# 4. A 512³ procedural volume (the sphere of volume_styles): style-TF DVR and MIP.
+# 4. A 512³ procedural volume (the sphere of volume_styles): style-TF DVR and MIP, fragment
+# shader and compute kernel.
 run raycast_procedural \
-    graphs/volume_styles.ron graphs/volume_styles.ron \
-    --set "volume.resolution=$res" --set 2:ray.mode=mip --set 2:ray.step=1 \
+    graphs/volume_styles.ron graphs/volume_styles.ron graphs/volume_styles.ron \
+    graphs/volume_styles.ron \
+    --set "volume.resolution=$res" --set 1:ray.kernel=fragment --set 2:ray.kernel=compute \
+    --set 3:ray.mode=mip --set 3:ray.step=1 --set 3:ray.kernel=fragment \
+    --set 4:ray.mode=mip --set 4:ray.step=1 --set 4:ray.kernel=compute \
     --scenario orbit:camera --size "$sq"
 
 echo "results in $out/"

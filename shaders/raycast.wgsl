@@ -218,3 +218,22 @@ fn fs_main(in: ScreenOut) -> FragmentOut {
     out.depth = r.depth;
     return out;
 }
+
+// The compute path: the same rays, one invocation per pixel in 8×8 tiles, written to storage
+// textures (the depth as r32float; the pass copies it into the G-buffer's depth texture). On
+// GPUs whose graphics pipeline runs on part of the chip only (H100/H200) this is the fast path.
+@group(1) @binding(0) var out_color: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(1) var out_normal: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(2) var out_depth: texture_storage_2d<r32float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if f32(id.x) >= ray.frame.x || f32(id.y) >= ray.frame.y {
+        return;
+    }
+    let r = cast_ray(vec2<f32>(id.xy) + 0.5);
+    let pixel = vec2<i32>(id.xy);
+    textureStore(out_color, pixel, r.color);
+    textureStore(out_normal, pixel, r.normal);
+    textureStore(out_depth, pixel, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
+}

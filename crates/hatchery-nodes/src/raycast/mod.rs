@@ -43,6 +43,33 @@ pub struct RayOptions<'a> {
     pub light_view: Vec3,
     /// Jump over bricks no visible value can be sampled in (DVR; the picture is unchanged).
     pub skip_empty: bool,
+    /// Which GPU path runs the rays (the same rays and picture either way).
+    pub kernel: Kernel,
+}
+
+/// The GPU path of a ray-casting pass: a full-screen fragment shader, or a compute kernel over
+/// 8×8-pixel tiles. Same rays, same samples, same picture (tests/raycast.rs compares them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    Fragment,
+    Compute,
+}
+
+const KERNELS: &[&str] = &["auto", "fragment", "compute"];
+
+impl Kernel {
+    /// The path for parameter value `name` on `gpu`. `auto` picks the fragment path, the faster
+    /// one measured on lavapipe, except on adapters whose graphics pipeline runs on part of the
+    /// chip only (NVIDIA's H100/H200 compute parts), where compute is many times faster
+    /// (docs/benchmarks.md).
+    pub fn choose(name: &str, gpu: &hatchery_gpu::GpuContext) -> Kernel {
+        match name {
+            "fragment" => Kernel::Fragment,
+            "compute" => Kernel::Compute,
+            _ if gpu.is_compute_part() => Kernel::Compute,
+            _ => Kernel::Fragment,
+        }
+    }
 }
 
 fn light_direction(inputs: &NodeInputs<Value>, camera: &Camera) -> Result<Vec3, NodeError> {
@@ -170,6 +197,13 @@ impl Node<Value, Ctx> for RaycastNode {
                      transfer function makes transparent; MIP: none above the maximum so far; \
                      iso: all below the iso value) — same picture, fewer samples",
                 ),
+                ParamSpec::choice(
+                    "kernel",
+                    "auto",
+                    KERNELS,
+                    "GPU path: fragment shader or compute kernel (same picture); auto picks \
+                     the faster one for the adapter",
+                ),
             ],
             frame_dependent: true,
             sink: false,
@@ -211,6 +245,7 @@ impl Node<Value, Ctx> for RaycastNode {
             jitter: p.bool("jitter"),
             early_termination: p.f32("early_termination"),
             skip_empty: p.bool("skip_empty"),
+            kernel: Kernel::choose(p.choice("kernel"), &ctx.gpu),
             hit_opacity: p.f32("hit_opacity"),
             light_view: light_direction(inputs, &camera)?,
         };
@@ -286,6 +321,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             hit_opacity: 1.0,
             light_view: Vec3::Z,
             skip_empty: true,
+            kernel: Kernel::choose("auto", &ctx.gpu),
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])
