@@ -271,7 +271,7 @@ impl<'a> Walk<'a> {
             b"FD" | b"SV" | b"UV" | b"OD" | b"OV" => 8,
             _ => 1,
         };
-        if header.len != UNDEFINED && header.len % size != 0 {
+        if header.len != UNDEFINED && !header.len.is_multiple_of(size) {
             let (group, element) = header.tag;
             return Err(DataError::format(
                 self.path,
