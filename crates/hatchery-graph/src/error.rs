@@ -34,7 +34,8 @@ impl GraphError {
             | MultipleInputs { node, .. }
             | UnknownParam { node, .. }
             | BadParam { node, .. }
-            | BadNodeId { node, .. } => Some(node),
+            | BadNodeId { node, .. }
+            | UnknownGroup { node, .. } => Some(node),
             UnknownNode { edge_to, .. } => Some(&edge_to.0),
             TypeMismatch { to, .. } => Some(&to.0),
             Cycle { nodes } => nodes.first().map(String::as_str),
@@ -108,6 +109,11 @@ pub enum ErrorKind {
         node: String,
         param: String,
         message: String,
+    },
+    /// A node names a group that the file does not declare.
+    UnknownGroup {
+        node: String,
+        group: String,
     },
 }
 
@@ -210,6 +216,10 @@ impl fmt::Display for ErrorKind {
                 param,
                 message,
             } => write!(f, "node `{node}`, parameter `{param}`: {message}"),
+            UnknownGroup { node, group } => write!(
+                f,
+                "node `{node}`: no group with id `{group}` (declare it in `groups`)"
+            ),
         }
     }
 }
