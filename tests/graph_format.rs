@@ -210,7 +210,7 @@ const BAD: &[(&str, usize, usize, &[&str])] = &[
         "cycle_through_group.ron",
         5,
         17,
-        &["cycle", "`move`", "`turn`"],
+        &["cycle", "`move`", "`turn`", "(in group `spin`)"],
     ),
     ("reroute_loop.ron", 5, 17, &["cycle", "`a`", "`b`"]),
     (

@@ -1715,6 +1715,7 @@ impl SnarlViewer<String> for Viewer<'_> {
                 .unwrap_or(crate::arrange::DEFAULT_SIZE);
             bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(w, h)));
         }
+        bounds = bounds.union(crate::frames::bounds(self.state.doc(), self.state.level()));
         if !bounds.is_positive() {
             return;
         }

@@ -45,6 +45,11 @@ fn shown<'a>(
         .filter(move |(_, f)| f.group.as_deref() == level)
 }
 
+/// The rectangle around every frame shown at `level` (graph space; `Rect::NOTHING` if none).
+pub fn bounds(doc: &GraphDocument, level: Option<&str>) -> Rect {
+    shown(doc, level).fold(Rect::NOTHING, |r, (_, f)| r.union(frame_rect(f)))
+}
+
 /// The topmost frame whose title bar contains `at` (graph space).
 pub fn title_at(doc: &GraphDocument, level: Option<&str>, at: Pos2) -> Option<usize> {
     shown(doc, level)

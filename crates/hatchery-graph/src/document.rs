@@ -142,6 +142,7 @@ impl Source {
             file: self.path.clone(),
             position: offset.map(|o| locate::line_col(&self.text, o)),
             kind,
+            group: None,
         }
     }
     pub fn node_offset(&self, node: &str) -> Option<usize> {
@@ -169,6 +170,7 @@ impl GraphDocument {
             kind: ErrorKind::Syntax {
                 message: e.code.to_string(),
             },
+            group: None,
         };
         let probe: VersionProbe = ron::from_str(text).map_err(syntax)?;
         if probe.version == 0 || probe.version > FORMAT_VERSION {
@@ -193,6 +195,7 @@ impl GraphDocument {
             kind: ErrorKind::Io {
                 message: format!("cannot read graph file: {e}"),
             },
+            group: None,
         })?;
         Self::parse(&text, Some(path))
     }

@@ -12,6 +12,8 @@ pub struct GraphError {
     /// 1-based line and column in that file, when known.
     pub position: Option<(usize, usize)>,
     pub kind: ErrorKind,
+    /// The group of the node concerned, if it is in one (said after the message).
+    pub group: Option<String>,
 }
 
 impl GraphError {
@@ -20,6 +22,7 @@ impl GraphError {
             file: None,
             position: None,
             kind,
+            group: None,
         }
     }
 
@@ -232,7 +235,11 @@ impl fmt::Display for GraphError {
             (None, Some((line, col))) => write!(f, "{line}:{col}: ")?,
             (None, None) => {}
         }
-        write!(f, "{}", self.kind)
+        write!(f, "{}", self.kind)?;
+        match &self.group {
+            Some(group) => write!(f, " (in group `{group}`)"),
+            None => Ok(()),
+        }
     }
 }
 

@@ -311,6 +311,10 @@ impl Graph {
             }
         }
 
+        // Say which group a node is in: the editor shows groups collapsed.
+        for e in &mut errors {
+            e.group = e.node().and_then(|n| doc.node(n)?.group.clone());
+        }
         if errors.is_empty() {
             Ok(graph)
         } else {
