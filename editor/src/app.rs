@@ -332,6 +332,7 @@ impl EditorApp {
             self.picked(purpose, &path);
         }
         self.confirm_discard(ui);
+        crate::frames::rename_window(ui.ctx(), &mut self.state);
         if self.export.show(ui.ctx(), self.state.doc()) {
             let graph = self.state.validate();
             let base = self.state.base_dir();

@@ -1,6 +1,6 @@
 //! Frames: labelled, coloured boxes drawn behind the nodes of one level. Dragging a frame by its
 //! title bar moves it and the nodes inside it (one undo step); right-clicking the title bar
-//! renames, recolours or deletes it.
+//! renames (in a small window), recolours or deletes it.
 //!
 //! | input | effect |
 //! |---|---|
@@ -254,27 +254,27 @@ impl EditorState {
     }
 }
 
+/// Where the frame being renamed is remembered between frames (egui temporary data).
+fn rename_id() -> egui::Id {
+    egui::Id::new("hatchery-frame-rename")
+}
+
 /// The frame entries of the canvas menu when it was opened on a frame's title bar at `at`.
+/// (A context menu closes on any click, so the label is typed in a little window of its own.)
 pub fn graph_menu(state: &mut EditorState, ui: &mut Ui, at: Pos2) {
     let Some(index) = title_at(state.doc(), state.level(), at) else {
         return;
     };
-    let mut label = state.doc().frames[index].label.clone();
-    ui.label("Frame");
-    if ui.text_edit_singleline(&mut label).changed() {
-        let key = format!("frame-label:{index}");
-        let _ = state.apply(Some(&key), |d, _| {
-            d.frames[index].label = label;
-            Ok(())
-        });
+    ui.strong(&state.doc().frames[index].label);
+    if ui.button("Rename frame…").clicked() {
+        ui.ctx().data_mut(|d| d.insert_temp(rename_id(), index));
+        ui.close();
     }
     ui.horizontal(|ui| {
         for c in organise::FRAME_COLORS {
             let [r, g, b, _] = c.map(|v| (v * 255.0) as u8);
-            if ui
-                .add(egui::Button::new("  ").fill(Color32::from_rgb(r, g, b)))
-                .clicked()
-            {
+            let swatch = egui::Button::new("  ").fill(Color32::from_rgb(r, g, b));
+            if ui.add(swatch).on_hover_text("frame colour").clicked() {
                 let _ = state.apply(None, |d, _| {
                     d.frames[index].color = c;
                     Ok(())
@@ -290,4 +290,37 @@ pub fn graph_menu(state: &mut EditorState, ui: &mut Ui, at: Pos2) {
         ui.close();
     }
     ui.separator();
+}
+
+/// The *Frame label* window, while a frame is being renamed; typing is one undo step.
+pub fn rename_window(ctx: &egui::Context, state: &mut EditorState) {
+    let Some(index) = ctx.data(|d| d.get_temp::<usize>(rename_id())) else {
+        return;
+    };
+    let Some(mut label) = state.doc().frames.get(index).map(|f| f.label.clone()) else {
+        ctx.data_mut(|d| d.remove::<usize>(rename_id()));
+        return;
+    };
+    let mut open = true;
+    let mut done = false;
+    egui::Window::new("Frame label")
+        .collapsible(false)
+        .resizable(false)
+        .open(&mut open)
+        .show(ctx, |ui| {
+            let field = ui.text_edit_singleline(&mut label);
+            if field.changed() {
+                let key = format!("frame-label:{index}");
+                let _ = state.apply(Some(&key), |d, _| {
+                    d.frames[index].label = label;
+                    Ok(())
+                });
+            }
+            done = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            done |= ui.button("Done").clicked();
+        });
+    if !open || done {
+        ctx.data_mut(|d| d.remove::<usize>(rename_id()));
+        state.end_group();
+    }
 }

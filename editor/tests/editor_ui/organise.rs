@@ -245,4 +245,30 @@ fn ctrl_j_frames_the_selection_and_dragging_the_frame_moves_its_nodes_in_one_und
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run();
     assert_eq!(h.state().state.doc(), &doc);
+
+    // Right-clicking the title bar offers *Rename frame…* (a small window) and *Delete frame*.
+    right_click_at(&h, grip);
+    h.run();
+    h.get_by_label("Rename frame…").click();
+    h.run();
+    let field = h
+        .get_all_by_role(Role::TextInput)
+        .find(|n| n.value().as_deref() == Some("Frame 1"))
+        .expect("the frame's label field")
+        .rect()
+        .center();
+    click_mod(&mut h, field, Modifiers::NONE);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::A);
+    h.event(egui::Event::Text("Inputs".into()));
+    h.key_press(Key::Enter);
+    h.run();
+    assert_eq!(h.state().state.doc().frames[0].label, "Inputs");
+    assert!(h.query_by_label("Frame label").is_none(), "Enter closes it");
+    h.key_press(Key::Escape);
+    h.run();
+    right_click_at(&h, grip);
+    h.run();
+    h.get_by_label("Delete frame").click();
+    h.run();
+    assert!(h.state().state.doc().frames.is_empty());
 }
