@@ -1340,6 +1340,14 @@ impl Viewer<'_> {
         }
     }
 
+    /// Inside a group, a mark on a member's port wired to a node outside it.
+    fn outside_mark(&self, ui: &mut Ui, p: &hatchery_graph::organise::PortInfo, output: bool) {
+        let (doc, level) = (self.state.doc(), self.state.level());
+        if let Some(note) = crate::groups::outside_note(doc, level, p, output) {
+            ui.label(if output { "➡" } else { "⬅" }).on_hover_text(note);
+        }
+    }
+
     fn is_reroute(&self, id: &str) -> bool {
         hatchery_graph::reroute::is_reroute(self.state.doc(), id)
     }
@@ -1396,6 +1404,7 @@ impl SnarlViewer<String> for Viewer<'_> {
                 let ty = p.ty.map_or("any type".into(), |t| t.to_string());
                 ui.label(crate::groups::port_label(&node, p))
                     .on_hover_text(format!("{}: {ty}{required}\n{}", p.port, p.doc));
+                self.outside_mark(ui, p, false);
             }
             None => {
                 ui.label("?");
@@ -1434,6 +1443,7 @@ impl SnarlViewer<String> for Viewer<'_> {
                 if response.clicked() && !self.pins.remove(&key) {
                     self.pins.insert(key);
                 }
+                self.outside_mark(ui, p, true);
             }
             Some(p) => {
                 let ty = p.ty.map_or("any type".into(), |t| t.to_string());

@@ -42,6 +42,32 @@ pub fn port_label(id: &str, p: &PortInfo) -> String {
     }
 }
 
+/// Inside a group: where member port `p` is wired to nodes outside the group (those wires are
+/// not drawn inside), e.g. "wired to shaded.mesh outside the group".
+pub fn outside_note(
+    doc: &GraphDocument,
+    level: Option<&str>,
+    p: &PortInfo,
+    output: bool,
+) -> Option<String> {
+    let level = level?;
+    let end = (p.node.clone(), p.port.clone());
+    let outside: Vec<String> = doc
+        .edges
+        .iter()
+        .filter_map(|e| {
+            let (near, far) = if output {
+                (&e.from, &e.to)
+            } else {
+                (&e.to, &e.from)
+            };
+            let far_group = doc.node(&far.0).and_then(|n| n.group.as_deref());
+            (*near == end && far_group != Some(level)).then(|| format!("{}.{}", far.0, far.1))
+        })
+        .collect();
+    (!outside.is_empty()).then(|| format!("wired to {} outside the group", outside.join(", ")))
+}
+
 /// The shown node that stands for graph node `node` at `level`: itself, its group (on the top
 /// level), or none (outside the entered group).
 fn owner<'a>(doc: &'a GraphDocument, level: Option<&str>, node: &'a str) -> Option<&'a str> {
@@ -270,7 +296,7 @@ pub fn level_bar(state: &EditorState, ui: &mut Ui) -> bool {
             .on_hover_text("back to the whole graph (Tab)")
             .clicked();
         ui.label(format!("Inside group {group}"));
-        ui.weak("wires to nodes outside the group show on its ports outside");
+        ui.weak("⬅ ➡ mark ports wired to nodes outside the group (hover: where)");
     });
     leave
 }

@@ -91,6 +91,12 @@ fn ctrl_g_groups_tab_enters_and_leaves_ctrl_shift_g_ungroups_and_undo_restores()
     h.get_by_label("shells (ProceduralVolume)");
     assert!(h.query_by_label("shaded (ShadedSurface)").is_none());
     assert!(h.query_by_label("group_1 (Group)").is_none());
+    // Wires to the outside are not drawn inside: surface.mesh (to shaded.mesh) is marked.
+    assert_eq!(h.get_all_by_label("➡").count(), 1);
+    assert!(
+        h.query_by_label("⬅").is_none(),
+        "nothing outside feeds the group"
+    );
     // Members are edited as usual inside.
     select_by_click(&mut h, "surface");
     // Tab again leaves, with the group selected.
