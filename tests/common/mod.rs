@@ -65,6 +65,13 @@ pub fn assert_samples(
     }
 }
 
+/// The ids of a session's SaveImage nodes.
+pub fn savers(session: &Session) -> Vec<String> {
+    let nodes = session.graph.nodes();
+    let savers = nodes.filter(|n| n.kind == "SaveImage");
+    savers.map(|n| n.id.clone()).collect()
+}
+
 pub fn save_failure(name: &str, picture: &image::RgbaImage) -> PathBuf {
     let dir = std::env::temp_dir().join("hatchery-test-failures");
     let _ = std::fs::create_dir_all(&dir);
