@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod raycast_reference;
+pub mod two_level_reference;
 
 use hatchery_graph::{Graph, GraphDocument, NodeInputs, ParamValue, Params};
 use hatchery_nodes::Session;

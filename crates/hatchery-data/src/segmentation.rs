@@ -42,7 +42,7 @@ impl LabelData {
             }
             ids.push(v as u16);
         }
-        Ok(Self::new(volume.dims, volume.geometry.clone(), ids))
+        Ok(Self::new(volume.dims, volume.geometry, ids))
     }
 
     /// Labels from ids, every id present named "object N".
@@ -90,7 +90,7 @@ pub fn threshold(volume: &VolumeData, intervals: &[(f32, f32, u16)]) -> LabelDat
             .find(|(lo, hi, _)| x >= *lo && x < *hi)
             .map_or(0, |(_, _, id)| *id)
     }).collect());
-    LabelData::new(volume.dims, volume.geometry.clone(), ids)
+    LabelData::new(volume.dims, volume.geometry, ids)
 }
 
 /// Object ids by arg-max over probability maps on one grid (e.g. grey and white matter):
@@ -122,7 +122,7 @@ pub fn from_maps(maps: &[&VolumeData], floor: f32) -> Result<LabelData, DataErro
             if value >= floor { best as u16 + 1 } else { 0 }
         })
         .collect();
-    Ok(LabelData::new(first.dims, first.geometry.clone(), ids))
+    Ok(LabelData::new(first.dims, first.geometry, ids))
 }
 
 /// Reads object names: a CSV/TSV/space-separated table `id,name` (a header line and `#`

@@ -102,7 +102,7 @@ pub fn parse_intervals(text: &str) -> Result<Vec<(f32, f32, u16)>, String> {
         let lo: f32 = lo.trim().parse().map_err(|_| bad())?;
         let hi: f32 = hi.trim().parse().map_err(|_| bad())?;
         let id: u16 = id.trim().parse().map_err(|_| bad())?;
-        if !(lo < hi) || id == 0 {
+        if lo >= hi || lo.is_nan() || hi.is_nan() || id == 0 {
             return Err(format!(
                 "interval {} `{part}`: needs lo < hi and an id from 1 to 65535",
                 n + 1

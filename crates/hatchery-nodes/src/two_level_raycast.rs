@@ -307,6 +307,14 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             tf_texture.create_view(&Default::default()),
             ids.create_view(&Default::default()),
             table_texture.create_view(&Default::default()),
+            gpu.texture_2d_init(
+                "unused lighting tf",
+                1,
+                1,
+                wgpu::TextureFormat::Rgba32Float,
+                &[0u8; 16],
+            )
+            .create_view(&Default::default()),
         ];
         let pipelines = ctx
             .cached("two_level_raycast.pipelines", |gpu| {
@@ -338,6 +346,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 resource: wgpu::BindingResource::Sampler(&sampler),
             },
             texture(3, &views[1]),
+            // The lighting TF of shade_surface's `lighting` branch, which two-level never takes.
+            texture(4, &views[4]),
             texture(11, &views[2]),
             texture(12, &views[3]),
             wgpu::BindGroupEntry {

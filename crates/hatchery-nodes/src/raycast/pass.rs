@@ -255,14 +255,18 @@ impl RayPipelines {
             Kernel::Compute => self.compute.get_bind_group_layout(0),
             Kernel::Fragment => self.render.get_bind_group_layout(0),
         };
+        // A binding the program reads but `entries` lacks is a validation error: report it
+        // on the node instead of drawing nothing.
         let bind_group = ctx
             .gpu
-            .device
-            .create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ray caster"),
-                layout: &layout,
-                entries,
-            });
+            .checked("ray caster bind group", |device| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("ray caster"),
+                    layout: &layout,
+                    entries,
+                })
+            })
+            .map_err(|e| NodeError::new(e.to_string()))?;
         match kernel {
             Kernel::Compute => self.cast_compute(ctx, camera, &bind_group),
             Kernel::Fragment => self.cast_fragment(ctx, camera, &bind_group),
