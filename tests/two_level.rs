@@ -432,3 +432,125 @@ fn ids_are_never_interpolated_no_sample_between_ids_1_and_3_is_object_2() {
         );
     }
 }
+
+/// A bright ball (v = 255 · (1 − r)) with labels: 2 for r < 0.45, 1 for the shell to 0.85.
+fn graded_ball() -> (VolumeData, LabelData) {
+    let (_, labels) = nested_spheres();
+    let half = (N - 1) as f32 / 2.0;
+    let mut values = Vec::new();
+    for z in 0..N {
+        for y in 0..N {
+            for x in 0..N {
+                let r = Vec3::new(x as f32 - half, y as f32 - half, z as f32 - half).length()
+                    / half;
+                values.push(255.0 * (1.0 - r).max(0.0));
+            }
+        }
+    }
+    let volume = VolumeData::with_geometry([N; 3], labels.geometry, values).unwrap();
+    (volume, labels)
+}
+
+#[test]
+fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
+    let (volume, labels) = graded_ball();
+    let mut session = session();
+    session.ctx.set_size(SIZE, SIZE).unwrap();
+    let cam = Camera::orbit(
+        Vec3::ZERO,
+        30.0,
+        20.0,
+        35.0,
+        40.0,
+        false,
+        0.05,
+        200.0,
+        false,
+        SIZE,
+        SIZE,
+    );
+    // Visible only well inside the core (r < 0.33), so the object mask decides nothing there:
+    // the core alone, masked, is what Raycast shows of the whole volume with this function.
+    let tf = TransferFunction1D::from_points(&[
+        ControlPoint {
+            value: 0.0,
+            rgba: [0.0; 4],
+        },
+        ControlPoint {
+            value: 170.0,
+            rgba: [0.9, 0.5, 0.2, 0.0],
+        },
+        ControlPoint {
+            value: 255.0,
+            rgba: [1.0, 0.9, 0.6, 0.35],
+        },
+    ])
+    .unwrap();
+    let cases = [
+        ("shaded DVR", RenderMode::ShadedDvr, Compositing::Over, "dvr", "phong"),
+        ("unshaded DVR", RenderMode::Dvr, Compositing::Over, "dvr", "none"),
+        ("MIP", RenderMode::Mip, Compositing::Mip, "mip", "none"),
+        ("iso-surface", RenderMode::Iso, Compositing::Iso, "iso", "phong"),
+    ];
+    let volume_value = Value::Volume(Arc::new(Volume::new(volume.clone())));
+    for (name, mode, compositing, ray_mode, shading) in cases {
+        let styles = vec![
+            ObjectStyle {
+                mode,
+                compositing,
+                iso: 200.0,
+                ..style(2, &tf, Local::Over)
+            },
+            ObjectStyle {
+                enabled: false,
+                ..style(1, &tf, Local::Over)
+            },
+        ];
+        let out = common::run_node(
+            &mut session,
+            "TwoLevelRaycast",
+            vec![
+                ("volume", volume_value.clone()),
+                ("labels", Value::Labels(Arc::new(Labels::new(labels.clone())))),
+                ("styles", Value::ObjectStyles(Arc::new(styles))),
+                ("camera", Value::Camera(Arc::new(cam.clone()))),
+            ],
+            &[
+                ("step", ParamValue::Float(STEP as f64)),
+                ("jitter", ParamValue::Bool(false)),
+                ("early_termination", ParamValue::Float(1.0)),
+            ],
+        );
+        let two_level = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+        let out = common::run_node(
+            &mut session,
+            "Raycast",
+            vec![
+                ("volume", volume_value.clone()),
+                ("camera", Value::Camera(Arc::new(cam.clone()))),
+                (
+                    "tf",
+                    Value::TransferFunction(Arc::new(
+                        hatchery_nodes::value::TransferFunction::Color(tf.clone()),
+                    )),
+                ),
+            ],
+            &[
+                ("mode", ParamValue::Choice(ray_mode.into())),
+                ("shading", ParamValue::Choice(shading.into())),
+                ("iso", ParamValue::Float(200.0)),
+                ("step", ParamValue::Float(STEP as f64)),
+                ("jitter", ParamValue::Bool(false)),
+                ("early_termination", ParamValue::Float(1.0)),
+            ],
+        );
+        let raycast = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+        let pixels = |a: &export::Array| -> Vec<[f32; 4]> {
+            a.data.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+        };
+        let (two_level, raycast) = (pixels(&two_level), pixels(&raycast));
+        let covered = raycast.iter().filter(|p| p[3] > 0.05).count();
+        assert!(covered > 100, "{name}: only {covered} pixels covered");
+        assert_close(name, &two_level, &raycast, 1.0 / 255.0);
+    }
+}
