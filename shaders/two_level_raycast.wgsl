@@ -15,7 +15,8 @@
 
 struct TwoLevel {
     // x = global compositing (0 over, 1 mip, 2 sum); y = 1 for boundary filtering, 0 for point
-    // sampling; z = number of columns of `objects` (largest id + 1).
+    // sampling; z = number of columns of `objects` (largest id + 1); w = 1 to take normals from
+    // each object's own filtered mask instead of the data (label maps without intensities).
     options: vec4<f32>,
 };
 @group(0) @binding(13) var<uniform> two_level: TwoLevel;
@@ -66,6 +67,44 @@ fn object_at(q: vec3<f32>) -> u32 {
         }
     }
     return 0u;
+}
+
+// The trilinearly filtered binary mask of object `id` at voxel-space q (§2.3).
+fn object_mask(q: vec3<f32>, id: u32) -> f32 {
+    let p = clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0);
+    let base = vec3<i32>(floor(p));
+    let f = p - floor(p);
+    var mask = 0.0;
+    for (var c = 0; c < 8; c++) {
+        let o = vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1);
+        if id_at(base + o) == id {
+            let w3 = select(1.0 - f, f, vec3<bool>(o == vec3<i32>(1)));
+            mask += w3.x * w3.y * w3.z;
+        }
+    }
+    return mask;
+}
+
+// World-space gradient of object `id`'s filtered mask (central differences in voxel space):
+// the shading normal of an object boundary when the data holds no intensities.
+fn object_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
+    var g = vec3<f32>(0.0);
+    for (var axis = 0; axis < 3; axis++) {
+        var lo = q;
+        var hi = q;
+        lo[axis] -= 1.0;
+        hi[axis] += 1.0;
+        g[axis] = (object_mask(hi, id) - object_mask(lo, id)) * 0.5;
+    }
+    return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
+}
+
+// The gradient that shades a sample of object `id`: the data's, or the object mask's.
+fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
+    if two_level.options.w > 0.5 {
+        return object_gradient(q, id);
+    }
+    return gradient_at(q);
 }
 
 // Cool-to-warm tone shading (Gooch et al. 1998; the tutorial's "tone shading").
@@ -188,7 +227,7 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
                     t_hit = previous_t + h * (iso - previous_value) / (v - previous_value);
                 }
                 let p = r.p0 + r.dir * t_hit;
-                let n = view_normal(gradient_at(r.q0 + r.dq * t_hit));
+                let n = view_normal(shading_gradient(r.q0 + r.dq * t_hit, current));
                 let hv = normalize(l + view_direction(p));
                 let base = table_lookup_row(iso, row, domain).rgb;
                 var c = base;
@@ -215,7 +254,7 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
         var n = vec3<f32>(0.0);
         if mode == MODE_SHADED || mode == MODE_TONE || mode == MODE_CONTOURS {
             let p = r.p0 + r.dir * t;
-            let g = gradient_at(q);
+            let g = shading_gradient(q, current);
             n = view_normal(g);
             let v_dir = view_direction(p);
             if mode == MODE_SHADED {

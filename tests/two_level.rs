@@ -441,8 +441,8 @@ fn graded_ball() -> (VolumeData, LabelData) {
     for z in 0..N {
         for y in 0..N {
             for x in 0..N {
-                let r = Vec3::new(x as f32 - half, y as f32 - half, z as f32 - half).length()
-                    / half;
+                let r =
+                    Vec3::new(x as f32 - half, y as f32 - half, z as f32 - half).length() / half;
                 values.push(255.0 * (1.0 - r).max(0.0));
             }
         }
@@ -487,10 +487,28 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
     ])
     .unwrap();
     let cases = [
-        ("shaded DVR", RenderMode::ShadedDvr, Compositing::Over, "dvr", "phong"),
-        ("unshaded DVR", RenderMode::Dvr, Compositing::Over, "dvr", "none"),
+        (
+            "shaded DVR",
+            RenderMode::ShadedDvr,
+            Compositing::Over,
+            "dvr",
+            "phong",
+        ),
+        (
+            "unshaded DVR",
+            RenderMode::Dvr,
+            Compositing::Over,
+            "dvr",
+            "none",
+        ),
         ("MIP", RenderMode::Mip, Compositing::Mip, "mip", "none"),
-        ("iso-surface", RenderMode::Iso, Compositing::Iso, "iso", "phong"),
+        (
+            "iso-surface",
+            RenderMode::Iso,
+            Compositing::Iso,
+            "iso",
+            "phong",
+        ),
     ];
     let volume_value = Value::Volume(Arc::new(Volume::new(volume.clone())));
     for (name, mode, compositing, ray_mode, shading) in cases {
@@ -511,7 +529,10 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
             "TwoLevelRaycast",
             vec![
                 ("volume", volume_value.clone()),
-                ("labels", Value::Labels(Arc::new(Labels::new(labels.clone())))),
+                (
+                    "labels",
+                    Value::Labels(Arc::new(Labels::new(labels.clone()))),
+                ),
                 ("styles", Value::ObjectStyles(Arc::new(styles))),
                 ("camera", Value::Camera(Arc::new(cam.clone()))),
             ],
@@ -546,7 +567,10 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
         );
         let raycast = export::to_array(&out[0], &session.ctx.gpu).unwrap();
         let pixels = |a: &export::Array| -> Vec<[f32; 4]> {
-            a.data.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+            a.data
+                .chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2], c[3]])
+                .collect()
         };
         let (two_level, raycast) = (pixels(&two_level), pixels(&raycast));
         let covered = raycast.iter().filter(|p| p[3] > 0.05).count();

@@ -14,10 +14,12 @@ use std::sync::Arc;
 
 const GLOBAL: &[&str] = &["over", "mip", "sum"];
 const BOUNDARIES: &[&str] = &["filtered", "point"];
+const NORMALS: &[&str] = &["data", "objects"];
 
 crate::uniform_block! {
     /// `TwoLevel` of shaders/two_level_raycast.wgsl: (global compositing 0 over / 1 mip /
-    /// 2 sum, 1 for boundary filtering, columns of the object table, 0).
+    /// 2 sum, 1 for boundary filtering, columns of the object table, 1 for normals from the
+    /// objects' masks).
     pub struct TwoLevelUniforms in "two_level_raycast" as "TwoLevel" {
         pub options: [f32; 4],
     }
@@ -133,6 +135,13 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                     BOUNDARIES,
                     "object membership: filtered binary masks (§2.3) or the nearest voxel's id",
                 ),
+                ParamSpec::choice(
+                    "normals",
+                    "data",
+                    NORMALS,
+                    "shading normals from the data's gradient, or from each object's filtered \
+                     mask (for label maps without intensities)",
+                ),
                 ParamSpec::float(
                     "step",
                     0.5,
@@ -243,7 +252,14 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let contours = styles
             .iter()
             .any(|s| s.enabled && s.mode == RenderMode::Contours);
-        let max_gradient = if contours { volume.max_gradient() } else { 1.0 };
+        let object_normals = p.choice("normals") == "objects";
+        // A mask's central difference across a 0 → 1 step is at most 0.5 per voxel.
+        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+        let max_gradient = match (object_normals, contours) {
+            (true, _) => 0.5 / min_spacing,
+            (false, true) => volume.max_gradient(),
+            (false, false) => 1.0,
+        };
         let uniforms = RayUniforms::new(
             &camera,
             v,
@@ -274,7 +290,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 global as f32,
                 if filtered { 1.0 } else { 0.0 },
                 tables.columns as f32,
-                0.0,
+                if object_normals { 1.0 } else { 0.0 },
             ],
         };
         let ray_buffer = gpu.buffer_init(
