@@ -7,6 +7,9 @@
 // front to back with the global mode (over, mip, sum). Prepended: ray_common, ray_classify,
 // ray_shade, ray_skip. The CPU reference is tests/common/two_level_reference.rs.
 
+// Binding 9 (`bricks`, see ray_common) holds (0, 1, id, 0) for bricks a drawn object reaches
+// and (1, 0, id, 0) for the others, so an empty brick reads as one to skip; id is the one object
+// every sample of the brick sees, −1 where several meet.
 // Object ids (R16Uint), on the volume's grid.
 @group(0) @binding(11) var object_ids: texture_3d<u32>;
 // One column per id: row 0 = (table row + 1, or 0 when not drawn; rendering mode; local
@@ -170,8 +173,23 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
         var id = 0u;
         var t = start + f32(k) * h;
         let q = r.q0 + r.dq * t;
+        // Empty-space skipping: a brick no drawn object reaches holds only "no object"
+        // samples, which close the open segment exactly as stepping through them would.
+        var jump = false;
         if k < count {
-            id = object_at(q);
+            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
+            let info = textureLoad(bricks, brick, 0);
+            jump = ray.skip.x > 0.5 && info.x > info.y;
+            // Inside a brick of one object no sample needs its 8 voxels.
+            if jump {
+                id = 0u;
+            } else if info.z >= 0.0 {
+                id = u32(info.z);
+            } else {
+                id = object_at(q);
+            }
+        }
+        if k < count && !jump {
             if i32(id) >= columns {
                 id = 0u;
             } else if id != 0u && textureLoad(objects, vec2<i32>(i32(id), 0), 0).x < 0.5 {
@@ -211,6 +229,12 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
                 iso = info.w;
                 domain = textureLoad(objects, vec2<i32>(i32(id), 1), 0).xy;
             }
+        }
+        if jump {
+            let exit = brick_exit(q, r.dq, t) - 1e-4 * h;
+            let next = min(max(ceil((exit - start) / h), f32(k + 1u)), f32(count));
+            k = u32(next) - 1u;
+            continue;
         }
         if current == 0u || seg_done {
             continue;

@@ -3,7 +3,7 @@
 //! ray by a global compositing mode (see shaders/two_level_raycast.wgsl).
 
 use crate::raycast::{KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo};
-use crate::value::{Compositing, Image, ObjectStyle, RenderMode};
+use crate::value::{Compositing, Image, Labels, ObjectStyle, RenderMode};
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::LUT_SIZE;
 use hatchery_gpu::GpuError;
@@ -89,6 +89,34 @@ fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
     }
 }
 
+/// Per 8³-voxel brick: (0, 1, id, 0) where a sample in the brick can belong to a drawn object,
+/// (1, 0, id, 0) (an empty range: "skip") elsewhere; id = the one object every sample in the
+/// brick sees, or −1 where there are several (then each sample filters its 8 voxels).
+fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3], Vec<[f32; 4]>) {
+    let mut drawn = vec![false; u16::MAX as usize + 1];
+    for s in styles.iter().filter(|s| s.enabled) {
+        drawn[s.id as usize] = true;
+    }
+    let bricks = labels.brick_objects();
+    let table = bricks
+        .ids
+        .iter()
+        .map(|ids| {
+            let single = if ids.len() == 1 {
+                f32::from(ids[0])
+            } else {
+                -1.0
+            };
+            if ids.iter().any(|&id| drawn[id as usize]) {
+                [0.0, 1.0, single, 0.0]
+            } else {
+                [1.0, 0.0, single, 0.0]
+            }
+        })
+        .collect();
+    (bricks.dims, table)
+}
+
 pub struct TwoLevelRaycastNode;
 
 impl Node<Value, Ctx> for TwoLevelRaycastNode {
@@ -160,6 +188,12 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                     0.5,
                     1.0,
                     "stop a ray at this opacity with global over (1 = never)",
+                ),
+                ParamSpec::bool(
+                    "skip_empty",
+                    true,
+                    "jump over 8³-voxel bricks that no drawn object reaches — same picture, \
+                     fewer samples",
                 ),
                 ParamSpec::choice(
                     "kernel",
@@ -244,7 +278,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             use_labels: false,
             label_range: [0.0, 1.0],
             label_count: 0.0,
-            skip_empty: false,
+            skip_empty: p.bool("skip_empty"),
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
         let gpu = &ctx.gpu;
@@ -318,11 +352,19 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             bytemuck::cast_slice(&tables.table),
         );
         let ids = labels.texture(gpu).map_err(err)?;
+        let (brick_dims, brick_ranges) = brick_table(&labels, &styles);
+        let brick_texture = gpu.texture_3d_init(
+            "object bricks",
+            brick_dims,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&brick_ranges),
+        );
         let views = [
             volume_texture.texture.create_view(&Default::default()),
             tf_texture.create_view(&Default::default()),
             ids.create_view(&Default::default()),
             table_texture.create_view(&Default::default()),
+            brick_texture.create_view(&Default::default()),
             gpu.texture_2d_init(
                 "unused lighting tf",
                 1,
@@ -363,7 +405,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             },
             texture(3, &views[1]),
             // The lighting TF of shade_surface's `lighting` branch, which two-level never takes.
-            texture(4, &views[4]),
+            texture(4, &views[5]),
+            texture(9, &views[4]),
             texture(11, &views[2]),
             texture(12, &views[3]),
             wgpu::BindGroupEntry {

@@ -62,6 +62,15 @@ impl Volume {
 pub struct Labels {
     pub data: Arc<hatchery_data::segmentation::LabelData>,
     texture: OnceLock<wgpu::Texture>,
+    bricks: OnceLock<BrickObjects>,
+}
+
+/// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
+/// the 8 voxels around it, so a brick also sees the first voxel layer of its upper
+/// neighbours): the brick grid's dims and, per brick (x fastest), the ids, sorted.
+pub struct BrickObjects {
+    pub dims: [u32; 3],
+    pub ids: Vec<Vec<u16>>,
 }
 
 impl Labels {
@@ -69,8 +78,46 @@ impl Labels {
         Self {
             data: Arc::new(data),
             texture: OnceLock::new(),
+            bricks: OnceLock::new(),
         }
     }
+
+    /// The ids each brick's samples can see, computed once.
+    pub fn brick_objects(&self) -> &BrickObjects {
+        self.bricks.get_or_init(|| {
+            let brick = hatchery_data::bricks::BRICK;
+            let l = &self.data;
+            let dims = l.dims.map(|d| d.div_ceil(brick));
+            let mut ids: Vec<Vec<u16>> =
+                vec![Vec::new(); dims.iter().map(|&d| d as usize).product()];
+            let [nx, ny, nz] = l.dims;
+            // Voxel v is seen by samples with floor(q) ∈ {v − 1, v}: the bricks of v − 1 and v.
+            let near = |v: u32| [v.saturating_sub(1) / brick, v / brick];
+            let mut i = 0;
+            for z in 0..nz {
+                for y in 0..ny {
+                    for x in 0..nx {
+                        let id = l.ids[i];
+                        i += 1;
+                        for bz in near(z) {
+                            for by in near(y) {
+                                for bx in near(x) {
+                                    let list =
+                                        &mut ids[(bx + dims[0] * (by + dims[1] * bz)) as usize];
+                                    if !list.contains(&id) {
+                                        list.push(id);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            ids.iter_mut().for_each(|list| list.sort_unstable());
+            BrickObjects { dims, ids }
+        })
+    }
+
     /// The id texture (R16Uint, dims of the label volume). Errors: dims over the adapter's
     /// 3-D texture limit.
     pub fn texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
