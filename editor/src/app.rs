@@ -740,6 +740,7 @@ impl EditorApp {
             "TransferFunction1D" => self.transfer_function_section(ui, &id, &node),
             "StyleTransferFunction" => self.style_function_section(ui, &id, &node),
             "StyleSet" => self.styles_section(ui, &id, &node),
+            "ObjectStyles" => self.object_styles_section(ui, &id, &node),
             _ => {}
         }
         egui::Grid::new("params").num_columns(3).show(ui, |ui| {
@@ -956,6 +957,38 @@ impl EditorApp {
                 id,
                 &[("nodes", ParamValue::Text(text))],
                 "style function edit",
+            );
+        }
+        ui.separator();
+    }
+
+    /// The object table of an `ObjectStyles` node, its objects named after the connected labels.
+    fn object_styles_section(&mut self, ui: &mut Ui, id: &str, node: &hatchery_graph::NodeDoc) {
+        let Some(ParamValue::Text(text)) = node_param(&self.state, node, "objects") else {
+            return;
+        };
+        ui.label("Objects");
+        let mut rows = match hatchery_nodes::object_styles::parse_rows(&text) {
+            Ok(rows) => rows,
+            Err(e) => {
+                ui.colored_label(Color32::LIGHT_RED, format!("cannot show the table: {e}"));
+                return;
+            }
+        };
+        let doc = self.state.doc();
+        let names = doc
+            .edges
+            .iter()
+            .find(|e| e.to.0 == id && e.to.1 == "labels")
+            .and_then(|e| self.preview.object_names.get(&e.from.0))
+            .cloned()
+            .unwrap_or_default();
+        if crate::object_table::object_table(ui, id, &mut rows, &names) {
+            let text = hatchery_nodes::object_styles::format_rows(&rows);
+            let _ = self.state.set_params(
+                id,
+                &[("objects", ParamValue::Text(text))],
+                "object table edit",
             );
         }
         ui.separator();

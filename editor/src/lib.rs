@@ -15,6 +15,7 @@ pub mod files;
 pub mod frames;
 pub mod groups;
 pub mod layout_dump;
+pub mod object_table;
 pub mod picture;
 pub mod preview;
 pub mod render_worker;

@@ -89,6 +89,8 @@ pub struct Preview {
     pub warnings: BTreeMap<String, String>,
     /// Value ranges of the evaluated `TransferFunction1D` nodes.
     pub tf_domains: BTreeMap<String, [f32; 2]>,
+    /// The objects of each node with a `labels` output, from the last render.
+    pub object_names: BTreeMap<String, Vec<(u16, String)>>,
     /// Wall time of the last answered request on the render thread, and the adapter.
     pub last_render: Option<(Duration, String)>,
     /// How many answers have been shown (tests wait on this).
@@ -240,6 +242,7 @@ impl Preview {
         self.times = answer.times;
         self.warnings = answer.warnings;
         self.tf_domains.extend(answer.tf_domains);
+        self.object_names.extend(answer.object_names);
         self.last_render = Some((answer.elapsed, answer.adapter));
         self.error = None;
         match answer.viewport {

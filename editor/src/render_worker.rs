@@ -61,6 +61,9 @@ pub struct Rendered {
     /// The value range each evaluated transfer function node spans (a `TransferFunction1D`'s
     /// presets follow the connected volume's range, which only the executed graph knows).
     pub tf_domains: BTreeMap<String, [f32; 2]>,
+    /// The objects (id, name) of each evaluated node with a `labels` output (for the object
+    /// table of ObjectStyles).
+    pub object_names: BTreeMap<String, Vec<(u16, String)>>,
     /// Wall time of the whole request on the worker.
     pub elapsed: Duration,
     /// The adapter rendered on (for the times' caption).
@@ -78,6 +81,7 @@ impl Rendered {
             times: BTreeMap::new(),
             warnings: BTreeMap::new(),
             tf_domains: BTreeMap::new(),
+            object_names: BTreeMap::new(),
             elapsed: Duration::ZERO,
             adapter: String::new(),
         }
@@ -281,6 +285,15 @@ impl Worker {
                     TransferFunction::Style { function, .. } => function.domain,
                 };
                 answer.tf_domains.insert(node.clone(), domain);
+            }
+            if let Ok(Value::Labels(labels)) = session.output(node, "labels") {
+                let names = labels
+                    .data
+                    .objects
+                    .iter()
+                    .map(|(id, name)| (*id, name.clone()))
+                    .collect();
+                answer.object_names.insert(node.clone(), names);
             }
         }
         answer.elapsed = started.elapsed();

@@ -95,6 +95,59 @@ pub fn parse_rows(text: &str) -> Result<Vec<Row>, String> {
     Ok(rows)
 }
 
+/// The names of the rendering modes and compositing modes, in table order.
+pub fn mode_names() -> Vec<&'static str> {
+    MODES.iter().map(|(n, _)| *n).collect()
+}
+pub fn compositing_names() -> Vec<&'static str> {
+    COMPOSITING.iter().map(|(n, _)| *n).collect()
+}
+fn name_of<T: PartialEq>(table: &[(&'static str, T)], value: &T) -> &'static str {
+    table
+        .iter()
+        .find(|(_, v)| v == value)
+        .map_or("?", |(n, _)| *n)
+}
+/// The rendering mode called `name`.
+pub fn mode_named(name: &str) -> Option<RenderMode> {
+    MODES.iter().find(|(n, _)| *n == name).map(|(_, m)| *m)
+}
+/// The compositing mode called `name`.
+pub fn compositing_named(name: &str) -> Option<Compositing> {
+    COMPOSITING
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, m)| *m)
+}
+
+/// The `objects` text of rows (what `parse_rows` reads back).
+pub fn format_rows(rows: &[Row]) -> String {
+    rows.iter()
+        .map(|r| {
+            let mut text = format!(
+                "{}: {} {}",
+                r.id,
+                name_of(MODES, &r.mode),
+                name_of(COMPOSITING, &r.compositing)
+            );
+            if let Some(tf) = &r.tf {
+                text += &format!(" tf={tf}");
+            }
+            if let Some(iso) = r.iso {
+                text += &format!(" iso={iso}");
+            }
+            if r.importance != 1.0 {
+                text += &format!(" importance={}", r.importance);
+            }
+            if !r.enabled {
+                text += " off";
+            }
+            text
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
 /// The value of `word` in a (name, value) table; errors list the names.
 fn pick<T: Copy>(word: Option<&str>, table: &[(&str, T)], what: &str) -> Result<T, String> {
     let word = word.ok_or_else(|| format!("missing the {what}"))?;
@@ -251,5 +304,14 @@ mod tests {
                 .contains("twice")
         );
         assert!(parse_rows("0: tone over").is_err());
+    }
+
+    #[test]
+    fn formatted_rows_read_back_as_the_same_rows() {
+        let text =
+            "13: tone over tf=1; 10: iso iso tf=2 iso=0.5 importance=0.25 off; 11: contours mip";
+        let rows = parse_rows(text).unwrap();
+        assert_eq!(format_rows(&rows), text);
+        assert_eq!(parse_rows(&format_rows(&rows)).unwrap(), rows);
     }
 }

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod export;
 mod layout;
+mod objects;
 mod organise;
 mod picture;
 mod selection;

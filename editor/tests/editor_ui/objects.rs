@@ -1,0 +1,76 @@
+//! The object table of ObjectStyles in the Inspector, driven by clicks.
+
+use super::selection::select_by_click;
+use super::*;
+
+const GRAPH: &str = r#"(
+    version: 2,
+    nodes: [
+        (id: "camera", kind: "Camera", params: {"distance": 3.0}, editor: Some((x: 0.0, y: 0.0))),
+        (id: "field", kind: "ProceduralVolume", params: {"resolution": 32, "shape": "sphere"}, editor: Some((x: 0.0, y: 120.0))),
+        (id: "labels", kind: "LabelsFromThreshold", params: {"intervals": "-0.2..0.0: 1; 0.0..0.3: 2; 0.3..2: 3"}, editor: Some((x: 260.0, y: 120.0))),
+        (id: "objects", kind: "ObjectStyles", params: {"objects": "1: shaded_dvr over; 2: contours mip"}, editor: Some((x: 520.0, y: 120.0))),
+        (id: "ray", kind: "TwoLevelRaycast", params: {"jitter": false}, editor: Some((x: 780.0, y: 60.0))),
+        (id: "save", kind: "SaveImage", params: {"path": "objects.png"}, editor: Some((x: 1040.0, y: 60.0))),
+    ],
+    edges: [
+        (from: ("field", "volume"), to: ("labels", "volume")),
+        (from: ("labels", "labels"), to: ("objects", "labels")),
+        (from: ("field", "volume"), to: ("ray", "volume")),
+        (from: ("labels", "labels"), to: ("ray", "labels")),
+        (from: ("objects", "styles"), to: ("ray", "styles")),
+        (from: ("camera", "camera"), to: ("ray", "camera")),
+        (from: ("ray", "image"), to: ("save", "image")),
+    ],
+)"#;
+
+#[test]
+fn the_object_table_names_objects_and_edits_rows_by_clicks() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("objects.ron");
+    std::fs::write(&path, GRAPH).unwrap();
+    let mut state = EditorState::new();
+    state.scratch_dir = dir.path().to_path_buf();
+    state.open(&path).unwrap();
+    let app = EditorApp::new(state);
+    let mut h = harness(app);
+    h.run();
+    wait_for_render(&mut h);
+    select_by_click(&mut h, "objects");
+    h.run();
+    let objects = |h: &Harness<EditorApp>| text_param(h, "objects", "objects");
+    let original = objects(&h);
+
+    // A row per object, named after the labels; its check box switches the object off.
+    h.get_by_label("1 object 1").click();
+    h.run();
+    assert_eq!(objects(&h), "1: shaded_dvr over off; 2: contours mip");
+
+    // The rendering mode of row 2 from its combo box (combo boxes in row order: mode and
+    // compositing of each row).
+    let combos: Vec<_> = h.get_all_by_role(Role::ComboBox).collect();
+    assert_eq!(combos.len(), 5, "two per row and the add menu");
+    combos[2].click();
+    h.run();
+    h.get_by_label("tone").click();
+    h.run();
+    assert_eq!(objects(&h), "1: shaded_dvr over off; 2: tone mip");
+
+    // Object 3 is in the labels but not in the table: add it from the menu.
+    let combos: Vec<_> = h.get_all_by_role(Role::ComboBox).collect();
+    combos[4].click();
+    h.run();
+    h.get_by_label("3 object 3").click();
+    h.run();
+    assert_eq!(
+        objects(&h),
+        "1: shaded_dvr over off; 2: tone mip; 3: shaded_dvr over"
+    );
+
+    // Each edit is one undo step.
+    for _ in 0..3 {
+        h.state_mut().state.undo();
+    }
+    h.run();
+    assert_eq!(objects(&h), original);
+}
