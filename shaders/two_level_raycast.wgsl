@@ -16,6 +16,10 @@
 // compositing; iso value), row 1 = (TF domain lo, hi, 0, 0).
 @group(0) @binding(12) var objects: texture_2d<f32>;
 
+// 1 where a voxel belongs to a drawn object (R8Unorm, filtered): the union of the drawn
+// objects' masks, an upper bound of each one's filtered mask.
+@group(0) @binding(14) var drawn_mask: texture_3d<f32>;
+
 struct TwoLevel {
     // x = global compositing (0 over, 1 mip, 2 sum); y = 1 for boundary filtering, 0 for point
     // sampling; z = number of columns of `objects` (largest id + 1); w = 1 to take normals from
@@ -110,12 +114,31 @@ fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
     return gradient_at(q);
 }
 
+// The drawn objects' union mask at voxel-space q, filtered trilinearly by the sampler.
+fn drawn_union(q: vec3<f32>) -> f32 {
+    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+    return textureSampleLevel(drawn_mask, linear_clamp, uv, 0.0).r;
+}
+
 // Cool-to-warm tone shading (Gooch et al. 1998; the tutorial's "tone shading").
 fn tone(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
     let t = (1.0 + dot(n, l)) * 0.5;
     let cool = vec3<f32>(0.0, 0.0, 0.55) + 0.25 * c;
     let warm = vec3<f32>(0.3, 0.3, 0.0) + 0.5 * c;
     return clamp(mix(cool, warm, t), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// A finished segment (premultiplied, alpha clamped to 1) combined into the total by the global
+// mode: over, mip (per-channel maximum), sum.
+fn combine(total: vec4<f32>, seg: vec4<f32>, global_mode: i32) -> vec4<f32> {
+    let s = vec4<f32>(seg.rgb, min(seg.a, 1.0));
+    if global_mode == 0 {
+        return total + (1.0 - total.a) * s;
+    }
+    if global_mode == 1 {
+        return max(total, s);
+    }
+    return total + s;
 }
 
 // What a finished segment leaves: premultiplied colour and where it was first visible.
@@ -180,11 +203,15 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
             let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
             let info = textureLoad(bricks, brick, 0);
             jump = ray.skip.x > 0.5 && info.x > info.y;
-            // Inside a brick of one object no sample needs its 8 voxels.
+            // Inside a brick of one object no sample needs its 8 voxels; where the drawn
+            // objects' union mask is below 0.5 (0.45: a margin for the filter's fixed-point
+            // weights) none of them can exceed 0.5, so neither.
             if jump {
                 id = 0u;
             } else if info.z >= 0.0 {
                 id = u32(info.z);
+            } else if two_level.options.y > 0.5 && drawn_union(q) < 0.45 {
+                id = 0u;
             } else {
                 id = object_at(q);
             }
@@ -199,14 +226,7 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
         if id != current {
             // Close the open segment into the total with the global mode.
             if current != 0u && seg.a > 0.0 {
-                let s = vec4<f32>(seg.rgb, min(seg.a, 1.0));
-                if global_mode == 0 {
-                    total += (1.0 - total.a) * s;
-                } else if global_mode == 1 {
-                    total = max(total, s);
-                } else {
-                    total += s;
-                }
+                total = combine(total, seg, global_mode);
                 if hit_t < 0.0 {
                     hit_t = seg_first_t;
                     out.normal = vec4<f32>(seg_normal, 1.0);
@@ -264,6 +284,17 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
                 seg_first_t = t_hit;
                 seg_normal = n;
                 seg_done = true;
+                if global_mode == 0 {
+                    total = combine(total, seg, global_mode);
+                    if hit_t < 0.0 {
+                        hit_t = seg_first_t;
+                        out.normal = vec4<f32>(seg_normal, 1.0);
+                    }
+                    seg = vec4<f32>(0.0);
+                    if total.a >= ray.frame.w {
+                        break;
+                    }
+                }
             }
             previous_value = v;
             previous_t = t;
@@ -315,8 +346,23 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
         }
         if local == LOCAL_OVER {
             seg += (1.0 - seg.a) * vec4<f32>(c * a, a);
+            // Early termination inside the segment: what follows adds less than 1 − alpha.
+            seg_done = seg.a >= ray.frame.w;
         } else {
             seg += vec4<f32>(c * a, a);
+        }
+        if seg_done && global_mode == 0 {
+            // Nothing more joins this segment: with global over, combine it now, and stop
+            // the ray if it is opaque (the segment stays open, empty, until its object ends).
+            total = combine(total, seg, global_mode);
+            if hit_t < 0.0 {
+                hit_t = seg_first_t;
+                out.normal = vec4<f32>(seg_normal, 1.0);
+            }
+            seg = vec4<f32>(0.0);
+            if total.a >= ray.frame.w {
+                break;
+            }
         }
     }
     out.color = min(total, vec4<f32>(1.0));

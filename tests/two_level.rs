@@ -539,7 +539,7 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
             &[
                 ("step", ParamValue::Float(STEP as f64)),
                 ("jitter", ParamValue::Bool(false)),
-                ("early_termination", ParamValue::Float(1.0)),
+                ("early_termination", ParamValue::Float(0.99)),
             ],
         );
         let two_level = export::to_array(&out[0], &session.ctx.gpu).unwrap();
@@ -562,7 +562,7 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
                 ("iso", ParamValue::Float(200.0)),
                 ("step", ParamValue::Float(STEP as f64)),
                 ("jitter", ParamValue::Bool(false)),
-                ("early_termination", ParamValue::Float(1.0)),
+                ("early_termination", ParamValue::Float(0.99)),
             ],
         );
         let raycast = export::to_array(&out[0], &session.ctx.gpu).unwrap();

@@ -8,7 +8,8 @@
 //!   whose sum exceeds 0.5 gives the object, else none. Point sampling: the nearest voxel's id.
 //!   Id 0, ids not in the table and disabled objects are "none".
 //! - Segments: maximal runs of samples of one object. Local compositing: over (front to back,
-//!   opacity corrected for the step: `1 − (1 − a)^step`), sum (corrected colours added), mip
+//!   opacity corrected for the step: `1 − (1 − a)^step`; the segment ends its compositing once
+//!   its alpha reaches the early-termination opacity), sum (corrected colours added), mip
 //!   (the sample of largest value, uncorrected: `(c·a, a)`), iso (the first sample at or above
 //!   the iso value: the TF colour at the iso value, alpha 1; no refinement needed for colour).
 //! - Global: over (`total += (1 − total.a) · segment`, a ray stops once `total.a` reaches the
@@ -182,6 +183,8 @@ pub fn render(
                         let sample = Vec4::new(c[0] * a, c[1] * a, c[2] * a, a);
                         if object.local == Local::Over {
                             *seg += (1.0 - seg.w) * sample;
+                            // Early termination inside the segment.
+                            *done = seg.w >= p.early_termination;
                         } else {
                             *seg += sample;
                         }

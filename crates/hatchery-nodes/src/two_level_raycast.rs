@@ -352,6 +352,9 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             bytemuck::cast_slice(&tables.table),
         );
         let ids = labels.texture(gpu).map_err(err)?;
+        let mut drawn: Vec<u16> = styles.iter().filter(|s| s.enabled).map(|s| s.id).collect();
+        drawn.sort_unstable();
+        let drawn_mask = labels.drawn_mask(gpu, &drawn).map_err(err)?;
         let (brick_dims, brick_ranges) = brick_table(&labels, &styles);
         let brick_texture = gpu.texture_3d_init(
             "object bricks",
@@ -365,6 +368,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ids.create_view(&Default::default()),
             table_texture.create_view(&Default::default()),
             brick_texture.create_view(&Default::default()),
+            drawn_mask.create_view(&Default::default()),
             gpu.texture_2d_init(
                 "unused lighting tf",
                 1,
@@ -405,8 +409,9 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             },
             texture(3, &views[1]),
             // The lighting TF of shade_surface's `lighting` branch, which two-level never takes.
-            texture(4, &views[5]),
+            texture(4, &views[6]),
             texture(9, &views[4]),
+            texture(14, &views[5]),
             texture(11, &views[2]),
             texture(12, &views[3]),
             wgpu::BindGroupEntry {

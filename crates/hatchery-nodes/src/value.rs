@@ -63,6 +63,8 @@ pub struct Labels {
     pub data: Arc<hatchery_data::segmentation::LabelData>,
     texture: OnceLock<wgpu::Texture>,
     bricks: OnceLock<BrickObjects>,
+    /// The last union mask of drawn objects, with the ids it was made for.
+    drawn_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
 }
 
 /// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
@@ -79,7 +81,45 @@ impl Labels {
             data: Arc::new(data),
             texture: OnceLock::new(),
             bricks: OnceLock::new(),
+            drawn_mask: std::sync::Mutex::new(None),
         }
+    }
+
+    /// An R8Unorm volume: 1 where a voxel's id is in `drawn` (sorted), else 0. Filtered
+    /// trilinearly it bounds every drawn object's filtered mask from above, so a sample where it
+    /// is below 0.5 belongs to no drawn object (one fetch instead of eight). Kept for the last
+    /// `drawn` set.
+    pub fn drawn_mask(
+        &self,
+        gpu: &GpuContext,
+        drawn: &[u16],
+    ) -> Result<Arc<wgpu::Texture>, GpuError> {
+        let mut cached = self.drawn_mask.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((ids, texture)) = cached.as_ref()
+            && ids == drawn
+        {
+            return Ok(texture.clone());
+        }
+        let mut is_drawn = vec![false; u16::MAX as usize + 1];
+        for &id in drawn {
+            is_drawn[id as usize] = true;
+        }
+        let [nx, ny, _] = self.data.dims.map(|d| d as usize);
+        let ids = &self.data.ids;
+        let texture = Arc::new(gpu.volume_texture_by_slabs(
+            "drawn objects",
+            self.data.dims,
+            wgpu::TextureFormat::R8Unorm,
+            |z0, z1, out| {
+                let slab = &ids[z0 as usize * nx * ny..z1 as usize * nx * ny];
+                out.extend(
+                    slab.iter()
+                        .map(|&id| if is_drawn[id as usize] { 255u8 } else { 0 }),
+                );
+            },
+        )?);
+        *cached = Some((drawn.to_vec(), texture.clone()));
+        Ok(texture)
     }
 
     /// The ids each brick's samples can see, computed once.
