@@ -11,7 +11,7 @@ bin=${1:-target/release/hatchery}
 out=${2:-bench-gpu}
 frames=${3:-50}
 mkdir -p "$out"
-# (The MRI graphs need mni152_t1, mni152_wm and mni152_gm from ../shared/data/volumes/.)
+# (The graphs need mni152_t1, mni152_wm, mni152_gm and frog_tissues.vti in ../shared/data/volumes/.)
 
 # Sizes of the issue; QUICK shrinks them so the script itself can be tried on lavapipe.
 if [ "${QUICK:-0}" = 1 ]; then
@@ -65,6 +65,28 @@ run raycast_procedural \
     --set "volume.resolution=$res" --set 1:ray.kernel=fragment --set 2:ray.kernel=compute \
     --set 3:ray.mode=mip --set 3:ray.step=1 --set 3:ray.kernel=fragment \
     --set 4:ray.mode=mip --set 4:ray.step=1 --set 4:ray.kernel=compute \
+    --scenario orbit:camera --size "$sq"
+
+# 5. Two-level volume rendering of the frog (4 objects, the preset's modes; then all shaded DVR)
+# against Raycast of the same volume with one transfer function over the same labels; then one
+# object (the skeleton, unshaded) against Raycast showing that label only. Compute kernels.
+tf4="9.5: 0.75 0.3 0.25 0; 10: 0.75 0.3 0.25 1; 10.5: 0.75 0.3 0.25 0; 10.6: 0.2 0.3 0.6 0; 11: 0.2 0.3 0.6 1; 11.5: 0.2 0.3 0.6 0; 12.5: 0.95 0.92 0.85 0; 13: 0.95 0.92 0.85 0.35; 13.5: 0.95 0.92 0.85 0; 14.5: 0.2 0.3 0.6 0; 15: 0.2 0.3 0.6 1; 15.5: 0.2 0.3 0.6 0"
+tf1="12.5: 0.95 0.92 0.85 0; 13: 0.95 0.92 0.85 0.35; 13.5: 0.95 0.92 0.85 0"
+frog_camera() {
+    for k in 3 5; do
+        printf -- '--set %s:camera.azimuth=20 --set %s:camera.distance=720 --set %s:camera.elevation=60 --set %s:camera.far=3000 --set %s:camera.target=[250,235,101] ' $k $k $k $k $k
+    done
+}
+# shellcheck disable=SC2046
+run two_level_frog \
+    graphs/two_level_frog.ron graphs/two_level_frog.ron graphs/tf1d_phong_brain.ron \
+    graphs/two_level_frog.ron graphs/tf1d_phong_brain.ron \
+    --set "2:objects.objects=13: shaded_dvr over tf=1; 10: shaded_dvr over tf=2; 11: shaded_dvr over tf=3; 15: shaded_dvr over tf=3" \
+    --set 2:ray.normals=data \
+    --set 3:volume.path=../shared/data/volumes/frog_tissues.vti --set "3:tf.points=$tf4" \
+    --set "4:objects.objects=13: dvr over tf=1" --set 4:ray.normals=data \
+    --set 5:volume.path=../shared/data/volumes/frog_tissues.vti --set "5:tf.points=$tf1" \
+    --set 5:ray.shading=none $(frog_camera) \
     --scenario orbit:camera --size "$sq"
 
 echo "results in $out/"
