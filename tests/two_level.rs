@@ -578,3 +578,34 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
         assert_close(name, &two_level, &raycast, 1.0 / 255.0);
     }
 }
+
+#[test]
+fn label_mask_reads_labels_as_it_reads_a_label_volume() {
+    let (volume, labels) = nested_spheres();
+    let mut session = session();
+    let params = [
+        ("labels", ParamValue::Text("2".into())),
+        ("smooth", ParamValue::Float(1.0)),
+    ];
+    let mask_of = |session: &mut Session, input: (&'static str, Value)| {
+        let out = common::run_node(session, "LabelMask", vec![input], &params);
+        match &out[0] {
+            Value::Volume(v) => v.data.values_f32().into_owned(),
+            _ => panic!("not a volume"),
+        }
+    };
+    let from_labels = mask_of(
+        &mut session,
+        ("objects", Value::Labels(Arc::new(Labels::new(labels)))),
+    );
+    // The label volume as numbers: ids 0, 1, 2 (the data is 100 × id).
+    let ids = volume.values_f32().iter().map(|v| v / 100.0).collect();
+    let as_numbers = volume.with_values(ids).unwrap();
+    let from_volume = mask_of(
+        &mut session,
+        ("volume", Value::Volume(Arc::new(Volume::new(as_numbers)))),
+    );
+    assert_eq!(from_labels, from_volume);
+    let inside = from_labels.iter().filter(|&&m| m > 0.5).count();
+    assert!(inside > 1000, "core voxels: {inside}");
+}

@@ -16,15 +16,24 @@ impl Node<Value, Ctx> for LabelMaskNode {
         NodeSchema {
             kind: "LabelMask",
             category: "Geometry",
-            doc: "1 where a voxel's label (its value rounded to an integer) is in `labels`, else 0, then \
-                  blurred by a Gaussian of `smooth` voxels so that MarchingCubes at iso 0.5 gives a \
-                  smooth surface instead of voxel stairs. Labels not present are an error that lists \
-                  the labels the volume has.",
-            inputs: vec![PortSpec::input(
-                "volume",
-                PortType::Volume,
-                "a label volume (e.g. the segmented frog)",
-            )],
+            doc: "1 where a voxel's label is in `labels`, else 0, then blurred by a Gaussian of \
+                  `smooth` voxels so that MarchingCubes at iso 0.5 gives a smooth surface instead \
+                  of voxel stairs. The labels come from `objects` (a segmented volume: LabelFile, \
+                  LabelsFromThreshold, …) or, as in graphs made before labels had their own type, \
+                  from `volume` (values rounded to integers); connect one of the two. Labels not \
+                  present are an error that lists the labels the volume has.",
+            inputs: vec![
+                PortSpec::optional(
+                    "objects",
+                    PortType::Labels,
+                    "a segmented volume (e.g. LabelFile of the frog)",
+                ),
+                PortSpec::optional(
+                    "volume",
+                    PortType::Volume,
+                    "or a label volume read as numbers",
+                ),
+            ],
             outputs: vec![PortSpec::output(
                 "mask",
                 PortType::Volume,
@@ -55,10 +64,33 @@ impl Node<Value, Ctx> for LabelMaskNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let volume = inputs.require("volume")?.volume("volume")?;
+        let from_labels;
+        let data = match (inputs.get("objects"), inputs.get("volume")) {
+            (Some(objects), None) => {
+                let l = &objects.labels("objects")?.data;
+                from_labels = hatchery_data::VolumeData::from_voxels(
+                    l.dims,
+                    l.geometry,
+                    hatchery_data::voxels::Voxels::U16(l.ids.clone()),
+                )
+                .map_err(|e| NodeError::at_port("objects", e.to_string()))?;
+                &from_labels
+            }
+            (None, Some(volume)) => &*volume.volume("volume")?.data,
+            (Some(_), Some(_)) => {
+                return Err(NodeError::new(
+                    "both `objects` and `volume` are connected: connect one",
+                ));
+            }
+            (None, None) => {
+                return Err(NodeError::new(
+                    "connect a segmented volume to `objects` (or a label volume to `volume`)",
+                ));
+            }
+        };
         let wanted = labels::parse_label_list(p.text("labels"))
             .map_err(|e| NodeError::new(format!("parameter `labels`: {e}")))?;
-        let counts = labels::label_counts(&volume.data);
+        let counts = labels::label_counts(data);
         if !wanted.iter().any(|l| counts.contains_key(l)) {
             let present: Vec<String> = counts.keys().map(|l| l.to_string()).collect();
             return Err(NodeError::new(format!(
@@ -67,7 +99,7 @@ impl Node<Value, Ctx> for LabelMaskNode {
                 present.join(", ")
             )));
         }
-        let mask = labels::label_mask(&volume.data, &wanted, p.f32("smooth"))
+        let mask = labels::label_mask(data, &wanted, p.f32("smooth"))
             .map_err(|e| NodeError::new(e.to_string()))?;
         Ok(vec![Value::Volume(Arc::new(Volume::new(mask)))])
     }
