@@ -13,10 +13,10 @@ struct Ray {
     // units, box_max.w = step in voxels.
     box_min: vec4<f32>,
     box_max: vec4<f32>,
-    // xyz world origin (centre of voxel 0, informative); w = lowest value (the texture stores
-    // (v - lo) / (hi - lo)).
+    // xyz world origin (centre of voxel 0, informative); w = lowest finite value (the
+    // visibility table's range).
     origin: vec4<f32>,
-    // xyz voxel spacing (informative); w = highest value.
+    // xyz voxel spacing (informative); w = highest finite value.
     spacing: vec4<f32>,
     // xyz voxel counts; w = largest gradient magnitude (normalises |g| to [0, 1]).
     dims: vec4<f32>,
@@ -38,7 +38,7 @@ struct Ray {
     style: vec4<f32>,
     // xyz world eye position (perspective cameras).
     eye: vec4<f32>,
-    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its value range
+    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its texel range
     // (the texture is normalised like the volume's); w = width of the label → row table.
     labels: vec4<f32>,
     // x = 1 to skip empty bricks (DVR); y = voxels per brick side; z = visibility bins.
@@ -47,6 +47,9 @@ struct Ray {
     to_voxel: mat4x4<f32>,
     // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
     grad_to_world: mat4x4<f32>,
+    // x, y: data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format
+    // follows the voxel type, see hatchery_nodes::volume_texture).
+    texel: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> ray: Ray;
@@ -89,7 +92,7 @@ fn value_at(q: vec3<f32>) -> f32 {
     if normalised < -0.5 {
         return NO_DATA;
     }
-    return ray.origin.w + normalised * (ray.spacing.w - ray.origin.w);
+    return ray.texel.x + normalised * (ray.texel.y - ray.texel.x);
 }
 
 // Whether a value from value_at is "no data" (transparent).

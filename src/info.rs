@@ -33,7 +33,10 @@ pub fn describe(path: &Path) -> Result<String> {
     }
     let v = load_volume(path)?;
     let g = &v.geometry;
-    let no_data = v.values.iter().filter(|x| !x.is_finite()).count();
+    let no_data = v
+        .voxels
+        .as_f32()
+        .map_or(0, |f| f.iter().filter(|x| !x.is_finite()).count());
     let [lo, hi] = g.world_bounds(v.dims);
     let mut out = format!("{}\n", path.display());
     out += &format!("  dims: {} x {} x {}\n", v.dims[0], v.dims[1], v.dims[2]);
@@ -54,7 +57,11 @@ pub fn describe(path: &Path) -> Result<String> {
             &v.placement
         }
     );
-    out += &format!("  stored type: {}\n", v.stored_type);
+    out += &format!(
+        "  stored type: {} (kept as {})\n",
+        v.stored_type,
+        v.voxels.type_name()
+    );
     out += &format!(
         "  value range: {} .. {}{}\n",
         v.value_range[0],

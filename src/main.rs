@@ -355,8 +355,6 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
     }
     session.run(&targets)?;
     for (node, port, path) in &requests {
-        let value = session.output(node, port)?;
-        let gpu = &session.ctx.gpu;
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -365,18 +363,16 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
         let what = format!("--dump {node}.{port}={}", path.display());
         match ext.as_str() {
             "npy" => {
-                let array =
-                    export::to_array(value, gpu).map_err(|e| anyhow::anyhow!("{what}: {e}"))?;
+                let value = session.output(node, port)?;
+                let array = export::to_array(value, &session.ctx.gpu)
+                    .map_err(|e| anyhow::anyhow!("{what}: {e}"))?;
                 export::write_npy(path, &array)
                     .with_context(|| format!("{what}: cannot write the file"))?;
             }
-            "png" => {
-                let picture =
-                    export::to_rgba8(value, gpu).map_err(|e| anyhow::anyhow!("{what}: {e}"))?;
-                picture
-                    .save(path)
-                    .with_context(|| format!("{what}: cannot write the file"))?;
-            }
+            // The editor's File → Export image writes through the same function.
+            "png" => session
+                .export_png(node, port, path)
+                .map_err(|e| anyhow::anyhow!("{what}: {e}"))?,
             _ => bail!("{what}: the file must end in .npy (raw data) or .png (a picture)"),
         }
         println!("dumped {node}.{port} to {}", path.display());

@@ -141,7 +141,10 @@ fn no_data_voxels_are_transparent_to_the_ray_caster() {
         let image = render(&mut s, &volume, &cam, f.clone());
         let pixel = 2.0 * half / SIZE as f32;
         for (i, p) in image.iter().enumerate() {
-            let (x, y) = ((i as u32 % SIZE) as f32 + 0.5, (i as u32 / SIZE) as f32 + 0.5);
+            let (x, y) = (
+                (i as u32 % SIZE) as f32 + 0.5,
+                (i as u32 / SIZE) as f32 + 0.5,
+            );
             let r = ((x - SIZE as f32 / 2.0).hypot(y - SIZE as f32 / 2.0)) * pixel / voxel;
             if r > 9.0 {
                 assert_eq!(p[3], 0.0, "pixel ({x}, {y}) {r} voxels out shows {p:?}");

@@ -52,6 +52,12 @@ pub struct EditorApp {
     synced_revision: Option<u64>,
     /// Selection by the mouse (see [`crate::selection`]).
     selecting: CanvasSelection,
+    /// *File → Export image…*.
+    pub export: crate::export_dialog::ExportDialog,
+    /// Where the picture is shown and its own zoom/pan.
+    pub picture: crate::picture::PictureView,
+    /// The canvas's screen rectangle last frame.
+    pub canvas_rect: egui::Rect,
     /// Screen positions for scripted checks (off unless asked for).
     layout: crate::layout_dump::LayoutDump,
     search: String,
@@ -65,6 +71,8 @@ pub struct EditorApp {
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
     pub frame_all: bool,
+    /// Frame once more when every node has been drawn (their sizes are known then).
+    frame_all_again: bool,
     /// The canvas's graph → screen transform of the last frame.
     pub canvas_transform: egui::emath::TSTransform,
     /// An action that would discard unsaved changes, waiting for the user's answer.
@@ -80,6 +88,11 @@ pub struct Refusal {
     pub at: Pos2,
     pub until: f64,
 }
+
+/// Node titles are drawn at egui's body size (13 points at zoom 1).
+const TITLE_FONT_PX: f32 = 13.0;
+/// The smallest title height *Frame all* zooms out to.
+pub const LEGIBLE_TITLE_PX: f32 = 11.0;
 
 /// How long a refusal tooltip stays up, seconds.
 const REFUSAL_SECONDS: f64 = 4.0;
@@ -124,6 +137,9 @@ impl EditorApp {
             synced_revision: None,
             selecting: CanvasSelection::default(),
             layout: crate::layout_dump::LayoutDump::from_env(),
+            export: Default::default(),
+            picture: Default::default(),
+            canvas_rect: egui::Rect::NOTHING,
             search: String::new(),
             clipboard: String::new(),
             refusal: None,
@@ -134,6 +150,7 @@ impl EditorApp {
             pending: None,
             quitting: false,
             frame_all: true,
+            frame_all_again: false,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
         }
     }
@@ -218,6 +235,14 @@ impl EditorApp {
         self.snarl_ids.get(id).copied()
     }
 
+    /// Lays the graph out in columns by rank, with the drawn node sizes (one undo step), and
+    /// frames it.
+    pub fn arrange(&mut self) {
+        let positions = crate::arrange::layered_layout(self.state.doc(), &self.selecting.sizes());
+        self.state.move_nodes(&positions);
+        self.frame_all = true;
+    }
+
     /// Where node `id` was drawn last frame (screen points), if it was.
     pub fn node_screen_rect(&self, id: &str) -> Option<egui::Rect> {
         self.selecting.node_rect(self.canvas_transform, id)
@@ -279,23 +304,45 @@ impl EditorApp {
         if self.synced_revision != Some(self.state.revision()) {
             self.rebuild_snarl();
         }
-        egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
-        egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
-        egui::Panel::right("inspector")
-            .default_size(320.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    self.inspector(ui);
-                    ui.separator();
-                    self.viewport(ui);
+        use crate::picture::Placement;
+        let placement = self.picture.placement;
+        if placement == Placement::FullWindow {
+            egui::CentralPanel::default().show(ui, |ui| self.viewport(ui));
+        } else {
+            egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
+            egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
+            egui::Panel::right("inspector")
+                .default_size(320.0)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector(ui));
                 });
-            });
-        egui::CentralPanel::default().show(ui, |ui| self.canvas(ui));
+            if placement == Placement::Maximised {
+                egui::CentralPanel::default().show(ui, |ui| self.viewport(ui));
+            } else {
+                // The picture beside the canvas, in a panel the user can widen.
+                let wide = (ui.max_rect().width() * 0.4).max(240.0);
+                egui::Panel::right("viewport")
+                    .resizable(true)
+                    .default_size(wide)
+                    .show(ui, |ui| self.viewport(ui));
+                egui::CentralPanel::default().show(ui, |ui| self.canvas(ui));
+            }
+        }
         self.dropped_files(ui);
         if let Some((purpose, path)) = self.picker.update(ui.ctx()) {
             self.picked(purpose, &path);
         }
         self.confirm_discard(ui);
+        if self.export.show(ui.ctx(), self.state.doc()) {
+            let graph = self.state.validate();
+            let base = self.state.base_dir();
+            self.export.start(graph, base.as_deref());
+        }
+        match self.export.poll() {
+            Some(Ok(path)) => self.state.status = format!("exported {}", path.display()),
+            Some(Err(e)) => self.state.status = format!("export failed: {e}"),
+            None => {}
+        }
         if self.layout.enabled() {
             for id in self.snarl_ids.keys() {
                 if let Some(r) = self.node_screen_rect(id) {
@@ -352,10 +399,23 @@ impl EditorApp {
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F)) {
             self.frame_all = true;
         }
+        // F11: the picture fills the window (again: back); Esc leaves that too.
+        use crate::picture::Placement;
+        if ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F11)) {
+            self.picture.placement = if self.picture.placement == Placement::FullWindow {
+                Placement::Beside
+            } else {
+                Placement::FullWindow
+            };
+        }
         // Esc clears the selection unless a popup, menu or text field takes it.
         let popup = egui::Popup::is_any_open(ui.ctx());
         if !typing && !popup && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Escape)) {
-            self.state.clear_selection();
+            if self.picture.placement == Placement::FullWindow {
+                self.picture.placement = Placement::Beside;
+            } else {
+                self.state.clear_selection();
+            }
         }
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Delete)) {
             let ids: Vec<String> = self.state.selection.iter().cloned().collect();
@@ -377,6 +437,18 @@ impl EditorApp {
                         .or_else(|| Some(self.presets_dir.clone()));
                     self.picker
                         .open(Purpose::OpenGraph, Some(FileKind::Graph), folder);
+                    ui.close();
+                }
+                if ui.button("Export image…").clicked() {
+                    self.export.open = true;
+                    if self.export.port.is_none() {
+                        self.export.port = self.preview.chosen.clone().or_else(|| {
+                            let doc = self.state.doc();
+                            let saver = doc.nodes.iter().find(|n| n.kind == "SaveImage")?;
+                            let edge = doc.edges.iter().find(|e| e.to.0 == saver.id)?;
+                            Some(edge.from.clone())
+                        });
+                    }
                     ui.close();
                 }
                 if ui.button("Save as…").clicked() {
@@ -448,6 +520,14 @@ impl EditorApp {
                     self.frame_all = true;
                     ui.close();
                 }
+                if ui
+                    .button("Arrange")
+                    .on_hover_text("lay the graph out in columns by topological rank")
+                    .clicked()
+                {
+                    self.arrange();
+                    ui.close();
+                }
             });
             ui.menu_button("Legend", |ui| {
                 for ty in PortType::ALL {
@@ -483,6 +563,14 @@ impl EditorApp {
         let failed = self.preview.failed_node.clone();
         let frame_into =
             std::mem::take(&mut self.frame_all).then(|| ui.available_rect_before_wrap());
+        // Node sizes as drawn last frame, for framing (before this frame's are recorded).
+        let node_sizes = self.selecting.sizes();
+        if frame_into.is_some() && node_sizes.len() < self.snarl_ids.len() {
+            // Not all nodes drawn yet (the first frame): frame again once they are.
+            self.frame_all_again = true;
+        } else if frame_into.is_none() && std::mem::take(&mut self.frame_all_again) {
+            self.frame_all = true;
+        }
         let mut thumbnails: BTreeMap<Port, Result<(egui::TextureId, egui::Vec2), String>> = self
             .preview
             .thumbnails
@@ -495,6 +583,7 @@ impl EditorApp {
         self.selecting.begin_frame();
         let mut viewer = Viewer {
             frame_into,
+            node_sizes,
             transform: self.canvas_transform,
             selecting: &mut self.selecting,
             state: &mut self.state,
@@ -515,6 +604,7 @@ impl EditorApp {
         let modifiers = ui.input(|i| i.modifiers);
         ui.ctx().input_mut(|i| i.modifiers = Modifiers::NONE);
         let canvas_rect = ui.available_rect_before_wrap();
+        self.canvas_rect = canvas_rect;
         widget.show(&mut self.snarl, &mut viewer, ui);
         ui.ctx().input_mut(|i| i.modifiers = modifiers);
         self.canvas_transform = viewer.transform;
@@ -895,7 +985,7 @@ impl EditorApp {
         if panning {
             let delta = response.drag_delta();
             if delta != egui::Vec2::ZERO {
-                let target = pan_target(&self.state, &camera, delta, response.rect.height());
+                let target = pan_target(&self.state, &camera, delta, response.rect.size());
                 let _ = self.state.set_params(
                     &camera,
                     &[("target", ParamValue::Vec3(target))],
@@ -935,12 +1025,49 @@ impl EditorApp {
     }
 
     fn viewport(&mut self, ui: &mut Ui) {
-        ui.heading("Viewport");
+        use crate::picture::Placement;
         let target = self.preview.target(self.state.doc());
+        ui.horizontal(|ui| {
+            ui.heading("Viewport");
+            let placement = &mut self.picture.placement;
+            let maximised = *placement == Placement::Maximised;
+            if ui
+                .selectable_label(maximised, "⛶ Maximise")
+                .on_hover_text("the picture instead of the canvas")
+                .clicked()
+            {
+                *placement = if maximised {
+                    Placement::Beside
+                } else {
+                    Placement::Maximised
+                };
+            }
+            if ui
+                .selectable_label(*placement == Placement::FullWindow, "Full window (F11)")
+                .on_hover_text("the picture fills the window; Esc or F11 leaves")
+                .clicked()
+            {
+                *placement = if *placement == Placement::FullWindow {
+                    Placement::Beside
+                } else {
+                    Placement::FullWindow
+                };
+            }
+            if self.picture.is_zoomed() {
+                ui.label(format!("picture {:.1}×", self.picture.zoom));
+                if ui.button("Fit").clicked() {
+                    self.picture.fit();
+                }
+            }
+        });
         ui.label(match &target {
             Some((n, p)) => format!("showing {n}.{p}"),
             None => "nothing to show".into(),
-        });
+        })
+        .on_hover_text(
+            "drag: orbit the camera; right/middle/Shift-drag: pan it; wheel: its distance. \
+             Alt+wheel / Alt+drag: zoom / move the picture itself (the camera stays)",
+        );
         if self.preview.chosen.is_some() && ui.button("Show the SaveImage input").clicked() {
             self.preview.chosen = None;
         }
@@ -957,8 +1084,8 @@ impl EditorApp {
                     ));
             }
         });
-        let width = ui.available_width().max(64.0);
-        let size = egui::vec2(width, width * 0.75);
+        // The picture fills the space left (its size follows the panel).
+        let size = ui.available_size().max(egui::vec2(64.0, 48.0));
         if self.preview_enabled {
             let ppp = ui.ctx().pixels_per_point();
             let (w, h) = ((size.x * ppp) as u32, (size.y * ppp) as u32);
@@ -969,11 +1096,32 @@ impl EditorApp {
         }
         let sense = egui::Sense::drag();
         let response = match &self.preview.viewport {
-            Some(shown) => ui.add(egui::Image::new((shown.id(), size)).sense(sense)),
+            Some(shown) => {
+                let mut image = egui::Image::new((shown.id(), size)).uv(self.picture.uv_rect());
+                if self.picture.is_zoomed() {
+                    // Pixels as squares when inspecting hatching up close.
+                    image = image.texture_options(egui::TextureOptions::NEAREST);
+                }
+                ui.add(image.sense(sense))
+            }
             None => ui.allocate_response(size, sense),
         };
         self.viewport_rect = response.rect;
-        self.orbit_camera(ui, &response);
+        // Alt: the picture's own zoom and pan; otherwise the camera.
+        if ui.input(|i| i.modifiers.alt) {
+            if response.dragged() {
+                self.picture.pan(response.drag_delta(), response.rect);
+            }
+            if let Some(at) = response.hover_pos() {
+                let scroll = ui.input(|i| i.smooth_scroll_delta.y + i.smooth_scroll_delta.x);
+                if scroll != 0.0 {
+                    self.picture
+                        .zoom_at((scroll * 0.004).exp(), at, response.rect);
+                }
+            }
+        } else {
+            self.orbit_camera(ui, &response);
+        }
     }
 }
 
@@ -983,9 +1131,10 @@ fn thumbnail_size(shown: &Shown) -> egui::Vec2 {
     egui::vec2(w as f32, h as f32)
 }
 
-/// The Camera target after panning by `delta` screen points in a viewport `height` points
-/// tall: the scene follows the pointer (at the target's depth).
-fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, height: f32) -> [f64; 3] {
+/// The Camera target after panning by `delta` screen points in a viewport of `size` points:
+/// the scene follows the pointer (at the target's depth; the field of view spans the shorter
+/// side).
+fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, size: egui::Vec2) -> [f64; 3] {
     let get = |name: &str| camera_param(state, camera, name) as f32;
     let up_z = camera_choice(state, camera, "up").as_deref() == Some("z");
     let orbit = hatchery_nodes::camera::Camera::orbit(
@@ -1005,7 +1154,7 @@ fn pan_target(state: &EditorState, camera: &str, delta: egui::Vec2, height: f32)
     let right = orbit.view.row(0).truncate();
     let up = orbit.view.row(1).truncate();
     let world_per_point =
-        2.0 * get("distance") * (get("fov").to_radians() / 2.0).tan() / height.max(1.0);
+        2.0 * get("distance") * (get("fov").to_radians() / 2.0).tan() / size.min_elem().max(1.0);
     let shift = (-right * delta.x + up * delta.y) * world_per_point;
     let target = camera_target(state, camera);
     [0, 1, 2].map(|i| target[i] + shift[i] as f64)
@@ -1100,6 +1249,8 @@ fn param_widget(ui: &mut Ui, spec: &ParamSpec, current: &ParamValue) -> Option<P
 struct Viewer<'a> {
     /// "Frame all" requested: the canvas rectangle (screen space) to fit the nodes into.
     frame_into: Option<egui::Rect>,
+    /// Node sizes as drawn last frame (graph units).
+    node_sizes: BTreeMap<String, [f32; 2]>,
     transform: egui::emath::TSTransform,
     /// Where nodes are drawn (for selection by the mouse).
     selecting: &'a mut CanvasSelection,
@@ -1475,21 +1626,33 @@ impl SnarlViewer<String> for Viewer<'_> {
         let Some(rect) = self.frame_into.take() else {
             return;
         };
-        // Node positions are top-left corners; assume a typical node size for the far side.
+        // Node positions are top-left corners; sizes as drawn (or typical, before drawing).
         let mut bounds = egui::Rect::NOTHING;
-        for (p, _) in snarl.nodes_pos() {
-            bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(220.0, 120.0)));
+        for (p, id) in snarl.nodes_pos() {
+            let [w, h] = self
+                .node_sizes
+                .get(id)
+                .copied()
+                .unwrap_or(crate::arrange::DEFAULT_SIZE);
+            bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(w, h)));
         }
         if !bounds.is_positive() {
             return;
         }
-        let bounds = bounds.expand(40.0);
-        let scaling = (rect.width() / bounds.width())
-            .min(rect.height() / bounds.height())
-            .clamp(0.2, 1.0);
+        let bounds = bounds.expand(30.0);
+        let fit = (rect.width() / bounds.width()).min(rect.height() / bounds.height());
+        // Never so small that titles fall below LEGIBLE_TITLE_PX: scroll instead.
+        let legible = LEGIBLE_TITLE_PX / TITLE_FONT_PX;
+        let scaling = fit.clamp(legible, 1.0);
+        let translation = if scaling <= fit {
+            rect.center().to_vec2() - bounds.center().to_vec2() * scaling
+        } else {
+            // Too big to fit legibly: show its top-left part (where the sources are).
+            rect.min.to_vec2() - bounds.min.to_vec2() * scaling
+        };
         *to_global = egui::emath::TSTransform {
             scaling,
-            translation: rect.center().to_vec2() - bounds.center().to_vec2() * scaling,
+            translation,
         };
         self.transform = *to_global;
     }

@@ -101,12 +101,10 @@ impl FilePicker {
         }
         let filter = match kind {
             Some(FileKind::Graph) => Some(("Graphs (.ron)", vec!["ron"])),
-            Some(FileKind::Volume) => {
-                Some((
-                    "Volumes (.nii, .nii.gz, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm)",
-                    VOLUME_EXTENSIONS.to_vec(),
-                ))
-            }
+            Some(FileKind::Volume) => Some((
+                "Volumes (.nii, .nii.gz, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm)",
+                VOLUME_EXTENSIONS.to_vec(),
+            )),
             Some(FileKind::Mesh) => Some(("Meshes (.obj, .ply, .stl)", MESH_EXTENSIONS.to_vec())),
             None => None,
         };

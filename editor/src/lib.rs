@@ -8,9 +8,12 @@
 //!   so the UI never waits for a frame.
 
 pub mod app;
+pub mod arrange;
 pub mod curve_editor;
+pub mod export_dialog;
 pub mod files;
 pub mod layout_dump;
+pub mod picture;
 pub mod preview;
 pub mod render_worker;
 pub mod selection;

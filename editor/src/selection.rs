@@ -69,6 +69,14 @@ impl CanvasSelection {
         self.rects.clear();
     }
 
+    /// Sizes (graph units) of the nodes drawn last frame.
+    pub fn sizes(&self) -> std::collections::BTreeMap<String, [f32; 2]> {
+        self.rects
+            .iter()
+            .map(|(id, r)| (id.clone(), [r.width(), r.height()]))
+            .collect()
+    }
+
     /// Records where node `id` was drawn (graph space).
     pub fn node_drawn(&mut self, id: &str, rect: Rect) {
         self.rects.push((id.to_owned(), rect));

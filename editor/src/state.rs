@@ -366,6 +366,18 @@ impl EditorState {
         })
     }
 
+    /// Moves many nodes as one undo step (*Arrange*).
+    pub fn move_nodes(&mut self, positions: &BTreeMap<String, EditorPos>) {
+        let _ = self.apply(None, |d, _| {
+            for n in &mut d.nodes {
+                if let Some(p) = positions.get(&n.id) {
+                    n.editor = Some(*p);
+                }
+            }
+            Ok(())
+        });
+    }
+
     /// Moves a node; every move during one drag (of one node or of a selection) is one undo
     /// step.
     pub fn move_node(&mut self, id: &str, at: EditorPos) {

@@ -129,7 +129,7 @@ pub fn stl(s: &Scratch, data: &[u8]) -> Result<(), String> {
 fn check_volume(result: Result<VolumeData, DataError>) -> Result<(), String> {
     let v = result.map_err(check_error)?;
     let count = v.dims.iter().map(|&d| d as usize).product::<usize>();
-    assert_eq!(v.values.len(), count, "dims {:?}", v.dims);
+    assert_eq!(v.voxel_count(), count, "dims {:?}", v.dims);
     assert!(v.dims.iter().all(|&d| d >= 2), "dims {:?}", v.dims);
     Ok(())
 }

@@ -3,6 +3,7 @@
 use rayon::prelude::*;
 
 use crate::VolumeData;
+use crate::voxels::Voxel;
 
 /// The largest world-space gradient magnitude over all voxels, with the gradient taken by
 /// central differences on the voxel grid (one-sided at the borders), i.e. the magnitude of
@@ -11,7 +12,7 @@ use crate::VolumeData;
 pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
     let [nx, ny, nz] = volume.dims.map(|d| d as usize);
     let slice = nx * ny;
-    let values = &volume.values;
+
     // Voxel-step differences → world gradient: M^-T of the voxel → world linear part.
     let to_world = {
         let g = &volume.geometry;
@@ -20,7 +21,7 @@ pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
             .transpose()
             .as_mat3()
     };
-    (0..nz)
+    crate::with_voxels!(&volume.voxels, values => (0..nz)
         .into_par_iter()
         .map(|z| {
             let mut max2 = 0.0f32;
@@ -38,9 +39,9 @@ pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
                     let i = x + nx * (y + ny * z);
                     let g = to_world
                         * glam::Vec3::new(
-                            (values[i + xh] - values[i - xl]) / xd,
-                            (values[i + yh] - values[i - yl]) / yd,
-                            (values[i + zh] - values[i - zl]) / zd,
+                            (values[i + xh].to_f32() - values[i - xl].to_f32()) / xd,
+                            (values[i + yh].to_f32() - values[i - yl].to_f32()) / yd,
+                            (values[i + zh].to_f32() - values[i - zl].to_f32()) / zd,
                         );
                     let m2 = g.length_squared();
                     // Differences across "no data" are not gradients.
@@ -51,8 +52,8 @@ pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
             }
             max2
         })
-        .reduce(|| 0.0, f32::max)
-        .sqrt()
+        .reduce(|| 0.0, f32::max))
+    .sqrt()
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use rayon::prelude::*;
 
+use crate::voxels::Voxel;
 use crate::{DataError, VolumeData};
 
 /// Ranges in label lists longer than this are refused, so a typo cannot allocate gigabytes.
@@ -38,18 +39,18 @@ pub fn label_mask(
     let wanted = Membership::new(labels, volume.value_range);
     let [nx, ny, _] = volume.dims.map(|d| d as usize);
     let slice = nx * ny;
-    let mut mask = vec![0.0f32; volume.values.len()];
+    let mut mask = vec![0.0f32; volume.voxel_count()];
     // Per z slice, in parallel: the mask and the bounding box of its hits.
-    let bounds = mask
+    let bounds = crate::with_voxels!(&volume.voxels, values => mask
         .par_chunks_mut(slice)
-        .zip(volume.values.par_chunks(slice))
+        .zip(values.par_chunks(slice))
         .enumerate()
         .map(|(z, (out, input))| {
             let mut b: Option<Bounds> = None;
             for (y, (out, input)) in out.chunks_mut(nx).zip(input.chunks(nx)).enumerate() {
                 let mut xs: Option<(usize, usize)> = None;
                 for (x, (o, &v)) in out.iter_mut().zip(input).enumerate() {
-                    if wanted.contains(round_label(v)) {
+                    if wanted.contains(round_label(v.to_f32())) {
                         *o = 1.0;
                         xs = Some(xs.map_or((x, x), |(first, _)| (first, x)));
                     }
@@ -64,7 +65,7 @@ pub fn label_mask(
             }
             b
         })
-        .reduce(|| None, |a, b| a.map_or(b, |a| Some(a.union(b))));
+        .reduce(|| None, |a, b| a.map_or(b, |a| Some(a.union(b)))));
     if let Some(bounds) = bounds
         && smooth_sigma > 0.0
     {
@@ -200,25 +201,28 @@ pub fn label_counts(volume: &VolumeData) -> BTreeMap<i64, u64> {
     if (0..1 << 16).contains(&span) {
         // The usual case (8- or 16-bit labels): dense per-thread histograms.
         let bins = span as usize + 1;
-        let counts = volume
-            .values
-            .par_chunks(CHUNK)
-            .fold(
-                || vec![0u64; bins],
-                |mut counts, chunk| {
-                    for &v in chunk {
+        let counts = crate::with_voxels!(&volume.voxels, values => values
+        .par_chunks(CHUNK)
+        .fold(
+            || vec![0u64; bins],
+            |mut counts, chunk| {
+                for &v in chunk {
+                    let v = v.to_f32();
+                    // No data counts as no label.
+                    if v.is_finite() {
                         counts[(round_label(v) - lo) as usize] += 1;
                     }
-                    counts
-                },
-            )
-            .reduce(
-                || vec![0u64; bins],
-                |mut a, b| {
-                    a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
-                    a
-                },
-            );
+                }
+                counts
+            },
+        )
+        .reduce(
+            || vec![0u64; bins],
+            |mut a, b| {
+                a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+                a
+            },
+        ));
         counts
             .into_iter()
             .enumerate()
@@ -226,21 +230,23 @@ pub fn label_counts(volume: &VolumeData) -> BTreeMap<i64, u64> {
             .map(|(i, n)| (lo + i as i64, n))
             .collect()
     } else {
-        let counts = volume
-            .values
-            .par_chunks(CHUNK)
-            .fold(HashMap::new, |mut counts, chunk| {
-                for &v in chunk {
+        let counts = crate::with_voxels!(&volume.voxels, values => values
+        .par_chunks(CHUNK)
+        .fold(HashMap::new, |mut counts, chunk| {
+            for &v in chunk {
+                let v = v.to_f32();
+                if v.is_finite() {
                     *counts.entry(round_label(v)).or_insert(0u64) += 1;
                 }
-                counts
-            })
-            .reduce(HashMap::new, |mut a, b| {
-                for (k, n) in b {
-                    *a.entry(k).or_insert(0) += n;
-                }
-                a
-            });
+            }
+            counts
+        })
+        .reduce(HashMap::new, |mut a, b| {
+            for (k, n) in b {
+                *a.entry(k).or_insert(0) += n;
+            }
+            a
+        }));
         counts.into_iter().collect()
     }
 }
@@ -404,7 +410,7 @@ mod tests {
     fn expected(volume: &VolumeData, labels: &[i64]) -> Vec<f32> {
         let v = labelled();
         assert_eq!(v.dims, volume.dims);
-        v.values
+        v.values_f32()
             .iter()
             .map(|x| {
                 if labels.contains(&(x.round() as i64)) {
@@ -421,11 +427,14 @@ mod tests {
         let v = labelled();
         for labels in [&[1][..], &[2], &[1, 2], &[0], &[2, 2, 1]] {
             let m = label_mask(&v, labels, 0.0).unwrap();
-            assert_eq!(m.values, expected(&v, labels), "{labels:?}");
+            assert_eq!(m.values_f32(), expected(&v, labels), "{labels:?}");
             assert_eq!((m.dims, m.geometry), (v.dims, v.geometry));
         }
         let ball = label_mask(&v, &[1], 0.0).unwrap();
-        assert_eq!(ball.values.iter().sum::<f32>() as u64, label_counts(&v)[&1]);
+        assert_eq!(
+            ball.values_f32().iter().sum::<f32>() as u64,
+            label_counts(&v)[&1]
+        );
         // Absent labels: all zero, not an error.
         let none = label_mask(&v, &[7, 9], 0.0).unwrap();
         assert_eq!(none.value_range, [0.0, 0.0]);
@@ -440,7 +449,7 @@ mod tests {
         for sigma in [0.5f32, 1.0] {
             let m = label_mask(&v, &[1], sigma).unwrap();
             let sharp: f64 = expected(&v, &[1]).iter().map(|&x| x as f64).sum();
-            let smooth: f64 = m.values.iter().map(|&x| x as f64).sum();
+            let smooth: f64 = m.values_f32().iter().map(|&x| x as f64).sum();
             assert!(
                 ((smooth - sharp) / sharp).abs() < 1e-3,
                 "{sigma}: {smooth} vs {sharp}"
@@ -448,7 +457,7 @@ mod tests {
             assert!(m.value_range[0] >= 0.0 && m.value_range[1] <= 1.0);
             // Blurred: the centre stays inside, the surface is no longer a 0/1 step.
             assert!(m.value(10, 10, 10) > 0.99);
-            assert!(m.values.iter().any(|&x| x > 0.1 && x < 0.9));
+            assert!(m.values_f32().iter().any(|&x| x > 0.1 && x < 0.9));
             // Symmetric kernel on a symmetric ball.
             let a = m.value(10, 4, 10);
             assert!((a - m.value(10, 16, 10)).abs() < 1e-5);
@@ -469,7 +478,7 @@ mod tests {
                 let m = label_mask(&v, labels, sigma).unwrap();
                 let diff = full
                     .iter()
-                    .zip(&m.values)
+                    .zip(m.values_f32().iter())
                     .map(|(a, b)| (a - b).abs())
                     .fold(0.0, f32::max);
                 assert_eq!(diff, 0.0, "{labels:?} sigma {sigma}");
@@ -538,11 +547,11 @@ mod tests {
         let t_smooth = start.elapsed();
         eprintln!("frog label {largest}: mask {t_sharp:?}, mask + blur sigma 1: {t_smooth:?}");
         assert_eq!(
-            sharp.values.iter().filter(|&&x| x == 1.0).count() as u64,
+            sharp.values_f32().iter().filter(|&&x| x == 1.0).count() as u64,
             count
         );
         assert!(smooth.value_range[1] > 0.999);
-        let sum: f64 = smooth.values.iter().map(|&x| x as f64).sum();
+        let sum: f64 = smooth.values_f32().iter().map(|&x| x as f64).sum();
         assert!((sum / count as f64 - 1.0).abs() < 1e-2, "{sum}");
     }
 

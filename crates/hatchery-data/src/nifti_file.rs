@@ -8,6 +8,7 @@ use nifti::{InMemNiftiVolume, IntoNdArray, NiftiError, NiftiHeader, NiftiType};
 
 use crate::geometry::Geometry;
 use crate::raw_voxels;
+use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
 /// Volumes claiming more voxels than this are refused before anything is allocated.
@@ -18,8 +19,10 @@ const HEADER_SIZE: u64 = 348;
 
 /// Loads a single-file NIfTI-1 volume, gzip-compressed or not (detected from the content).
 ///
-/// * Every integer and float datatype is read (u/i 8, 16, 32, 64, f32, f64) and converted to
-///   f32 with `scl_slope`/`scl_inter` applied (slope 0 means no scaling, per the standard).
+/// * Every integer and float datatype is read (u/i 8, 16, 32, 64, f32, f64). u8, i8, u16, i16
+///   and f32 stay in their type (one byte per voxel for uint8); the wider types become f32.
+///   `scl_slope`/`scl_inter` are applied (slope 0 means no scaling, per the standard), which
+///   gives f32 unless they are the identity.
 /// * The voxel → world transform follows the standard (and nibabel): the sform when
 ///   `sform_code > 0`, else the qform quaternion with `qfac = pixdim[0]` when `qform_code > 0`,
 ///   else `pixdim` scaling with the origin at 0 ("method 1"). NIfTI's world is RAS+, which is
@@ -91,6 +94,65 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
         ));
     }
 
+    let voxels = match native_voxels(layout.datatype, raw, header.endianness) {
+        // Slope 0 means "no scaling" (check_header turns unusable slopes into 0).
+        Ok(voxels) if layout.slope == 0.0 => voxels,
+        Ok(voxels) => voxels.rescaled(layout.slope as f64, layout.intercept as f64),
+        // Types kept as f32 (32/64-bit integers, f64): decoded by the nifti crate.
+        Err(raw) => Voxels::F32(f32_voxels(path, &layout, raw, header.endianness)?),
+    };
+    let mut volume = VolumeData::from_voxels(layout.dims, layout.geometry, voxels)
+        .map_err(|e| e.in_file(path))?;
+    volume.stored_type = stored_type_name(layout.datatype);
+    volume.placement = layout.placement;
+    Ok(volume)
+}
+
+/// The voxel bytes of the 8- and 16-bit integer and f32 types in their own type (the u8 buffer
+/// is kept as is); other types are handed back.
+fn native_voxels(
+    datatype: NiftiType,
+    raw: Vec<u8>,
+    endianness: nifti::Endianness,
+) -> Result<Voxels, Vec<u8>> {
+    let big = endianness == nifti::Endianness::Big;
+    let two = |b: &[u8]| if big { [b[1], b[0]] } else { [b[0], b[1]] };
+    let four = |b: &[u8]| {
+        if big {
+            [b[3], b[2], b[1], b[0]]
+        } else {
+            [b[0], b[1], b[2], b[3]]
+        }
+    };
+    Ok(match datatype {
+        NiftiType::Uint8 => Voxels::U8(raw),
+        NiftiType::Int8 => Voxels::I8(raw.into_iter().map(|b| b as i8).collect()),
+        NiftiType::Uint16 => Voxels::U16(
+            raw.chunks_exact(2)
+                .map(|b| u16::from_le_bytes(two(b)))
+                .collect(),
+        ),
+        NiftiType::Int16 => Voxels::I16(
+            raw.chunks_exact(2)
+                .map(|b| i16::from_le_bytes(two(b)))
+                .collect(),
+        ),
+        NiftiType::Float32 => Voxels::F32(
+            raw.chunks_exact(4)
+                .map(|b| f32::from_le_bytes(four(b)))
+                .collect(),
+        ),
+        _ => return Err(raw),
+    })
+}
+
+/// Decodes the wider types to f32 with the nifti crate (scaling applied).
+fn f32_voxels(
+    path: &Path,
+    layout: &Layout,
+    raw: Vec<u8>,
+    endianness: nifti::Endianness,
+) -> Result<Vec<f32>, DataError> {
     let [nx, ny, nz] = layout.dims;
     let raw_dim = [3, nx as u16, ny as u16, nz as u16, 1, 1, 1, 1];
     let volume = InMemNiftiVolume::from_raw_fields(
@@ -99,7 +161,7 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
         layout.slope,
         layout.intercept,
         raw,
-        header.endianness,
+        endianness,
     )
     .map_err(|e| DataError::format(path, format!("bad voxel data: {e}")))?;
     // Fortran order: x varies fastest in memory, which is our layout. Reversing the axes makes
@@ -108,16 +170,10 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
         .into_ndarray::<f32>()
         .map_err(|e| DataError::format(path, format!("cannot convert voxel data: {e}")))?
         .reversed_axes();
-    let values: Vec<f32> = match array.as_slice() {
+    Ok(match array.as_slice() {
         Some(slice) => slice.to_vec(),
         None => array.iter().copied().collect(),
-    };
-
-    let mut volume = VolumeData::with_geometry(layout.dims, layout.geometry, values)
-        .map_err(|e| e.in_file(path))?;
-    volume.stored_type = stored_type_name(layout.datatype);
-    volume.placement = layout.placement;
-    Ok(volume)
+    })
 }
 
 fn stored_type_name(t: NiftiType) -> &'static str {

@@ -195,7 +195,7 @@ mod tests {
             "nothing between the pistons"
         );
         // Pistons never intersect the block's material.
-        for (b, p) in block.values.iter().zip(&pistons.values) {
+        for (b, p) in block.values_f32().iter().zip(pistons.values_f32().iter()) {
             assert!(!(*b > 0.01 && *p > 0.01));
         }
     }

@@ -5,10 +5,11 @@ use rayon::prelude::*;
 
 use crate::DataError;
 use crate::geometry::Geometry;
-use crate::voxels::Voxels;
+use crate::voxels::{Voxel, Voxels};
 
 /// A scalar field sampled on a regular grid, i (x) fastest, placed in the world (RAS+ mm, see
-/// [`crate::geometry`]) by `geometry`. Non-finite values (NaN, ±inf) mean "no data".
+/// [`crate::geometry`]) by `geometry`. Voxels keep the type the file stores them in (one byte
+/// per voxel for uint8 data). Non-finite values (NaN, ±inf) mean "no data".
 #[derive(Debug, Clone, PartialEq)]
 pub struct VolumeData {
     /// Voxel counts along i, j, k.
@@ -16,10 +17,11 @@ pub struct VolumeData {
     /// Voxel → world transform (origin, spacing, direction).
     pub geometry: Geometry,
     /// `dims[0] * dims[1] * dims[2]` values, index = `i + dims[0] * (j + dims[1] * k)`.
-    pub values: Vec<f32>,
+    pub voxels: Voxels,
     /// `[min, max]` of the finite values (`[0, 0]` when there are none).
     pub value_range: [f32; 2],
-    /// Name of the voxel type in the file (`uint8`, `float32`, ...), for `hatchery info`.
+    /// Name of the voxel type in the file (`uint8`, `float32`, ...), for `hatchery info`; may be
+    /// wider than `voxels` (an int32 file is kept as f32).
     pub stored_type: &'static str,
     /// How the file's header placed the voxels (e.g. "sform (sform_code 2)"), for
     /// `hatchery info`; empty for volumes made in memory.
@@ -27,7 +29,7 @@ pub struct VolumeData {
 }
 
 impl VolumeData {
-    /// An axis-aligned volume (identity direction); see [`Self::with_geometry`].
+    /// An axis-aligned f32 volume (identity direction); see [`Self::from_voxels`].
     pub fn new(
         dims: [u32; 3],
         spacing: [f32; 3],
@@ -43,24 +45,21 @@ impl VolumeData {
         Self::with_geometry(dims, geometry, values)
     }
 
-    /// A volume from a file's typed voxels (kept as f32 for now; the type is remembered).
-    pub fn from_voxels(
-        dims: [u32; 3],
-        geometry: Geometry,
-        voxels: Voxels,
-    ) -> Result<Self, DataError> {
-        let stored_type = voxels.type_name();
-        let mut v = Self::with_geometry(dims, geometry, voxels.into_f32())?;
-        v.stored_type = stored_type;
-        Ok(v)
-    }
-
-    /// Checks the invariants (length, every dim >= 2, a finite invertible transform) and
-    /// computes the value range over the finite values.
+    /// An f32 volume; see [`Self::from_voxels`].
     pub fn with_geometry(
         dims: [u32; 3],
         geometry: Geometry,
         values: Vec<f32>,
+    ) -> Result<Self, DataError> {
+        Self::from_voxels(dims, geometry, Voxels::F32(values))
+    }
+
+    /// Checks the invariants (length, every dim >= 2, a finite invertible transform) and
+    /// computes the value range over the finite values. The voxels are kept as they are.
+    pub fn from_voxels(
+        dims: [u32; 3],
+        geometry: Geometry,
+        voxels: Voxels,
     ) -> Result<Self, DataError> {
         if dims.iter().any(|&d| d < 2) {
             return Err(DataError::Invalid(format!(
@@ -70,19 +69,16 @@ impl VolumeData {
         let expected = dims
             .iter()
             .try_fold(1usize, |acc, &d| acc.checked_mul(d as usize));
-        if expected != Some(values.len()) {
+        if expected != Some(voxels.len()) {
             return Err(DataError::Invalid(format!(
                 "volume dims {dims:?} need {} values, got {}",
                 dims.iter().map(|&d| d as u128).product::<u128>(),
-                values.len()
+                voxels.len()
             )));
         }
         geometry.check()?;
         // In parallel: this runs over every voxel each time a volume is loaded or derived.
-        let (range, _) = values.par_chunks(1 << 16).map(range_and_finite).reduce(
-            || ([f32::INFINITY, f32::NEG_INFINITY], true),
-            |(a, fa), (b, fb)| ([a[0].min(b[0]), a[1].max(b[1])], fa && fb),
-        );
+        let range = crate::with_voxels!(&voxels, v => finite_range(v));
         let value_range = if range[0] <= range[1] {
             range
         } else {
@@ -91,9 +87,9 @@ impl VolumeData {
         Ok(Self {
             dims,
             geometry,
-            values,
+            stored_type: voxels.type_name(),
+            voxels,
             value_range,
-            stored_type: "float32",
             placement: String::new(),
         })
     }
@@ -115,13 +111,24 @@ impl VolumeData {
         self.geometry.origin.as_vec3().to_array()
     }
 
-    /// Whether some voxels are "no data" (non-finite).
+    /// Whether some voxels are "no data" (non-finite; only float voxels can be).
     pub fn has_no_data(&self) -> bool {
-        !self.values.par_iter().all(|v| v.is_finite())
+        self.voxels
+            .as_f32()
+            .is_some_and(|v| !v.par_iter().all(|x| x.is_finite()))
+    }
+
+    /// The values as f32: borrowed when stored as f32, else converted (a copy: avoid on big
+    /// volumes).
+    pub fn values_f32(&self) -> std::borrow::Cow<'_, [f32]> {
+        match self.voxels.as_f32() {
+            Some(v) => std::borrow::Cow::Borrowed(v),
+            None => std::borrow::Cow::Owned(self.voxels.to_f32()),
+        }
     }
 
     pub fn voxel_count(&self) -> usize {
-        self.values.len()
+        self.voxels.len()
     }
 
     /// Linear index of voxel (x, y, z); the caller keeps the coordinates in range.
@@ -132,7 +139,7 @@ impl VolumeData {
 
     #[inline]
     pub fn value(&self, x: u32, y: u32, z: u32) -> f32 {
-        self.values[self.index(x, y, z)]
+        self.voxels.get(self.index(x, y, z))
     }
 
     /// Trilinear interpolation at a voxel-space position (voxel centres at integers), clamped to
@@ -226,9 +233,21 @@ impl VolumeData {
     }
 }
 
+/// `[min, max]` of the finite values, in parallel (`[inf, -inf]` when there are none).
+fn finite_range<T: Voxel>(values: &[T]) -> [f32; 2] {
+    values
+        .par_chunks(1 << 16)
+        .map(range_and_finite)
+        .map(|(r, _)| r)
+        .reduce(
+            || [f32::INFINITY, f32::NEG_INFINITY],
+            |a, b| [a[0].min(b[0]), a[1].max(b[1])],
+        )
+}
+
 /// `[min, max]` of the finite values and whether all are finite. Eight independent lanes and
 /// plain comparisons (no NaN-aware `min`) let the loop vectorise.
-fn range_and_finite(values: &[f32]) -> ([f32; 2], bool) {
+fn range_and_finite<T: Voxel>(values: &[T]) -> ([f32; 2], bool) {
     const LANES: usize = 8;
     let mut lo = [f32::INFINITY; LANES];
     let mut hi = [f32::NEG_INFINITY; LANES];
@@ -236,7 +255,7 @@ fn range_and_finite(values: &[f32]) -> ([f32; 2], bool) {
     let mut chunks = values.chunks_exact(LANES);
     for chunk in &mut chunks {
         for k in 0..LANES {
-            let v = chunk[k];
+            let v = chunk[k].to_f32();
             let f = v.is_finite();
             finite &= f;
             lo[k] = if f && v < lo[k] { v } else { lo[k] };
@@ -244,6 +263,7 @@ fn range_and_finite(values: &[f32]) -> ([f32; 2], bool) {
         }
     }
     for &v in chunks.remainder() {
+        let v = v.to_f32();
         let f = v.is_finite();
         finite &= f;
         lo[0] = if f && v < lo[0] { v } else { lo[0] };
@@ -316,7 +336,7 @@ mod tests {
     fn indexing_and_sampling() {
         let v = linear();
         assert_eq!(v.value(3, 2, 1), 3.0 + 20.0 + 100.0);
-        assert_eq!(v.values[v.index(3, 2, 1)], 123.0);
+        assert_eq!(v.values_f32()[v.index(3, 2, 1)], 123.0);
         // Trilinear interpolation reproduces a linear function exactly.
         let s = v.sample_trilinear(Vec3::new(1.25, 2.5, 3.75));
         assert!((s - (1.25 + 25.0 + 375.0)).abs() < 1e-3, "{s}");

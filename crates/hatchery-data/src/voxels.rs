@@ -1,6 +1,38 @@
 //! Voxel values in the type a file stores them in (u8, i8, u16, i16, f32; f64 is narrowed to f32
 //! on load), so a uint8 volume costs one byte per voxel, not four.
 
+/// A voxel type kept natively.
+pub trait Voxel: Copy + Send + Sync + 'static {
+    fn to_f32(self) -> f32;
+}
+
+macro_rules! voxel_as {
+    ($($t:ty),*) => {$(
+        impl Voxel for $t {
+            #[inline]
+            fn to_f32(self) -> f32 {
+                self as f32
+            }
+        }
+    )*};
+}
+voxel_as!(u8, i8, u16, i16, f32);
+
+/// Runs `$body` with `$v` bound to the typed slice of a [`Voxels`] (one monomorphised copy per
+/// type, so hot loops index a plain slice).
+#[macro_export]
+macro_rules! with_voxels {
+    ($voxels:expr, $v:ident => $body:expr) => {
+        match $voxels {
+            $crate::voxels::Voxels::U8($v) => $body,
+            $crate::voxels::Voxels::I8($v) => $body,
+            $crate::voxels::Voxels::U16($v) => $body,
+            $crate::voxels::Voxels::I16($v) => $body,
+            $crate::voxels::Voxels::F32($v) => $body,
+        }
+    };
+}
+
 /// A voxel array in its native type, x fastest.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Voxels {
@@ -55,6 +87,14 @@ impl Voxels {
             Voxels::U16(v) => v[i] as f32,
             Voxels::I16(v) => v[i] as f32,
             Voxels::F32(v) => v[i],
+        }
+    }
+
+    /// The values as an f32 slice when they are stored as f32.
+    pub fn as_f32(&self) -> Option<&[f32]> {
+        match self {
+            Voxels::F32(v) => Some(v),
+            _ => None,
         }
     }
 

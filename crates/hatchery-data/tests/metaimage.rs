@@ -38,7 +38,7 @@ fn zlib(bytes: &[u8]) -> Vec<u8> {
 fn assert_index_values(v: &VolumeData) {
     assert_eq!(v.dims, [2, 3, 4]);
     let want: Vec<f32> = (0..N).map(|i| i as f32).collect();
-    assert_eq!(v.values, want);
+    assert_eq!(v.values_f32(), want);
 }
 
 fn assert_affine(v: &VolumeData, want: [[f64; 4]; 3]) {

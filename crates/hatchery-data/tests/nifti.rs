@@ -247,7 +247,7 @@ fn all_scalar_datatypes() {
         let v = load_nifti(&write(dir.path(), &format!("t{code}.nii"), &h.file(&raw))).unwrap();
         let offset = if code == 256 { -4.0 } else { 0.0 };
         let want: Vec<f32> = (0..8).map(|i| 0.5 * (i as f32 + offset)).collect();
-        assert_eq!(v.values, want, "datatype {code}");
+        assert_eq!(v.values_f32(), want, "datatype {code}");
     }
     // RGB is not a scalar type.
     let h = Header::new(&[2, 2, 2], 128, 24);
@@ -266,7 +266,7 @@ fn four_d_file_gives_first_volume() {
         &Header::new(&[2, 2, 2, 2], 2, 8).file(&raw),
     ))
     .unwrap();
-    assert_eq!(v.values, (0..8).map(|i| i as f32).collect::<Vec<_>>());
+    assert_eq!(v.values_f32(), (0..8).map(|i| i as f32).collect::<Vec<_>>());
 }
 
 #[test]
@@ -280,8 +280,8 @@ fn non_finite_values_are_kept_as_no_data() {
         &Header::new(&[2, 2, 2], 16, 32).file(&raw),
     ))
     .unwrap();
-    assert!(v.values[1].is_nan());
-    assert_eq!(v.values[4], f32::INFINITY);
+    assert!(v.values_f32()[1].is_nan());
+    assert_eq!(v.values_f32()[4], f32::INFINITY);
     assert_eq!(
         v.value_range,
         [-2.0, 6.0],

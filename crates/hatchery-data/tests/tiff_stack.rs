@@ -89,7 +89,7 @@ fn imagej_stacks_and_sample_types() {
     assert_eq!(v.dims, [W, H, 5]);
     assert_eq!(v.stored_type, "uint8");
     let want: Vec<f32> = (0..W * H * 5).map(|i| i as f32).collect();
-    assert_eq!(v.values, want);
+    assert_eq!(v.values_f32(), want);
     assert_eq!(v.spacing(), [0.5, 0.25, 2.5]);
     assert_eq!(v.origin(), [0.0; 3]);
     assert!(v.geometry.is_axis_aligned());
@@ -186,7 +186,7 @@ fn compressed_pages() {
             ..Tags::default()
         };
         let p = write(dir.path(), name, &stack::<colortype::Gray16>(&pages, &tags));
-        assert_eq!(load_tiff_stack(&p).unwrap().values, want, "{name}");
+        assert_eq!(load_tiff_stack(&p).unwrap().values_f32(), want, "{name}");
     }
 }
 

@@ -68,7 +68,7 @@ fn check(v: &VolumeData, t: &Value, what: &str) {
             v.value_range
         );
     }
-    let non_finite = v.values.iter().filter(|x| !x.is_finite()).count();
+    let non_finite = v.values_f32().iter().filter(|x| !x.is_finite()).count();
     assert_eq!(
         non_finite as u64,
         t["non_finite"].as_u64().unwrap(),
@@ -76,8 +76,8 @@ fn check(v: &VolumeData, t: &Value, what: &str) {
     );
 
     let threshold = t["threshold"].as_f64().unwrap();
-    let above: Vec<usize> = (0..v.values.len())
-        .filter(|&i| v.values[i] as f64 > threshold)
+    let above: Vec<usize> = (0..v.values_f32().len())
+        .filter(|&i| v.values_f32()[i] as f64 > threshold)
         .collect();
     assert_eq!(above.len() as u64, t["above"].as_u64().unwrap(), "{what}");
     if !above.is_empty() {
@@ -89,10 +89,10 @@ fn check(v: &VolumeData, t: &Value, what: &str) {
         );
     }
     if let Some(first) = t["first"].as_f64() {
-        assert_eq!(v.values[0], first as f32, "{what}");
+        assert_eq!(v.values_f32()[0], first as f32, "{what}");
     }
     assert_eq!(
-        *v.values.last().unwrap(),
+        *v.values_f32().last().unwrap(),
         t["last"].as_f64().unwrap() as f32,
         "{what}"
     );

@@ -88,7 +88,9 @@ impl GpuContext {
         // Timestamps are optional: used for per-node GPU times where the adapter has them.
         let wanted = wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
-            | wgpu::Features::FLOAT32_FILTERABLE;
+            | wgpu::Features::FLOAT32_FILTERABLE
+            // 16-bit volumes uploaded as they are (R16Unorm), not narrowed to R16Float.
+            | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM;
         let required_features = adapter.features() & wanted;
         let adapter_limits = adapter.limits();
         let required_limits = wgpu::Limits {
@@ -255,44 +257,38 @@ impl GpuContext {
         Ok(())
     }
 
-    /// Uploads a scalar volume (x fastest) as a filterable R16Float 3-D texture holding
-    /// (v - lo) / (hi - lo), so that hardware trilinear filtering works on every adapter and the
-    /// relative precision (2^-11 of the range) is the same for any value range. Non-finite
-    /// ("no data") voxels hold [`NO_DATA_TEXEL`].
-    pub fn upload_volume_normalized(
+    /// A 3-D texture of `format` filled slab by slab: `fill(z0, z1, out)` appends the tightly
+    /// packed texels of slices `z0..z1` to `out`. Slabs are about 4 MB, so no CPU copy of the
+    /// whole volume is ever made (the peak is the caller's voxels plus the texture plus one
+    /// slab). Errors: a side over the device's 3-D texture limit, or a texture bigger than the
+    /// device's buffer limit (checked before anything is allocated).
+    pub fn volume_texture_by_slabs(
         &self,
         label: &str,
         dims: [u32; 3],
-        values: &[f32],
-        range: [f32; 2],
+        format: wgpu::TextureFormat,
+        mut fill: impl FnMut(u32, u32, &mut Vec<u8>),
     ) -> Result<wgpu::Texture, GpuError> {
-        let limit = self.device.limits().max_texture_dimension_3d;
+        let limits = self.device.limits();
+        let limit = limits.max_texture_dimension_3d;
+        let size = || format!("{}×{}×{}", dims[0], dims[1], dims[2]);
         if dims.iter().any(|&d| d == 0 || d > limit) {
             return Err(GpuError::TooLarge {
                 what: format!("volume {label}"),
-                size: format!("{}×{}×{}", dims[0], dims[1], dims[2]),
-                limit: format!("{limit} voxels per axis"),
+                size: size(),
+                limit: format!("{limit} voxels per axis (max_texture_dimension_3d)"),
             });
         }
-        let scale = if range[1] > range[0] {
-            1.0 / (range[1] - range[0])
-        } else {
-            0.0
-        };
-        // "No data" (non-finite) voxels get a sentinel far below the normalised range, so any
-        // trilinear sample that leans on one is recognisably below -0.5 (shaders test that; NaN
-        // itself is unreliable in shaders, which may assume no NaN).
-        let halves: Vec<half::f16> = values
-            .iter()
-            .map(|v| {
-                if v.is_finite() {
-                    half::f16::from_f32((v - range[0]) * scale)
-                } else {
-                    half::f16::from_f32(NO_DATA_TEXEL)
-                }
-            })
-            .collect();
-        let desc = wgpu::TextureDescriptor {
+        let texel = format.block_copy_size(None).unwrap_or(4) as u64;
+        let bytes = dims.iter().map(|&d| d as u64).product::<u64>() * texel;
+        if bytes > limits.max_buffer_size {
+            return Err(GpuError::TooLarge {
+                what: format!("volume {label}"),
+                size: format!("{} ({bytes} bytes)", size()),
+                limit: format!("{} bytes (max_buffer_size)", limits.max_buffer_size),
+            });
+        }
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d {
                 width: dims[0],
@@ -302,21 +298,49 @@ impl GpuContext {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D3,
-            format: wgpu::TextureFormat::R16Float,
+            format,
             usage: wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_DST
                 | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
-        };
-        let bytes: &[u8] = bytemuck::cast_slice(&halves);
-        self.checked(&format!("uploading volume {label}"), |device| {
-            device.create_texture_with_data(
-                &self.queue,
-                &desc,
-                wgpu::util::TextureDataOrder::LayerMajor,
-                bytes,
-            )
-        })
+        });
+        let slice_bytes = dims[0] as u64 * dims[1] as u64 * texel;
+        let per_slab = ((4u64 << 20) / slice_bytes.max(1)).clamp(1, dims[2] as u64) as u32;
+        let mut slab = Vec::new();
+        let mut z0 = 0;
+        while z0 < dims[2] {
+            let z1 = (z0 + per_slab).min(dims[2]);
+            slab.clear();
+            fill(z0, z1, &mut slab);
+            debug_assert_eq!(slab.len() as u64, slice_bytes * (z1 - z0) as u64);
+            self.queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y: 0, z: z0 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                &slab,
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(dims[0] * texel as u32),
+                    rows_per_image: Some(dims[1]),
+                },
+                wgpu::Extent3d {
+                    width: dims[0],
+                    height: dims[1],
+                    depth_or_array_layers: z1 - z0,
+                },
+            );
+            // Hand each slab to the device and let its staging memory go before the next one
+            // is staged (big volumes would otherwise be staged whole).
+            self.queue.submit([]);
+            if z1 < dims[2] {
+                let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+            }
+            z0 = z1;
+        }
+        Ok(texture)
     }
 
     /// A 2-D texture initialised with `data` (tightly packed rows), e.g. lookup tables.

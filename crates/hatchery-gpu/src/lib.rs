@@ -5,7 +5,7 @@ mod context;
 mod readback;
 mod timing;
 
-pub use context::{GpuContext, GpuError};
+pub use context::{GpuContext, GpuError, NO_DATA_TEXEL};
 pub use readback::TextureData;
 pub use timing::GpuTimer;
 pub use wgpu;

@@ -61,13 +61,20 @@ impl Camera {
         };
         let view = look_at_mat4(eye, target, up);
         let aspect = width as f32 / height as f32;
-        let fov = fov_y_deg.to_radians();
+        // The field of view spans the shorter side, so a tall frame (a narrow editor panel)
+        // shows the same subject as a wide one instead of cropping its sides.
+        let half_short = (fov_y_deg.to_radians() / 2.0).tan();
+        let half_tan_y = if aspect >= 1.0 {
+            half_short
+        } else {
+            half_short / aspect
+        };
         let proj = if orthographic {
-            let half_h = distance * (fov / 2.0).tan();
+            let half_h = distance * half_tan_y;
             let half_w = half_h * aspect;
             directx::orthographic(-half_w, half_w, -half_h, half_h, near, far)
         } else {
-            directx::perspective(fov, aspect, near, far)
+            directx::perspective(2.0 * half_tan_y.atan(), aspect, near, far)
         };
         Camera {
             view,
@@ -142,8 +149,9 @@ impl Node<Value, Ctx> for CameraNode {
         NodeSchema {
             kind: "Camera",
             category: "Scene",
-            doc: "Orbit camera around a target point, perspective or orthographic. Orthographic views \
-                  show a height of 2·distance·tan(fov/2); azimuth 0, elevation 0 with up \"y\" looks \
+            doc: "Orbit camera around a target point, perspective or orthographic. The field of view \
+                  spans the frame's shorter side; orthographic views show 2·distance·tan(fov/2) \
+                  across it; azimuth 0, elevation 0 with up \"y\" looks \
                   along -z (axis-aligned).",
             inputs: vec![],
             outputs: vec![PortSpec::output(
@@ -174,7 +182,13 @@ impl Node<Value, Ctx> for CameraNode {
                     "distance from the target, world units",
                 ),
                 ParamSpec::vec3("target", [0.0, 0.0, 0.0], "point looked at, world units"),
-                ParamSpec::float("fov", 40.0, 1.0, 170.0, "vertical field of view, degrees"),
+                ParamSpec::float(
+                    "fov",
+                    40.0,
+                    1.0,
+                    170.0,
+                    "field of view across the frame's shorter side (the height of a wide frame), degrees",
+                ),
                 ParamSpec::choice(
                     "projection",
                     "perspective",

@@ -45,7 +45,7 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
             let [x, y, z] = v.data.dims.map(|d| d as usize);
             Array {
                 shape: vec![z, y, x],
-                data: v.data.values.clone(),
+                data: v.data.values_f32().into_owned(),
             }
         }
         Value::Mesh(m) => {

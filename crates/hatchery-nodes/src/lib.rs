@@ -35,6 +35,7 @@ pub mod style_transfer_function;
 pub mod transfer_function_1d;
 pub mod value;
 pub mod volume_file;
+pub mod volume_texture;
 
 pub use context::RenderContext;
 pub use session::{Session, SessionError};

@@ -90,8 +90,12 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         wgpu::TextureFormat::R32Float,
         &[0u8; 4],
     );
-    let blank_labels =
-        gpu.upload_volume_normalized("blank labels", [1, 1, 1], &[0.0], [0.0, 1.0])?;
+    let blank_labels = gpu.texture_3d_init(
+        "blank labels",
+        [1, 1, 1],
+        wgpu::TextureFormat::R8Unorm,
+        &[0u8],
+    );
     let blank_label_rows = gpu.texture_2d_init(
         "blank label rows",
         1,
@@ -253,6 +257,8 @@ pub fn cast(
     let gpu = &ctx.gpu;
     let data = &volume.data;
     let volume_texture = volume.texture(gpu).map_err(err)?;
+    let texel_range = volume_texture.texel_range;
+    let volume_texture = &volume_texture.texture;
     let min_spacing = data.spacing().iter().copied().fold(f32::INFINITY, f32::min);
     // Rays march in voxel space (through the world → voxel transform, so rotated and mirrored
     // grids work) against the box of voxel centres, widened a little so rays running exactly
@@ -429,7 +435,10 @@ pub fn cast(
     ]);
     let eye = camera.view.inverse().w_axis.xyz();
     u.extend_from_slice(&[eye.x, eye.y, eye.z, 0.0]);
-    let label_range = labels.map_or([0.0, 1.0], |l| l.data.value_range);
+    let label_range = match labels {
+        Some(l) => l.texture(gpu).map_err(err)?.texel_range,
+        None => [0.0, 1.0],
+    };
     let use_labels = labels.is_some() && label_rows.is_some();
     u.extend_from_slice(&[
         bool_f(use_labels),
@@ -448,6 +457,7 @@ pub fn cast(
     let linear = data.geometry.to_world().as_mat4();
     let normal_matrix = glam::Mat4::from_mat3(glam::Mat3::from_mat4(linear).inverse().transpose());
     u.extend_from_slice(&normal_matrix.to_cols_array());
+    u.extend_from_slice(&[texel_range[0], texel_range[1], 0.0, 0.0]);
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::cast_slice(&u),
@@ -495,7 +505,7 @@ pub fn cast(
                     ),
                 ));
             }
-            l.texture(gpu).map_err(err)?
+            &l.texture(gpu).map_err(err)?.texture
         }
         None => &st.blank_labels,
     };

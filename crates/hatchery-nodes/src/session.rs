@@ -129,6 +129,19 @@ impl Session {
             .ok_or_else(|| SessionError::Other(format!("node `{node}` has not run yet")))
     }
 
+    /// Renders `node.port` and writes it as a PNG picture (what `hatchery render --dump
+    /// node.port=file.png` and the editor's *Export image* write; for an Image port the same
+    /// pixels a SaveImage node would write). Errors: an unknown node or port, a failed node, a
+    /// value without a picture, an unwritable file.
+    pub fn export_png(&mut self, node: &str, port: &str, path: &Path) -> Result<(), SessionError> {
+        let value = self.evaluate(node, port)?;
+        let picture = crate::export::to_rgba8(&value, &self.ctx.gpu)
+            .map_err(|e| SessionError::Other(format!("{node}.{port}: {e}")))?;
+        picture
+            .save_with_format(path, image::ImageFormat::Png)
+            .map_err(|e| SessionError::Other(format!("cannot write {}: {e}", path.display())))
+    }
+
     /// Runs just what `node.port` needs and returns its value.
     pub fn evaluate(&mut self, node: &str, port: &str) -> Result<Value, SessionError> {
         if self.graph.node(node).is_none() {

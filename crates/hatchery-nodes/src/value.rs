@@ -1,5 +1,6 @@
 //! The data flowing along edges: one variant per [`PortType`], cheap to clone (shared handles).
 
+use crate::volume_texture::VolumeTexture;
 use hatchery_data::{MeshData, VolumeData};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::PortType;
@@ -9,7 +10,7 @@ use std::sync::{Arc, OnceLock};
 /// time a GPU node asks for it.
 pub struct Volume {
     pub data: Arc<VolumeData>,
-    texture: OnceLock<wgpu::Texture>,
+    texture: OnceLock<VolumeTexture>,
     max_gradient: OnceLock<f32>,
     /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
     bricks: OnceLock<wgpu::Texture>,
@@ -24,17 +25,13 @@ impl Volume {
             bricks: OnceLock::new(),
         }
     }
-    /// The R16Float 3-D texture of (v − lo) / (hi − lo) over the value range, uploaded on first use.
-    pub fn texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
+    /// The 3-D texture in a format matching the voxel type (see [`crate::volume_texture`]),
+    /// uploaded on first use.
+    pub fn texture(&self, gpu: &GpuContext) -> Result<&VolumeTexture, GpuError> {
         if let Some(t) = self.texture.get() {
             return Ok(t);
         }
-        let t = gpu.upload_volume_normalized(
-            "volume",
-            self.data.dims,
-            &self.data.values,
-            self.data.value_range,
-        )?;
+        let t = crate::volume_texture::upload(gpu, "volume", &self.data)?;
         Ok(self.texture.get_or_init(|| t))
     }
     /// The `[min, max]` value of each brick of voxels (see `hatchery_data::bricks`), computed and

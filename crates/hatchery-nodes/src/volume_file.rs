@@ -28,7 +28,11 @@ impl Node<Value, Ctx> for VolumeFileNode {
                 "the volume, in world units (mm)",
             )],
             params: vec![
-                ParamSpec::path("path", "", "the volume file, or a folder holding a DICOM series"),
+                ParamSpec::path(
+                    "path",
+                    "",
+                    "the volume file, or a folder holding a DICOM series",
+                ),
                 ParamSpec::text(
                     "array",
                     "",

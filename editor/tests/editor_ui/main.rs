@@ -10,6 +10,9 @@ use hatchery_editor::{EditorApp, EditorState};
 use hatchery_graph::{EditorPos, GraphDocument, ParamValue, SchemaLookup};
 use std::path::{Path, PathBuf};
 
+mod export;
+mod layout;
+mod picture;
 mod selection;
 use selection::select_by_click;
 
@@ -47,9 +50,11 @@ fn wait_for_render(h: &mut Harness<EditorApp>) {
     h.step();
 }
 
+/// A window wide enough that the canvas beside the picture panel shows a preset's nodes at a
+/// legible zoom.
 fn harness(app: EditorApp) -> Harness<'static, EditorApp> {
     Harness::builder()
-        .with_size([1280.0, 800.0])
+        .with_size([2200.0, 1000.0])
         .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app)
 }
 
@@ -745,10 +750,11 @@ fn right_dragging_in_the_viewport_pans_the_camera_target() {
         },
         None => panic!("panning set no target"),
     };
-    // Camera at azimuth 30°, elevation 20°, distance 3.5, fov 40°: the scene follows the pointer,
-    // so the target moves left along the camera's right axis by 40 points' worth of world units.
+    // Camera at azimuth 30°, elevation 20°, distance 3.5, fov 40° (across the viewport's shorter
+    // side): the scene follows the pointer, so the target moves left along the camera's right
+    // axis by 40 points' worth of world units.
     let (az, fov, distance) = (30f64.to_radians(), 40f64.to_radians(), 3.5);
-    let world = 40.0 * 2.0 * distance * (fov / 2.0).tan() / r.height() as f64;
+    let world = 40.0 * 2.0 * distance * (fov / 2.0).tan() / r.width().min(r.height()) as f64;
     let right = [az.cos(), 0.0, -az.sin()];
     for i in 0..3 {
         assert!(
@@ -844,8 +850,9 @@ fn the_viewport_renders_off_the_ui_thread_and_output_pins_show_thumbnails_and_ti
         .get(&port)
         .expect("a thumbnail")
         .size();
+    // Within the 160×120 bound, touching it on one side.
     assert!(
-        thumb[0] <= 160 && thumb[1] <= 120 && thumb[0] >= 150,
+        thumb[0] <= 160 && thumb[1] <= 120 && (thumb[0] >= 150 || thumb[1] >= 112),
         "{thumb:?}"
     );
     let aspect = |s: [u32; 2]| s[0] as f64 / s[1] as f64;
@@ -1326,10 +1333,9 @@ fn the_style_transfer_function_editor_moves_points_and_picks_their_styles() {
         (after[2].opacity - (before[2].opacity - 0.1)).abs() < 0.01,
         "{after:?}"
     );
-    assert_eq!(
-        (after[2].value, after[2].style),
-        (before[2].value, before[2].style)
-    );
+    // A vertical drag keeps the value (up to float rounding of the screen mapping).
+    assert!((after[2].value - before[2].value).abs() < 1e-3, "{after:?}");
+    assert_eq!(after[2].style, before[2].style);
     // The picked point's style is chosen by name from the connected StyleSet.
     // (The combo box shows "1: toon3"; it is the only one in this inspector.)
     h.get_by_role(Role::ComboBox).click();

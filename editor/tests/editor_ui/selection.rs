@@ -51,6 +51,10 @@ pub fn title_pos(h: &Harness<EditorApp>, id: &str) -> egui::Pos2 {
         .center();
     let at = h.state().canvas_transform * graph;
     assert_eq!(h.state().node_at(at), Some(id), "title of {id} is covered");
+    assert!(
+        h.state().canvas_rect.contains(at),
+        "title of {id} is off the canvas"
+    );
     at
 }
 
@@ -81,10 +85,11 @@ pub fn set(ids: &[&str]) -> BTreeSet<String> {
     ids.iter().map(|s| s.to_string()).collect()
 }
 
-/// A canvas point on no node (scanning a grid left of the Inspector).
+/// A canvas point on no node (scanning the canvas on a grid).
 fn empty_canvas_point(h: &Harness<EditorApp>) -> egui::Pos2 {
-    for y in (80..700).step_by(20) {
-        for x in (20..700).step_by(20) {
+    let canvas = h.state().canvas_rect.shrink(10.0);
+    for y in (canvas.top() as i32..canvas.bottom() as i32).step_by(20) {
+        for x in (canvas.left() as i32..canvas.right() as i32).step_by(20) {
             let p = egui::pos2(x as f32, y as f32);
             if h.state().node_at(p).is_none() {
                 return p;

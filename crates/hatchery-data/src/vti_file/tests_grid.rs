@@ -194,7 +194,7 @@ fn conversions_to_float32_are_noted() {
     let v = case("Float64", "1e300 -1e300 nan inf 1 2 3 0.1").unwrap();
     assert_eq!(v.stored_type, "float64");
     assert_eq!(v.value_range, [0.1, 3.0]);
-    assert!(v.values[2].is_nan() && v.values[3] == f32::INFINITY);
+    assert!(v.values_f32()[2].is_nan() && v.values_f32()[3] == f32::INFINITY);
     assert!(
         v.placement
             .ends_with("; 2 float64 values beyond the float32 range became ±inf (no data)"),

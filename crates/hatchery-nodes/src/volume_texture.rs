@@ -1,0 +1,133 @@
+//! A volume's 3-D texture in a format matching its voxel type, uploaded slab by slab without a
+//! CPU copy of the whole volume.
+//!
+//! | voxels | texture | texel → value |
+//! |---|---|---|
+//! | u8 | R8Unorm | `255 n` (exact) |
+//! | i8 | R8Unorm of `v + 128` | `−128 + 255 n` (exact) |
+//! | u16 | R16Unorm (`TEXTURE_FORMAT_16BIT_NORM`) | `65535 n` (exact) |
+//! | i16 | R16Unorm of `v + 32768` | `−32768 + 65535 n` (exact) |
+//! | f32 | R32Float (`FLOAT32_FILTERABLE`) of `(v − lo) / (hi − lo)` | `lo + (hi − lo) n` |
+//!
+//! On CPU adapters (llvmpipe/lavapipe) 8-bit volumes are uploaded as R16Unorm of `257 v`
+//! (`v + 128` for i8) instead: their sampler filters 8-bit textures in 8-bit arithmetic and rounds
+//! the result to 1/255 (measured: up to 0.05 colour error against the same data in a float
+//! texture), while interpolating in the shader instead made ray casting 3–5× slower there. This
+//! costs a second byte per voxel on CPU adapters only (`HATCHERY_LOW_MEMORY=1` declines it).
+//! Fallbacks where the adapter lacks the feature: 16-bit integers and f32 become R16Float of
+//! `(v − lo) / (hi − lo)` over the value range (11 significant bits: a relative precision of
+//! 2⁻¹¹ of the range). "No data" (non-finite f32) texels hold `NO_DATA_TEXEL` (−1000) in the
+//! normalised formats; shaders treat a sample below −0.5 as no data.
+
+use hatchery_data::VolumeData;
+use hatchery_data::voxels::Voxels;
+use hatchery_gpu::{GpuContext, GpuError, NO_DATA_TEXEL};
+use wgpu::TextureFormat;
+
+/// A volume texture and how its texels map to data values: `value = lo + (hi − lo) · texel`.
+pub struct VolumeTexture {
+    pub texture: wgpu::Texture,
+    pub texel_range: [f32; 2],
+}
+
+/// Uploads `data` in the format of the table above.
+pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<VolumeTexture, GpuError> {
+    let features = gpu.device.features();
+    let norm16 = features.contains(wgpu::Features::TEXTURE_FORMAT_16BIT_NORM);
+    let float32 = features.contains(wgpu::Features::FLOAT32_FILTERABLE);
+    let [lo, hi] = data.value_range;
+    let scale = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
+    let normalise = move |v: f32| {
+        if v.is_finite() {
+            (v - lo) * scale
+        } else {
+            NO_DATA_TEXEL
+        }
+    };
+    let dims = data.dims;
+    let slice = dims[0] as usize * dims[1] as usize;
+    // Copies slices z0..z1 of `values`, each texel converted by `texel`.
+    fn slabs<T: Copy, const N: usize>(
+        values: &[T],
+        slice: usize,
+        texel: impl Fn(T) -> [u8; N],
+    ) -> impl FnMut(u32, u32, &mut Vec<u8>) {
+        move |z0, z1, out| {
+            for &v in &values[z0 as usize * slice..z1 as usize * slice] {
+                out.extend_from_slice(&texel(v));
+            }
+        }
+    }
+    let half = |v: f32| half::f16::from_f32(v).to_le_bytes();
+    // HATCHERY_LOW_MEMORY=1 keeps 8-bit textures at 8 bits on CPU adapters too (half the
+    // texture memory, filtered values rounded to 1/255 by llvmpipe).
+    let low_memory = std::env::var("HATCHERY_LOW_MEMORY").is_ok_and(|v| v == "1");
+    let widen_8bit = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu && norm16 && !low_memory;
+    let (format, range, texture) = match &data.voxels {
+        Voxels::U8(v) if widen_8bit => {
+            let fill = slabs(v, slice, |x: u8| (x as u16 * 257).to_le_bytes());
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            ("R16Unorm (8-bit widened)", [0.0, 255.0], t)
+        }
+        Voxels::I8(v) if widen_8bit => {
+            let fill = slabs(v, slice, |x: i8| {
+                ((x as i16 + 128) as u16 * 257).to_le_bytes()
+            });
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            ("R16Unorm (8-bit widened, +128)", [-128.0, 127.0], t)
+        }
+        Voxels::U8(v) => {
+            let t =
+                gpu.volume_texture_by_slabs(label, dims, TextureFormat::R8Unorm, |z0, z1, out| {
+                    out.extend_from_slice(&v[z0 as usize * slice..z1 as usize * slice]);
+                })?;
+            ("R8Unorm", [0.0, 255.0], t)
+        }
+        Voxels::I8(v) => {
+            let fill = slabs(v, slice, |x: i8| [(x as i16 + 128) as u8]);
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R8Unorm, fill)?;
+            ("R8Unorm (+128)", [-128.0, 127.0], t)
+        }
+        Voxels::U16(v) if norm16 => {
+            let fill = slabs(v, slice, |x: u16| x.to_le_bytes());
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            ("R16Unorm", [0.0, 65535.0], t)
+        }
+        Voxels::I16(v) if norm16 => {
+            let fill = slabs(v, slice, |x: i16| ((x as i32 + 32768) as u16).to_le_bytes());
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            ("R16Unorm (+32768)", [-32768.0, 32767.0], t)
+        }
+        Voxels::U16(v) => {
+            let fill = slabs(v, slice, |x: u16| half(normalise(x as f32)));
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            ("R16Float (normalised)", [lo, hi], t)
+        }
+        Voxels::I16(v) => {
+            let fill = slabs(v, slice, |x: i16| half(normalise(x as f32)));
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            ("R16Float (normalised)", [lo, hi], t)
+        }
+        Voxels::F32(v) if float32 => {
+            let fill = slabs(v, slice, |x: f32| normalise(x).to_le_bytes());
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R32Float, fill)?;
+            ("R32Float (normalised)", [lo, hi], t)
+        }
+        Voxels::F32(v) => {
+            let fill = slabs(v, slice, |x: f32| half(normalise(x)));
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            ("R16Float (normalised)", [lo, hi], t)
+        }
+    };
+    // A constant volume: every texel is 0 and means `lo`.
+    let texel_range = if range[1] > range[0] {
+        range
+    } else {
+        [lo, lo + 1.0]
+    };
+    tracing::debug!(label, format, ?dims, "volume texture");
+    Ok(VolumeTexture {
+        texture,
+        texel_range,
+    })
+}

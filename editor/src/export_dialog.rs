@@ -1,0 +1,183 @@
+//! *File → Export image…*: any output port as a PNG at a chosen resolution, rendered off the UI
+//! thread by a session of its own through `Session::export_png` — the function behind
+//! `hatchery render --dump node.port=file.png`, so the file equals the command line's for the
+//! same graph and size (for an Image port, also what `hatchery render -o` writes).
+
+use hatchery_graph::{Graph, GraphDocument, PortType, SchemaLookup};
+use hatchery_nodes::Session;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, channel};
+
+/// Port types that have a picture.
+const PICTURE_TYPES: [PortType; 4] = [
+    PortType::Image,
+    PortType::Mask,
+    PortType::GBuffer,
+    PortType::Volume,
+];
+
+/// The dialog's state; `open` shows it.
+pub struct ExportDialog {
+    pub open: bool,
+    /// `node.port` to export.
+    pub port: Option<(String, String)>,
+    pub width: u32,
+    pub height: u32,
+    pub path: String,
+    running: Option<Receiver<Result<PathBuf, String>>>,
+    /// The last export's outcome, for the dialog and the status line.
+    pub last: Option<Result<PathBuf, String>>,
+}
+
+impl Default for ExportDialog {
+    fn default() -> Self {
+        ExportDialog {
+            open: false,
+            port: None,
+            width: 1024,
+            height: 768,
+            path: String::new(),
+            running: None,
+            last: None,
+        }
+    }
+}
+
+impl ExportDialog {
+    /// Whether an export is being rendered.
+    pub fn is_busy(&self) -> bool {
+        self.running.is_some()
+    }
+
+    /// Starts rendering `graph` (whose relative paths resolve against `base`) on a thread; `None`
+    /// when the graph has errors.
+    pub fn start(&mut self, graph: Option<Graph>, base: Option<&Path>) {
+        let Some(graph) = graph else {
+            self.last = Some(Err(
+                "the graph has errors (see the nodes): nothing exported".into(),
+            ));
+            return;
+        };
+        let Some((node, port)) = self.port.clone() else {
+            self.last = Some(Err("choose a port to export".into()));
+            return;
+        };
+        let path = PathBuf::from(self.path.trim());
+        if path.as_os_str().is_empty() {
+            self.last = Some(Err("choose a file to write".into()));
+            return;
+        }
+        let path = match base {
+            Some(base) if path.is_relative() => base.join(path),
+            _ => path,
+        };
+        let size = (self.width, self.height);
+        let (send, receive) = channel();
+        std::thread::spawn(move || {
+            let result = (|| {
+                let registry = hatchery_nodes::registry();
+                let mut session = Session::with_graph(registry, graph, size.0, size.1)
+                    .map_err(|e| e.to_string())?;
+                session
+                    .export_png(&node, &port, &path)
+                    .map_err(|e| e.to_string())?;
+                Ok(path)
+            })();
+            let _ = send.send(result);
+        });
+        self.running = Some(receive);
+        self.last = None;
+    }
+
+    /// Picks up a finished export; returns it once.
+    pub fn poll(&mut self) -> Option<Result<PathBuf, String>> {
+        let done = self.running.as_ref()?.try_recv().ok()?;
+        self.running = None;
+        self.last = Some(done.clone());
+        Some(done)
+    }
+
+    /// The dialog window, listing the picture ports of `doc`. Returns true when *Export* was
+    /// clicked (the caller then calls [`Self::start`] with the validated graph).
+    pub fn show(&mut self, ctx: &egui::Context, doc: &GraphDocument) -> bool {
+        let mut requested = false;
+        if !self.open {
+            return false;
+        }
+        let registry = hatchery_nodes::registry();
+        let ports: Vec<(String, String)> = doc
+            .nodes
+            .iter()
+            .filter_map(|n| Some((n, registry.schema(&n.kind)?)))
+            .flat_map(|(n, schema)| {
+                schema
+                    .outputs
+                    .iter()
+                    .filter(|o| PICTURE_TYPES.contains(&o.ty))
+                    .map(|o| (n.id.clone(), o.name.to_owned()))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let mut open = self.open;
+        egui::Window::new("Export image")
+            .open(&mut open)
+            .collapsible(false)
+            .resizable(false)
+            .show(ctx, |ui| {
+                egui::Grid::new("export").num_columns(2).show(ui, |ui| {
+                    ui.label("port");
+                    let shown = self
+                        .port
+                        .as_ref()
+                        .map_or("choose…".to_owned(), |(n, p)| format!("{n}.{p}"));
+                    egui::ComboBox::from_id_salt("export port")
+                        .selected_text(shown)
+                        .show_ui(ui, |ui| {
+                            for (n, p) in &ports {
+                                let chosen = self.port.as_ref() == Some(&(n.clone(), p.clone()));
+                                if ui.selectable_label(chosen, format!("{n}.{p}")).clicked() {
+                                    self.port = Some((n.clone(), p.clone()));
+                                }
+                            }
+                        });
+                    ui.end_row();
+                    ui.label("width");
+                    ui.add(egui::DragValue::new(&mut self.width).range(1..=16384));
+                    ui.end_row();
+                    ui.label("height");
+                    ui.add(egui::DragValue::new(&mut self.height).range(1..=16384));
+                    ui.end_row();
+                    ui.label("file");
+                    ui.add(
+                        egui::TextEdit::singleline(&mut self.path)
+                            .hint_text("picture.png (relative to the graph)"),
+                    );
+                    ui.end_row();
+                });
+                ui.horizontal(|ui| {
+                    let busy = self.is_busy();
+                    if ui.add_enabled(!busy, egui::Button::new("Export")).clicked() {
+                        requested = true;
+                    }
+                    if busy {
+                        ui.spinner();
+                        ui.label("rendering…");
+                    }
+                });
+                match &self.last {
+                    Some(Ok(path)) => {
+                        ui.label(format!("wrote {}", path.display()));
+                    }
+                    Some(Err(e)) => {
+                        ui.colored_label(egui::Color32::LIGHT_RED, e);
+                    }
+                    None => {}
+                }
+            });
+        self.open = open;
+        if self.is_busy() {
+            ctx.request_repaint_after(std::time::Duration::from_millis(50));
+        }
+        requested
+    }
+}
