@@ -266,6 +266,21 @@ pub fn run(
             "  frame (wall, incl. GPU wait): median {} ms",
             ms(median(&series.frames))
         );
+        // Cached inputs (meshes, volumes) do not re-run in orbit/vary scenarios but say what
+        // the frame drew: list them so a report states its triangle and voxel counts.
+        let data: Vec<String> = session
+            .graph
+            .topological_order()
+            .into_iter()
+            .filter(|id| !series.cpu.contains_key(*id))
+            .filter_map(|id| {
+                let note = describe_output(session, id);
+                (!note.is_empty()).then(|| format!("{id} {note}"))
+            })
+            .collect();
+        if !data.is_empty() {
+            println!("  cached data: {}", data.join(", "));
+        }
     }
 
     println!();

@@ -901,3 +901,75 @@ fn an_iso_hit_right_after_a_skipped_brick_interpolates_from_the_skipped_sample()
         );
     }
 }
+
+/// Worst per-channel difference of two pictures, and where.
+fn worst_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> (f32, usize) {
+    let (mut worst, mut at) = (0.0f32, 0);
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        let d = (0..4).map(|c| (x[c] - y[c]).abs()).fold(0.0, f32::max);
+        if d > worst {
+            (worst, at) = (d, i);
+        }
+    }
+    (worst, at)
+}
+
+#[test]
+fn compute_kernel_casts_the_same_rays_as_the_fragment_shader() {
+    let mode = |m: &str| ("mode", ParamValue::Choice(m.into()));
+    let cases: [(&str, Vec<(&str, ParamValue)>); 5] = [
+        ("tf1d_phong_brain.ron", vec![]),
+        ("style_tf_frog.ron", vec![]),
+        ("context_preserving_brain.ron", vec![]),
+        ("tf1d_phong_brain.ron", vec![mode("mip")]),
+        (
+            "tf1d_phong_brain.ron",
+            vec![mode("iso"), ("iso", ParamValue::Float(80.0))],
+        ),
+    ];
+    let (w, h) = (160u32, 120u32);
+    for (preset, params) in cases {
+        let name = format!("{preset} {params:?}");
+        let path = common::repo_root().join("graphs").join(preset);
+        let mut session = Session::open(&path, w, h).expect("preset opens");
+        for (param, value) in &params {
+            session
+                .graph
+                .set_param(&session.registry, "ray", param, value.clone())
+                .unwrap();
+        }
+        let mut render = |kernel: &str| {
+            session
+                .graph
+                .set_param(
+                    &session.registry,
+                    "ray",
+                    "kernel",
+                    ParamValue::Choice(kernel.into()),
+                )
+                .unwrap();
+            let image = session.evaluate("ray", "image").expect("renders");
+            let gbuffer = session.evaluate("ray", "gbuffer").expect("renders");
+            // (depth, nx, ny, nz) per pixel.
+            (rgba(&session, &image), rgba(&session, &gbuffer))
+        };
+        let (fragment, fragment_g) = render("fragment");
+        let (compute, compute_g) = render("compute");
+        let covered = fragment.iter().filter(|p| p[3] > 0.05).count();
+        assert!(covered > 1000, "{name}: only {covered} pixels covered");
+        for (what, a, b) in [
+            ("image", &fragment, &compute),
+            ("G-buffer", &fragment_g, &compute_g),
+        ] {
+            let (worst, at) = worst_difference(a, b);
+            assert!(
+                worst <= 1e-3,
+                "{name}: {what} differs at pixel ({}, {}) by {worst}: fragment {:?}, compute {:?}",
+                at % w as usize,
+                at / w as usize,
+                a[at],
+                b[at]
+            );
+        }
+    }
+}

@@ -64,3 +64,75 @@ fn a_broken_shader_is_reported_by_name_not_by_a_panic() {
     assert!(message.starts_with("shader custom_node:"), "{message}");
     assert!(message.contains("oops"), "{message}");
 }
+
+/// The WGSL struct `name` of a program: (size, [(member, offset, size)]).
+fn wgsl_struct(module: &naga::Module, name: &str) -> Option<(u32, Vec<(String, u32, u32)>)> {
+    module.types.iter().find_map(|(_, ty)| match &ty.inner {
+        naga::TypeInner::Struct { members, span } if ty.name.as_deref() == Some(name) => Some((
+            *span,
+            members
+                .iter()
+                .map(|m| {
+                    let size = module.types[m.ty].inner.size(module.to_ctx());
+                    (m.name.clone().unwrap_or_default(), m.offset, size)
+                })
+                .collect(),
+        )),
+        _ => None,
+    })
+}
+
+#[test]
+fn every_uniform_block_matches_its_wgsl_struct_field_by_field() {
+    let layouts = hatchery_nodes::uniforms::all();
+    assert!(!layouts.is_empty());
+    for layout in &layouts {
+        let source = hatchery_nodes::shaders::source(layout.program)
+            .unwrap_or_else(|| panic!("no program `{}`", layout.program));
+        let module = naga::front::wgsl::parse_str(&source).unwrap();
+        let (span, members) = wgsl_struct(&module, layout.wgsl_struct).unwrap_or_else(|| {
+            panic!(
+                "program {} has no struct {}",
+                layout.program, layout.wgsl_struct
+            )
+        });
+        let rust: Vec<(String, u32, u32)> = layout
+            .fields
+            .iter()
+            .map(|(n, o, s)| (n.to_string(), *o as u32, *s as u32))
+            .collect();
+        assert_eq!(
+            rust, members,
+            "{}::{}: Rust fields (name, offset, size) differ from WGSL",
+            layout.program, layout.wgsl_struct
+        );
+        assert_eq!(
+            layout.size as u32, span,
+            "{}::{}: struct sizes differ",
+            layout.program, layout.wgsl_struct
+        );
+    }
+}
+
+#[test]
+fn every_uniform_buffer_in_every_program_has_a_typed_rust_block() {
+    let layouts = hatchery_nodes::uniforms::all();
+    for (program, _) in hatchery_nodes::shaders::programs() {
+        let source = hatchery_nodes::shaders::source(program).unwrap();
+        let module = naga::front::wgsl::parse_str(&source).unwrap();
+        for (_, global) in module.global_variables.iter() {
+            if global.space != naga::AddressSpace::Uniform {
+                continue;
+            }
+            let ty = module.types[global.ty].name.clone().unwrap_or_default();
+            assert!(
+                layouts
+                    .iter()
+                    .any(|l| l.program == program && l.wgsl_struct == ty),
+                "program {program}: `var<uniform> {}: {ty}` has no typed block in \
+                 hatchery_nodes::uniforms::all()",
+                global.name.clone().unwrap_or_default()
+            );
+        }
+    }
+}

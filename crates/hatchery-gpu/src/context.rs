@@ -162,6 +162,16 @@ impl GpuContext {
         self.adapter_info.device_type == wgpu::DeviceType::Cpu
     }
 
+    /// True on NVIDIA's data-centre compute parts (H100, H200, GH200, H800), whose graphics
+    /// pipeline runs on a small part of the chip: there full-screen work belongs in compute
+    /// shaders (measured in docs/benchmarks.md).
+    pub fn is_compute_part(&self) -> bool {
+        let name = self.adapter_info.name.to_ascii_uppercase();
+        ["H100", "H200", "H800"]
+            .iter()
+            .any(|part| name.contains(part))
+    }
+
     pub fn has_timestamps(&self) -> bool {
         self.device.features().contains(
             wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS,
@@ -237,6 +247,35 @@ impl GpuContext {
             dimension: wgpu::TextureDimension::D2,
             format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        })
+    }
+
+    /// A 2-D texture a compute shader writes (storage) and later passes read, copy or render
+    /// into, like `render_target`.
+    pub fn storage_target(
+        &self,
+        label: &str,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+    ) -> wgpu::Texture {
+        self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::COPY_DST,

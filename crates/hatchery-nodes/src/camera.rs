@@ -118,7 +118,7 @@ impl Camera {
         )
     }
 
-    /// The uniform block shared by mesh shaders (`CameraUniform` in WGSL).
+    /// The uniform block shared by mesh shaders (`Camera` in shaders/mesh_common.wgsl).
     pub fn uniform(&self) -> CameraUniform {
         CameraUniform {
             view: self.view.to_cols_array_2d(),
@@ -133,13 +133,14 @@ impl Camera {
     }
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct CameraUniform {
-    pub view: [[f32; 4]; 4],
-    pub proj: [[f32; 4]; 4],
-    /// World eye position; w = 1 for orthographic.
-    pub eye: [f32; 4],
+crate::uniform_block! {
+    /// `Camera` of shaders/mesh_common.wgsl (binding 0 of every mesh shader).
+    pub struct CameraUniform in "gbuffer" as "Camera" {
+        pub view: [[f32; 4]; 4],
+        pub proj: [[f32; 4]; 4],
+        /// World eye position; w = 1 for orthographic.
+        pub eye: [f32; 4],
+    }
 }
 
 pub struct CameraNode;

@@ -8,6 +8,14 @@ use hatchery_graph::{
 
 const COMPARISONS: &[&str] = &["a<=b", "a<b", "a>=b", "a>b"];
 
+crate::uniform_block! {
+    /// `DepthTest` of shaders/depth_test_mask.wgsl: options.x = the comparison (index in
+    /// COMPARISONS).
+    pub struct DepthTestUniforms in "depth_test_mask" as "DepthTest" {
+        pub options: [f32; 4],
+    }
+}
+
 pub struct DepthTestMaskNode;
 
 impl Node<Value, Ctx> for DepthTestMaskNode {
@@ -55,7 +63,9 @@ impl Node<Value, Ctx> for DepthTestMaskNode {
             "depth_test_mask",
             &[("a", &a.depth), ("b", &b.depth)],
             &[],
-            Some(&screen_pass::uniform_bytes(&[op as f32])),
+            Some(bytemuck::bytes_of(&DepthTestUniforms {
+                options: [op as f32, 0.0, 0.0, 0.0],
+            })),
         )?])
     }
 }

@@ -6,6 +6,17 @@ use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
+crate::uniform_block! {
+    /// `Diffuse` of shaders/diffuse_intensity.wgsl: view-space light direction, (value of empty
+    /// pixels, two-sided), the inverse projection, and (width, height, orthographic).
+    pub struct DiffuseUniforms in "diffuse_intensity" as "Diffuse" {
+        pub light_dir: [f32; 4],
+        pub options: [f32; 4],
+        pub inverse_proj: [[f32; 4]; 4],
+        pub frame: [f32; 4],
+    }
+}
+
 pub struct DiffuseIntensityNode;
 
 impl Node<Value, Ctx> for DiffuseIntensityNode {
@@ -54,33 +65,32 @@ impl Node<Value, Ctx> for DiffuseIntensityNode {
         let light = inputs.require("light")?.light("light")?.clone();
         let l = light.view_direction(&gbuffer.camera);
         let (w, h) = ctx.size();
-        let mut values = vec![
-            l.x,
-            l.y,
-            l.z,
-            0.0,
-            p.f32("empty"),
-            if p.bool("two_sided") { 1.0 } else { 0.0 },
-            0.0,
-            0.0,
-        ];
-        values.extend_from_slice(&gbuffer.camera.proj.inverse().to_cols_array());
-        values.extend_from_slice(&[
-            w as f32,
-            h as f32,
-            if gbuffer.camera.orthographic {
-                1.0
-            } else {
-                0.0
-            },
-            0.0,
-        ]);
+        let uniforms = DiffuseUniforms {
+            light_dir: [l.x, l.y, l.z, 0.0],
+            options: [
+                p.f32("empty"),
+                if p.bool("two_sided") { 1.0 } else { 0.0 },
+                0.0,
+                0.0,
+            ],
+            inverse_proj: gbuffer.camera.proj.inverse().to_cols_array_2d(),
+            frame: [
+                w as f32,
+                h as f32,
+                if gbuffer.camera.orthographic {
+                    1.0
+                } else {
+                    0.0
+                },
+                0.0,
+            ],
+        };
         Ok(vec![screen_pass::mask(
             ctx,
             "diffuse_intensity",
             &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
             &[],
-            Some(&screen_pass::uniform_bytes(&values)),
+            Some(bytemuck::bytes_of(&uniforms)),
         )?])
     }
 }

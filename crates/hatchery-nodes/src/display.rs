@@ -7,6 +7,17 @@ use crate::export;
 use crate::screen_pass;
 use crate::{Ctx, Value};
 
+crate::uniform_block! {
+    /// `Display` of shaders/display.wgsl: what the texture holds (0 image, 1 mask, 2 normals),
+    /// the checkerboard cell in pixels and the output size.
+    pub struct DisplayUniforms in "display" as "Display" {
+        pub mode: f32,
+        pub checker: f32,
+        pub out_width: f32,
+        pub out_height: f32,
+    }
+}
+
 /// Format of display textures: display (sRGB-encoded) values, opaque, as egui draws textures.
 pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// Side of a checkerboard square behind transparent pixels, in display pixels.
@@ -67,14 +78,19 @@ pub fn display_texture(
         Value::GBuffer(g) => (&g.normal, 2.0),
         _ => return upload_picture(ctx, value, size),
     };
-    let uniform = screen_pass::uniform_bytes(&[mode, CHECKER as f32, size.0 as f32, size.1 as f32]);
+    let uniform = DisplayUniforms {
+        mode,
+        checker: CHECKER as f32,
+        out_width: size.0 as f32,
+        out_height: size.1 as f32,
+    };
     screen_pass::render(
         ctx,
         "display",
         DISPLAY_FORMAT,
         size,
         &[texture],
-        Some(&uniform),
+        Some(bytemuck::bytes_of(&uniform)),
     )
     .map_err(|e| e.to_string())
 }

@@ -6,6 +6,13 @@ use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
+crate::uniform_block! {
+    /// `Fill` of shaders/fill.wgsl: the straight (not premultiplied) RGBA colour.
+    pub struct FillUniforms in "fill" as "Fill" {
+        pub color: [f32; 4],
+    }
+}
+
 pub struct FillNode;
 
 impl Node<Value, Ctx> for FillNode {
@@ -42,7 +49,9 @@ impl Node<Value, Ctx> for FillNode {
             "fill",
             &[],
             &[],
-            Some(&screen_pass::uniform_bytes(&p.color("color"))),
+            Some(bytemuck::bytes_of(&FillUniforms {
+                color: p.color("color"),
+            })),
         )?])
     }
 }

@@ -6,6 +6,13 @@ use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
+crate::uniform_block! {
+    /// `Halftone` of shaders/halftone.wgsl: (θ in radians, cell size in pixels, c_cross, 0).
+    pub struct HalftoneUniforms in "halftone" as "Halftone" {
+        pub params: [f32; 4],
+    }
+}
+
 pub struct HalftoneNode;
 
 impl Node<Value, Ctx> for HalftoneNode {
@@ -56,13 +63,20 @@ impl Node<Value, Ctx> for HalftoneNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let intensity = inputs.require("intensity")?.mask("intensity")?.clone();
-        let values = [p.f32("theta").to_radians(), p.f32("cell"), p.f32("c_cross")];
+        let uniforms = HalftoneUniforms {
+            params: [
+                p.f32("theta").to_radians(),
+                p.f32("cell"),
+                p.f32("c_cross"),
+                0.0,
+            ],
+        };
         Ok(vec![screen_pass::mask(
             ctx,
             "halftone",
             &[("intensity", &intensity.texture)],
             &[],
-            Some(&screen_pass::uniform_bytes(&values)),
+            Some(bytemuck::bytes_of(&uniforms)),
         )?])
     }
 }

@@ -33,6 +33,7 @@ pub mod silhouette;
 pub mod style_set;
 pub mod style_transfer_function;
 pub mod transfer_function_1d;
+pub mod uniforms;
 pub mod value;
 pub mod volume_file;
 pub mod volume_texture;

@@ -8,6 +8,13 @@ use hatchery_graph::{
 
 const OPERATIONS: &[&str] = &["and", "or", "min", "add", "subtract", "a_not_b"];
 
+crate::uniform_block! {
+    /// `Combine` of shaders/mask_combine.wgsl: options.x = the operation (index in OPERATIONS).
+    pub struct CombineUniforms in "mask_combine" as "Combine" {
+        pub options: [f32; 4],
+    }
+}
+
 pub struct MaskCombineNode;
 
 impl Node<Value, Ctx> for MaskCombineNode {
@@ -51,7 +58,9 @@ impl Node<Value, Ctx> for MaskCombineNode {
             "mask_combine",
             &[("a", &a.texture), ("b", &b.texture)],
             &[],
-            Some(&screen_pass::uniform_bytes(&[op as f32])),
+            Some(bytemuck::bytes_of(&CombineUniforms {
+                options: [op as f32, 0.0, 0.0, 0.0],
+            })),
         )?])
     }
 }

@@ -6,6 +6,15 @@ use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
+crate::uniform_block! {
+    /// `MixParams` of shaders/mix_by_mask.wgsl: the premultiplied colour, and options.x = 1
+    /// when an `over` image replaces the colour.
+    pub struct MixUniforms in "mix_by_mask" as "MixParams" {
+        pub color: [f32; 4],
+        pub options: [f32; 4],
+    }
+}
+
 pub struct MixByMaskNode;
 
 impl Node<Value, Ctx> for MixByMaskNode {
@@ -49,13 +58,10 @@ impl Node<Value, Ctx> for MixByMaskNode {
             .map(|v| v.image("over").cloned())
             .transpose()?;
         let c = p.color("color");
-        let values = [
-            c[0] * c[3],
-            c[1] * c[3],
-            c[2] * c[3],
-            c[3],
-            if over.is_some() { 1.0 } else { 0.0 },
-        ];
+        let uniforms = MixUniforms {
+            color: [c[0] * c[3], c[1] * c[3], c[2] * c[3], c[3]],
+            options: [if over.is_some() { 1.0 } else { 0.0 }, 0.0, 0.0, 0.0],
+        };
         let over_texture = over.as_ref().map_or(&base.texture, |o| &o.texture);
         Ok(vec![screen_pass::image(
             ctx,
@@ -66,7 +72,7 @@ impl Node<Value, Ctx> for MixByMaskNode {
                 ("mask", &mask.texture),
             ],
             &[],
-            Some(&screen_pass::uniform_bytes(&values)),
+            Some(bytemuck::bytes_of(&uniforms)),
         )?])
     }
 }

@@ -6,6 +6,13 @@ use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
+crate::uniform_block! {
+    /// `MultiplyParams` of shaders/multiply_by_mask.wgsl: options.x = 1 to invert the mask.
+    pub struct MultiplyUniforms in "multiply_by_mask" as "MultiplyParams" {
+        pub options: [f32; 4],
+    }
+}
+
 pub struct MultiplyByMaskNode;
 
 impl Node<Value, Ctx> for MultiplyByMaskNode {
@@ -42,13 +49,15 @@ impl Node<Value, Ctx> for MultiplyByMaskNode {
     ) -> Result<Vec<Value>, NodeError> {
         let image = inputs.require("image")?.image("image")?.clone();
         let mask = inputs.require("mask")?.mask("mask")?.clone();
-        let values = [if p.bool("invert") { 1.0 } else { 0.0 }];
+        let uniforms = MultiplyUniforms {
+            options: [if p.bool("invert") { 1.0 } else { 0.0 }, 0.0, 0.0, 0.0],
+        };
         Ok(vec![screen_pass::image(
             ctx,
             "multiply_by_mask",
             &[("image", &image.texture), ("mask", &mask.texture)],
             &[],
-            Some(&screen_pass::uniform_bytes(&values)),
+            Some(bytemuck::bytes_of(&uniforms)),
         )?])
     }
 }

@@ -167,10 +167,3 @@ pub fn image(
     let texture = run(ctx, program, IMAGE_FORMAT, textures, patterns, uniform)?;
     Ok(Value::Image(Arc::new(Image { texture })))
 }
-
-/// Packs floats into a uniform block (vec4-aligned, as the shaders declare them).
-pub fn uniform_bytes(values: &[f32]) -> Vec<u8> {
-    let mut padded = values.to_vec();
-    padded.resize(values.len().div_ceil(4).max(1) * 4, 0.0);
-    bytemuck::cast_slice(&padded).to_vec()
-}

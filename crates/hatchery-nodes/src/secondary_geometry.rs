@@ -10,6 +10,15 @@ use hatchery_graph::{
 };
 use std::sync::Arc;
 
+crate::uniform_block! {
+    /// `Secondary` of shaders/secondary_geometry.wgsl: view-space light direction and (α, β of
+    /// Fischer eq. 10, two-sided, 0).
+    pub struct SecondaryUniforms in "secondary_geometry" as "Secondary" {
+        pub light_dir: [f32; 4],
+        pub factors: [f32; 4],
+    }
+}
+
 pub struct SecondaryGeometryNode;
 
 fn pipeline(
@@ -119,18 +128,16 @@ impl Node<Value, Ctx> for SecondaryGeometryNode {
         let gpu = &ctx.gpu;
         let l = light.view_direction(&camera);
         let two_sided = if p.bool("two_sided") { 1.0 } else { 0.0 };
-        let params = crate::screen_pass::uniform_bytes(&[
-            l.x,
-            l.y,
-            l.z,
-            0.0,
-            p.f32("alpha"),
-            p.f32("beta"),
-            two_sided,
-            0.0,
-        ]);
+        let params = SecondaryUniforms {
+            light_dir: [l.x, l.y, l.z, 0.0],
+            factors: [p.f32("alpha"), p.f32("beta"), two_sided, 0.0],
+        };
         let camera_buf = camera.uniform_buffer(gpu);
-        let params_buf = gpu.buffer_init("secondary", &params, wgpu::BufferUsages::UNIFORM);
+        let params_buf = gpu.buffer_init(
+            "secondary",
+            bytemuck::bytes_of(&params),
+            wgpu::BufferUsages::UNIFORM,
+        );
         let (d1, d2) = (
             layer1.depth.create_view(&Default::default()),
             layer2.depth.create_view(&Default::default()),

@@ -9,13 +9,15 @@ use std::sync::Arc;
 
 pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct ShadingUniform {
-    base_color: [f32; 4],
-    light_dir: [f32; 4],
-    light_color: [f32; 4],
-    params: [f32; 4],
+crate::uniform_block! {
+    /// `Shading` of shaders/shaded_surface.wgsl: base colour, view-space light direction, light
+    /// colour × intensity, (ambient, specular, shininess, two-sided).
+    pub struct ShadingUniform in "shaded_surface" as "Shading" {
+        pub base_color: [f32; 4],
+        pub light_dir: [f32; 4],
+        pub light_color: [f32; 4],
+        pub params: [f32; 4],
+    }
 }
 
 pub struct ShadedSurfaceNode;

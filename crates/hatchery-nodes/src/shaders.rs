@@ -1,6 +1,6 @@
 //! Every WGSL shader, embedded at build time. Some are assembled from shared parts
 //! (`mesh_common.wgsl` is prepended to the mesh shaders, `fullscreen.wgsl` to the
-//! image-space ones): WGSL has no includes.
+//! image-space ones, the `ray_*.wgsl` parts to the ray casters): WGSL has no includes.
 
 macro_rules! shader_file {
     ($name:literal) => {
@@ -26,7 +26,12 @@ pub const MIX_BY_MASK: &str = shader_file!("mix_by_mask.wgsl");
 pub const MULTIPLY_BY_MASK: &str = shader_file!("multiply_by_mask.wgsl");
 pub const DEPTH_TEST_MASK: &str = shader_file!("depth_test_mask.wgsl");
 pub const MASK_COMBINE: &str = shader_file!("mask_combine.wgsl");
+pub const RAY_COMMON: &str = shader_file!("ray_common.wgsl");
+pub const RAY_CLASSIFY: &str = shader_file!("ray_classify.wgsl");
+pub const RAY_SHADE: &str = shader_file!("ray_shade.wgsl");
+pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
+pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
 pub const OVER: &str = shader_file!("over.wgsl");
 pub const DISPLAY: &str = shader_file!("display.wgsl");
 
@@ -34,6 +39,17 @@ pub const DISPLAY: &str = shader_file!("display.wgsl");
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
     let mesh = |file, source| vec![("mesh_common.wgsl", MESH_COMMON), (file, source)];
     let screen = |file, source| vec![("fullscreen.wgsl", FULLSCREEN), (file, source)];
+    // The ray casters share their sampling, classification, shading and skipping parts.
+    let ray = |file, source| {
+        vec![
+            ("fullscreen.wgsl", FULLSCREEN),
+            ("ray_common.wgsl", RAY_COMMON),
+            ("ray_classify.wgsl", RAY_CLASSIFY),
+            ("ray_shade.wgsl", RAY_SHADE),
+            ("ray_skip.wgsl", RAY_SKIP),
+            (file, source),
+        ]
+    };
     vec![
         ("gbuffer", mesh("gbuffer.wgsl", GBUFFER)),
         (
@@ -62,7 +78,11 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             screen("depth_test_mask.wgsl", DEPTH_TEST_MASK),
         ),
         ("mask_combine", screen("mask_combine.wgsl", MASK_COMBINE)),
-        ("raycast", screen("raycast.wgsl", RAYCAST)),
+        ("raycast", ray("raycast.wgsl", RAYCAST)),
+        (
+            "depth_from_texture",
+            screen("depth_from_texture.wgsl", DEPTH_FROM_TEXTURE),
+        ),
         ("over", screen("over.wgsl", OVER)),
         ("display", screen("display.wgsl", DISPLAY)),
     ]

@@ -7,6 +7,15 @@ use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
+crate::uniform_block! {
+    /// `Silhouette` of shaders/silhouette.wgsl: (depth threshold, normal threshold, use depth,
+    /// use normals) and the pip settings (mode, amount, scale, seed).
+    pub struct SilhouetteUniforms in "silhouette" as "Silhouette" {
+        pub thresholds: [f32; 4],
+        pub pip: [f32; 4],
+    }
+}
+
 pub const PIP_MODES: &[&str] = &["none", "constant", "texture", "noise", "dots"];
 
 pub struct SilhouetteNode;
@@ -103,22 +112,26 @@ impl Node<Value, Ctx> for SilhouetteNode {
             ctx.blank_texture()
         };
         let bool_f = |b: bool| if b { 1.0 } else { 0.0 };
-        let values = [
-            p.f32("depth_threshold"),
-            p.f32("normal_threshold"),
-            bool_f(p.bool("use_depth")),
-            bool_f(p.bool("use_normals")),
-            mode as f32,
-            p.f32("pip_amount"),
-            p.f32("pip_scale"),
-            p.int("pip_seed") as f32,
-        ];
+        let uniforms = SilhouetteUniforms {
+            thresholds: [
+                p.f32("depth_threshold"),
+                p.f32("normal_threshold"),
+                bool_f(p.bool("use_depth")),
+                bool_f(p.bool("use_normals")),
+            ],
+            pip: [
+                mode as f32,
+                p.f32("pip_amount"),
+                p.f32("pip_scale"),
+                p.int("pip_seed") as f32,
+            ],
+        };
         Ok(vec![screen_pass::mask(
             ctx,
             "silhouette",
             &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
             &[&pattern],
-            Some(&screen_pass::uniform_bytes(&values)),
+            Some(bytemuck::bytes_of(&uniforms)),
         )?])
     }
 }

@@ -44,15 +44,27 @@ pub(super) fn check_lengths(path: &Path) -> Result<(), DataError> {
     };
     input.skip(132).map_err(io_error)?;
 
-    // The file meta group: explicit VR little endian, defined lengths.
+    // The file meta group: explicit VR little endian, defined lengths. dicom-rs reads it as
+    // dicom-object's FileMetaTable does: a (0002,0000) group length first, then elements
+    // (whatever their group) until that many bytes are read; the data set starts there. Walk
+    // the same elements, or the two disagree on where the data set starts and this walk checks
+    // other lengths than dicom-rs reads.
     let mut syntax = String::new();
     let walk = Walk::new(path, Encoding::ExplicitLittle);
-    loop {
-        match input.peek_group(false) {
-            Ok(Some(0x0002)) => {}
-            Ok(_) => break,
-            Err(e) => return walk.ended(e),
-        }
+    let header = match walk.header(&mut input) {
+        Ok(h) => h,
+        Err(e) => return walk.ended(e),
+    };
+    if header.tag != (0x0002, 0x0000) || header.len != 4 {
+        // dicom-rs refuses such a file itself.
+        return Ok(());
+    }
+    let mut value = [0u8; 4];
+    if let Err(e) = input.read_exact(&mut value) {
+        return walk.ended(e);
+    }
+    let group_end = input.pos + u64::from(u32::from_le_bytes(value));
+    while input.pos < group_end {
         let header = match walk.header(&mut input) {
             Ok(h) => h,
             Err(e) => return walk.ended(e),
@@ -147,19 +159,6 @@ impl Input {
         }
         self.pos += n;
         Ok(())
-    }
-
-    /// The group of the next tag, without consuming it; `None` at the end of the data.
-    fn peek_group(&mut self, big_endian: bool) -> io::Result<Option<u16>> {
-        let Reader::File(r) = &mut self.reader else {
-            return Ok(None);
-        };
-        let buf = peek(r)?;
-        Ok(match buf {
-            [a, b, ..] if big_endian => Some(u16::from_be_bytes([*a, *b])),
-            [a, b, ..] => Some(u16::from_le_bytes([*a, *b])),
-            _ => None,
-        })
     }
 }
 
@@ -258,6 +257,28 @@ impl<'a> Walk<'a> {
                 format!(
                     "unreadable DICOM file: element ({group:04X},{element:04X}) declares {} \
                      bytes, more than the {left} left in the file",
+                    header.len
+                ),
+            ));
+        }
+        // dicom-parser reads binary numbers as whole values only: a length that is not a
+        // multiple of the value size leaves the rest unread, and it then takes value bytes for
+        // the next element's header (lengths of gigabytes from a few bytes). No reader can
+        // use such an element (pydicom fails to unpack it too): say so here.
+        let size = match &header.vr {
+            b"SS" | b"US" | b"OW" => 2,
+            b"FL" | b"SL" | b"UL" | b"AT" | b"OF" | b"OL" => 4,
+            b"FD" | b"SV" | b"UV" | b"OD" | b"OV" => 8,
+            _ => 1,
+        };
+        if header.len != UNDEFINED && !header.len.is_multiple_of(size) {
+            let (group, element) = header.tag;
+            return Err(DataError::format(
+                self.path,
+                format!(
+                    "unreadable DICOM file: element ({group:04X},{element:04X}) of VR {} has \
+                     {} bytes, not a multiple of its {size}-byte values",
+                    String::from_utf8_lossy(&header.vr),
                     header.len
                 ),
             ));

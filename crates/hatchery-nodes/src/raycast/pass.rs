@@ -1,0 +1,361 @@
+//! One ray-casting pass: the pipeline, the bind group and the draw (see shaders/raycast.wgsl).
+
+use super::tables::RayTables;
+use super::uniforms::RayUniforms;
+use super::{Kernel, RayOptions};
+use crate::Ctx;
+use crate::camera::Camera;
+use crate::gbuffer::NORMAL_FORMAT;
+use crate::mesh_pass::DEPTH_FORMAT;
+use crate::screen_pass::IMAGE_FORMAT;
+use crate::value::{GBuffer, TransferFunction, Volume};
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::NodeError;
+
+/// The static GPU objects of the ray caster.
+pub struct Statics {
+    pipeline: wgpu::RenderPipeline,
+    /// The same rays as a compute kernel (`cs_main`), and the pass that moves its r32float
+    /// depths into the G-buffer's depth texture.
+    compute: wgpu::ComputePipeline,
+    depth_copy: wgpu::RenderPipeline,
+    sampler: wgpu::Sampler,
+    /// Stand-ins for the tables a mode does not use.
+    pub blank_table: wgpu::Texture,
+    pub blank_styles: wgpu::Texture,
+    pub blank_index: wgpu::Texture,
+    pub blank_labels: wgpu::Texture,
+    pub blank_label_rows: wgpu::Texture,
+}
+
+fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
+    let source = crate::shaders::source("raycast").expect("registered program");
+    let module = gpu.shader("raycast", &source)?;
+    let pipeline = gpu.checked("pipeline raycast", |device| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("raycast"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })?;
+    let compute = gpu.checked("pipeline raycast (compute)", |device| {
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("raycast compute"),
+            layout: None,
+            module: &module,
+            entry_point: Some("cs_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    })?;
+    let copy_source = crate::shaders::source("depth_from_texture").expect("registered program");
+    let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
+    let depth_copy = gpu.checked("pipeline depth_from_texture", |device| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("depth from texture"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &copy_module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &copy_module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })?;
+    let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("linear clamp"),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        ..Default::default()
+    });
+    let zeros = vec![0u8; 256 * 16];
+    let blank_table = gpu.texture_2d_init(
+        "blank table",
+        256,
+        1,
+        wgpu::TextureFormat::Rgba32Float,
+        &zeros,
+    );
+    let blank_styles = gpu.texture_2d_init(
+        "blank styles",
+        1,
+        1,
+        wgpu::TextureFormat::Rgba16Float,
+        &[0u8; 8],
+    );
+    let blank_index = gpu.texture_2d_init(
+        "blank index",
+        1,
+        1,
+        wgpu::TextureFormat::R32Float,
+        &[0u8; 4],
+    );
+    let blank_labels = gpu.texture_3d_init(
+        "blank labels",
+        [1, 1, 1],
+        wgpu::TextureFormat::R8Unorm,
+        &[0u8],
+    );
+    let blank_label_rows = gpu.texture_2d_init(
+        "blank label rows",
+        1,
+        2,
+        wgpu::TextureFormat::Rgba32Float,
+        &[0u8; 32],
+    );
+    Ok(Statics {
+        pipeline,
+        compute,
+        depth_copy,
+        sampler,
+        blank_table,
+        blank_styles,
+        blank_index,
+        blank_labels,
+        blank_label_rows,
+    })
+}
+
+/// Runs the ray caster; returns the image (premultiplied colour, `IMAGE_FORMAT`) and the
+/// G-buffer where the accumulated opacity first reached `hit_opacity` (MIP: the maximum's
+/// position; iso: the refined hit). Errors: see `RayTables::new`; GPU errors by name.
+pub fn cast(
+    ctx: &mut Ctx,
+    volume: &Volume,
+    camera: &Camera,
+    tf: Option<&TransferFunction>,
+    labels: Option<&Volume>,
+    o: &RayOptions,
+) -> Result<(wgpu::Texture, GBuffer), NodeError> {
+    let err = |e: GpuError| NodeError::new(e.to_string());
+    let st = ctx.cached("raycast.statics", statics).map_err(err)?;
+    let gpu = &ctx.gpu;
+    let volume_texture = volume.texture(gpu).map_err(err)?;
+    let tables = RayTables::new(gpu, &st, volume, tf, labels, o)?;
+    let max_gradient = if tables.info.shading >= 2.0 {
+        volume.max_gradient()
+    } else {
+        1.0
+    };
+    let uniforms = RayUniforms::new(
+        camera,
+        &volume.data,
+        o,
+        &tables.info,
+        max_gradient,
+        volume_texture.texel_range,
+    );
+    let uniform = gpu.buffer_init(
+        "raycast",
+        bytemuck::bytes_of(&uniforms),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let volume_view = volume_texture.texture.create_view(&Default::default());
+    let texture_views = [
+        (1, &volume_view),
+        (3, &tables.table),
+        (4, &tables.lighting),
+        (5, &tables.styles),
+        (6, &tables.index),
+        (7, &tables.labels),
+        (8, &tables.label_rows),
+        (9, &tables.bricks),
+        (10, &tables.visibility),
+    ];
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: uniform.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::Sampler(&st.sampler),
+        },
+    ];
+    entries.extend(
+        texture_views
+            .iter()
+            .map(|(binding, view)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: wgpu::BindingResource::TextureView(view),
+            }),
+    );
+    // Auto-derived layouts differ per pipeline object: bind against the one that runs.
+    let compute = o.kernel == Kernel::Compute;
+    let layout = if compute {
+        st.compute.get_bind_group_layout(0)
+    } else {
+        st.pipeline.get_bind_group_layout(0)
+    };
+    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("raycast"),
+        layout: &layout,
+        entries: &entries,
+    });
+    if compute {
+        return cast_compute(ctx, &st, camera, &bind_group);
+    }
+
+    let (w, h) = (camera.width, camera.height);
+    let image = gpu.render_target("raycast image", w, h, IMAGE_FORMAT);
+    let normal = gpu.render_target("raycast normal", w, h, NORMAL_FORMAT);
+    let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
+    let (image_view, normal_view, depth_view) = (
+        image.create_view(&Default::default()),
+        normal.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+    );
+    let clear = |view| {
+        Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            },
+        })
+    };
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("raycast"),
+            color_attachments: &[clear(&image_view), clear(&normal_view)],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            ..Default::default()
+        });
+        pass.set_pipeline(&st.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    let work = encoder.finish();
+    ctx.submit(work);
+    Ok((
+        image,
+        GBuffer {
+            depth,
+            normal,
+            camera: camera.clone(),
+        },
+    ))
+}
+
+/// The compute path of `cast`: 8×8-pixel workgroups write colour, normal and depth to storage
+/// textures; a full-screen pass then writes the depths into the G-buffer's depth texture.
+fn cast_compute(
+    ctx: &mut Ctx,
+    st: &Statics,
+    camera: &Camera,
+    bind_group: &wgpu::BindGroup,
+) -> Result<(wgpu::Texture, GBuffer), NodeError> {
+    let gpu = &ctx.gpu;
+    let (w, h) = (camera.width, camera.height);
+    let image = gpu.storage_target("raycast image", w, h, IMAGE_FORMAT);
+    let normal = gpu.storage_target("raycast normal", w, h, NORMAL_FORMAT);
+    let depth_values =
+        gpu.storage_target("raycast depth values", w, h, wgpu::TextureFormat::R32Float);
+    let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
+    let views = [&image, &normal, &depth_values].map(|t| t.create_view(&Default::default()));
+    let outputs = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("raycast outputs"),
+        layout: &st.compute.get_bind_group_layout(1),
+        entries: &[0u32, 1, 2].map(|binding| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(&views[binding as usize]),
+        }),
+    });
+    let copy_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("depth from texture"),
+        layout: &st.depth_copy.get_bind_group_layout(0),
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(&views[2]),
+        }],
+    });
+    let depth_view = depth.create_view(&Default::default());
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("raycast compute"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&st.compute);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.set_bind_group(1, &outputs, &[]);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+    }
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("depth from texture"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            ..Default::default()
+        });
+        pass.set_pipeline(&st.depth_copy);
+        pass.set_bind_group(0, &copy_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    ctx.submit(encoder.finish());
+    Ok((
+        image,
+        GBuffer {
+            depth,
+            normal,
+            camera: camera.clone(),
+        },
+    ))
+}

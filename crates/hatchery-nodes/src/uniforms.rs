@@ -1,0 +1,83 @@
+//! Typed uniform blocks: each `#[repr(C)]` struct mirrors one WGSL struct field by field, and
+//! `tests/shaders.rs` checks every field's offset and size, and the struct's size, against
+//! naga's reflection of the shader (so a field added on one side only fails a test instead of
+//! shifting every value after it).
+
+/// The layout of a Rust uniform block, to compare with its WGSL struct.
+#[derive(Clone, Debug)]
+pub struct UniformLayout {
+    /// Shader program (a name of `shaders::programs`) whose `var<uniform>` uses the struct.
+    pub program: &'static str,
+    /// The WGSL struct's name.
+    pub wgsl_struct: &'static str,
+    /// `size_of` the Rust struct, bytes.
+    pub size: usize,
+    /// (field name, byte offset, byte size), in declaration order.
+    pub fields: Vec<(&'static str, usize, usize)>,
+}
+
+/// Declares a `#[repr(C)]`, `Pod` uniform block mirroring a WGSL struct of `program`, with a
+/// `layout()` that reports its fields for the reflection test. Fields are `f32`, `[f32; 4]`
+/// (vec4) or `[[f32; 4]; 4]` (mat4x4), so Rust and WGSL agree on alignment without padding.
+#[macro_export]
+macro_rules! uniform_block {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident in $program:literal as $wgsl:literal {
+            $( $(#[$field_meta:meta])* pub $field:ident : $ty:ty ),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+        pub struct $name {
+            $( $(#[$field_meta])* pub $field: $ty, )*
+        }
+
+        impl $name {
+            /// The block's layout, for the WGSL reflection test.
+            pub fn layout() -> $crate::uniforms::UniformLayout {
+                $crate::uniforms::UniformLayout {
+                    program: $program,
+                    wgsl_struct: $wgsl,
+                    size: std::mem::size_of::<$name>(),
+                    fields: vec![
+                        $( (stringify!($field), std::mem::offset_of!($name, $field), std::mem::size_of::<$ty>()), )*
+                    ],
+                }
+            }
+        }
+    };
+}
+
+/// Every uniform block of every node, for the reflection test.
+pub fn all() -> Vec<UniformLayout> {
+    use crate::*;
+    let mut all = vec![
+        raycast::RayUniforms::layout(),
+        shaded_surface::ShadingUniform::layout(),
+        secondary_geometry::SecondaryUniforms::layout(),
+        depth_test_mask::DepthTestUniforms::layout(),
+        diffuse_intensity::DiffuseUniforms::layout(),
+        display::DisplayUniforms::layout(),
+        fill::FillUniforms::layout(),
+        halftone::HalftoneUniforms::layout(),
+        mask_combine::CombineUniforms::layout(),
+        mix_by_mask::MixUniforms::layout(),
+        multiply_by_mask::MultiplyUniforms::layout(),
+        silhouette::SilhouetteUniforms::layout(),
+    ];
+    // The camera block is shared by every mesh shader (shaders/mesh_common.wgsl).
+    for program in [
+        "gbuffer",
+        "shaded_surface",
+        "depth_peel",
+        "secondary_geometry",
+    ] {
+        all.push(UniformLayout {
+            program,
+            ..camera::CameraUniform::layout()
+        });
+    }
+    all
+}

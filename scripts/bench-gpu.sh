@@ -1,0 +1,70 @@
+#!/bin/sh
+# The benchmark of issue 15 item 5, as one script for a machine with a real GPU:
+#   scripts/bench-gpu.sh [HATCHERY] [OUTDIR] [FRAMES]
+# HATCHERY defaults to target/release/hatchery, OUTDIR to bench-gpu/, FRAMES to 50. The MRI
+# graphs read ../shared/data/volumes/mni152_t1.nii.gz (relative to graphs/), as everywhere.
+# Every block is one `hatchery bench` run (interleaved, medians after a warm-up frame); the
+# adapter it ran on is the first line of each output. Set QUICK=1 for a small smoke run (what a
+# machine without a GPU can finish in a minute).
+set -eu
+bin=${1:-target/release/hatchery}
+out=${2:-bench-gpu}
+frames=${3:-50}
+mkdir -p "$out"
+# (The MRI graphs need mni152_t1, mni152_wm and mni152_gm from ../shared/data/volumes/.)
+
+# Sizes of the issue; QUICK shrinks them so the script itself can be tried on lavapipe.
+if [ "${QUICK:-0}" = 1 ]; then
+    hd=320x180 sq=256x256 xga=256x192 res=96 pres=64
+else
+    hd=1920x1080 sq=1024x1024 xga=1024x768 res=512 pres=256
+fi
+
+run() {
+    name=$1
+    shift
+    echo "== $name: hatchery bench $*" | tee "$out/$name.txt"
+    "$bin" bench "$@" --frames "$frames" 2>&1 | tee -a "$out/$name.txt"
+}
+
+(nvidia-smi --query-gpu=name,driver_version,clocks.max.sm,memory.total --format=csv 2>/dev/null ||
+    echo "no nvidia-smi") | tee "$out/machine.txt"
+nproc | sed 's/^/cpus: /' | tee -a "$out/machine.txt"
+
+# 1. Hidden structures (Fischer 2005 set-up) on the engine block at resolution 512³ (over a
+# million triangles) vs. the Blinn–Phong frame of the same block, same camera, camera orbiting.
+run hidden_structures_1080p \
+    graphs/shaded_surface.ron graphs/hidden_structures.ron \
+    --set 1:shells.shape=engine_block --set "1:shells.resolution=$res" \
+    --set 1:camera.azimuth=35 --set 1:camera.distance=3.4 --set 1:camera.elevation=25 \
+    --set "2:block.resolution=$res" --set "2:pistons.resolution=$pres" \
+    --scenario orbit:camera --size "$hd" --size "$xga"
+
+# 2. The MRI surface (300k triangles): Blinn–Phong, two hidden layers, + secondary structures.
+run hidden_layers_brain \
+    graphs/brain_surface.ron graphs/hidden_layers_brain.ron graphs/hidden_structures_brain.ron \
+    --scenario orbit:camera --size "$hd" --size "$xga"
+
+# 3. Ray casting the MRI at 1024²: MIP at 1-voxel steps, shaded DVR at 0.5, context-preserving
+# (same TF and camera as shaded DVR), each as fragment shader and as compute kernel.
+run raycast_mri \
+    graphs/tf1d_phong_brain.ron graphs/tf1d_phong_brain.ron graphs/tf1d_phong_brain.ron \
+    graphs/tf1d_phong_brain.ron graphs/context_preserving_brain.ron \
+    graphs/context_preserving_brain.ron \
+    --set 1:ray.mode=mip --set 1:ray.step=1 --set 1:ray.kernel=fragment \
+    --set 2:ray.mode=mip --set 2:ray.step=1 --set 2:ray.kernel=compute \
+    --set 3:ray.kernel=fragment --set 4:ray.kernel=compute \
+    --set 5:ray.kernel=fragment --set 6:ray.kernel=compute \
+    --scenario orbit:camera --size "$sq"
+
+# 4. A 512³ procedural volume (the sphere of volume_styles): style-TF DVR and MIP, fragment
+# shader and compute kernel.
+run raycast_procedural \
+    graphs/volume_styles.ron graphs/volume_styles.ron graphs/volume_styles.ron \
+    graphs/volume_styles.ron \
+    --set "volume.resolution=$res" --set 1:ray.kernel=fragment --set 2:ray.kernel=compute \
+    --set 3:ray.mode=mip --set 3:ray.step=1 --set 3:ray.kernel=fragment \
+    --set 4:ray.mode=mip --set 4:ray.step=1 --set 4:ray.kernel=compute \
+    --scenario orbit:camera --size "$sq"
+
+echo "results in $out/"

@@ -1,0 +1,46 @@
+// Classification: the transfer-function tables (colour TF, or the style TF's (i, α_u) rows, one
+// row per object, §4.2) looked up by data value.
+
+// The LUT rule of hatchery_data::transfer_function::TransferFunction1D::lookup, on table row `row`.
+fn table_lookup_row(v: f32, row: i32, domain: vec2<f32>) -> vec4<f32> {
+    let span = domain.y - domain.x;
+    var u = 0.0;
+    if span > 0.0 {
+        u = clamp((v - domain.x) / span, 0.0, 1.0);
+    }
+    let x = u * (LUT_SIZE - 1.0);
+    let k = min(floor(x), LUT_SIZE - 2.0);
+    let f = x - k;
+    let a = textureLoad(tf_table, vec2<i32>(i32(k), row), 0);
+    let b = textureLoad(tf_table, vec2<i32>(i32(k) + 1, row), 0);
+    return mix(a, b, f);
+}
+
+fn table_lookup(v: f32) -> vec4<f32> {
+    return table_lookup_row(v, 0, ray.tf.xy);
+}
+
+// The table row, domain and style-node count of the object at voxel-space q (the label at the
+// nearest voxel picks the row, §4.2); row 0 when no label volume is bound.
+struct TableRow {
+    row: i32,
+    domain: vec2<f32>,
+    node_count: f32,
+};
+
+fn table_row_at(q: vec3<f32>) -> TableRow {
+    var r: TableRow;
+    r.row = 0;
+    r.domain = ray.tf.xy;
+    r.node_count = ray.tf.z;
+    if ray.labels.x > 0.5 {
+        let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0)));
+        let label = round(ray.labels.y + textureLoad(label_volume, voxel, 0).r * (ray.labels.z - ray.labels.y));
+        let slot = clamp(i32(label), 0, i32(ray.labels.w) - 1);
+        r.row = i32(textureLoad(label_rows, vec2<i32>(slot, 0), 0).r + 0.5);
+        let info = textureLoad(label_rows, vec2<i32>(r.row, 1), 0);
+        r.domain = info.xy;
+        r.node_count = info.z;
+    }
+    return r;
+}

@@ -1,0 +1,190 @@
+// Shared by the ray casters (Raycast, TwoLevelRaycast): the uniform block, the volume and its
+// tables, sampling in voxel space, gradients, and the primary ray of a pixel. The programs are
+// assembled from parts (see hatchery_nodes::shaders): ray_common, ray_classify, ray_shade,
+// ray_skip, then the caster's own compositing loop. The sampling rule is shared with the CPU
+// reference in tests/common/raycast_reference.rs.
+
+struct Ray {
+    inv_view_proj: mat4x4<f32>,
+    view: mat4x4<f32>,
+    view_proj: mat4x4<f32>,
+    // xyz voxel-space box of the voxel centres (slightly widened); box_min.w = step in world
+    // units, box_max.w = step in voxels.
+    box_min: vec4<f32>,
+    box_max: vec4<f32>,
+    // xyz world origin (centre of voxel 0, informative); w = lowest finite value (the
+    // visibility table's range).
+    origin: vec4<f32>,
+    // xyz voxel spacing (informative); w = highest finite value.
+    spacing: vec4<f32>,
+    // xyz voxel counts; w = largest gradient magnitude (normalises |g| to [0, 1]).
+    dims: vec4<f32>,
+    // xyz view-space unit vector towards the light; w = 1 for an orthographic camera.
+    light: vec4<f32>,
+    // x, y = frame size; z = 1 to jitter the first sample; w = early-termination opacity.
+    frame: vec4<f32>,
+    // x = mode (0 DVR, 1 MIP, 2 iso); y = iso value; z = shading (0 none, 1 Phong,
+    // 2 lighting TF, 3 context-preserving, 4 style); w = accumulated opacity that counts as "hit".
+    mode: vec4<f32>,
+    // ambient, diffuse, specular, exponent of eq. 3.
+    phong: vec4<f32>,
+    // kappa_t, kappa_s, nearest and farthest eye-to-box-corner distances (eq. 5).
+    context: vec4<f32>,
+    // transfer-function domain (lo, hi); z = number of style nodes N; w = contour thickness T.
+    tf: vec4<f32>,
+    // x = 1 for style contours, y = 1 for illustrative transparency (eq. 2), z = mip bias,
+    // w = style map size in texels.
+    style: vec4<f32>,
+    // xyz world eye position (perspective cameras).
+    eye: vec4<f32>,
+    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its texel range
+    // (the texture is normalised like the volume's); w = width of the label → row table.
+    labels: vec4<f32>,
+    // x = 1 to skip empty bricks (DVR); y = voxels per brick side; z = visibility bins.
+    skip: vec4<f32>,
+    // World → voxel transform (voxel centres at integers); rays march in voxel space.
+    to_voxel: mat4x4<f32>,
+    // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
+    grad_to_world: mat4x4<f32>,
+    // x, y: data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format
+    // follows the voxel type, see hatchery_nodes::volume_texture).
+    texel: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> ray: Ray;
+@group(0) @binding(1) var volume: texture_3d<f32>;
+@group(0) @binding(2) var linear_clamp: sampler;
+// 256×1: colour TF (rgb, opacity per voxel), or for styles (fractional node index, α_u, 0, 0).
+@group(0) @binding(3) var tf_table: texture_2d<f32>;
+// 64×64 lighting transfer function over (N·L, N·H) in [-1, 1]²: (s_a, s_d, s_s, s_alpha).
+@group(0) @binding(4) var lighting_table: texture_2d<f32>;
+// One layer per distinct style, each with its own mip chain (no mixing between styles, §4.3).
+@group(0) @binding(5) var styles: texture_2d_array<f32>;
+// N×rows: node index -> style layer (the index function texture ift of §4.1), one row per object.
+@group(0) @binding(6) var style_index: texture_2d<f32>;
+// Object labels on the volume's grid (read at the nearest voxel: never interpolated).
+@group(0) @binding(7) var label_volume: texture_3d<f32>;
+// Row 0: table row of each label; row 1: (domain lo, hi, node count N, 0) of each table row.
+@group(0) @binding(8) var label_rows: texture_2d<f32>;
+// [min, max] of the values trilinear samples can take in each brick (hatchery_data::bricks).
+@group(0) @binding(9) var bricks: texture_3d<f32>;
+// Cumulative count of visible bins over the volume's value range (any table row, any object).
+@group(0) @binding(10) var visibility: texture_2d<f32>;
+
+const LUT_SIZE: f32 = 256.0;
+const LIGHTING_SIZE: f32 = 64.0;
+
+// Returned by value_at where the sample leans on a "no data" voxel (the texture holds
+// NO_DATA_TEXEL = -1000 there; NaN is not used because shader compilers may assume no NaN).
+const NO_DATA: f32 = -1.0e30;
+
+// Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
+fn value_at(q: vec3<f32>) -> f32 {
+    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+    let normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+    if normalised < -0.5 {
+        return NO_DATA;
+    }
+    return ray.texel.x + normalised * (ray.texel.y - ray.texel.x);
+}
+
+// Whether a value from value_at is "no data" (transparent).
+fn no_data(v: f32) -> bool {
+    return v <= NO_DATA;
+}
+
+// World-space gradient by central differences in voxel space (one-sided at the border and next
+// to "no data", 0 with no data on both sides), mapped to world units through the transform.
+fn gradient_at(q: vec3<f32>) -> vec3<f32> {
+    let top = ray.dims.xyz - 1.0;
+    let p = clamp(q, vec3<f32>(0.0), top);
+    var g = vec3<f32>(0.0);
+    for (var axis = 0; axis < 3; axis++) {
+        var lo = p;
+        var hi = p;
+        lo[axis] = max(p[axis] - 1.0, 0.0);
+        hi[axis] = min(p[axis] + 1.0, top[axis]);
+        let a = value_at(lo);
+        let b = value_at(hi);
+        if !no_data(a) && !no_data(b) {
+            g[axis] = (b - a) / (hi[axis] - lo[axis]);
+        } else if !no_data(a) && p[axis] > lo[axis] {
+            g[axis] = (value_at(p) - a) / (p[axis] - lo[axis]);
+        } else if !no_data(b) && hi[axis] > p[axis] {
+            g[axis] = (b - value_at(p)) / (hi[axis] - p[axis]);
+        }
+    }
+    return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
+}
+
+fn hash(p: vec2<f32>) -> f32 {
+    return fract(sin(dot(p, vec2<f32>(12.9898, 78.233))) * 43758.5453);
+}
+
+fn to_window_depth(p: vec3<f32>) -> f32 {
+    let clip = ray.view_proj * vec4<f32>(p, 1.0);
+    return clip.z / clip.w;
+}
+
+// A pixel's ray: world-space origin p0 and unit direction dir, the same ray in voxel space
+// (q = q0 + dq·t, t in world units), and where it enters and leaves the box of voxel centres.
+struct PrimaryRay {
+    p0: vec3<f32>,
+    dir: vec3<f32>,
+    q0: vec3<f32>,
+    dq: vec3<f32>,
+    t_in: f32,
+    t_out: f32,
+    // false when the ray misses the volume's box.
+    hits: bool,
+};
+
+// The ray through pixel position `position` (pixel centres at .5, top-left origin).
+fn primary_ray(position: vec2<f32>) -> PrimaryRay {
+    var r: PrimaryRay;
+    let ndc = vec2<f32>(position.x / ray.frame.x * 2.0 - 1.0, 1.0 - position.y / ray.frame.y * 2.0);
+    let near4 = ray.inv_view_proj * vec4<f32>(ndc, 0.0, 1.0);
+    let far4 = ray.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
+    r.p0 = near4.xyz / near4.w;
+    r.dir = normalize(far4.xyz / far4.w - r.p0);
+    r.q0 = (ray.to_voxel * vec4<f32>(r.p0, 1.0)).xyz;
+    r.dq = (ray.to_voxel * vec4<f32>(r.dir, 0.0)).xyz;
+    // Slab test against the box of voxel centres, in voxel space.
+    r.t_in = 0.0;
+    r.t_out = 1e30;
+    r.hits = true;
+    for (var axis = 0; axis < 3; axis++) {
+        if abs(r.dq[axis]) < 1e-12 {
+            if r.q0[axis] < ray.box_min[axis] || r.q0[axis] > ray.box_max[axis] {
+                r.hits = false;
+            }
+        } else {
+            let a = (ray.box_min[axis] - r.q0[axis]) / r.dq[axis];
+            let b = (ray.box_max[axis] - r.q0[axis]) / r.dq[axis];
+            r.t_in = max(r.t_in, min(a, b));
+            r.t_out = min(r.t_out, max(a, b));
+        }
+    }
+    if r.t_in > r.t_out {
+        r.hits = false;
+    }
+    return r;
+}
+
+// Unit vector from a world-space point towards the viewer, in view space.
+fn view_direction(p: vec3<f32>) -> vec3<f32> {
+    if ray.light.w > 0.5 {
+        return vec3<f32>(0.0, 0.0, 1.0);
+    }
+    return -normalize((ray.view * vec4<f32>(p, 1.0)).xyz);
+}
+
+// View-space unit normal from a world-space gradient (towards lower values: outward for bright
+// objects); 0 where the gradient vanishes.
+fn view_normal(g: vec3<f32>) -> vec3<f32> {
+    let g_length = length(g);
+    if g_length <= 1e-12 {
+        return vec3<f32>(0.0);
+    }
+    return (ray.view * vec4<f32>(-g / g_length, 0.0)).xyz;
+}
