@@ -205,6 +205,57 @@ fn the_committed_node_catalogue_is_current() {
     }
 }
 
+/// Groups, reroutes and frames organise the editor only: the CLI renders a graph that uses all
+/// three (tests/fixtures/organised_shaded_surface.ron: graphs/shaded_surface.ron with its volume
+/// nodes grouped, the mesh wire through a reroute, and a frame) exactly as the plain preset.
+#[test]
+fn the_cli_renders_groups_reroutes_and_frames_as_the_plain_graph() {
+    let dir = tempfile::tempdir().unwrap();
+    let render = |graph: &str, name: &str| {
+        let out = dir.path().join(name);
+        let output = hatchery(&[
+            "render",
+            graph,
+            "-o",
+            &out.to_string_lossy(),
+            "--size",
+            "160x120",
+        ]);
+        assert!(output.status.success(), "{graph}: {}", stderr(&output));
+        common::read_png(&out)
+    };
+    let organised = render(
+        "tests/fixtures/organised_shaded_surface.ron",
+        "organised.png",
+    );
+    let plain = render("graphs/shaded_surface.ron", "plain.png");
+    assert!(common::non_background_fraction(&organised) > 0.05, "blank");
+    let worst = organised
+        .enumerate_pixels()
+        .map(|(x, y, p)| {
+            let q = plain.get_pixel(x, y);
+            let d = (0..4).map(|c| p[c].abs_diff(q[c])).max().unwrap();
+            (d, x, y)
+        })
+        .max()
+        .unwrap();
+    assert!(
+        worst.0 <= 1,
+        "worst pixel ({}, {}) differs by {}/255",
+        worst.1,
+        worst.2,
+        worst.0
+    );
+    let output = hatchery(&["validate", "tests/fixtures/organised_shaded_surface.ron"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let output = hatchery(&[
+        "fmt",
+        "--check",
+        "tests/fixtures/organised_shaded_surface.ron",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+}
+
 #[test]
 fn fmt_check_accepts_canonical_presets() {
     for preset in ["graphs/shaded_surface.ron", "graphs/brain_surface.ron"] {

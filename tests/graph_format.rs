@@ -194,6 +194,41 @@ const BAD: &[(&str, usize, usize, &[&str])] = &[
         0,
         &["duplicate parameter `azimuth`"],
     ),
+    (
+        "unknown_group.ron",
+        11,
+        17,
+        &["node `light`", "no group with id `lights`"],
+    ),
+    (
+        "group_id_clash.ron",
+        13,
+        0,
+        &["`views`", "duplicate node id"],
+    ),
+    (
+        "cycle_through_group.ron",
+        5,
+        17,
+        &["cycle", "`move`", "`turn`", "(in group `spin`)"],
+    ),
+    ("reroute_loop.ron", 5, 17, &["cycle", "`a`", "`b`"]),
+    (
+        "reroute_type_mismatch.ron",
+        22,
+        0,
+        &[
+            "`camera.camera` -> `surface.volume`",
+            "output is Camera",
+            "expects Volume",
+        ],
+    ),
+    (
+        "reroute_bad_port.ron",
+        16,
+        0,
+        &["node `hop` (Reroute) has no input port `input`", "in"],
+    ),
 ];
 
 #[test]
@@ -252,4 +287,39 @@ fn a_missing_file_is_named() {
         message.starts_with("no/such/graph.ron: cannot read graph file"),
         "{message}"
     );
+}
+
+#[test]
+fn reroutes_resolve_through_chains_and_grouped_nodes_run_as_plain_nodes() {
+    let registry = hatchery_nodes::registry();
+    let text = r#"(version: 2, nodes: [
+        (id: "shells", kind: "ProceduralVolume", group: Some("inputs")),
+        (id: "r1", kind: "Reroute"),
+        (id: "r2", kind: "Reroute"),
+        (id: "idle", kind: "Reroute"),
+        (id: "surface", kind: "MarchingCubes"),
+    ], edges: [
+        (from: ("shells", "volume"), to: ("r1", "in")),
+        (from: ("r1", "out"), to: ("r2", "in")),
+        (from: ("r2", "out"), to: ("surface", "volume")),
+    ], groups: [(id: "inputs", editor: None)])"#;
+    let (doc, source) = GraphDocument::parse(text, None).unwrap();
+    assert_eq!(
+        hatchery_graph::reroute::reroute_type(&doc, &registry, "r2"),
+        Some(hatchery_graph::PortType::Volume)
+    );
+    assert_eq!(
+        hatchery_graph::reroute::reroute_type(&doc, &registry, "idle"),
+        None
+    );
+    let graph = Graph::from_document(&doc, &source, &registry, None).unwrap();
+    assert_eq!(graph.node_ids().collect::<Vec<_>>(), ["shells", "surface"]);
+    assert_eq!(graph.input_sources("surface")[&0], ("shells", 0));
+    assert_eq!(
+        graph.node("shells").unwrap().group.as_deref(),
+        Some("inputs")
+    );
+    let saved = graph.to_document(&registry);
+    assert_eq!(saved.groups, doc.groups, "groups survive the runtime graph");
+    assert_eq!(saved.edges.len(), 1);
 }

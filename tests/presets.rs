@@ -17,12 +17,7 @@ fn every_preset_loads_validates_and_renders() {
         let mut session =
             Session::open(&path, 320, 240).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         // Render what each SaveImage would write, without writing into graphs/.
-        let savers: Vec<String> = session
-            .graph
-            .nodes()
-            .filter(|n| n.kind == "SaveImage")
-            .map(|n| n.id.clone())
-            .collect();
+        let savers = common::savers(&session);
         assert!(
             !savers.is_empty(),
             "{}: a preset must save an image",

@@ -65,8 +65,11 @@ fn a_broken_shader_is_reported_by_name_not_by_a_panic() {
     assert!(message.contains("oops"), "{message}");
 }
 
-/// The WGSL struct `name` of a program: (size, [(member, offset, size)]).
-fn wgsl_struct(module: &naga::Module, name: &str) -> Option<(u32, Vec<(String, u32, u32)>)> {
+/// (member name, byte offset, byte size).
+type Member = (String, u32, u32);
+
+/// The WGSL struct `name` of a program: (size, members).
+fn wgsl_struct(module: &naga::Module, name: &str) -> Option<(u32, Vec<Member>)> {
     module.types.iter().find_map(|(_, ty)| match &ty.inner {
         naga::TypeInner::Struct { members, span } if ty.name.as_deref() == Some(name) => Some((
             *span,
@@ -96,7 +99,7 @@ fn every_uniform_block_matches_its_wgsl_struct_field_by_field() {
                 layout.program, layout.wgsl_struct
             )
         });
-        let rust: Vec<(String, u32, u32)> = layout
+        let rust: Vec<Member> = layout
             .fields
             .iter()
             .map(|(n, o, s)| (n.to_string(), *o as u32, *s as u32))

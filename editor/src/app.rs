@@ -26,6 +26,7 @@ pub fn port_color(ty: PortType) -> Color32 {
         PortType::Mask => Color32::from_rgb(180, 180, 180),
         PortType::TransferFunction => Color32::from_rgb(60, 200, 200),
         PortType::StyleSet => Color32::from_rgb(220, 120, 220),
+        PortType::ObjectStyles => Color32::from_rgb(140, 200, 120),
     }
 }
 
@@ -48,10 +49,12 @@ pub struct EditorApp {
     snarl_ids: BTreeMap<String, NodeId>,
     /// Where the canvas put each node at the last rebuild or move (nodes without a stored
     /// position get a grid place, written to the document only when moved).
-    placed: BTreeMap<String, Pos2>,
+    pub(crate) placed: BTreeMap<String, Pos2>,
     synced_revision: Option<u64>,
     /// Selection by the mouse (see [`crate::selection`]).
-    selecting: CanvasSelection,
+    pub(crate) selecting: CanvasSelection,
+    /// A frame being dragged by its title bar (see [`crate::frames`]).
+    pub(crate) frame_drag: Option<crate::frames::FrameDrag>,
     /// *File → Export image…*.
     pub export: crate::export_dialog::ExportDialog,
     /// Where the picture is shown and its own zoom/pan.
@@ -136,6 +139,7 @@ impl EditorApp {
             placed: BTreeMap::new(),
             synced_revision: None,
             selecting: CanvasSelection::default(),
+            frame_drag: None,
             layout: crate::layout_dump::LayoutDump::from_env(),
             export: Default::default(),
             picture: Default::default(),
@@ -238,7 +242,10 @@ impl EditorApp {
     /// Lays the graph out in columns by rank, with the drawn node sizes (one undo step), and
     /// frames it.
     pub fn arrange(&mut self) {
-        let positions = crate::arrange::layered_layout(self.state.doc(), &self.selecting.sizes());
+        // What the canvas shows: the groups as nodes, or the inside of the group entered.
+        let shown =
+            crate::groups::shown_doc(self.state.doc(), &self.state.registry, self.state.level());
+        let positions = crate::arrange::layered_layout(&shown, &self.selecting.sizes());
         self.state.move_nodes(&positions);
         self.frame_all = true;
     }
@@ -253,35 +260,28 @@ impl EditorApp {
         self.selecting.node_at(self.canvas_transform, at)
     }
 
-    /// Rebuilds the canvas from the document (Snarl is only a view of it).
+    /// Rebuilds the canvas from the document (Snarl is only a view of it) at the current level
+    /// (see [`crate::groups`]).
     fn rebuild_snarl(&mut self) {
         let mut snarl = Snarl::new();
         let mut ids = BTreeMap::new();
         let mut placed = BTreeMap::new();
-        for (i, n) in self.state.doc().nodes.iter().enumerate() {
-            let at = n.editor.map_or_else(
+        let doc = self.state.doc();
+        for (i, (id, at)) in crate::groups::shown_nodes(doc, self.state.level())
+            .into_iter()
+            .enumerate()
+        {
+            let at = at.map_or_else(
                 || Pos2::new(240.0 * (i % 5) as f32, 160.0 * (i / 5) as f32),
                 |p| Pos2::new(p.x, p.y),
             );
-            placed.insert(n.id.clone(), at);
-            ids.insert(n.id.clone(), snarl.insert_node(at, n.id.clone()));
+            placed.insert(id.clone(), at);
+            ids.insert(id.clone(), snarl.insert_node(at, id));
         }
-        for e in &self.state.doc().edges {
-            let (Some(&from), Some(&to)) = (ids.get(&e.from.0), ids.get(&e.to.0)) else {
-                continue;
-            };
-            let kind = |id: &str| {
-                self.state
-                    .doc()
-                    .nodes
-                    .iter()
-                    .find(|n| n.id == id)
-                    .and_then(|n| self.state.registry.schema(&n.kind))
-            };
-            let (Some(fs), Some(ts)) = (kind(&e.from.0), kind(&e.to.0)) else {
-                continue;
-            };
-            if let (Some(o), Some(i)) = (fs.output_index(&e.from.1), ts.input_index(&e.to.1)) {
+        for ((from, o), (to, i)) in
+            crate::groups::shown_wires(doc, &self.state.registry, self.state.level())
+        {
+            if let (Some(&from), Some(&to)) = (ids.get(&from), ids.get(&to)) {
                 snarl.connect(
                     egui_snarl::OutPinId {
                         node: from,
@@ -333,6 +333,7 @@ impl EditorApp {
             self.picked(purpose, &path);
         }
         self.confirm_discard(ui);
+        crate::frames::rename_window(ui.ctx(), &mut self.state);
         if self.export.show(ui.ctx(), self.state.doc()) {
             let graph = self.state.validate();
             let base = self.state.base_dir();
@@ -398,6 +399,14 @@ impl EditorApp {
         }
         if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F)) {
             self.frame_all = true;
+        }
+        let level = self.state.level().map(str::to_owned);
+        crate::groups::shortcuts(&mut self.state, ui, typing);
+        if self.state.level() != level.as_deref() {
+            self.frame_all = true;
+        }
+        if !typing && ui.input_mut(|i| i.consume_key(Modifiers::COMMAND, Key::J)) {
+            self.frame_selection();
         }
         // F11: the picture fills the window (again: back); Esc leaves that too.
         use crate::picture::Placement;
@@ -559,6 +568,10 @@ impl EditorApp {
     }
 
     fn canvas(&mut self, ui: &mut Ui) {
+        if crate::groups::level_bar(&self.state, ui) {
+            self.state.exit_group();
+            self.frame_all = true;
+        }
         let widget = SnarlWidget::new().id(Id::new(SNARL_ID));
         let failed = self.preview.failed_node.clone();
         let frame_into =
@@ -581,6 +594,7 @@ impl EditorApp {
             thumbnails.insert(port.clone(), Err(e.clone()));
         }
         self.selecting.begin_frame();
+        let mut frame_request = false;
         let mut viewer = Viewer {
             frame_into,
             node_sizes,
@@ -596,6 +610,7 @@ impl EditorApp {
             refused: None,
             warnings: self.preview.warnings.clone(),
             failed,
+            frame_request: &mut frame_request,
         };
         // Dragging a node's title moves the node instead of selecting its text.
         ui.style_mut().interaction.selectable_labels = false;
@@ -609,16 +624,27 @@ impl EditorApp {
         ui.ctx().input_mut(|i| i.modifiers = modifiers);
         self.canvas_transform = viewer.transform;
         let refused = viewer.refused.take();
+        if frame_request {
+            self.frame_selection();
+        }
         let free = ui
             .input(|i| i.pointer.interact_pos())
             .is_some_and(|p| ui.ctx().layer_id_at(p).is_none_or(|l| l == ui.layer_id()));
-        let change = self.selecting.update(
-            ui.ctx(),
-            canvas_rect,
-            free,
-            self.canvas_transform,
-            modifiers,
-        );
+        let over_canvas = ui
+            .input(|i| i.pointer.interact_pos())
+            .is_some_and(|p| free && canvas_rect.contains(p));
+        let dragging_frame = self.drag_frames(ui.ctx(), over_canvas);
+        let change = if dragging_frame {
+            None
+        } else {
+            self.selecting.update(
+                ui.ctx(),
+                canvas_rect,
+                free,
+                self.canvas_transform,
+                modifiers,
+            )
+        };
         match change {
             Some(SelectionChange::Click { node, mode }) => self.state.select_click(&node, mode),
             Some(SelectionChange::ClickEmpty) if modifiers.is_none() => {
@@ -687,6 +713,10 @@ impl EditorApp {
             ui.label("Click a node to edit its parameters.");
             return;
         };
+        if crate::groups::inspector(&mut self.state, ui, &id) {
+            self.frame_all |= self.state.level().is_some();
+            return;
+        }
         if self.state.selection.len() > 1 {
             ui.weak(format!(
                 "{} nodes selected; showing the last clicked",
@@ -1269,6 +1299,8 @@ struct Viewer<'a> {
     /// Warnings of the last render, by node.
     warnings: BTreeMap<String, String>,
     failed: Option<(String, String)>,
+    /// *Frame selection* was chosen in a node menu (done after the canvas is drawn).
+    frame_request: &'a mut bool,
 }
 
 impl Viewer<'_> {
@@ -1277,8 +1309,17 @@ impl Viewer<'_> {
         self.state.registry.schema(&n.kind).cloned()
     }
 
+    /// The ports shown on canvas node `id` (a group's are its members' exposed ports).
+    fn ports(&self, id: &str, output: bool) -> Vec<hatchery_graph::organise::PortInfo> {
+        crate::groups::view_ports(self.state.doc(), &self.state.registry, id, output)
+    }
+
     fn error(&self, id: &str) -> Option<String> {
-        let mut text = self.state.node_error(id).map(str::to_owned);
+        let mut text = self
+            .state
+            .node_error(id)
+            .map(str::to_owned)
+            .or_else(|| crate::groups::member_errors(self.state, id));
         if let Some((n, m)) = &self.failed
             && n == id
         {
@@ -1295,8 +1336,21 @@ impl Viewer<'_> {
             Some(ty) => PinInfo::circle()
                 .with_fill(port_color(ty))
                 .with_wire_color(port_color(ty)),
-            None => PinInfo::square().with_fill(Color32::DARK_RED),
+            // A reroute that carries nothing yet takes any type.
+            None => PinInfo::circle().with_fill(Color32::GRAY),
         }
+    }
+
+    /// Inside a group, a mark on a member's port wired to a node outside it.
+    fn outside_mark(&self, ui: &mut Ui, p: &hatchery_graph::organise::PortInfo, output: bool) {
+        let (doc, level) = (self.state.doc(), self.state.level());
+        if let Some(note) = crate::groups::outside_note(doc, level, p, output) {
+            ui.label(if output { "➡" } else { "⬅" }).on_hover_text(note);
+        }
+    }
+
+    fn is_reroute(&self, id: &str) -> bool {
+        hatchery_graph::reroute::is_reroute(self.state.doc(), id)
     }
 
     fn kind_menu(&mut self, ui: &mut Ui, kinds: Vec<&'static str>) -> Option<&'static str> {
@@ -1324,16 +1378,17 @@ impl SnarlViewer<String> for Viewer<'_> {
     fn title(&mut self, node: &String) -> String {
         match self.state.doc().nodes.iter().find(|n| &n.id == node) {
             Some(n) => format!("{} ({})", n.id, n.kind),
+            None if self.state.doc().group(node).is_some() => format!("{node} (Group)"),
             None => node.clone(),
         }
     }
 
     fn inputs(&mut self, node: &String) -> usize {
-        self.schema(node).map_or(0, |s| s.inputs.len())
+        self.ports(node, false).len()
     }
 
     fn outputs(&mut self, node: &String) -> usize {
-        self.schema(node).map_or(0, |s| s.outputs.len())
+        self.ports(node, true).len()
     }
 
     fn show_input(
@@ -1342,21 +1397,21 @@ impl SnarlViewer<String> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<String>,
     ) -> impl SnarlPin + 'static {
-        let port = snarl
-            .get_node(pin.id.node)
-            .and_then(|id| self.schema(id))
-            .and_then(|s| s.inputs.get(pin.id.input).cloned());
+        let node = snarl.get_node(pin.id.node).cloned().unwrap_or_default();
+        let port = self.ports(&node, false).get(pin.id.input).cloned();
         match &port {
             Some(p) => {
                 let required = if p.required { "" } else { " (optional)" };
-                ui.label(p.name)
-                    .on_hover_text(format!("{}: {}{required}\n{}", p.name, p.ty, p.doc));
+                let ty = p.ty.map_or("any type".into(), |t| t.to_string());
+                ui.label(crate::groups::port_label(&node, p))
+                    .on_hover_text(format!("{}: {ty}{required}\n{}", p.port, p.doc));
+                self.outside_mark(ui, p, false);
             }
             None => {
                 ui.label("?");
             }
         }
-        Self::pin(port.map(|p| p.ty))
+        Self::pin(port.and_then(|p| p.ty))
     }
 
     fn show_output(
@@ -1365,38 +1420,42 @@ impl SnarlViewer<String> for Viewer<'_> {
         ui: &mut Ui,
         snarl: &mut Snarl<String>,
     ) -> impl SnarlPin + 'static {
-        let port = snarl
-            .get_node(pin.id.node)
-            .and_then(|id| self.schema(id))
-            .and_then(|s| s.outputs.get(pin.id.output).cloned());
-        let node = snarl.get_node(pin.id.node).cloned();
-        match (&port, node) {
-            (Some(p), Some(node)) => {
-                let key = (node, p.name.to_owned());
+        let node = snarl.get_node(pin.id.node).cloned().unwrap_or_default();
+        let port = self.ports(&node, true).get(pin.id.output).cloned();
+        match &port {
+            // Thumbnails are for a node's own outputs (not a group's or a reroute's).
+            Some(p) if p.node == node && p.ty.is_some() && !self.is_reroute(&node) => {
+                let key = (node, p.port.clone());
                 let pinned = self.pins.contains(&key);
                 let text = if pinned {
-                    egui::RichText::new(format!("{} 👁", p.name)).strong()
+                    egui::RichText::new(format!("{} 👁", p.port)).strong()
                 } else {
-                    egui::RichText::new(p.name)
+                    egui::RichText::new(&p.port)
                 };
                 let response = ui
                     .add(egui::Label::new(text).sense(egui::Sense::click()))
                     .on_hover_text(format!(
                         "{}: {}\n{}\nClick to {} its thumbnail on the node",
-                        p.name,
-                        p.ty,
+                        p.port,
+                        p.ty.map_or(String::new(), |t| t.to_string()),
                         p.doc,
                         if pinned { "hide" } else { "show" }
                     ));
                 if response.clicked() && !self.pins.remove(&key) {
                     self.pins.insert(key);
                 }
+                self.outside_mark(ui, p, true);
             }
-            _ => {
+            Some(p) => {
+                let ty = p.ty.map_or("any type".into(), |t| t.to_string());
+                ui.label(crate::groups::port_label(&node, p))
+                    .on_hover_text(format!("{}: {ty}\n{}", p.port, p.doc));
+            }
+            None => {
                 ui.label("?");
             }
         }
-        Self::pin(port.map(|p| p.ty))
+        Self::pin(port.and_then(|p| p.ty))
     }
 
     fn has_body(&mut self, node: &String) -> bool {
@@ -1480,19 +1539,24 @@ impl SnarlViewer<String> for Viewer<'_> {
         ) else {
             return;
         };
-        let (Some(fs), Some(ts)) = (self.schema(&f), self.schema(&t)) else {
+        let (Some(op), Some(ip)) = (
+            self.ports(&f, true).get(from.id.output).cloned(),
+            self.ports(&t, false).get(to.id.input).cloned(),
+        ) else {
             self.state.status = "cannot connect nodes of unknown kinds".into();
             return;
         };
-        let (Some(op), Some(ip)) = (fs.outputs.get(from.id.output), ts.inputs.get(to.id.input))
-        else {
-            return;
-        };
-        match self.state.connect((&f, op.name), (&t, ip.name)) {
+        match self
+            .state
+            .connect((&op.node, &op.port), (&ip.node, &ip.port))
+        {
             Ok(_) => {
                 snarl.drop_inputs(to.id);
                 snarl.connect(from.id, to.id);
-                self.state.status = format!("connected {f}.{} → {t}.{}", op.name, ip.name);
+                self.state.status = format!(
+                    "connected {}.{} → {}.{}",
+                    op.node, op.port, ip.node, ip.port
+                );
             }
             Err(reason) => self.refused = Some(reason),
         }
@@ -1505,14 +1569,16 @@ impl SnarlViewer<String> for Viewer<'_> {
         ) else {
             return;
         };
-        let (Some(fs), Some(ts)) = (self.schema(&f), self.schema(&t)) else {
+        let (Some(op), Some(ip)) = (
+            self.ports(&f, true).get(from.id.output).cloned(),
+            self.ports(&t, false).get(to.id.input).cloned(),
+        ) else {
             return;
         };
-        let (Some(op), Some(ip)) = (fs.outputs.get(from.id.output), ts.inputs.get(to.id.input))
-        else {
-            return;
-        };
-        if self.state.disconnect((&f, op.name), (&t, ip.name)) {
+        if self
+            .state
+            .disconnect((&op.node, &op.port), (&ip.node, &ip.port))
+        {
             snarl.disconnect(from.id, to.id);
         }
     }
@@ -1536,6 +1602,11 @@ impl SnarlViewer<String> for Viewer<'_> {
     }
 
     fn show_graph_menu(&mut self, at: Pos2, ui: &mut Ui, _snarl: &mut Snarl<String>) {
+        crate::frames::graph_menu(self.state, ui, at);
+        if ui.button("Add reroute").clicked() {
+            let _ = self.state.add_reroute(crate::groups::reroute_pos(at));
+            ui.close();
+        }
         ui.label("Add node");
         let kinds = self.state.registry.kinds();
         if let Some(kind) = self.kind_menu(ui, kinds) {
@@ -1560,13 +1631,14 @@ impl SnarlViewer<String> for Viewer<'_> {
         snarl: &mut Snarl<String>,
     ) {
         // The dragged pins' node and port names, and their type.
-        let (ends, output): (Vec<(String, &'static str, PortType)>, bool) = match src {
+        // The dragged pins' real node and port names (a member's, for a group), and types.
+        let (ends, output): (Vec<(String, String, Option<PortType>)>, bool) = match src {
             AnyPins::Out(pins) => (
                 pins.iter()
                     .filter_map(|p| {
                         let id = snarl.get_node(p.node)?.clone();
-                        let port = self.schema(&id)?.outputs.get(p.output)?.clone();
-                        Some((id, port.name, port.ty))
+                        let port = self.ports(&id, true).get(p.output)?.clone();
+                        Some((port.node, port.port, port.ty))
                     })
                     .collect(),
                 true,
@@ -1575,15 +1647,34 @@ impl SnarlViewer<String> for Viewer<'_> {
                 pins.iter()
                     .filter_map(|p| {
                         let id = snarl.get_node(p.node)?.clone();
-                        let port = self.schema(&id)?.inputs.get(p.input)?.clone();
-                        Some((id, port.name, port.ty))
+                        let port = self.ports(&id, false).get(p.input)?.clone();
+                        Some((port.node, port.port, port.ty))
                     })
                     .collect(),
                 false,
             ),
         };
-        let Some(ty) = ends.first().map(|e| e.2) else {
+        if ends.is_empty() {
             ui.close();
+            return;
+        }
+        // A reroute takes any wire: it is the first choice.
+        if ui.button("Reroute").clicked() {
+            if let Ok(r) = self.state.add_reroute(crate::groups::reroute_pos(at)) {
+                for (id, name, _) in &ends {
+                    let _ = if output {
+                        self.state
+                            .connect((id, name), (&r, hatchery_graph::reroute::IN))
+                    } else {
+                        self.state
+                            .connect((&r, hatchery_graph::reroute::OUT), (id, name))
+                    };
+                }
+            }
+            ui.close();
+            return;
+        }
+        let Some(ty) = ends.first().and_then(|e| e.2) else {
             return;
         };
         ui.label(format!("Add a node taking {ty}"));
@@ -1636,6 +1727,7 @@ impl SnarlViewer<String> for Viewer<'_> {
                 .unwrap_or(crate::arrange::DEFAULT_SIZE);
             bounds = bounds.union(egui::Rect::from_min_size(p, egui::vec2(w, h)));
         }
+        bounds = bounds.union(crate::frames::bounds(self.state.doc(), self.state.level()));
         if !bounds.is_positive() {
             return;
         }
@@ -1659,6 +1751,22 @@ impl SnarlViewer<String> for Viewer<'_> {
 
     fn has_node_menu(&mut self, _node: &String) -> bool {
         true
+    }
+
+    fn draw_background(
+        &mut self,
+        background: Option<&egui_snarl::ui::BackgroundPattern>,
+        viewport: &egui::Rect,
+        snarl_style: &egui_snarl::ui::SnarlStyle,
+        style: &egui::Style,
+        painter: &egui::Painter,
+        _snarl: &Snarl<String>,
+    ) {
+        if let Some(background) = background {
+            background.draw(viewport, snarl_style, style, painter);
+        }
+        // Frames lie between the grid and the nodes.
+        crate::frames::paint(painter, self.state.doc(), self.state.level());
     }
 
     fn node_frame(
@@ -1711,6 +1819,11 @@ impl SnarlViewer<String> for Viewer<'_> {
             BTreeSet::from([id.clone()])
         };
         let ids: Vec<&str> = selected.iter().map(String::as_str).collect();
+        crate::groups::node_menu(self.state, ui, &id, &selected);
+        if ui.button("Frame selection").clicked() {
+            *self.frame_request = true;
+            ui.close();
+        }
         if let Some(schema) = self.schema(&id) {
             for out in &schema.outputs {
                 if ui.button(format!("Preview {}", out.name)).clicked() {

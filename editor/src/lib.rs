@@ -12,6 +12,8 @@ pub mod arrange;
 pub mod curve_editor;
 pub mod export_dialog;
 pub mod files;
+pub mod frames;
+pub mod groups;
 pub mod layout_dump;
 pub mod picture;
 pub mod preview;

@@ -35,6 +35,8 @@ pub struct EditorState {
     last_autosave: Instant,
     /// Increases on every change of the document: views rebuild when it moves.
     revision: u64,
+    /// The group whose inside the canvas shows (`None`: the top level); see `crate::groups`.
+    pub(crate) level: Option<String>,
 }
 
 impl Default for EditorState {
@@ -65,6 +67,7 @@ impl EditorState {
             scratch_dir: std::env::temp_dir(),
             last_autosave: Instant::now(),
             revision: 0,
+            level: None,
         };
         s.validate();
         s
@@ -81,6 +84,7 @@ impl EditorState {
         self.redo.clear();
         self.open_group = None;
         self.selection.clear();
+        self.level = None;
         self.last_autosave = Instant::now();
         self.revision += 1;
         self.validate();
@@ -99,6 +103,10 @@ impl EditorState {
     }
     pub fn revision(&self) -> u64 {
         self.revision
+    }
+    /// Makes views rebuild without changing the document (entering or leaving a group).
+    pub(crate) fn touch_view(&mut self) {
+        self.revision += 1;
     }
     pub fn can_undo(&self) -> bool {
         !self.undo.is_empty()
@@ -232,7 +240,11 @@ impl EditorState {
         self.revision += 1;
         let doc = &self.doc;
         self.selection
-            .retain(|id| doc.nodes.iter().any(|n| &n.id == id));
+            .retain(|id| doc.node(id).is_some() || doc.group(id).is_some());
+        // Undoing the grouping of the group shown takes the canvas back to the top level.
+        if self.level.as_ref().is_some_and(|g| doc.group(g).is_none()) {
+            self.level = None;
+        }
         self.validate();
     }
 
@@ -282,7 +294,12 @@ impl EditorState {
     // Edits: thin wrappers over `hatchery_graph::edit` with undo.
 
     pub fn add_node(&mut self, kind: &str, at: EditorPos) -> Result<String, String> {
-        let id = self.apply(None, |d, r| edit::add_node(d, r, kind, at))?;
+        let level = self.level.clone();
+        let id = self.apply(None, |d, r| {
+            let id = edit::add_node(d, r, kind, at)?;
+            join(d, std::slice::from_ref(&id), level);
+            Ok(id)
+        })?;
         self.selection = BTreeSet::from([id.clone()]);
         Ok(id)
     }
@@ -294,8 +311,10 @@ impl EditorState {
         at: EditorPos,
         params: &[(&str, ParamValue)],
     ) -> Result<String, String> {
+        let level = self.level.clone();
         let id = self.apply(None, |d, r| {
             let id = edit::add_node(d, r, kind, at)?;
+            join(d, std::slice::from_ref(&id), level);
             for (name, value) in params {
                 edit::set_param(d, r, &id, name, value.clone())?;
             }
@@ -308,6 +327,10 @@ impl EditorState {
     pub fn remove_nodes(&mut self, ids: &[String]) -> Result<(), String> {
         self.apply(None, |d, _| {
             for id in ids {
+                if d.group(id).is_some() {
+                    hatchery_graph::organise::remove_group(d, id)?;
+                    continue;
+                }
                 edit::remove_node(d, id).ok_or_else(|| format!("no node `{id}`"))?;
             }
             Ok(())
@@ -369,10 +392,8 @@ impl EditorState {
     /// Moves many nodes as one undo step (*Arrange*).
     pub fn move_nodes(&mut self, positions: &BTreeMap<String, EditorPos>) {
         let _ = self.apply(None, |d, _| {
-            for n in &mut d.nodes {
-                if let Some(p) = positions.get(&n.id) {
-                    n.editor = Some(*p);
-                }
+            for (id, p) in positions {
+                edit::move_node(d, id, *p);
             }
             Ok(())
         });
@@ -395,7 +416,12 @@ impl EditorState {
     }
 
     pub fn paste(&mut self, text: &str, offset: EditorPos) -> Result<Vec<String>, String> {
-        let ids = self.apply(None, |d, _| edit::paste_nodes(d, text, offset))?;
+        let level = self.level.clone();
+        let ids = self.apply(None, |d, _| {
+            let ids = edit::paste_nodes(d, text, offset)?;
+            join(d, &ids, level);
+            Ok(ids)
+        })?;
         self.selection = ids.iter().cloned().collect();
         Ok(ids)
     }
@@ -484,5 +510,12 @@ impl EditorState {
     /// Forgets the recovery file.
     pub fn discard_recovery(&mut self) {
         let _ = std::fs::remove_file(self.recovery_path());
+    }
+}
+
+/// Puts new nodes into the group shown (they were added on its inside).
+fn join(doc: &mut GraphDocument, ids: &[String], level: Option<String>) {
+    for n in doc.nodes.iter_mut().filter(|n| ids.contains(&n.id)) {
+        n.group = level.clone();
     }
 }

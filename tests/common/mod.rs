@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod raycast_reference;
+pub mod two_level_reference;
 
 use hatchery_graph::{Graph, GraphDocument, NodeInputs, ParamValue, Params};
 use hatchery_nodes::Session;
@@ -63,6 +64,13 @@ pub fn assert_samples(
             saved.unwrap_or_default()
         );
     }
+}
+
+/// The ids of a session's SaveImage nodes.
+pub fn savers(session: &Session) -> Vec<String> {
+    let nodes = session.graph.nodes();
+    let savers = nodes.filter(|n| n.kind == "SaveImage");
+    savers.map(|n| n.id.clone()).collect()
 }
 
 pub fn save_failure(name: &str, picture: &image::RgbaImage) -> PathBuf {

@@ -18,6 +18,7 @@ pub mod nifti_file;
 pub mod nrrd_file;
 pub mod procedural;
 pub(crate) mod raw_voxels;
+pub mod segmentation;
 pub mod style;
 pub mod tiff_stack;
 pub mod transfer_function;

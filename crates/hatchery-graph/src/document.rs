@@ -1,7 +1,8 @@
-//! The stored model: exactly what a graph file says, and its RON format (version 1).
+//! The stored model: exactly what a graph file says, and its RON format (version 2).
 //!
 //! The document is written in one canonical layout (nodes sorted by id, parameters sorted by
-//! name, edges sorted), so that load → save reproduces a saved file byte for byte.
+//! name, edges sorted, groups sorted by id, frames in drawing order), so that load → save
+//! reproduces a saved file byte for byte. Version 1 files load through [`crate::migrate`].
 
 use crate::error::{ErrorKind, GraphError};
 use crate::locate;
@@ -13,7 +14,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The newest graph file format version this build reads and writes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// A graph as stored in a file.
 #[derive(Clone, Debug, PartialEq, Default, Deserialize)]
@@ -24,6 +25,12 @@ pub struct GraphDocument {
     pub nodes: Vec<NodeDoc>,
     #[serde(default)]
     pub edges: Vec<EdgeDoc>,
+    /// Node groups (version 2): a node belongs to the group its `group` field names.
+    #[serde(default)]
+    pub groups: Vec<GroupDoc>,
+    /// Labelled boxes drawn behind the nodes in the editor (version 2). Ignored by rendering.
+    #[serde(default)]
+    pub frames: Vec<FrameDoc>,
 }
 
 /// One node: a stable human-readable id, its kind, the parameters that differ from or restate
@@ -37,6 +44,38 @@ pub struct NodeDoc {
     pub params: BTreeMap<String, ron::Value>,
     #[serde(default)]
     pub editor: Option<EditorPos>,
+    /// The group this node belongs to (version 2); `None` on the top level.
+    #[serde(default)]
+    pub group: Option<String>,
+}
+
+/// A node group: shown collapsed in the editor as one node whose ports are its members' ports
+/// that are not connected inside the group. Rendering ignores groups (members are plain nodes).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupDoc {
+    /// Unique among node and group ids (the same rules as node ids).
+    pub id: String,
+    #[serde(default)]
+    pub editor: Option<EditorPos>,
+}
+
+/// A frame: a labelled, coloured box behind nodes; dragging it moves the nodes inside it.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameDoc {
+    pub label: String,
+    /// Top-left corner and size, in editor (graph) units.
+    pub x: f32,
+    pub y: f32,
+    pub w: f32,
+    pub h: f32,
+    /// RGBA, 0..1, written as a list like parameter colours.
+    #[serde(deserialize_with = "rgba")]
+    pub color: [f32; 4],
+    /// The group whose inside shows the frame; `None` on the top level.
+    #[serde(default)]
+    pub group: Option<String>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -59,6 +98,12 @@ pub struct EdgeDoc {
 #[derive(Deserialize)]
 struct VersionProbe {
     version: u32,
+}
+
+fn rgba<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 4], D::Error> {
+    let v: Vec<f32> = Vec::deserialize(d)?;
+    <[f32; 4]>::try_from(v.as_slice())
+        .map_err(|_| D::Error::custom(format!("expected 4 colour components, found {}", v.len())))
 }
 
 fn unique_params<'de, D: Deserializer<'de>>(
@@ -97,6 +142,7 @@ impl Source {
             file: self.path.clone(),
             position: offset.map(|o| locate::line_col(&self.text, o)),
             kind,
+            group: None,
         }
     }
     pub fn node_offset(&self, node: &str) -> Option<usize> {
@@ -124,6 +170,7 @@ impl GraphDocument {
             kind: ErrorKind::Syntax {
                 message: e.code.to_string(),
             },
+            group: None,
         };
         let probe: VersionProbe = ron::from_str(text).map_err(syntax)?;
         if probe.version == 0 || probe.version > FORMAT_VERSION {
@@ -136,9 +183,8 @@ impl GraphDocument {
                 },
             ));
         }
-        // Version 1 is the first format; later versions add explicit migrations here.
         let doc: GraphDocument = ron::from_str(text).map_err(syntax)?;
-        Ok((doc, source))
+        Ok((crate::migrate::to_current(doc), source))
     }
 
     /// Reads and parses a graph file.
@@ -149,6 +195,7 @@ impl GraphDocument {
             kind: ErrorKind::Io {
                 message: format!("cannot read graph file: {e}"),
             },
+            group: None,
         })?;
         Self::parse(&text, Some(path))
     }
@@ -183,12 +230,10 @@ impl GraphDocument {
                 out.push_str("            },\n");
             }
             if let Some(pos) = node.editor {
-                let _ = writeln!(
-                    out,
-                    "            editor: Some((x: {}, y: {})),",
-                    float_literal(pos.x as f64),
-                    float_literal(pos.y as f64)
-                );
+                let _ = writeln!(out, "            editor: {},", pos_literal(pos));
+            }
+            if let Some(group) = &node.group {
+                let _ = writeln!(out, "            group: Some({}),", string_literal(group));
             }
             out.push_str("        ),\n");
         }
@@ -205,8 +250,53 @@ impl GraphDocument {
             );
         }
         out.push_str("    ],\n");
+        // Sections of version 2, written only when used: files without them stay concise.
+        if !self.groups.is_empty() {
+            let mut groups: Vec<&GroupDoc> = self.groups.iter().collect();
+            groups.sort_by(|a, b| a.id.cmp(&b.id));
+            out.push_str("    groups: [\n");
+            for g in groups {
+                let editor = g.editor.map_or("None".into(), pos_literal);
+                let _ = writeln!(
+                    out,
+                    "        (id: {}, editor: {editor}),",
+                    string_literal(&g.id)
+                );
+            }
+            out.push_str("    ],\n");
+        }
+        if !self.frames.is_empty() {
+            out.push_str("    frames: [\n");
+            for f in &self.frames {
+                let color: Vec<String> = f.color.iter().map(|c| f32_literal(*c)).collect();
+                let group = f.group.as_ref().map_or(String::new(), |g| {
+                    format!(", group: Some({})", string_literal(g))
+                });
+                let _ = writeln!(
+                    out,
+                    "        (label: {}, x: {}, y: {}, w: {}, h: {}, color: [{}]{group}),",
+                    string_literal(&f.label),
+                    f32_literal(f.x),
+                    f32_literal(f.y),
+                    f32_literal(f.w),
+                    f32_literal(f.h),
+                    color.join(", ")
+                );
+            }
+            out.push_str("    ],\n");
+        }
         out.push_str(")\n");
         out
+    }
+
+    /// The group named `id`, if any.
+    pub fn group(&self, id: &str) -> Option<&GroupDoc> {
+        self.groups.iter().find(|g| g.id == id)
+    }
+
+    /// The node named `id`, if any.
+    pub fn node(&self, id: &str) -> Option<&NodeDoc> {
+        self.nodes.iter().find(|n| n.id == id)
     }
 
     /// Writes the canonical text atomically: a temporary file in the same folder, flushed to
@@ -239,6 +329,19 @@ fn string_literal(s: &str) -> String {
     ron::to_string(s).unwrap_or_else(|_| format!("{s:?}"))
 }
 
+fn pos_literal(pos: EditorPos) -> String {
+    format!(
+        "Some((x: {}, y: {}))",
+        float_literal(pos.x as f64),
+        float_literal(pos.y as f64)
+    )
+}
+
+/// The shortest text that reads back as the same f32 (`0.3`, not `0.30000001192092896`).
+fn f32_literal(x: f32) -> String {
+    ron::to_string(&x).unwrap_or_else(|_| format!("{x:?}"))
+}
+
 fn float_literal(x: f64) -> String {
     ron::to_string(&x).unwrap_or_else(|_| format!("{x:?}"))
 }
@@ -268,7 +371,7 @@ mod tests {
     #[test]
     fn canonical_text_round_trips_byte_for_byte() {
         let text = r#"(
-    version: 1,
+    version: 2,
     nodes: [
         (
             id: "a",
@@ -285,15 +388,26 @@ mod tests {
             id: "b",
             kind: "Light",
             params: {},
+            group: Some("lights"),
         ),
     ],
     edges: [
         (from: ("a", "camera"), to: ("b", "camera")),
     ],
+    groups: [
+        (id: "lights", editor: Some((x: 5.0, y: 6.0))),
+        (id: "unplaced", editor: None),
+    ],
+    frames: [
+        (label: "Inputs", x: -10.5, y: 0.0, w: 300.0, h: 120.0, color: [0.3, 0.5, 0.8, 0.25]),
+        (label: "Inner", x: 0.0, y: 0.0, w: 10.0, h: 10.0, color: [1.0, 1.0, 1.0, 1.0], group: Some("lights")),
+    ],
 )
 "#;
         let (doc, _) = GraphDocument::parse(text, None).unwrap();
         assert_eq!(doc.nodes.len(), 2);
+        assert_eq!(doc.nodes[1].group.as_deref(), Some("lights"));
+        assert_eq!(doc.frames[0].color[1], 0.5);
         assert_eq!(doc.to_ron_string(), text);
     }
 

@@ -8,6 +8,7 @@ use crate::document::{EdgeDoc, EditorPos, FORMAT_VERSION, GraphDocument, NodeDoc
 use crate::graph::check_node_id;
 use crate::param::ParamValue;
 use crate::port::PortType;
+use crate::reroute;
 use crate::schema::{NodeSchema, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -27,9 +28,9 @@ pub fn snake_case(kind: &str) -> String {
     if out.is_empty() { "node".into() } else { out }
 }
 
-/// The first `base_N` (N ≥ 1) that no node of `doc` and no id in `taken` uses.
+/// The first `base_N` (N ≥ 1) that no node or group of `doc` and no id in `taken` uses.
 pub fn fresh_id(doc: &GraphDocument, base: &str, taken: &BTreeSet<String>) -> String {
-    let used = |id: &str| taken.contains(id) || doc.nodes.iter().any(|n| n.id == id);
+    let used = |id: &str| taken.contains(id) || crate::organise::id_taken(doc, id);
     (1..)
         .map(|n| format!("{base}_{n}"))
         .find(|id| !used(id))
@@ -70,8 +71,22 @@ pub fn add_node(
         kind: schema.kind.to_owned(),
         params: BTreeMap::new(),
         editor: Some(position),
+        group: None,
     });
     Ok(id)
+}
+
+/// Adds a reroute node (see [`crate::reroute`]) at `position`; returns its new id.
+pub fn add_reroute(doc: &mut GraphDocument, position: EditorPos) -> String {
+    let id = fresh_id(doc, "reroute", &BTreeSet::new());
+    doc.nodes.push(NodeDoc {
+        id: id.clone(),
+        kind: reroute::REROUTE.to_owned(),
+        params: BTreeMap::new(),
+        editor: Some(position),
+        group: None,
+    });
+    id
 }
 
 /// Removes a node and every edge touching it; returns the node, or `None` if there was none.
@@ -87,8 +102,8 @@ pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), 
         return node(doc, old).map(|_| ());
     }
     check_node_id(new).map_err(|r| format!("`{new}` is not a valid id: {r}"))?;
-    if doc.nodes.iter().any(|n| n.id == new) {
-        return Err(format!("a node `{new}` already exists"));
+    if crate::organise::id_taken(doc, new) {
+        return Err(format!("a node or group `{new}` already exists"));
     }
     let index = doc
         .nodes
@@ -132,14 +147,14 @@ pub fn set_param(
     Ok(())
 }
 
-/// Moves a node in the editor; false if there is no such node.
+/// Moves a node (or a group's collapsed node) in the editor; false if there is no such node.
 pub fn move_node(doc: &mut GraphDocument, id: &str, position: EditorPos) -> bool {
     match doc.nodes.iter_mut().find(|n| n.id == id) {
         Some(n) => {
             n.editor = Some(position);
             true
         }
-        None => false,
+        None => crate::organise::move_group(doc, id, position),
     }
 }
 
@@ -170,6 +185,31 @@ pub fn port_type(
         })
 }
 
+/// The type at one end of a new wire: a reroute's is what flows through it (`None`: any yet;
+/// an input's is what it feeds, since the new wire replaces what fed it).
+fn end_type(
+    doc: &GraphDocument,
+    schemas: &dyn SchemaLookup,
+    (node, port): (&str, &str),
+    output: bool,
+) -> Result<Option<PortType>, String> {
+    if !reroute::is_reroute(doc, node) {
+        return port_type(doc, schemas, node, port, output).map(Some);
+    }
+    let expected = if output { reroute::OUT } else { reroute::IN };
+    if port != expected {
+        let side = if output { "output" } else { "input" };
+        return Err(format!(
+            "node `{node}` (Reroute) has no {side} port `{port}` (its {side}s are: {expected})"
+        ));
+    }
+    Ok(if output {
+        reroute::reroute_type(doc, schemas, node)
+    } else {
+        reroute::downstream_type(doc, schemas, node)
+    })
+}
+
 /// Whether `to` can be reached from `from` along the document's edges.
 fn reaches(doc: &GraphDocument, from: &str, to: &str) -> bool {
     let mut seen = BTreeSet::new();
@@ -198,9 +238,11 @@ pub fn connect(
     from: (&str, &str),
     to: (&str, &str),
 ) -> Result<Option<EdgeDoc>, String> {
-    let out_ty = port_type(doc, schemas, from.0, from.1, true)?;
-    let in_ty = port_type(doc, schemas, to.0, to.1, false)?;
-    if out_ty != in_ty {
+    let out_ty = end_type(doc, schemas, from, true)?;
+    let in_ty = end_type(doc, schemas, to, false)?;
+    if let (Some(out_ty), Some(in_ty)) = (out_ty, in_ty)
+        && out_ty != in_ty
+    {
         return Err(format!(
             "type mismatch: `{}.{}` gives {out_ty} but `{}.{}` takes {in_ty}",
             from.0, from.1, to.0, to.1
@@ -274,6 +316,7 @@ pub fn copy_nodes(doc: &GraphDocument, ids: &[&str]) -> String {
             .filter(|e| chosen.contains(e.from.0.as_str()) && chosen.contains(e.to.0.as_str()))
             .cloned()
             .collect(),
+        ..Default::default()
     };
     sub.to_ron_string()
 }
@@ -311,6 +354,8 @@ pub fn paste_nodes(
         taken.insert(id.clone());
         renamed.insert(n.id.clone(), id.clone());
         n.id = id;
+        // The target may not have the group: pasted nodes land on the top level.
+        n.group = None;
         let at = n.editor.unwrap_or(EditorPos { x: 0.0, y: 0.0 });
         n.editor = Some(EditorPos {
             x: at.x + offset.x,

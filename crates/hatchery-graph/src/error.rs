@@ -12,6 +12,8 @@ pub struct GraphError {
     /// 1-based line and column in that file, when known.
     pub position: Option<(usize, usize)>,
     pub kind: ErrorKind,
+    /// The group of the node concerned, if it is in one (said after the message).
+    pub group: Option<String>,
 }
 
 impl GraphError {
@@ -20,6 +22,7 @@ impl GraphError {
             file: None,
             position: None,
             kind,
+            group: None,
         }
     }
 
@@ -34,7 +37,8 @@ impl GraphError {
             | MultipleInputs { node, .. }
             | UnknownParam { node, .. }
             | BadParam { node, .. }
-            | BadNodeId { node, .. } => Some(node),
+            | BadNodeId { node, .. }
+            | UnknownGroup { node, .. } => Some(node),
             UnknownNode { edge_to, .. } => Some(&edge_to.0),
             TypeMismatch { to, .. } => Some(&to.0),
             Cycle { nodes } => nodes.first().map(String::as_str),
@@ -108,6 +112,11 @@ pub enum ErrorKind {
         node: String,
         param: String,
         message: String,
+    },
+    /// A node names a group that the file does not declare.
+    UnknownGroup {
+        node: String,
+        group: String,
     },
 }
 
@@ -210,6 +219,10 @@ impl fmt::Display for ErrorKind {
                 param,
                 message,
             } => write!(f, "node `{node}`, parameter `{param}`: {message}"),
+            UnknownGroup { node, group } => write!(
+                f,
+                "node `{node}`: no group with id `{group}` (declare it in `groups`)"
+            ),
         }
     }
 }
@@ -222,7 +235,11 @@ impl fmt::Display for GraphError {
             (None, Some((line, col))) => write!(f, "{line}:{col}: ")?,
             (None, None) => {}
         }
-        write!(f, "{}", self.kind)
+        write!(f, "{}", self.kind)?;
+        match &self.group {
+            Some(group) => write!(f, " (in group `{group}`)"),
+            None => Ok(()),
+        }
     }
 }
 

@@ -1,7 +1,9 @@
 //! The runtime graph: validated, typed, ports by index, in a petgraph graph.
 
 use crate::EditorPos;
-use crate::document::{EdgeDoc, FORMAT_VERSION, GraphDocument, NodeDoc, Source};
+use crate::document::{
+    EdgeDoc, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc, Source,
+};
 use crate::error::{ErrorKind, GraphError, GraphErrors};
 use crate::param::{ParamValue, Params};
 use crate::schema::SchemaLookup;
@@ -22,6 +24,8 @@ pub struct NodeInstance {
     /// Parameters written in the file or set since; only these are saved.
     pub explicit: BTreeSet<String>,
     pub editor: Option<EditorPos>,
+    /// The group the node belongs to (editor organisation only).
+    pub group: Option<String>,
 }
 
 /// An edge between port indices (the file stores names; see [`Graph::to_document`]).
@@ -37,6 +41,9 @@ pub struct Graph {
     graph: StableDiGraph<NodeInstance, Wire>,
     ids: BTreeMap<String, NodeIndex>,
     base_dir: Option<Arc<Path>>,
+    /// The document's groups and frames, kept for [`Graph::to_document`]; rendering ignores them.
+    groups: Vec<GroupDoc>,
+    frames: Vec<FrameDoc>,
 }
 
 /// Node ids are used on the command line as `node.param`, so they are plain identifiers.
@@ -70,6 +77,8 @@ impl Graph {
     }
 
     /// Validates a document and builds the runtime graph, reporting every problem found.
+    /// Reroute nodes are resolved away first (see [`crate::reroute`]); groups only organise the
+    /// editor, so their members are validated and run as plain nodes.
     pub fn from_document(
         doc: &GraphDocument,
         source: &Source,
@@ -80,9 +89,12 @@ impl Graph {
         let base_dir: Option<Arc<Path>> = base_dir.map(Arc::from);
         let mut graph = Graph {
             base_dir: base_dir.clone(),
+            groups: doc.groups.clone(),
+            frames: doc.frames.clone(),
             ..Default::default()
         };
-        if doc.version != FORMAT_VERSION {
+        // Version 2 only adds optional sections, so a version 1 document validates as it is.
+        if doc.version == 0 || doc.version > FORMAT_VERSION {
             errors.push(source.error(
                 None,
                 ErrorKind::UnsupportedVersion {
@@ -91,6 +103,8 @@ impl Graph {
                 },
             ));
         }
+        crate::organise::check_groups(doc, source, &mut errors);
+        let doc = &crate::reroute::flatten(doc, source, &mut errors);
         // Nodes whose kind is unknown: edges touching them are not reported again.
         let mut unusable = BTreeSet::new();
 
@@ -169,6 +183,7 @@ impl Graph {
                 params: Params::new(values, base_dir.clone()),
                 explicit: node.params.keys().cloned().collect(),
                 editor: node.editor,
+                group: node.group.clone(),
             };
             let index = graph.graph.add_node(instance);
             graph.ids.insert(node.id.clone(), index);
@@ -296,6 +311,10 @@ impl Graph {
             }
         }
 
+        // Say which group a node is in: the editor shows groups collapsed.
+        for e in &mut errors {
+            e.group = e.node().and_then(|n| doc.node(n)?.group.clone());
+        }
         if errors.is_empty() {
             Ok(graph)
         } else {
@@ -303,7 +322,8 @@ impl Graph {
         }
     }
 
-    /// The stored model of this graph (ports by name, explicit parameters only).
+    /// The stored model of this graph (ports by name, explicit parameters only). Reroutes were
+    /// resolved away on loading, so their edges come back as direct ones.
     pub fn to_document(&self, schemas: &dyn SchemaLookup) -> GraphDocument {
         let mut nodes: Vec<NodeDoc> = self
             .graph
@@ -317,6 +337,7 @@ impl Graph {
                     .filter_map(|name| n.params.get(name).map(|v| (name.clone(), v.to_ron())))
                     .collect(),
                 editor: n.editor,
+                group: n.group.clone(),
             })
             .collect();
         nodes.sort_by(|a, b| a.id.cmp(&b.id));
@@ -341,6 +362,8 @@ impl Graph {
             version: FORMAT_VERSION,
             nodes,
             edges,
+            groups: self.groups.clone(),
+            frames: self.frames.clone(),
         }
     }
 

@@ -16,11 +16,16 @@ pub mod error;
 pub mod executor;
 pub mod graph;
 mod locate;
+pub mod migrate;
+pub mod organise;
 pub mod param;
 pub mod port;
+pub mod reroute;
 pub mod schema;
 
-pub use document::{EdgeDoc, EditorPos, FORMAT_VERSION, GraphDocument, NodeDoc};
+pub use document::{
+    EdgeDoc, EditorPos, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc,
+};
 pub use error::{ErrorKind, GraphError, GraphErrors};
 pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Registry};
 pub use graph::{Graph, NodeInstance};

@@ -25,10 +25,12 @@ pub enum PortType {
     TransferFunction,
     /// A set of lit-sphere style maps.
     StyleSet,
+    /// Per-object rendering settings of a segmented volume (two-level volume rendering).
+    ObjectStyles,
 }
 
 impl PortType {
-    pub const ALL: [PortType; 10] = [
+    pub const ALL: [PortType; 11] = [
         PortType::Volume,
         PortType::Labels,
         PortType::Mesh,
@@ -39,6 +41,7 @@ impl PortType {
         PortType::Mask,
         PortType::TransferFunction,
         PortType::StyleSet,
+        PortType::ObjectStyles,
     ];
 
     pub fn name(self) -> &'static str {
@@ -53,6 +56,7 @@ impl PortType {
             PortType::Mask => "Mask",
             PortType::TransferFunction => "TransferFunction",
             PortType::StyleSet => "StyleSet",
+            PortType::ObjectStyles => "ObjectStyles",
         }
     }
 }

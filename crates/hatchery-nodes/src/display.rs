@@ -49,12 +49,15 @@ pub fn source_size(value: &Value) -> Option<(u32, u32)> {
         Value::Mask(m) => &m.texture,
         Value::GBuffer(g) => &g.normal,
         Value::Volume(v) => return Some((v.data.dims[0], v.data.dims[1])),
+        Value::Labels(l) => return Some((l.data.dims[0], l.data.dims[1])),
         Value::TransferFunction(_) => return Some((256, 32)),
         Value::StyleSet(s) => {
             let size = s.maps.first().map_or(1, |m| m.size);
             return Some((size * s.maps.len().max(1) as u32, size));
         }
-        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) => return None,
+        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
+            return None;
+        }
     };
     Some((t.width(), t.height()))
 }

@@ -81,7 +81,14 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
                 data,
             }
         }
-        Value::Camera(_) | Value::Light(_) => {
+        Value::Labels(l) => {
+            let [x, y, z] = l.data.dims.map(|d| d as usize);
+            Array {
+                shape: vec![z, y, x],
+                data: l.data.ids.iter().map(|&id| f32::from(id)).collect(),
+            }
+        }
+        Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
             return Err(format!(
                 "a {} value holds no array to dump",
                 value.port_type()
@@ -159,6 +166,23 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Str
                 }
             })
         }
+        Value::Labels(l) => {
+            // The middle z-slice, each object in its own colour (golden-angle hues).
+            let [w, h, d] = l.data.dims;
+            let z = d / 2;
+            image::RgbaImage::from_fn(w, h, |x, y| {
+                let id = l.data.id(x, h - 1 - y, z);
+                if id == 0 {
+                    return image::Rgba([0, 0, 0, 255]);
+                }
+                let hue = (f32::from(id) * 137.508).rem_euclid(360.0) / 60.0;
+                let f = |n: f32| {
+                    let k = (n + hue).rem_euclid(6.0);
+                    to_u8(1.0 - 0.8 * k.min(4.0 - k).clamp(0.0, 1.0))
+                };
+                image::Rgba([f(5.0), f(3.0), f(1.0), 255])
+            })
+        }
         Value::StyleSet(set) => {
             let size = set.maps.first().map_or(1, |m| m.size);
             image::RgbaImage::from_fn(size * set.maps.len().max(1) as u32, size, |x, y| {
@@ -169,7 +193,7 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Str
                 image::Rgba([to_u8(t[0]), to_u8(t[1]), to_u8(t[2]), to_u8(t[3])])
             })
         }
-        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) => {
+        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
             return Err(format!(
                 "a {} value has no picture; dump it to .npy instead",
                 value.port_type()

@@ -11,6 +11,7 @@ pub mod fill;
 pub mod gbuffer;
 pub mod halftone;
 pub mod label_mask;
+pub mod label_sources;
 pub mod light;
 pub mod marching_cubes;
 pub mod mask_combine;
@@ -19,6 +20,7 @@ pub mod mesh_pass;
 pub mod mesh_transform;
 pub mod mix_by_mask;
 pub mod multiply_by_mask;
+pub mod object_styles;
 pub mod over;
 pub mod procedural_volume;
 pub mod raycast;
@@ -33,6 +35,7 @@ pub mod silhouette;
 pub mod style_set;
 pub mod style_transfer_function;
 pub mod transfer_function_1d;
+pub mod two_level_raycast;
 pub mod uniforms;
 pub mod value;
 pub mod volume_file;
@@ -77,6 +80,11 @@ pub fn registry() -> Registry {
     r.register(style_transfer_function::StyleTransferFunctionNode);
     r.register(raycast::RaycastNode);
     r.register(raycast::IsoSurfaceRaycastNode);
+    r.register(label_sources::LabelFileNode);
+    r.register(label_sources::LabelsFromThresholdNode);
+    r.register(label_sources::LabelsFromMapsNode);
+    r.register(object_styles::ObjectStylesNode);
+    r.register(two_level_raycast::TwoLevelRaycastNode);
     r.register(save_image::SaveImageNode);
     r
 }

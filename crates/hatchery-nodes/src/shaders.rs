@@ -31,6 +31,7 @@ pub const RAY_CLASSIFY: &str = shader_file!("ray_classify.wgsl");
 pub const RAY_SHADE: &str = shader_file!("ray_shade.wgsl");
 pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
+pub const TWO_LEVEL_RAYCAST: &str = shader_file!("two_level_raycast.wgsl");
 pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
 pub const OVER: &str = shader_file!("over.wgsl");
 pub const DISPLAY: &str = shader_file!("display.wgsl");
@@ -79,6 +80,10 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         ),
         ("mask_combine", screen("mask_combine.wgsl", MASK_COMBINE)),
         ("raycast", ray("raycast.wgsl", RAYCAST)),
+        (
+            "two_level_raycast",
+            ray("two_level_raycast.wgsl", TWO_LEVEL_RAYCAST),
+        ),
         (
             "depth_from_texture",
             screen("depth_from_texture.wgsl", DEPTH_FROM_TEXTURE),

@@ -55,6 +55,11 @@ pub fn all() -> Vec<UniformLayout> {
     use crate::*;
     let mut all = vec![
         raycast::RayUniforms::layout(),
+        UniformLayout {
+            program: "two_level_raycast",
+            ..raycast::RayUniforms::layout()
+        },
+        two_level_raycast::TwoLevelUniforms::layout(),
         shaded_surface::ShadingUniform::layout(),
         secondary_geometry::SecondaryUniforms::layout(),
         depth_test_mask::DepthTestUniforms::layout(),

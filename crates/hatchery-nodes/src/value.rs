@@ -57,6 +57,133 @@ impl Volume {
     }
 }
 
+/// A segmented volume (object ids and names), its ids uploaded as an R16Uint 3-D texture on
+/// first use: read with `textureLoad` only, never filtered as numbers (Hadwiger §2.3).
+pub struct Labels {
+    pub data: Arc<hatchery_data::segmentation::LabelData>,
+    texture: OnceLock<wgpu::Texture>,
+    bricks: OnceLock<BrickObjects>,
+}
+
+/// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
+/// the 8 voxels around it, so a brick also sees the first voxel layer of its upper
+/// neighbours): the brick grid's dims and, per brick (x fastest), the ids, sorted.
+pub struct BrickObjects {
+    pub dims: [u32; 3],
+    pub ids: Vec<Vec<u16>>,
+}
+
+impl Labels {
+    pub fn new(data: hatchery_data::segmentation::LabelData) -> Self {
+        Self {
+            data: Arc::new(data),
+            texture: OnceLock::new(),
+            bricks: OnceLock::new(),
+        }
+    }
+
+    /// The ids each brick's samples can see, computed once.
+    pub fn brick_objects(&self) -> &BrickObjects {
+        self.bricks.get_or_init(|| {
+            let brick = hatchery_data::bricks::BRICK;
+            let l = &self.data;
+            let dims = l.dims.map(|d| d.div_ceil(brick));
+            let mut ids: Vec<Vec<u16>> =
+                vec![Vec::new(); dims.iter().map(|&d| d as usize).product()];
+            let [nx, ny, nz] = l.dims;
+            // Voxel v is seen by samples with floor(q) ∈ {v − 1, v}: the bricks of v − 1 and v.
+            let near = |v: u32| [v.saturating_sub(1) / brick, v / brick];
+            let mut i = 0;
+            for z in 0..nz {
+                for y in 0..ny {
+                    for x in 0..nx {
+                        let id = l.ids[i];
+                        i += 1;
+                        for bz in near(z) {
+                            for by in near(y) {
+                                for bx in near(x) {
+                                    let list =
+                                        &mut ids[(bx + dims[0] * (by + dims[1] * bz)) as usize];
+                                    if !list.contains(&id) {
+                                        list.push(id);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            ids.iter_mut().for_each(|list| list.sort_unstable());
+            BrickObjects { dims, ids }
+        })
+    }
+
+    /// The id texture (R16Uint, dims of the label volume). Errors: dims over the adapter's
+    /// 3-D texture limit.
+    pub fn texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
+        if let Some(t) = self.texture.get() {
+            return Ok(t);
+        }
+        let [nx, ny, _] = self.data.dims.map(|d| d as usize);
+        let ids = &self.data.ids;
+        let t = gpu.volume_texture_by_slabs(
+            "labels",
+            self.data.dims,
+            wgpu::TextureFormat::R16Uint,
+            |z0, z1, out| {
+                let slab = &ids[z0 as usize * nx * ny..z1 as usize * nx * ny];
+                out.extend_from_slice(bytemuck::cast_slice(slab));
+            },
+        )?;
+        Ok(self.texture.get_or_init(|| t))
+    }
+}
+
+/// How one object's samples are coloured (the rendering modes of Hadwiger §2.2, Fig. 16/17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderMode {
+    /// The transfer function's colour and opacity, unshaded.
+    Dvr,
+    /// Colour × Blinn–Phong (eq. 3 of the context-preserving paper).
+    ShadedDvr,
+    /// Cool-to-warm tone shading by N·L (Gooch et al. 1998, as in the tutorial's figures).
+    Tone,
+    /// Contour enhancement: opacity × gradient magnitude × (1 − |N·V|)^8 (Csébfalvi et al. 2001).
+    Contours,
+    /// The transfer function's colour of the largest value (with MIP compositing).
+    Mip,
+    /// The shaded surface at the object's iso value (with iso compositing).
+    Iso,
+}
+
+/// How the samples of one object's ray segment are combined (local compositing, §2.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Compositing {
+    /// Front-to-back alpha blending.
+    Over,
+    /// The sample of largest intensity.
+    Mip,
+    /// The first sample at or above the object's iso value.
+    Iso,
+    /// The sum of the samples' premultiplied colours (alpha clamped to 1).
+    Sum,
+}
+
+/// One object of a segmented volume: how it is rendered and composited.
+#[derive(Clone, Debug)]
+pub struct ObjectStyle {
+    pub id: u16,
+    pub name: String,
+    pub enabled: bool,
+    pub tf: hatchery_data::transfer_function::TransferFunction1D,
+    pub mode: RenderMode,
+    pub compositing: Compositing,
+    /// Iso value for iso compositing, data units.
+    pub iso: f32,
+    /// Importance (importance-driven rendering, Viola et al.); not used by two-level rendering.
+    pub importance: f32,
+}
+
 /// A triangle mesh: CPU data plus vertex (position, normal) and index buffers uploaded on first use.
 pub struct Mesh {
     pub data: Arc<MeshData>,
@@ -231,6 +358,8 @@ pub enum Value {
     Mask(Arc<Mask>),
     TransferFunction(Arc<TransferFunction>),
     StyleSet(Arc<StyleSet>),
+    Labels(Arc<Labels>),
+    ObjectStyles(Arc<Vec<ObjectStyle>>),
 }
 
 impl Value {
@@ -245,6 +374,8 @@ impl Value {
             Value::Mask(_) => PortType::Mask,
             Value::TransferFunction(_) => PortType::TransferFunction,
             Value::StyleSet(_) => PortType::StyleSet,
+            Value::Labels(_) => PortType::Labels,
+            Value::ObjectStyles(_) => PortType::ObjectStyles,
         }
     }
 }
@@ -279,3 +410,5 @@ accessor!(image, Image, Arc<Image>);
 accessor!(mask, Mask, Arc<Mask>);
 accessor!(transfer_function, TransferFunction, Arc<TransferFunction>);
 accessor!(style_set, StyleSet, Arc<StyleSet>);
+accessor!(labels, Labels, Arc<Labels>);
+accessor!(object_styles, ObjectStyles, Arc<Vec<ObjectStyle>>);

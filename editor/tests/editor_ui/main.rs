@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod export;
 mod layout;
+mod organise;
 mod picture;
 mod selection;
 use selection::select_by_click;
@@ -568,6 +569,18 @@ fn drag_with(
     to: egui::Pos2,
     button: egui::PointerButton,
 ) {
+    drag_steps(h, from, to, button);
+    h.run();
+}
+
+/// Presses `button` at `from`, moves to `to` in ten steps and releases it there, without running
+/// the UI until idle afterwards (a menu that opens may keep it repainting).
+fn drag_steps(
+    h: &mut Harness<EditorApp>,
+    from: egui::Pos2,
+    to: egui::Pos2,
+    button: egui::PointerButton,
+) {
     h.event(egui::Event::PointerMoved(from));
     h.event(egui::Event::PointerButton {
         pos: from,
@@ -588,7 +601,6 @@ fn drag_with(
         pressed: false,
         modifiers: Modifiers::NONE,
     });
-    h.run();
 }
 
 #[test]

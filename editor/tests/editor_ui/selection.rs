@@ -86,7 +86,7 @@ pub fn set(ids: &[&str]) -> BTreeSet<String> {
 }
 
 /// A canvas point on no node (scanning the canvas on a grid).
-fn empty_canvas_point(h: &Harness<EditorApp>) -> egui::Pos2 {
+pub fn empty_canvas_point(h: &Harness<EditorApp>) -> egui::Pos2 {
     let canvas = h.state().canvas_rect.shrink(10.0);
     for y in (canvas.top() as i32..canvas.bottom() as i32).step_by(20) {
         for x in (canvas.left() as i32..canvas.right() as i32).step_by(20) {

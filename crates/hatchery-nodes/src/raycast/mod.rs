@@ -7,9 +7,9 @@ mod pass;
 mod tables;
 mod uniforms;
 
-pub use pass::cast;
+pub use pass::{RayPipelines, cast};
 pub use tables::check_same_grid;
-pub use uniforms::RayUniforms;
+pub use uniforms::{RayUniforms, TableInfo};
 
 use crate::camera::Camera;
 use crate::value::Image;
@@ -55,7 +55,7 @@ pub enum Kernel {
     Compute,
 }
 
-const KERNELS: &[&str] = &["auto", "fragment", "compute"];
+pub const KERNELS: &[&str] = &["auto", "fragment", "compute"];
 
 impl Kernel {
     /// The path for parameter value `name` on `gpu`. `auto` picks the fragment path, the faster
@@ -72,7 +72,8 @@ impl Kernel {
     }
 }
 
-fn light_direction(inputs: &NodeInputs<Value>, camera: &Camera) -> Result<Vec3, NodeError> {
+/// The view-space direction towards the light: the `light` input's, else a headlight.
+pub fn light_direction(inputs: &NodeInputs<Value>, camera: &Camera) -> Result<Vec3, NodeError> {
     Ok(match inputs.get("light") {
         Some(light) => light.light("light")?.view_direction(camera),
         None => Vec3::new(0.3, 0.4, 1.0).normalize(),

@@ -14,12 +14,8 @@ use hatchery_graph::NodeError;
 
 /// The static GPU objects of the ray caster.
 pub struct Statics {
-    pipeline: wgpu::RenderPipeline,
-    /// The same rays as a compute kernel (`cs_main`), and the pass that moves its r32float
-    /// depths into the G-buffer's depth texture.
-    compute: wgpu::ComputePipeline,
-    depth_copy: wgpu::RenderPipeline,
-    sampler: wgpu::Sampler,
+    pipelines: RayPipelines,
+    pub sampler: wgpu::Sampler,
     /// Stand-ins for the tables a mode does not use.
     pub blank_table: wgpu::Texture,
     pub blank_styles: wgpu::Texture,
@@ -28,79 +24,101 @@ pub struct Statics {
     pub blank_label_rows: wgpu::Texture,
 }
 
+/// A ray caster's pipelines: the full-screen fragment shader, the same rays as a compute kernel
+/// (`cs_main`), and the pass that moves the kernel's r32float depths into the G-buffer's depth
+/// texture.
+pub struct RayPipelines {
+    render: wgpu::RenderPipeline,
+    compute: wgpu::ComputePipeline,
+    depth_copy: wgpu::RenderPipeline,
+}
+
+impl RayPipelines {
+    /// The pipelines of ray-casting program `program` (entry points `vs_main`/`fs_main` and
+    /// `cs_main`, outputs as in shaders/raycast.wgsl).
+    pub fn new(gpu: &GpuContext, program: &str) -> Result<Self, GpuError> {
+        let source = crate::shaders::source(program).expect("registered program");
+        let module = gpu.shader(program, &source)?;
+        let render = gpu.checked(&format!("pipeline {program}"), |device| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(program),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs_main"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        let compute = gpu.checked(&format!("pipeline {program} (compute)"), |device| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(program),
+                layout: None,
+                module: &module,
+                entry_point: Some("cs_main"),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        })?;
+        let copy_source = crate::shaders::source("depth_from_texture").expect("registered program");
+        let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
+        let depth_copy = gpu.checked("pipeline depth_from_texture", |device| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("depth from texture"),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &copy_module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &copy_module,
+                    entry_point: Some("fs_main"),
+                    compilation_options: Default::default(),
+                    targets: &[],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        Ok(Self {
+            render,
+            compute,
+            depth_copy,
+        })
+    }
+}
+
 fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
-    let source = crate::shaders::source("raycast").expect("registered program");
-    let module = gpu.shader("raycast", &source)?;
-    let pipeline = gpu.checked("pipeline raycast", |device| {
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("raycast"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
-    })?;
-    let compute = gpu.checked("pipeline raycast (compute)", |device| {
-        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("raycast compute"),
-            layout: None,
-            module: &module,
-            entry_point: Some("cs_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        })
-    })?;
-    let copy_source = crate::shaders::source("depth_from_texture").expect("registered program");
-    let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
-    let depth_copy = gpu.checked("pipeline depth_from_texture", |device| {
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("depth from texture"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &copy_module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &copy_module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
-    })?;
+    let pipelines = RayPipelines::new(gpu, "raycast")?;
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("linear clamp"),
         mag_filter: wgpu::FilterMode::Linear,
@@ -144,9 +162,7 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         &[0u8; 32],
     );
     Ok(Statics {
-        pipeline,
-        compute,
-        depth_copy,
+        pipelines,
         sampler,
         blank_table,
         blank_styles,
@@ -220,142 +236,171 @@ pub fn cast(
                 resource: wgpu::BindingResource::TextureView(view),
             }),
     );
-    // Auto-derived layouts differ per pipeline object: bind against the one that runs.
-    let compute = o.kernel == Kernel::Compute;
-    let layout = if compute {
-        st.compute.get_bind_group_layout(0)
-    } else {
-        st.pipeline.get_bind_group_layout(0)
-    };
-    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("raycast"),
-        layout: &layout,
-        entries: &entries,
-    });
-    if compute {
-        return cast_compute(ctx, &st, camera, &bind_group);
-    }
-
-    let (w, h) = (camera.width, camera.height);
-    let image = gpu.render_target("raycast image", w, h, IMAGE_FORMAT);
-    let normal = gpu.render_target("raycast normal", w, h, NORMAL_FORMAT);
-    let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
-    let (image_view, normal_view, depth_view) = (
-        image.create_view(&Default::default()),
-        normal.create_view(&Default::default()),
-        depth.create_view(&Default::default()),
-    );
-    let clear = |view| {
-        Some(wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                store: wgpu::StoreOp::Store,
-            },
-        })
-    };
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("raycast"),
-            color_attachments: &[clear(&image_view), clear(&normal_view)],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            ..Default::default()
-        });
-        pass.set_pipeline(&st.pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
-        pass.draw(0..3, 0..1);
-    }
-    let work = encoder.finish();
-    ctx.submit(work);
-    Ok((
-        image,
-        GBuffer {
-            depth,
-            normal,
-            camera: camera.clone(),
-        },
-    ))
+    st.pipelines.run(ctx, camera, &entries, o.kernel)
 }
 
-/// The compute path of `cast`: 8×8-pixel workgroups write colour, normal and depth to storage
-/// textures; a full-screen pass then writes the depths into the G-buffer's depth texture.
-fn cast_compute(
-    ctx: &mut Ctx,
-    st: &Statics,
-    camera: &Camera,
-    bind_group: &wgpu::BindGroup,
-) -> Result<(wgpu::Texture, GBuffer), NodeError> {
-    let gpu = &ctx.gpu;
-    let (w, h) = (camera.width, camera.height);
-    let image = gpu.storage_target("raycast image", w, h, IMAGE_FORMAT);
-    let normal = gpu.storage_target("raycast normal", w, h, NORMAL_FORMAT);
-    let depth_values =
-        gpu.storage_target("raycast depth values", w, h, wgpu::TextureFormat::R32Float);
-    let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
-    let views = [&image, &normal, &depth_values].map(|t| t.create_view(&Default::default()));
-    let outputs = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("raycast outputs"),
-        layout: &st.compute.get_bind_group_layout(1),
-        entries: &[0u32, 1, 2].map(|binding| wgpu::BindGroupEntry {
-            binding,
-            resource: wgpu::BindingResource::TextureView(&views[binding as usize]),
-        }),
-    });
-    let copy_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("depth from texture"),
-        layout: &st.depth_copy.get_bind_group_layout(0),
-        entries: &[wgpu::BindGroupEntry {
-            binding: 0,
-            resource: wgpu::BindingResource::TextureView(&views[2]),
-        }],
-    });
-    let depth_view = depth.create_view(&Default::default());
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("raycast compute"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&st.compute);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.set_bind_group(1, &outputs, &[]);
-        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+impl RayPipelines {
+    /// Casts the rays of `camera`'s frame with bind group 0 made of `entries` (as the program
+    /// declares them; the auto-derived layout of the pipeline that runs) on `kernel`'s path.
+    /// Returns the image and the G-buffer.
+    pub fn run(
+        &self,
+        ctx: &mut Ctx,
+        camera: &Camera,
+        entries: &[wgpu::BindGroupEntry],
+        kernel: Kernel,
+    ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
+        // Auto-derived layouts differ per pipeline object: bind against the one that runs.
+        let layout = match kernel {
+            Kernel::Compute => self.compute.get_bind_group_layout(0),
+            Kernel::Fragment => self.render.get_bind_group_layout(0),
+        };
+        // A binding the program reads but `entries` lacks is a validation error: report it
+        // on the node instead of drawing nothing.
+        let bind_group = ctx
+            .gpu
+            .checked("ray caster bind group", |device| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("ray caster"),
+                    layout: &layout,
+                    entries,
+                })
+            })
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        match kernel {
+            Kernel::Compute => self.cast_compute(ctx, camera, &bind_group),
+            Kernel::Fragment => self.cast_fragment(ctx, camera, &bind_group),
+        }
     }
-    {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("depth from texture"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
+
+    /// The fragment path: one full-screen triangle into colour, normal and depth attachments.
+    fn cast_fragment(
+        &self,
+        ctx: &mut Ctx,
+        camera: &Camera,
+        bind_group: &wgpu::BindGroup,
+    ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
+        let gpu = &ctx.gpu;
+        let (w, h) = (camera.width, camera.height);
+        let image = gpu.render_target("raycast image", w, h, IMAGE_FORMAT);
+        let normal = gpu.render_target("raycast normal", w, h, NORMAL_FORMAT);
+        let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
+        let (image_view, normal_view, depth_view) = (
+            image.create_view(&Default::default()),
+            normal.create_view(&Default::default()),
+            depth.create_view(&Default::default()),
+        );
+        let clear = |view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
                     store: wgpu::StoreOp::Store,
+                },
+            })
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("raycast"),
+                color_attachments: &[clear(&image_view), clear(&normal_view)],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
                 }),
-                stencil_ops: None,
-            }),
-            ..Default::default()
-        });
-        pass.set_pipeline(&st.depth_copy);
-        pass.set_bind_group(0, &copy_group, &[]);
-        pass.draw(0..3, 0..1);
+                ..Default::default()
+            });
+            pass.set_pipeline(&self.render);
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        ctx.submit(encoder.finish());
+        Ok((
+            image,
+            GBuffer {
+                depth,
+                normal,
+                camera: camera.clone(),
+            },
+        ))
     }
-    ctx.submit(encoder.finish());
-    Ok((
-        image,
-        GBuffer {
-            depth,
-            normal,
-            camera: camera.clone(),
-        },
-    ))
+
+    /// The compute path: 8×8-pixel workgroups write colour, normal and depth to storage
+    /// textures; a full-screen pass then writes the depths into the G-buffer's depth texture.
+    fn cast_compute(
+        &self,
+        ctx: &mut Ctx,
+        camera: &Camera,
+        bind_group: &wgpu::BindGroup,
+    ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
+        let gpu = &ctx.gpu;
+        let (w, h) = (camera.width, camera.height);
+        let image = gpu.storage_target("raycast image", w, h, IMAGE_FORMAT);
+        let normal = gpu.storage_target("raycast normal", w, h, NORMAL_FORMAT);
+        let depth_values =
+            gpu.storage_target("raycast depth values", w, h, wgpu::TextureFormat::R32Float);
+        let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
+        let views = [&image, &normal, &depth_values].map(|t| t.create_view(&Default::default()));
+        let outputs = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("raycast outputs"),
+            layout: &self.compute.get_bind_group_layout(1),
+            entries: &[0u32, 1, 2].map(|binding| wgpu::BindGroupEntry {
+                binding,
+                resource: wgpu::BindingResource::TextureView(&views[binding as usize]),
+            }),
+        });
+        let copy_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("depth from texture"),
+            layout: &self.depth_copy.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&views[2]),
+            }],
+        });
+        let depth_view = depth.create_view(&Default::default());
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("raycast compute"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.compute);
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.set_bind_group(1, &outputs, &[]);
+            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("depth from texture"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                ..Default::default()
+            });
+            pass.set_pipeline(&self.depth_copy);
+            pass.set_bind_group(0, &copy_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        ctx.submit(encoder.finish());
+        Ok((
+            image,
+            GBuffer {
+                depth,
+                normal,
+                camera: camera.clone(),
+            },
+        ))
+    }
 }

@@ -1,0 +1,168 @@
+//! Segmented volumes: an object-id volume on a grid placed in the world, and its object table
+//! (id → name). The tutorial's "tagged volume" (Hadwiger §2.1): ids are never interpolated as
+//! numbers; renderers filter each object's binary mask instead (§2.3).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::geometry::Geometry;
+use crate::voxels::Voxel;
+use crate::{DataError, VolumeData};
+
+/// The largest object id (ids are stored as u16; 0 is "no object").
+pub const MAX_ID: u32 = u16::MAX as u32;
+
+/// An object-id volume: `dims`, voxel → world `geometry`, one id per voxel (i fastest; 0 =
+/// background, no object) and a name for every id present (`objects`, background excluded).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LabelData {
+    pub dims: [u32; 3],
+    pub geometry: Geometry,
+    pub ids: Vec<u16>,
+    pub objects: BTreeMap<u16, String>,
+}
+
+impl LabelData {
+    /// The ids of a volume whose values are object ids (a label map in any volume format).
+    /// Errors: a value that is not a whole number in 0..=65535 (naming the first such voxel),
+    /// or "no data" (NaN). Names default to "object N".
+    pub fn from_volume(volume: &VolumeData) -> Result<Self, DataError> {
+        let values = volume.values_f32();
+        let mut ids = Vec::with_capacity(values.len());
+        for (i, &v) in values.iter().enumerate() {
+            if !(v.is_finite() && v >= 0.0 && v <= MAX_ID as f32 && v.fract() == 0.0) {
+                let [nx, ny, _] = volume.dims.map(|d| d as usize);
+                return Err(DataError::Invalid(format!(
+                    "voxel ({}, {}, {}) holds {v}: a label volume holds whole numbers 0–{MAX_ID} \
+                     (object ids); threshold a scalar volume with LabelsFromThreshold instead",
+                    i % nx,
+                    (i / nx) % ny,
+                    i / (nx * ny)
+                )));
+            }
+            ids.push(v as u16);
+        }
+        Ok(Self::new(volume.dims, volume.geometry, ids))
+    }
+
+    /// Labels from ids, every id present named "object N".
+    pub fn new(dims: [u32; 3], geometry: Geometry, ids: Vec<u16>) -> Self {
+        let mut present = vec![false; MAX_ID as usize + 1];
+        for &id in &ids {
+            present[id as usize] = true;
+        }
+        let objects = (1..=MAX_ID as usize)
+            .filter(|&id| present[id])
+            .map(|id| (id as u16, format!("object {id}")))
+            .collect();
+        LabelData {
+            dims,
+            geometry,
+            ids,
+            objects,
+        }
+    }
+
+    /// Object id at voxel (x, y, z).
+    pub fn id(&self, x: u32, y: u32, z: u32) -> u16 {
+        let [nx, ny, _] = self.dims;
+        self.ids[(x + nx * (y + ny * z)) as usize]
+    }
+
+    /// Replaces names from a name table (see [`read_names`]); ids not in the table keep
+    /// theirs, names of ids not in the volume are ignored.
+    pub fn name_objects(&mut self, names: &BTreeMap<u16, String>) {
+        for (id, name) in names {
+            if let Some(slot) = self.objects.get_mut(id) {
+                slot.clone_from(name);
+            }
+        }
+    }
+}
+
+/// Object ids by value intervals: a voxel whose value v lies in `[lo, hi)` of an interval gets
+/// its id (the first matching interval wins), others 0. "No data" voxels get 0.
+pub fn threshold(volume: &VolumeData, intervals: &[(f32, f32, u16)]) -> LabelData {
+    let ids = crate::with_voxels!(&volume.voxels, v => v.iter().map(|x| {
+        let x = x.to_f32();
+        intervals
+            .iter()
+            .find(|(lo, hi, _)| x >= *lo && x < *hi)
+            .map_or(0, |(_, _, id)| *id)
+    }).collect());
+    LabelData::new(volume.dims, volume.geometry, ids)
+}
+
+/// Object ids by arg-max over probability maps on one grid (e.g. grey and white matter):
+/// voxel → id `k + 1` of the map with the largest value if that value is ≥ `floor`, else 0.
+/// Errors: no maps, or maps on different grids.
+pub fn from_maps(maps: &[&VolumeData], floor: f32) -> Result<LabelData, DataError> {
+    let Some(first) = maps.first() else {
+        return Err(DataError::Invalid("no probability maps given".into()));
+    };
+    for (k, m) in maps.iter().enumerate() {
+        if m.dims != first.dims {
+            return Err(DataError::Invalid(format!(
+                "map {} is {:?} voxels, map 1 {:?}: they must share the grid",
+                k + 1,
+                m.dims,
+                first.dims
+            )));
+        }
+    }
+    let values: Vec<_> = maps.iter().map(|m| m.values_f32()).collect();
+    let ids = (0..first.voxel_count())
+        .map(|i| {
+            let (best, value) = values
+                .iter()
+                .enumerate()
+                .map(|(k, v)| (k, v[i]))
+                .filter(|(_, v)| v.is_finite())
+                .fold((0, f32::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+            if value >= floor { best as u16 + 1 } else { 0 }
+        })
+        .collect();
+    Ok(LabelData::new(first.dims, first.geometry, ids))
+}
+
+/// Reads object names: a CSV/TSV/space-separated table `id,name` (a header line and `#`
+/// comments are skipped), or an ITK-SNAP label description file (`IDX R G B A VIS MSH
+/// "LABEL"` lines). Errors name the file and line.
+pub fn read_names(path: &Path) -> Result<BTreeMap<u16, String>, DataError> {
+    let text = std::fs::read_to_string(path).map_err(|e| DataError::io(path, e))?;
+    let mut names = BTreeMap::new();
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        // ITK-SNAP: the name is the quoted last field.
+        let (first, name) = if let (Some(a), Some(b)) = (line.find('"'), line.rfind('"')) {
+            let first = line.split_whitespace().next().unwrap_or("");
+            (first, line[a + 1..b.max(a + 1)].to_string())
+        } else {
+            let mut parts = line.splitn(2, [',', '\t', ';', ' ']);
+            let first = parts.next().unwrap_or("").trim();
+            (first, parts.next().unwrap_or("").trim().to_string())
+        };
+        let Ok(id) = first.parse::<u32>() else {
+            if names.is_empty() {
+                continue; // a header line
+            }
+            return Err(DataError::format(
+                path,
+                format!("line {}: `{first}` is not an object id", n + 1),
+            ));
+        };
+        if id > MAX_ID {
+            return Err(DataError::format(
+                path,
+                format!("line {}: object id {id} is larger than {MAX_ID}", n + 1),
+            ));
+        }
+        if id > 0 && !name.is_empty() {
+            names.insert(id as u16, name);
+        }
+    }
+    Ok(names)
+}

@@ -1,0 +1,222 @@
+//! The sources of `Labels` (segmented volumes, Hadwiger §2.1): `LabelFile` (a label map in any
+//! volume format, names from a side table), `LabelsFromThreshold` (value intervals → ids) and
+//! `LabelsFromMaps` (probability maps → ids by arg-max).
+
+use crate::value::Labels;
+use crate::{Ctx, Value};
+use hatchery_data::segmentation::{self, LabelData};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+fn labels_output() -> PortSpec {
+    PortSpec::output(
+        "labels",
+        PortType::Labels,
+        "object ids on the volume's grid, with names",
+    )
+}
+
+fn finish(ctx: &mut Ctx, what: &str, data: LabelData) -> Result<Vec<Value>, NodeError> {
+    if data.objects.is_empty() {
+        ctx.warn(format!(
+            "{what}: no object (every voxel is background, id 0)"
+        ));
+    }
+    tracing::info!(what, objects = data.objects.len(), "labels");
+    Ok(vec![Value::Labels(Arc::new(Labels::new(data)))])
+}
+
+pub struct LabelFileNode;
+
+impl Node<Value, Ctx> for LabelFileNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "LabelFile",
+            category: "Data",
+            doc: "Reads a label map (object id per voxel, whole numbers 0–65535, 0 = background) \
+                  from any volume format VolumeFile reads, placed in the world the same way. \
+                  Object names come from `names`: a CSV/TSV table `id,name` or an ITK-SNAP label \
+                  description file; objects without a name are called \"object N\".",
+            inputs: vec![],
+            outputs: vec![labels_output()],
+            params: vec![
+                ParamSpec::path("path", "", "the label map file, or a DICOM folder"),
+                ParamSpec::text(
+                    "array",
+                    "",
+                    "the named data array to read (VTK); empty: the active scalars",
+                ),
+                ParamSpec::path(
+                    "names",
+                    "",
+                    "object names: CSV `id,name` or ITK-SNAP label file (optional)",
+                ),
+            ],
+            frame_dependent: false,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        _inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let path = p.path("path");
+        if path.as_os_str().is_empty() {
+            return Err(NodeError::new(
+                "parameter `path` is empty: name a label map (.nii.gz, .vti, .nrrd, ...)",
+            ));
+        }
+        let array = p.text("array").trim();
+        let options = hatchery_data::volume_file::LoadOptions {
+            array: (!array.is_empty()).then(|| array.to_owned()),
+        };
+        let volume = hatchery_data::volume_file::load_volume_with(&path, &options)
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let mut data = LabelData::from_volume(&volume)
+            .map_err(|e| NodeError::new(format!("{}: {e}", path.display())))?;
+        let names = p.path("names");
+        if !names.as_os_str().is_empty() {
+            let table =
+                segmentation::read_names(&names).map_err(|e| NodeError::new(e.to_string()))?;
+            data.name_objects(&table);
+        }
+        finish(ctx, &path.display().to_string(), data)
+    }
+}
+
+/// Parses "lo..hi: id; …" (intervals [lo, hi) in data units).
+pub fn parse_intervals(text: &str) -> Result<Vec<(f32, f32, u16)>, String> {
+    let mut intervals = Vec::new();
+    for (n, part) in text.split(';').map(str::trim).enumerate() {
+        if part.is_empty() {
+            continue;
+        }
+        let bad = || format!("interval {} `{part}`: expected `lo..hi: id`", n + 1);
+        let (range, id) = part.split_once(':').ok_or_else(bad)?;
+        let (lo, hi) = range.split_once("..").ok_or_else(bad)?;
+        let lo: f32 = lo.trim().parse().map_err(|_| bad())?;
+        let hi: f32 = hi.trim().parse().map_err(|_| bad())?;
+        let id: u16 = id.trim().parse().map_err(|_| bad())?;
+        if lo >= hi || lo.is_nan() || hi.is_nan() || id == 0 {
+            return Err(format!(
+                "interval {} `{part}`: needs lo < hi and an id from 1 to 65535",
+                n + 1
+            ));
+        }
+        intervals.push((lo, hi, id));
+    }
+    if intervals.is_empty() {
+        return Err("no interval given: write `lo..hi: id; …`".into());
+    }
+    Ok(intervals)
+}
+
+pub struct LabelsFromThresholdNode;
+
+impl Node<Value, Ctx> for LabelsFromThresholdNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "LabelsFromThreshold",
+            category: "Data",
+            doc: "Object ids by value intervals: a voxel whose value lies in [lo, hi) of an \
+                  interval gets its id (the first matching interval wins), others background.",
+            inputs: vec![PortSpec::input(
+                "volume",
+                PortType::Volume,
+                "the scalar field",
+            )],
+            outputs: vec![labels_output()],
+            params: vec![ParamSpec::text(
+                "intervals",
+                "80..140: 1; 140..256: 2",
+                "\"lo..hi: id; …\" in data units",
+            )],
+            frame_dependent: false,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let volume = inputs.require("volume")?.volume("volume")?.clone();
+        let intervals = parse_intervals(p.text("intervals"))
+            .map_err(|e| NodeError::new(format!("parameter `intervals`: {e}")))?;
+        finish(
+            ctx,
+            "LabelsFromThreshold",
+            segmentation::threshold(&volume.data, &intervals),
+        )
+    }
+}
+
+pub struct LabelsFromMapsNode;
+
+impl Node<Value, Ctx> for LabelsFromMapsNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "LabelsFromMaps",
+            category: "Data",
+            doc: "Object ids from probability maps on one grid (e.g. the MRI's grey- and \
+                  white-matter maps): each voxel gets the id of the map with the largest value \
+                  (a = 1, b = 2, c = 3) if that value is at least `floor`, else background.",
+            inputs: vec![
+                PortSpec::input("a", PortType::Volume, "map of object 1"),
+                PortSpec::optional("b", PortType::Volume, "map of object 2"),
+                PortSpec::optional("c", PortType::Volume, "map of object 3"),
+            ],
+            outputs: vec![labels_output()],
+            params: vec![
+                ParamSpec::float(
+                    "floor",
+                    128.0,
+                    -1e12,
+                    1e12,
+                    "smallest value that makes a voxel part of an object (data units)",
+                ),
+                ParamSpec::text(
+                    "names",
+                    "",
+                    "object names, \"a name, b name, …\" (optional)",
+                ),
+            ],
+            frame_dependent: false,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let mut maps = vec![inputs.require("a")?.volume("a")?.clone()];
+        for port in ["b", "c"] {
+            if let Some(v) = inputs.get(port) {
+                maps.push(v.volume(port)?.clone());
+            }
+        }
+        let data: Vec<&hatchery_data::VolumeData> = maps.iter().map(|m| &*m.data).collect();
+        let mut labels = segmentation::from_maps(&data, p.f32("floor"))
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let names: std::collections::BTreeMap<u16, String> = p
+            .text("names")
+            .split(',')
+            .map(str::trim)
+            .enumerate()
+            .filter(|(_, n)| !n.is_empty())
+            .map(|(k, n)| (k as u16 + 1, n.to_string()))
+            .collect();
+        labels.name_objects(&names);
+        finish(ctx, "LabelsFromMaps", labels)
+    }
+}

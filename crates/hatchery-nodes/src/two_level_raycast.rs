@@ -1,0 +1,423 @@
+//! `TwoLevelRaycast`: two-level volume rendering of a segmented volume (Hadwiger §2.2–2.4) —
+//! per-object transfer functions, rendering and local compositing modes, combined along each
+//! ray by a global compositing mode (see shaders/two_level_raycast.wgsl).
+
+use crate::raycast::{KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo};
+use crate::value::{Compositing, Image, Labels, ObjectStyle, RenderMode};
+use crate::{Ctx, Value};
+use hatchery_data::transfer_function::LUT_SIZE;
+use hatchery_gpu::GpuError;
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+const GLOBAL: &[&str] = &["over", "mip", "sum"];
+const BOUNDARIES: &[&str] = &["filtered", "point"];
+const NORMALS: &[&str] = &["data", "objects"];
+
+crate::uniform_block! {
+    /// `TwoLevel` of shaders/two_level_raycast.wgsl: (global compositing 0 over / 1 mip /
+    /// 2 sum, 1 for boundary filtering, columns of the object table, 1 for normals from the
+    /// objects' masks).
+    pub struct TwoLevelUniforms in "two_level_raycast" as "TwoLevel" {
+        pub options: [f32; 4],
+    }
+}
+
+fn mode_code(mode: RenderMode) -> f32 {
+    match mode {
+        RenderMode::Dvr => 0.0,
+        RenderMode::ShadedDvr => 1.0,
+        RenderMode::Tone => 2.0,
+        RenderMode::Contours => 3.0,
+        RenderMode::Mip => 4.0,
+        RenderMode::Iso => 5.0,
+    }
+}
+
+fn compositing_code(c: Compositing) -> f32 {
+    match c {
+        Compositing::Over => 0.0,
+        Compositing::Mip => 1.0,
+        Compositing::Iso => 2.0,
+        Compositing::Sum => 3.0,
+    }
+}
+
+/// The object table as textures: the TF rows (LUT_SIZE × drawn objects, RGBA) and, per id,
+/// (row + 1 or 0, mode, compositing, iso) / (domain lo, hi, 0, 0).
+struct ObjectTables {
+    tf_rows: Vec<f32>,
+    rows: u32,
+    columns: u32,
+    table: Vec<f32>,
+}
+
+fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
+    let columns = styles
+        .iter()
+        .map(|s| s.id as u32 + 1)
+        .max()
+        .unwrap_or(1)
+        .max(1);
+    let mut table = vec![0.0f32; columns as usize * 8];
+    let mut tf_rows = Vec::new();
+    let mut rows = 0u32;
+    for s in styles.iter().filter(|s| s.enabled) {
+        rows += 1;
+        tf_rows.extend(s.tf.lut.iter().flatten().copied());
+        let at = s.id as usize * 4;
+        table[at..at + 4].copy_from_slice(&[
+            rows as f32,
+            mode_code(s.mode),
+            compositing_code(s.compositing),
+            s.iso,
+        ]);
+        let at = (columns as usize + s.id as usize) * 4;
+        table[at..at + 4].copy_from_slice(&[s.tf.domain[0], s.tf.domain[1], 0.0, 0.0]);
+    }
+    if rows == 0 {
+        rows = 1;
+        tf_rows = vec![0.0; LUT_SIZE * 4];
+    }
+    ObjectTables {
+        tf_rows,
+        rows,
+        columns,
+        table,
+    }
+}
+
+/// Per 8³-voxel brick: (0, 1, id, 0) where a sample in the brick can belong to a drawn object,
+/// (1, 0, id, 0) (an empty range: "skip") elsewhere; id = the one object every sample in the
+/// brick sees, or −1 where there are several (then each sample filters its 8 voxels).
+fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3], Vec<[f32; 4]>) {
+    let mut drawn = vec![false; u16::MAX as usize + 1];
+    for s in styles.iter().filter(|s| s.enabled) {
+        drawn[s.id as usize] = true;
+    }
+    let bricks = labels.brick_objects();
+    let table = bricks
+        .ids
+        .iter()
+        .map(|ids| {
+            let single = if ids.len() == 1 {
+                f32::from(ids[0])
+            } else {
+                -1.0
+            };
+            if ids.iter().any(|&id| drawn[id as usize]) {
+                [0.0, 1.0, single, 0.0]
+            } else {
+                [1.0, 0.0, single, 0.0]
+            }
+        })
+        .collect();
+    (bricks.dims, table)
+}
+
+pub struct TwoLevelRaycastNode;
+
+impl Node<Value, Ctx> for TwoLevelRaycastNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "TwoLevelRaycast",
+            category: "Volume",
+            doc: "Two-level volume rendering of a segmented volume (Hadwiger §2.2–2.4): each ray \
+                  is split into segments where it passes through one object (object membership \
+                  by boundary filtering, §2.3: each object's binary mask filtered trilinearly \
+                  and thresholded at 0.5); each segment is composited with its object's local \
+                  mode and rendering mode from ObjectStyles, and the segments are combined front \
+                  to back with the global mode: over, mip (per-channel maximum) or sum. Same \
+                  camera, light and jitter rules as Raycast.",
+            inputs: vec![
+                PortSpec::input("volume", PortType::Volume, "the scalar field"),
+                PortSpec::input(
+                    "labels",
+                    PortType::Labels,
+                    "object ids on the volume's grid",
+                ),
+                PortSpec::input("styles", PortType::ObjectStyles, "the object table"),
+                PortSpec::input("camera", PortType::Camera, "the view"),
+                PortSpec::optional("light", PortType::Light, "the light (default: a headlight)"),
+            ],
+            outputs: vec![
+                PortSpec::output("image", PortType::Image, "premultiplied colour"),
+                PortSpec::output(
+                    "gbuffer",
+                    PortType::GBuffer,
+                    "depth and normal of the first visible segment",
+                ),
+            ],
+            params: vec![
+                ParamSpec::choice(
+                    "global",
+                    "over",
+                    GLOBAL,
+                    "global compositing of the segments",
+                ),
+                ParamSpec::choice(
+                    "boundary",
+                    "filtered",
+                    BOUNDARIES,
+                    "object membership: filtered binary masks (§2.3) or the nearest voxel's id",
+                ),
+                ParamSpec::choice(
+                    "normals",
+                    "data",
+                    NORMALS,
+                    "shading normals from the data's gradient, or from each object's filtered \
+                     mask (for label maps without intensities)",
+                ),
+                ParamSpec::float(
+                    "step",
+                    0.5,
+                    0.05,
+                    8.0,
+                    "sample distance in voxels (of the smallest spacing)",
+                ),
+                ParamSpec::float("ambient", 0.15, 0.0, 1.0, "c_a of eq. 3 (shaded modes)"),
+                ParamSpec::float("diffuse", 0.85, 0.0, 4.0, "c_d of eq. 3"),
+                ParamSpec::float("specular", 0.4, 0.0, 4.0, "c_s of eq. 3"),
+                ParamSpec::float("exponent", 32.0, 1.0, 512.0, "c_e of eq. 3"),
+                ParamSpec::bool("jitter", true, "jitter the first sample per pixel"),
+                ParamSpec::float(
+                    "early_termination",
+                    0.99,
+                    0.5,
+                    1.0,
+                    "stop a ray at this opacity with global over (1 = never)",
+                ),
+                ParamSpec::bool(
+                    "skip_empty",
+                    true,
+                    "jump over 8³-voxel bricks that no drawn object reaches — same picture, \
+                     fewer samples",
+                ),
+                ParamSpec::choice(
+                    "kernel",
+                    "auto",
+                    KERNELS,
+                    "GPU path: fragment shader or compute kernel (same picture)",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let volume = inputs.require("volume")?.volume("volume")?.clone();
+        let labels = inputs.require("labels")?.labels("labels")?.clone();
+        let styles = inputs.require("styles")?.object_styles("styles")?.clone();
+        let camera = inputs.require("camera")?.camera("camera")?.clone();
+        let (l, v) = (&labels.data, &volume.data);
+        if l.dims != v.dims {
+            return Err(NodeError::at_port(
+                "labels",
+                format!(
+                    "the labels are {:?} voxels, the volume {:?}: they must share the grid",
+                    l.dims, v.dims
+                ),
+            ));
+        }
+        let tolerance = 1e-3 * v.geometry.spacing.min_element();
+        if !l
+            .geometry
+            .to_world()
+            .abs_diff_eq(v.geometry.to_world(), tolerance)
+        {
+            return Err(NodeError::at_port(
+                "labels",
+                format!(
+                    "the labels lie elsewhere in the world ({}) than the volume ({})",
+                    l.geometry.describe(),
+                    v.geometry.describe()
+                ),
+            ));
+        }
+        if !styles.iter().any(|s| s.enabled) {
+            ctx.warn("no object of the table is enabled: the picture is empty");
+        }
+        let kernel = Kernel::choose(p.choice("kernel"), &ctx.gpu);
+        let options = RayOptions {
+            mode: 0,
+            iso: 0.0,
+            step_voxels: p.f32("step"),
+            shading: 1,
+            lighting_model: "phong",
+            phong: [
+                p.f32("ambient"),
+                p.f32("diffuse"),
+                p.f32("specular"),
+                p.f32("exponent"),
+            ],
+            kappa: [0.0, 0.0],
+            contours: false,
+            thickness: 0.0,
+            transparency: false,
+            mip_bias: 0.0,
+            jitter: p.bool("jitter"),
+            early_termination: p.f32("early_termination"),
+            hit_opacity: 0.5,
+            light_view: crate::raycast::light_direction(inputs, &camera)?,
+            skip_empty: false,
+            kernel,
+        };
+        let info = TableInfo {
+            shading: 1.0,
+            domain: [0.0, 1.0],
+            nodes: 0.0,
+            map_size: 1.0,
+            use_labels: false,
+            label_range: [0.0, 1.0],
+            label_count: 0.0,
+            skip_empty: p.bool("skip_empty"),
+        };
+        let err = |e: GpuError| NodeError::new(e.to_string());
+        let gpu = &ctx.gpu;
+        let volume_texture = volume.texture(gpu).map_err(err)?;
+        let contours = styles
+            .iter()
+            .any(|s| s.enabled && s.mode == RenderMode::Contours);
+        let object_normals = p.choice("normals") == "objects";
+        // A mask's central difference across a 0 → 1 step is at most 0.5 per voxel.
+        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+        let max_gradient = match (object_normals, contours) {
+            (true, _) => 0.5 / min_spacing,
+            (false, true) => volume.max_gradient(),
+            (false, false) => 1.0,
+        };
+        let uniforms = RayUniforms::new(
+            &camera,
+            v,
+            &options,
+            &info,
+            max_gradient,
+            volume_texture.texel_range,
+        );
+        let tables = object_tables(&styles);
+        let limit = gpu.device.limits().max_texture_dimension_2d;
+        if tables.columns > limit {
+            return Err(NodeError::at_port(
+                "styles",
+                format!(
+                    "object id {} is above this adapter's limit of {} objects",
+                    tables.columns - 1,
+                    limit - 1
+                ),
+            ));
+        }
+        let global = GLOBAL
+            .iter()
+            .position(|g| *g == p.choice("global"))
+            .unwrap_or(0);
+        let filtered = p.choice("boundary") != "point";
+        let two_level = TwoLevelUniforms {
+            options: [
+                global as f32,
+                if filtered { 1.0 } else { 0.0 },
+                tables.columns as f32,
+                if object_normals { 1.0 } else { 0.0 },
+            ],
+        };
+        let ray_buffer = gpu.buffer_init(
+            "two-level ray",
+            bytemuck::bytes_of(&uniforms),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let two_level_buffer = gpu.buffer_init(
+            "two-level",
+            bytemuck::bytes_of(&two_level),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let tf_texture = gpu.texture_2d_init(
+            "object tfs",
+            LUT_SIZE as u32,
+            tables.rows,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&tables.tf_rows),
+        );
+        let table_texture = gpu.texture_2d_init(
+            "object table",
+            tables.columns,
+            2,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&tables.table),
+        );
+        let ids = labels.texture(gpu).map_err(err)?;
+        let (brick_dims, brick_ranges) = brick_table(&labels, &styles);
+        let brick_texture = gpu.texture_3d_init(
+            "object bricks",
+            brick_dims,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&brick_ranges),
+        );
+        let views = [
+            volume_texture.texture.create_view(&Default::default()),
+            tf_texture.create_view(&Default::default()),
+            ids.create_view(&Default::default()),
+            table_texture.create_view(&Default::default()),
+            brick_texture.create_view(&Default::default()),
+            gpu.texture_2d_init(
+                "unused lighting tf",
+                1,
+                1,
+                wgpu::TextureFormat::Rgba32Float,
+                &[0u8; 16],
+            )
+            .create_view(&Default::default()),
+        ];
+        let pipelines = ctx
+            .cached("two_level_raycast.pipelines", |gpu| {
+                RayPipelines::new(gpu, "two_level_raycast")
+            })
+            .map_err(err)?;
+        let sampler = ctx
+            .cached("two_level_raycast.sampler", |gpu| {
+                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("linear clamp"),
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    ..Default::default()
+                }))
+            })
+            .map_err(err)?;
+        let texture = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
+        let entries = [
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: ray_buffer.as_entire_binding(),
+            },
+            texture(1, &views[0]),
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            texture(3, &views[1]),
+            // The lighting TF of shade_surface's `lighting` branch, which two-level never takes.
+            texture(4, &views[5]),
+            texture(9, &views[4]),
+            texture(11, &views[2]),
+            texture(12, &views[3]),
+            wgpu::BindGroupEntry {
+                binding: 13,
+                resource: two_level_buffer.as_entire_binding(),
+            },
+        ];
+        let (image, gbuffer) = pipelines.run(ctx, &camera, &entries, kernel)?;
+        Ok(vec![
+            Value::Image(Arc::new(Image { texture: image })),
+            Value::GBuffer(Arc::new(gbuffer)),
+        ])
+    }
+}
