@@ -89,7 +89,7 @@ pub fn object_table(ui: &mut Ui, salt: &str, rows: &mut Vec<Row>, names: &[(u16,
                     ui.label("");
                 }
                 if ui
-                    .small_button("✕")
+                    .small_button("x")
                     .on_hover_text(format!("remove {name}"))
                     .clicked()
                 {
