@@ -12,8 +12,8 @@
 // every sample of the brick sees, −1 where several meet.
 // Object ids (R16Uint), on the volume's grid.
 @group(0) @binding(11) var object_ids: texture_3d<u32>;
-// One column per id: row 0 = (table row + 1, or 0 when not drawn; rendering mode; local
-// compositing; iso value), row 1 = (TF domain lo, hi, 0, 0).
+// Per id, at column id % 256 of rows 2 · (id / 256) and the one after: (table row + 1, or 0
+// when not drawn; rendering mode; local compositing; iso value) and (TF domain lo, hi, 0, 0).
 @group(0) @binding(12) var objects: texture_2d<f32>;
 
 // 1 where a voxel belongs to a drawn object (R8Unorm, filtered): the union of the drawn
@@ -38,6 +38,10 @@ const LOCAL_OVER: i32 = 0;
 const LOCAL_MIP: i32 = 1;
 const LOCAL_ISO: i32 = 2;
 const LOCAL_SUM: i32 = 3;
+
+fn object_info(id: u32, which: u32) -> vec4<f32> {
+    return textureLoad(objects, vec2<i32>(i32(id % 256u), i32((id / 256u) * 2u + which)), 0);
+}
 
 fn id_at(v: vec3<i32>) -> u32 {
     let top = vec3<i32>(ray.dims.xyz) - 1;
@@ -219,7 +223,7 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
         if k < count && !jump {
             if i32(id) >= columns {
                 id = 0u;
-            } else if id != 0u && textureLoad(objects, vec2<i32>(i32(id), 0), 0).x < 0.5 {
+            } else if id != 0u && object_info(id, 0u).x < 0.5 {
                 id = 0u;
             }
         }
@@ -242,12 +246,12 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
             seg_done = false;
             previous_value = NO_DATA;
             if id != 0u {
-                let info = textureLoad(objects, vec2<i32>(i32(id), 0), 0);
+                let info = object_info(id, 0u);
                 row = i32(info.x + 0.5) - 1;
                 mode = i32(info.y + 0.5);
                 local = i32(info.z + 0.5);
                 iso = info.w;
-                domain = textureLoad(objects, vec2<i32>(i32(id), 1), 0).xy;
+                domain = object_info(id, 1u).xy;
             }
         }
         if jump {

@@ -609,3 +609,50 @@ fn label_mask_reads_labels_as_it_reads_a_label_volume() {
     let inside = from_labels.iter().filter(|&&m| m > 0.5).count();
     assert!(inside > 1000, "core voxels: {inside}");
 }
+
+#[test]
+fn object_ids_up_to_65535_render_as_small_ones_do() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    let p = ray_params(&cam);
+    let (volume, small) = nested_spheres();
+    // The same objects as ids 30001 and 65535.
+    let ids = small
+        .ids
+        .iter()
+        .map(|&id| match id {
+            1 => 30001,
+            2 => 65535,
+            _ => 0,
+        })
+        .collect();
+    let large = LabelData::new(small.dims, small.geometry, ids);
+    let objects = |shell: u16, core: u16| {
+        [
+            Object {
+                id: shell,
+                tf: flat(SHELL),
+                local: Local::Mip,
+            },
+            Object {
+                id: core,
+                tf: flat(CORE),
+                local: Local::Over,
+            },
+        ]
+    };
+    let styles = |o: &[Object]| o.iter().map(|o| style(o.id, &o.tf, o.local)).collect();
+    let large_objects = objects(30001, 65535);
+    let gpu = render_gpu(
+        &mut session,
+        &cam,
+        &volume,
+        &large,
+        styles(&large_objects),
+        Global::Over,
+        "filtered",
+    );
+    let cpu = reference::render(&volume, &small, &objects(1, 2), Global::Over, true, &p);
+    assert!(cpu.iter().filter(|c| c[3] > 0.01).count() > 500);
+    assert_close("ids 30001 and 65535", &gpu, &cpu, 1.0 / 255.0);
+}

@@ -50,9 +50,15 @@ fn compositing_code(c: Compositing) -> f32 {
 struct ObjectTables {
     tf_rows: Vec<f32>,
     rows: u32,
+    /// Largest id + 1.
     columns: u32,
+    /// TABLE_WIDTH × (2 · ceil(columns / TABLE_WIDTH)) texels.
     table: Vec<f32>,
 }
+
+/// Ids per row pair of the object table: id → column id % 256, rows 2 · (id / 256) (modes) and
+/// the one after (TF domain), so every u16 id fits any adapter's 2-D texture limit.
+const TABLE_WIDTH: u32 = 256;
 
 fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
     let columns = styles
@@ -61,20 +67,25 @@ fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
         .max()
         .unwrap_or(1)
         .max(1);
-    let mut table = vec![0.0f32; columns as usize * 8];
+    let height = 2 * columns.div_ceil(TABLE_WIDTH);
+    let mut table = vec![0.0f32; (TABLE_WIDTH * height) as usize * 4];
+    let texel = |id: u16, which: u32| {
+        let (x, y) = (id as u32 % TABLE_WIDTH, id as u32 / TABLE_WIDTH * 2 + which);
+        (y * TABLE_WIDTH + x) as usize * 4
+    };
     let mut tf_rows = Vec::new();
     let mut rows = 0u32;
     for s in styles.iter().filter(|s| s.enabled) {
         rows += 1;
         tf_rows.extend(s.tf.lut.iter().flatten().copied());
-        let at = s.id as usize * 4;
+        let at = texel(s.id, 0);
         table[at..at + 4].copy_from_slice(&[
             rows as f32,
             mode_code(s.mode),
             compositing_code(s.compositing),
             s.iso,
         ]);
-        let at = (columns as usize + s.id as usize) * 4;
+        let at = texel(s.id, 1);
         table[at..at + 4].copy_from_slice(&[s.tf.domain[0], s.tf.domain[1], 0.0, 0.0]);
     }
     if rows == 0 {
@@ -304,13 +315,12 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         );
         let tables = object_tables(&styles);
         let limit = gpu.device.limits().max_texture_dimension_2d;
-        if tables.columns > limit {
+        if tables.rows > limit {
             return Err(NodeError::at_port(
                 "styles",
                 format!(
-                    "object id {} is above this adapter's limit of {} objects",
-                    tables.columns - 1,
-                    limit - 1
+                    "{} objects are drawn, more than this adapter's limit of {limit} transfer functions",
+                    tables.rows
                 ),
             ));
         }
@@ -346,8 +356,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         );
         let table_texture = gpu.texture_2d_init(
             "object table",
-            tables.columns,
-            2,
+            TABLE_WIDTH,
+            (tables.table.len() / 4) as u32 / TABLE_WIDTH,
             wgpu::TextureFormat::Rgba32Float,
             bytemuck::cast_slice(&tables.table),
         );
