@@ -656,3 +656,33 @@ fn object_ids_up_to_65535_render_as_small_ones_do() {
     assert!(cpu.iter().filter(|c| c[3] > 0.01).count() > 500);
     assert_close("ids 30001 and 65535", &gpu, &cpu, 1.0 / 255.0);
 }
+
+#[test]
+fn label_file_names_objects_from_a_slicer_segmentation_header() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("frog.seg.nrrd");
+    let mut bytes = b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\
+        space: right-anterior-superior\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n\
+        Segment0_Name:=skin\nSegment0_LabelValue:=1\nSegment1_Name:=liver\n\
+        Segment1_LabelValue:=3\n\n"
+        .to_vec();
+    bytes.extend_from_slice(&[1, 1, 3, 3, 0, 0, 3, 3]);
+    std::fs::write(&path, bytes).unwrap();
+    let mut session = session();
+    let out = common::run_node(
+        &mut session,
+        "LabelFile",
+        vec![],
+        &[("path", ParamValue::Path(path.display().to_string()))],
+    );
+    let Value::Labels(labels) = &out[0] else {
+        panic!("not labels")
+    };
+    let names: Vec<(u16, &str)> = labels
+        .data
+        .objects
+        .iter()
+        .map(|(id, n)| (*id, n.as_str()))
+        .collect();
+    assert_eq!(names, vec![(1, "skin"), (3, "liver")]);
+}

@@ -166,3 +166,103 @@ pub fn read_names(path: &Path) -> Result<BTreeMap<u16, String>, DataError> {
     }
     Ok(names)
 }
+
+/// Object names a NRRD header carries as 3D Slicer writes segmentations (`.seg.nrrd`):
+/// `SegmentK_Name:=NAME` with `SegmentK_LabelValue:=ID` (Slicer's default id is K + 1).
+/// Empty for other files; reads the header only (up to its blank line, at most 1 MiB).
+pub fn nrrd_segment_names(path: &Path) -> Result<BTreeMap<u16, String>, DataError> {
+    use std::io::{BufRead, BufReader, Read};
+    let file = std::fs::File::open(path).map_err(|e| DataError::io(path, e))?;
+    let mut reader = BufReader::new(file.take(1 << 20));
+    let (mut names, mut values) = (BTreeMap::new(), BTreeMap::new());
+    let mut line = Vec::new();
+    loop {
+        line.clear();
+        if reader
+            .read_until(b'\n', &mut line)
+            .map_err(|e| DataError::io(path, e))?
+            == 0
+        {
+            break;
+        }
+        let text = String::from_utf8_lossy(&line);
+        let text = text.trim_end_matches(['\n', '\r']);
+        if text.is_empty() {
+            break;
+        }
+        let Some((key, value)) = text.split_once(":=") else {
+            continue;
+        };
+        let Some(rest) = key.strip_prefix("Segment") else {
+            continue;
+        };
+        let Some((k, field)) = rest.split_once('_') else {
+            continue;
+        };
+        let Ok(k) = k.parse::<u32>() else {
+            continue;
+        };
+        match field {
+            "Name" => {
+                names.insert(k, value.trim().to_string());
+            }
+            "LabelValue" => {
+                if let Ok(v) = value.trim().parse::<u32>() {
+                    values.insert(k, v);
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(names
+        .into_iter()
+        .filter_map(|(k, name)| {
+            let id = values.get(&k).copied().unwrap_or(k + 1);
+            (1..=MAX_ID).contains(&id).then_some((id as u16, name))
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slicer_segment_names_come_from_the_nrrd_header() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.seg.nrrd");
+        std::fs::write(
+            &path,
+            "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\
+             Segment0_Name:=skin\nSegment0_LabelValue:=1\nSegment1_Name:=bone\n\
+             Segment1_LabelValue:=4\nSegment2_Name:=liver\n\n\u{1}\u{1}\u{4}\u{4}\u{0}\u{0}\u{3}\u{3}",
+        )
+        .unwrap();
+        let names = nrrd_segment_names(&path).unwrap();
+        assert_eq!(names.get(&1).map(String::as_str), Some("skin"));
+        assert_eq!(names.get(&4).map(String::as_str), Some("bone"));
+        // No LabelValue: Slicer's default, index + 1.
+        assert_eq!(names.get(&3).map(String::as_str), Some("liver"));
+    }
+
+    #[test]
+    fn name_tables_read_csv_and_itk_snap_and_errors_name_the_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let csv = dir.path().join("names.csv");
+        std::fs::write(&csv, "id,name\n1,skin\n# comment\n4, bone marrow\n").unwrap();
+        let names = read_names(&csv).unwrap();
+        assert_eq!(names.get(&4).map(String::as_str), Some("bone marrow"));
+        let snap = dir.path().join("labels.txt");
+        std::fs::write(
+            &snap,
+            "# ITK-SNAP Label Description File\n    0     0    0    0        0  0  0    \"Clear Label\"\n    7   255    0    0        1  1  1    \"Left ventricle\"\n",
+        )
+        .unwrap();
+        let names = read_names(&snap).unwrap();
+        assert_eq!(names.get(&7).map(String::as_str), Some("Left ventricle"));
+        assert!(!names.contains_key(&0));
+        std::fs::write(&csv, "1,skin\nx,bone\n").unwrap();
+        let e = read_names(&csv).unwrap_err().to_string();
+        assert!(e.contains("line 2"), "{e}");
+    }
+}

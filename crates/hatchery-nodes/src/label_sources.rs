@@ -37,8 +37,9 @@ impl Node<Value, Ctx> for LabelFileNode {
             category: "Data",
             doc: "Reads a label map (object id per voxel, whole numbers 0–65535, 0 = background) \
                   from any volume format VolumeFile reads, placed in the world the same way. \
-                  Object names come from `names`: a CSV/TSV table `id,name` or an ITK-SNAP label \
-                  description file; objects without a name are called \"object N\".",
+                  Object names come from `names` (a CSV/TSV table `id,name` or an ITK-SNAP label \
+                  description file) or from the file itself (3D Slicer's segment names in a \
+                  .seg.nrrd header); objects without a name are called \"object N\".",
             inputs: vec![],
             outputs: vec![labels_output()],
             params: vec![
@@ -79,6 +80,13 @@ impl Node<Value, Ctx> for LabelFileNode {
             .map_err(|e| NodeError::new(e.to_string()))?;
         let mut data = LabelData::from_volume(&volume)
             .map_err(|e| NodeError::new(format!("{}: {e}", path.display())))?;
+        // 3D Slicer writes segment names into the NRRD header.
+        let extension = path.to_string_lossy().to_ascii_lowercase();
+        if extension.ends_with(".nrrd") || extension.ends_with(".nhdr") {
+            let table = segmentation::nrrd_segment_names(&path)
+                .map_err(|e| NodeError::new(e.to_string()))?;
+            data.name_objects(&table);
+        }
         let names = p.path("names");
         if !names.as_os_str().is_empty() {
             let table =
