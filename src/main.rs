@@ -373,7 +373,18 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
             "png" => session
                 .export_png(node, port, path)
                 .map_err(|e| anyhow::anyhow!("{what}: {e}"))?,
-            _ => bail!("{what}: the file must end in .npy (raw data) or .png (a picture)"),
+            // A camera for other renderers (benches/peers): eye, target, up, field of view.
+            "json" => match session.output(node, port)? {
+                hatchery_nodes::Value::Camera(camera) => std::fs::write(path, camera.to_json())
+                    .with_context(|| format!("{what}: cannot write the file"))?,
+                other => bail!(
+                    "{what}: .json is written for cameras; this is a {} (use .npy or .png)",
+                    other.port_type()
+                ),
+            },
+            _ => bail!(
+                "{what}: the file must end in .npy (raw data), .png (a picture) or .json (a camera)"
+            ),
         }
         println!("dumped {node}.{port} to {}", path.display());
     }

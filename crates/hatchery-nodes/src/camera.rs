@@ -15,6 +15,9 @@ pub struct Camera {
     pub view: Mat4,
     pub proj: Mat4,
     pub eye: Vec3,
+    /// The point looked at and the world up vector of the view (for exports to other tools).
+    pub target: Vec3,
+    pub up: Vec3,
     pub orthographic: bool,
     pub near: f32,
     pub far: f32,
@@ -77,6 +80,8 @@ impl Camera {
             directx::perspective(2.0 * half_tan_y.atan(), aspect, near, far)
         };
         Camera {
+            target,
+            up,
             view,
             proj,
             eye,
@@ -107,6 +112,26 @@ impl Camera {
         } else {
             -self.view_position(x, y, depth).normalize()
         }
+    }
+
+    /// The camera as JSON for other renderers (benches/peers): eye, target and up in world
+    /// units, the vertical field of view in degrees (of the frame's height), near, far, frame
+    /// size, projection; orthographic cameras also give the half height of the view.
+    pub fn to_json(&self) -> String {
+        let v = |p: Vec3| format!("[{}, {}, {}]", p.x, p.y, p.z);
+        let fov_y = 2.0 * (1.0 / self.proj.y_axis.y).atan().to_degrees();
+        let half_height = 1.0 / self.proj.y_axis.y;
+        format!(
+            "{{\"eye\": {}, \"target\": {}, \"up\": {}, \"fov_y_deg\": {fov_y}, \"near\": {}, \"far\": {}, \"width\": {}, \"height\": {}, \"orthographic\": {}, \"ortho_half_height\": {half_height}}}\n",
+            v(self.eye),
+            v(self.target),
+            v(self.up),
+            self.near,
+            self.far,
+            self.width,
+            self.height,
+            self.orthographic
+        )
     }
 
     /// The camera block as a uniform buffer (binding 0 of every mesh shader).
