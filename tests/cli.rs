@@ -360,3 +360,52 @@ fn every_intermediate_buffer_of_the_hidden_structures_preset_can_be_dumped() {
         hatchery_nodes::export::read_npy(&dir.path().join("silhouette2.mask.npy")).unwrap();
     assert!(silhouettes.data.iter().filter(|v| **v > 0.5).count() > 100);
 }
+
+#[test]
+fn a_camera_dumps_to_json_for_other_tools() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("cam.json");
+    let output = hatchery(&[
+        "render",
+        "graphs/shaded_surface.ron",
+        "-o",
+        &dir.path().join("out.png").to_string_lossy(),
+        "--size",
+        "160x120",
+        "--set",
+        "shells.resolution=24",
+        "--dump",
+        &format!("camera.camera={}", path.display()),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let vec3 = |key: &str| -> Vec<f64> {
+        json[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    // The preset's camera: azimuth 30°, elevation 20°, distance 3.5 around the origin, y up.
+    let (eye, target) = (vec3("eye"), vec3("target"));
+    assert_eq!(target, vec![0.0, 0.0, 0.0]);
+    assert_eq!(vec3("up"), vec![0.0, 1.0, 0.0]);
+    let distance = eye.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!((distance - 3.5).abs() < 1e-4, "eye {eye:?}");
+    assert!((eye[1] / 3.5 - 20f64.to_radians().sin()).abs() < 1e-4, "eye {eye:?}");
+    // The field of view spans the shorter (vertical) side of the 160×120 frame.
+    assert!((json["fov_y_deg"].as_f64().unwrap() - 40.0).abs() < 1e-3);
+    assert_eq!(json["width"], 160);
+    // Other values are refused with a clear error.
+    let output = hatchery(&[
+        "render",
+        "graphs/shaded_surface.ron",
+        "--set",
+        "shells.resolution=24",
+        "--dump",
+        &format!("shaded.image={}", path.display()),
+    ]);
+    assert_clean_failure(&output, &[".json is written for cameras"]);
+}
