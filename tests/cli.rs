@@ -394,7 +394,10 @@ fn a_camera_dumps_to_json_for_other_tools() {
     assert_eq!(vec3("up"), vec![0.0, 1.0, 0.0]);
     let distance = eye.iter().map(|x| x * x).sum::<f64>().sqrt();
     assert!((distance - 3.5).abs() < 1e-4, "eye {eye:?}");
-    assert!((eye[1] / 3.5 - 20f64.to_radians().sin()).abs() < 1e-4, "eye {eye:?}");
+    assert!(
+        (eye[1] / 3.5 - 20f64.to_radians().sin()).abs() < 1e-4,
+        "eye {eye:?}"
+    );
     // The field of view spans the shorter (vertical) side of the 160×120 frame.
     assert!((json["fov_y_deg"].as_f64().unwrap() - 40.0).abs() < 1e-3);
     assert_eq!(json["width"], 160);
