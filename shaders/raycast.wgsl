@@ -11,6 +11,36 @@ struct RayResult {
     depth: f32,
 };
 
+// Maximum intensity projection on its own loop: a sample and a maximum per step. The other
+// modes' state is not live here, and there is no brick skipping: on lavapipe this plain loop is
+// 15× faster than MIP inside the shared loop and 4× faster than with the brick test (whose
+// jumps make neighbouring pixels' loops diverge); docs/benchmarks.md.
+fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
+    var out: RayResult;
+    out.color = vec4<f32>(0.0);
+    out.normal = vec4<f32>(0.0);
+    out.depth = 1.0;
+    let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
+    var best = -1e30;
+    var best_t = -1.0;
+    for (var k = 0u; k < count; k++) {
+        let t = start + f32(k) * h;
+        let v = value_at(r.q0 + r.dq * t);
+        if !no_data(v) && v > best {
+            best = v;
+            best_t = t;
+        }
+    }
+    if best_t < 0.0 {
+        return out;
+    }
+    let entry = table_lookup(best);
+    out.color = vec4<f32>(entry.rgb * entry.a, entry.a);
+    out.depth = to_window_depth(r.p0 + r.dir * best_t);
+    out.normal = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    return out;
+}
+
 fn cast_ray(position: vec2<f32>) -> RayResult {
     var out: RayResult;
     out.color = vec4<f32>(0.0);
@@ -36,6 +66,10 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     let mode = i32(ray.mode.x + 0.5);
     let shading = i32(ray.mode.z + 0.5);
     let l = ray.light.xyz;
+
+    if mode == 1 {
+        return cast_mip(r, start, h);
+    }
 
     var color = vec3<f32>(0.0);
     var alpha = 0.0;

@@ -195,8 +195,8 @@ impl Node<Value, Ctx> for RaycastNode {
                     "skip_empty",
                     true,
                     "jump over 8³-voxel bricks that cannot change the picture (DVR: values the \
-                     transfer function makes transparent; MIP: none above the maximum so far; \
-                     iso: all below the iso value) — same picture, fewer samples",
+                     transfer function makes transparent; iso: all below the iso value) — same \
+                     picture, fewer samples. MIP never skips: its plain loop is faster",
                 ),
                 ParamSpec::choice(
                     "kernel",
