@@ -188,3 +188,44 @@ fn view_normal(g: vec3<f32>) -> vec3<f32> {
     }
     return (ray.view * vec4<f32>(-g / g_length, 0.0)).xyz;
 }
+
+// What a ray leaves in its pixel: premultiplied colour, the view-space normal where it first
+// became visible (w = 1 where there is one), and that point's window depth (1: none).
+struct RayResult {
+    color: vec4<f32>,
+    normal: vec4<f32>,
+    depth: f32,
+};
+
+// The fragment path's outputs: colour and normal attachments, the depth attachment.
+struct FragmentOut {
+    @location(0) color: vec4<f32>,
+    @location(1) normal: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+};
+
+fn fragment_out(r: RayResult) -> FragmentOut {
+    var out: FragmentOut;
+    out.color = r.color;
+    out.normal = r.normal;
+    out.depth = r.depth;
+    return out;
+}
+
+// The compute path: one invocation per pixel in 8×8 tiles writes storage textures (the depth
+// as r32float; the pass copies it into the G-buffer's depth texture). On GPUs whose graphics
+// pipeline runs on part of the chip only (H100/H200) this is the fast path.
+@group(1) @binding(0) var out_color: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(1) var out_normal: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(2) var out_depth: texture_storage_2d<r32float, write>;
+
+fn store_result(id: vec2<u32>, r: RayResult) {
+    let pixel = vec2<i32>(id);
+    textureStore(out_color, pixel, r.color);
+    textureStore(out_normal, pixel, r.normal);
+    textureStore(out_depth, pixel, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
+}
+
+fn outside_frame(id: vec2<u32>) -> bool {
+    return f32(id.x) >= ray.frame.x || f32(id.y) >= ray.frame.y;
+}

@@ -3,18 +3,10 @@
 // iso value. Prepended: ray_common (uniforms, sampling, the primary ray), ray_classify (tables),
 // ray_shade (eq. 3, 5, 8, style TFs), ray_skip (empty-space skipping).
 
-// What a ray leaves in its pixel: premultiplied colour, the view-space normal where opacity
-// first reached the hit threshold (w = 1 where there is one), and that point's window depth.
-struct RayResult {
-    color: vec4<f32>,
-    normal: vec4<f32>,
-    depth: f32,
-};
-
 // Maximum intensity projection on its own loop: a sample and a maximum per step. The other
 // modes' state is not live here, and there is no brick skipping: on lavapipe this plain loop is
-// 15× faster than MIP inside the shared loop and 4× faster than with the brick test (whose
-// jumps make neighbouring pixels' loops diverge); docs/benchmarks.md.
+// 15× faster than MIP inside the shared loop and 4× faster than with the brick test (probably
+// its jumps make neighbouring pixels' loops diverge); docs/benchmarks.md.
 fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     var out: RayResult;
     out.color = vec4<f32>(0.0);
@@ -237,37 +229,14 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     return out;
 }
 
-struct FragmentOut {
-    @location(0) color: vec4<f32>,
-    @location(1) normal: vec4<f32>,
-    @builtin(frag_depth) depth: f32,
-};
-
 @fragment
 fn fs_main(in: ScreenOut) -> FragmentOut {
-    let r = cast_ray(in.position.xy);
-    var out: FragmentOut;
-    out.color = r.color;
-    out.normal = r.normal;
-    out.depth = r.depth;
-    return out;
+    return fragment_out(cast_ray(in.position.xy));
 }
-
-// The compute path: the same rays, one invocation per pixel in 8×8 tiles, written to storage
-// textures (the depth as r32float; the pass copies it into the G-buffer's depth texture). On
-// GPUs whose graphics pipeline runs on part of the chip only (H100/H200) this is the fast path.
-@group(1) @binding(0) var out_color: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(1) var out_normal: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(2) var out_depth: texture_storage_2d<r32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if f32(id.x) >= ray.frame.x || f32(id.y) >= ray.frame.y {
-        return;
+    if !outside_frame(id.xy) {
+        store_result(id.xy, cast_ray(vec2<f32>(id.xy) + 0.5));
     }
-    let r = cast_ray(vec2<f32>(id.xy) + 0.5);
-    let pixel = vec2<i32>(id.xy);
-    textureStore(out_color, pixel, r.color);
-    textureStore(out_normal, pixel, r.normal);
-    textureStore(out_depth, pixel, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
 }

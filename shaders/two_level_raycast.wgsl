@@ -152,14 +152,8 @@ struct Segment {
     first_normal: vec3<f32>,
 };
 
-struct TwoLevelResult {
-    color: vec4<f32>,
-    normal: vec4<f32>,
-    depth: f32,
-};
-
-fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
-    var out: TwoLevelResult;
+fn cast_two_level(position: vec2<f32>) -> RayResult {
+    var out: RayResult;
     out.color = vec4<f32>(0.0);
     out.normal = vec4<f32>(0.0);
     out.depth = 1.0;
@@ -376,35 +370,14 @@ fn cast_two_level(position: vec2<f32>) -> TwoLevelResult {
     return out;
 }
 
-@group(1) @binding(0) var out_color: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(1) var out_normal: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(2) var out_depth: texture_storage_2d<r32float, write>;
-
-// The compute kernel (as Raycast's compute path): one invocation per pixel in 8×8 tiles.
-@compute @workgroup_size(8, 8, 1)
-fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if f32(id.x) >= ray.frame.x || f32(id.y) >= ray.frame.y {
-        return;
-    }
-    let r = cast_two_level(vec2<f32>(id.xy) + 0.5);
-    let pixel = vec2<i32>(id.xy);
-    textureStore(out_color, pixel, r.color);
-    textureStore(out_normal, pixel, r.normal);
-    textureStore(out_depth, pixel, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
-}
-
-struct FragmentOut {
-    @location(0) color: vec4<f32>,
-    @location(1) normal: vec4<f32>,
-    @builtin(frag_depth) depth: f32,
-};
-
 @fragment
 fn fs_main(in: ScreenOut) -> FragmentOut {
-    let r = cast_two_level(in.position.xy);
-    var out: FragmentOut;
-    out.color = r.color;
-    out.normal = r.normal;
-    out.depth = r.depth;
-    return out;
+    return fragment_out(cast_two_level(in.position.xy));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !outside_frame(id.xy) {
+        store_result(id.xy, cast_two_level(vec2<f32>(id.xy) + 0.5));
+    }
 }

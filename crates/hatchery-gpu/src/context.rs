@@ -235,23 +235,7 @@ impl GpuContext {
         height: u32,
         format: wgpu::TextureFormat,
     ) -> wgpu::Texture {
-        self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        })
+        self.texture_2d(label, width, height, format, wgpu::TextureUsages::empty())
     }
 
     /// A 2-D texture a compute shader writes (storage) and later passes read, copy or render
@@ -262,6 +246,24 @@ impl GpuContext {
         width: u32,
         height: u32,
         format: wgpu::TextureFormat,
+    ) -> wgpu::Texture {
+        self.texture_2d(
+            label,
+            width,
+            height,
+            format,
+            wgpu::TextureUsages::STORAGE_BINDING,
+        )
+    }
+
+    /// A one-level 2-D texture for rendering, sampling and copying, with `extra` usages.
+    fn texture_2d(
+        &self,
+        label: &str,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+        extra: wgpu::TextureUsages,
     ) -> wgpu::Texture {
         self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
@@ -274,7 +276,7 @@ impl GpuContext {
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
+            usage: extra
                 | wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC

@@ -2,7 +2,9 @@
 //! per-object transfer functions, rendering and local compositing modes, combined along each
 //! ray by a global compositing mode (see shaders/two_level_raycast.wgsl).
 
-use crate::raycast::{KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo};
+use crate::raycast::{
+    KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo, phong_params, phong_values,
+};
 use crate::value::{Compositing, Image, Labels, ObjectStyle, RenderMode};
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::LUT_SIZE;
@@ -132,6 +134,7 @@ pub struct TwoLevelRaycastNode;
 
 impl Node<Value, Ctx> for TwoLevelRaycastNode {
     fn schema(&self) -> NodeSchema {
+        let [ambient, diffuse, specular, exponent] = phong_params();
         NodeSchema {
             kind: "TwoLevelRaycast",
             category: "Volume",
@@ -188,10 +191,10 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                     8.0,
                     "sample distance in voxels (of the smallest spacing)",
                 ),
-                ParamSpec::float("ambient", 0.15, 0.0, 1.0, "c_a of eq. 3 (shaded modes)"),
-                ParamSpec::float("diffuse", 0.85, 0.0, 4.0, "c_d of eq. 3"),
-                ParamSpec::float("specular", 0.4, 0.0, 4.0, "c_s of eq. 3"),
-                ParamSpec::float("exponent", 32.0, 1.0, 512.0, "c_e of eq. 3"),
+                ambient,
+                diffuse,
+                specular,
+                exponent,
                 ParamSpec::bool("jitter", true, "jitter the first sample per pixel"),
                 ParamSpec::float(
                     "early_termination",
@@ -263,12 +266,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             step_voxels: p.f32("step"),
             shading: 1,
             lighting_model: "phong",
-            phong: [
-                p.f32("ambient"),
-                p.f32("diffuse"),
-                p.f32("specular"),
-                p.f32("exponent"),
-            ],
+            phong: phong_values(p),
             kappa: [0.0, 0.0],
             contours: false,
             thickness: 0.0,

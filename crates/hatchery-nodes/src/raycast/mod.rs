@@ -72,6 +72,26 @@ impl Kernel {
     }
 }
 
+/// The Blinn–Phong parameters of eq. 3 (c_a, c_d, c_s, c_e), shared by the ray casters.
+pub fn phong_params() -> [ParamSpec; 4] {
+    [
+        ParamSpec::float("ambient", 0.15, 0.0, 1.0, "c_a of eq. 3"),
+        ParamSpec::float("diffuse", 0.85, 0.0, 4.0, "c_d of eq. 3"),
+        ParamSpec::float("specular", 0.4, 0.0, 4.0, "c_s of eq. 3"),
+        ParamSpec::float("exponent", 32.0, 1.0, 512.0, "c_e of eq. 3"),
+    ]
+}
+
+/// The values of [`phong_params`].
+pub fn phong_values(p: &Params) -> [f32; 4] {
+    [
+        p.f32("ambient"),
+        p.f32("diffuse"),
+        p.f32("specular"),
+        p.f32("exponent"),
+    ]
+}
+
 /// The view-space direction towards the light: the `light` input's, else a headlight.
 pub fn light_direction(inputs: &NodeInputs<Value>, camera: &Camera) -> Result<Vec3, NodeError> {
     Ok(match inputs.get("light") {
@@ -84,6 +104,7 @@ pub struct RaycastNode;
 
 impl Node<Value, Ctx> for RaycastNode {
     fn schema(&self) -> NodeSchema {
+        let [ambient, diffuse, specular, exponent] = phong_params();
         NodeSchema {
             kind: "Raycast",
             category: "Volume",
@@ -140,10 +161,10 @@ impl Node<Value, Ctx> for RaycastNode {
                     lighting::LIGHTING_MODELS,
                     "lighting transfer function for `lighting`",
                 ),
-                ParamSpec::float("ambient", 0.15, 0.0, 1.0, "c_a of eq. 3"),
-                ParamSpec::float("diffuse", 0.85, 0.0, 4.0, "c_d of eq. 3"),
-                ParamSpec::float("specular", 0.4, 0.0, 4.0, "c_s of eq. 3"),
-                ParamSpec::float("exponent", 32.0, 1.0, 512.0, "c_e of eq. 3"),
+                ambient,
+                diffuse,
+                specular,
+                exponent,
                 ParamSpec::float(
                     "kappa_t",
                     0.0,
@@ -232,12 +253,7 @@ impl Node<Value, Ctx> for RaycastNode {
                 .position(|s| *s == p.choice("shading"))
                 .unwrap_or(0),
             lighting_model: p.choice("lighting_model"),
-            phong: [
-                p.f32("ambient"),
-                p.f32("diffuse"),
-                p.f32("specular"),
-                p.f32("exponent"),
-            ],
+            phong: phong_values(p),
             kappa: [p.f32("kappa_t"), p.f32("kappa_s")],
             contours: p.bool("contours"),
             thickness: p.f32("thickness"),

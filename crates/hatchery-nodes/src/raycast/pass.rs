@@ -33,41 +33,57 @@ pub struct RayPipelines {
     depth_copy: wgpu::RenderPipeline,
 }
 
+/// A full-screen triangle (`vs_main`) whose `fs_main` writes `targets` and the depth attachment
+/// (always, no test): the ray casters' fragment path and the depth copy.
+fn full_screen_pipeline(
+    gpu: &GpuContext,
+    name: &str,
+    module: &wgpu::ShaderModule,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> Result<wgpu::RenderPipeline, GpuError> {
+    gpu.checked(&format!("pipeline {name}"), |device| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(name),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })
+}
+
 impl RayPipelines {
     /// The pipelines of ray-casting program `program` (entry points `vs_main`/`fs_main` and
     /// `cs_main`, outputs as in shaders/raycast.wgsl).
     pub fn new(gpu: &GpuContext, program: &str) -> Result<Self, GpuError> {
         let source = crate::shaders::source(program).expect("registered program");
         let module = gpu.shader(program, &source)?;
-        let render = gpu.checked(&format!("pipeline {program}"), |device| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(program),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Always),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        })?;
+        let render = full_screen_pipeline(
+            gpu,
+            program,
+            &module,
+            &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+        )?;
         let compute = gpu.checked(&format!("pipeline {program} (compute)"), |device| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(program),
@@ -80,35 +96,7 @@ impl RayPipelines {
         })?;
         let copy_source = crate::shaders::source("depth_from_texture").expect("registered program");
         let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
-        let depth_copy = gpu.checked("pipeline depth_from_texture", |device| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("depth from texture"),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &copy_module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Always),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &copy_module,
-                    entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
-                    targets: &[],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        })?;
+        let depth_copy = full_screen_pipeline(gpu, "depth_from_texture", &copy_module, &[])?;
         Ok(Self {
             render,
             compute,
