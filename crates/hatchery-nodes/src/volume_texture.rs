@@ -12,8 +12,11 @@
 //! On CPU adapters (llvmpipe/lavapipe) 8-bit volumes are uploaded as R16Unorm of `257 v`
 //! (`v + 128` for i8) instead: their sampler filters 8-bit textures in 8-bit arithmetic and rounds
 //! the result to 1/255 (measured: up to 0.05 colour error against the same data in a float
-//! texture), while interpolating in the shader instead made ray casting 3–5× slower there. This
-//! costs a second byte per voxel on CPU adapters only (`HATCHERY_LOW_MEMORY=1` declines it).
+//! texture), while interpolating in the shader instead made ray casting 3–5× slower there. The
+//! second byte per voxel is spent only up to `WIDEN_8BIT_BUDGET` (64 Mi voxels, e.g. 400³): larger
+//! 8-bit volumes stay R8Unorm there too, so peak memory stays ≤ 2× the voxel bytes plus a fixed
+//! part (the widening adds at most the budget). `HATCHERY_LOW_MEMORY=1` never widens,
+//! `HATCHERY_LOW_MEMORY=0` always does.
 //! Fallbacks where the adapter lacks the feature: 16-bit integers and f32 become R16Float of
 //! `(v − lo) / (hi − lo)` over the value range (11 significant bits: a relative precision of
 //! 2⁻¹¹ of the range). "No data" (non-finite f32) texels hold `NO_DATA_TEXEL` (−1000) in the
@@ -28,6 +31,20 @@ use wgpu::TextureFormat;
 pub struct VolumeTexture {
     pub texture: wgpu::Texture,
     pub texel_range: [f32; 2],
+}
+
+/// Voxels up to which 8-bit volumes are widened to R16Unorm on CPU adapters (64 Mi: 64 MiB more
+/// memory at most, a fixed overhead).
+pub const WIDEN_8BIT_BUDGET: u64 = 64 << 20;
+
+/// Whether an 8-bit volume of `voxels` voxels is widened on a CPU adapter, given the value of
+/// `HATCHERY_LOW_MEMORY` (`1`: never, `0`: always, unset/other: up to `WIDEN_8BIT_BUDGET`).
+pub fn widen_8bit_wanted(voxels: u64, low_memory: Option<&str>) -> bool {
+    match low_memory {
+        Some("1") => false,
+        Some("0") => true,
+        _ => voxels <= WIDEN_8BIT_BUDGET,
+    }
 }
 
 /// Uploads `data` in the format of the table above.
@@ -59,10 +76,10 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
         }
     }
     let half = |v: f32| half::f16::from_f32(v).to_le_bytes();
-    // HATCHERY_LOW_MEMORY=1 keeps 8-bit textures at 8 bits on CPU adapters too (half the
-    // texture memory, filtered values rounded to 1/255 by llvmpipe).
-    let low_memory = std::env::var("HATCHERY_LOW_MEMORY").is_ok_and(|v| v == "1");
-    let widen_8bit = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu && norm16 && !low_memory;
+    let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
+    let widen_8bit = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
+        && norm16
+        && widen_8bit_wanted(voxels, std::env::var("HATCHERY_LOW_MEMORY").ok().as_deref());
     let (format, range, texture) = match &data.voxels {
         Voxels::U8(v) if widen_8bit => {
             let fill = slabs(v, slice, |x: u8| (x as u16 * 257).to_le_bytes());
@@ -130,4 +147,18 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
         texture,
         texel_range,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eight_bit_widening_is_bounded_by_the_budget_unless_overridden() {
+        assert!(widen_8bit_wanted(256 * 256 * 256, None));
+        assert!(widen_8bit_wanted(WIDEN_8BIT_BUDGET, None));
+        assert!(!widen_8bit_wanted(800 * 800 * 800, None));
+        assert!(!widen_8bit_wanted(64, Some("1")));
+        assert!(widen_8bit_wanted(800 * 800 * 800, Some("0")));
+    }
 }
