@@ -5,28 +5,58 @@
 // into segments, maximal runs of samples of one object; each segment is composited with its
 // object's local mode (over, mip, iso, sum) and rendering mode, and the segments are combined
 // front to back with the global mode (over, mip, sum). Prepended: ray_common, ray_classify,
-// ray_shade, ray_skip. The CPU reference is tests/common/two_level_reference.rs.
+// ray_shade, ray_skip, ray_objects. The CPU reference is tests/common/two_level_reference.rs.
+//
+// Importance-driven rendering (Viola et al.; the buffers come from ImportanceCompositing, see
+// shaders/importance.wgsl): a sample's object may be dropped (MImP: in the focus footprint
+// everything but the focus, around it the context in front of the countersink), get a level of
+// sparseness S_o = I_o / Σ I (AImC, eq. 2) applied as opacity, colour saturation, screen door
+// or a sparse rendering style, or belong to the occluding part, whose segment's accumulated
+// opacity is scaled by S_o / α_avg (VPImC, eq. 3). A segment is a run of samples of one object
+// *and* one level (dense or sparse/occluding), so a context object splits at the countersink.
 
-// Binding 9 (`bricks`, see ray_common) holds (0, 1, id, 0) for bricks a drawn object reaches
-// and (1, 0, id, 0) for the others, so an empty brick reads as one to skip; id is the one object
-// every sample of the brick sees, −1 where several meet.
-// Object ids (R16Uint), on the volume's grid.
-@group(0) @binding(11) var object_ids: texture_3d<u32>;
-// Per id, at column id % 256 of rows 2 · (id / 256) and the one after: (table row + 1, or 0
-// when not drawn; rendering mode; local compositing; iso value) and (TF domain lo, hi, 0, 0).
-@group(0) @binding(12) var objects: texture_2d<f32>;
+// (E, Σ I, 1 in the focus footprint, focus last hit) per pixel; E = countersink view depth.
+@group(0) @binding(15) var importance_buffer: texture_2d<f32>;
+// (countersink view-space normal, distance to the footprint in pixels) per pixel.
+@group(0) @binding(16) var importance_cut: texture_2d<f32>;
+// 1×1: x = α_avg of the occluding context (VPImC's first pass), else 1.
+@group(0) @binding(17) var occluder_stats: texture_2d<f32>;
 
-// 1 where a voxel belongs to a drawn object (R8Unorm, filtered): the union of the drawn
-// objects' masks, an upper bound of each one's filtered mask.
-@group(0) @binding(14) var drawn_mask: texture_3d<f32>;
+const IMP_NONE: i32 = 0;
+const IMP_MIMP: i32 = 1;
+const IMP_AIMC_IMAGE: i32 = 2;
+const IMP_AIMC_OBJECT: i32 = 3;
+const IMP_VPIMC: i32 = 4;
+const SPARSE_OPACITY: i32 = 0;
+const SPARSE_SATURATION: i32 = 1;
+const SPARSE_SCREEN_DOOR: i32 = 2;
+const SPARSE_STYLE: i32 = 3;
 
-struct TwoLevel {
-    // x = global compositing (0 over, 1 mip, 2 sum); y = 1 for boundary filtering, 0 for point
-    // sampling; z = number of columns of `objects` (largest id + 1); w = 1 to take normals from
-    // each object's own filtered mask instead of the data (label maps without intensities).
-    options: vec4<f32>,
-};
-@group(0) @binding(13) var<uniform> two_level: TwoLevel;
+// Screen-door threshold of voxel-space point q: a low-discrepancy value over the voxel lattice
+// (the R3 sequence), so a level of sparseness S keeps an even fraction S of the voxels.
+fn screen_door(q: vec3<f32>) -> f32 {
+    let v = floor(q + 0.5);
+    return fract(0.5 + dot(v, vec3<f32>(0.8191725134, 0.6710436067, 0.5497004779)));
+}
+
+// A level of sparseness s applied to a sample's colour and opacity (opacity and saturation
+// levels); the screen door and sparse styles are applied by the caller.
+fn sparse_sample(c: vec3<f32>, a: f32, s: f32, level: i32) -> vec4<f32> {
+    if level == SPARSE_SATURATION {
+        let grey = vec3<f32>(dot(c, vec3<f32>(0.299, 0.587, 0.114)));
+        return vec4<f32>(mix(grey, c, s), a * s);
+    }
+    return vec4<f32>(c, a * s);
+}
+
+// A closed segment with VPImC's correction: its accumulated opacity (and premultiplied colour)
+// scaled by `scale` = S_o / α_avg, never beyond opaque.
+fn corrected(seg: vec4<f32>, scale: f32) -> vec4<f32> {
+    if scale == 1.0 || seg.a <= 0.0 {
+        return seg;
+    }
+    return seg * min(scale, 1.0 / seg.a);
+}
 
 const MODE_DVR: i32 = 0;
 const MODE_SHADED: i32 = 1;
@@ -38,91 +68,6 @@ const LOCAL_OVER: i32 = 0;
 const LOCAL_MIP: i32 = 1;
 const LOCAL_ISO: i32 = 2;
 const LOCAL_SUM: i32 = 3;
-
-fn object_info(id: u32, which: u32) -> vec4<f32> {
-    return textureLoad(objects, vec2<i32>(i32(id % 256u), i32((id / 256u) * 2u + which)), 0);
-}
-
-fn id_at(v: vec3<i32>) -> u32 {
-    let top = vec3<i32>(ray.dims.xyz) - 1;
-    return textureLoad(object_ids, clamp(v, vec3<i32>(0), top), 0).r;
-}
-
-// The object at voxel-space q: boundary filtering (§2.3) or the nearest voxel; 0 for none
-// (background, or no object's filtered mask above 0.5, as at a junction of three objects).
-fn object_at(q: vec3<f32>) -> u32 {
-    let p = clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0);
-    if two_level.options.y < 0.5 {
-        return id_at(vec3<i32>(round(p)));
-    }
-    let base = vec3<i32>(floor(p));
-    let f = p - floor(p);
-    var ids: array<u32, 8>;
-    var weights: array<f32, 8>;
-    for (var c = 0; c < 8; c++) {
-        let o = vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1);
-        ids[c] = id_at(base + o);
-        let w3 = select(1.0 - f, f, vec3<bool>(o == vec3<i32>(1)));
-        weights[c] = w3.x * w3.y * w3.z;
-    }
-    // The filtered binary mask of the object at corner c: the weights of the corners holding it.
-    for (var c = 0; c < 8; c++) {
-        var mask = 0.0;
-        for (var d = 0; d < 8; d++) {
-            if ids[d] == ids[c] {
-                mask += weights[d];
-            }
-        }
-        if mask > 0.5 {
-            return ids[c];
-        }
-    }
-    return 0u;
-}
-
-// The trilinearly filtered binary mask of object `id` at voxel-space q (§2.3).
-fn object_mask(q: vec3<f32>, id: u32) -> f32 {
-    let p = clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0);
-    let base = vec3<i32>(floor(p));
-    let f = p - floor(p);
-    var mask = 0.0;
-    for (var c = 0; c < 8; c++) {
-        let o = vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1);
-        if id_at(base + o) == id {
-            let w3 = select(1.0 - f, f, vec3<bool>(o == vec3<i32>(1)));
-            mask += w3.x * w3.y * w3.z;
-        }
-    }
-    return mask;
-}
-
-// World-space gradient of object `id`'s filtered mask (central differences in voxel space):
-// the shading normal of an object boundary when the data holds no intensities.
-fn object_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
-    var g = vec3<f32>(0.0);
-    for (var axis = 0; axis < 3; axis++) {
-        var lo = q;
-        var hi = q;
-        lo[axis] -= 1.0;
-        hi[axis] += 1.0;
-        g[axis] = (object_mask(hi, id) - object_mask(lo, id)) * 0.5;
-    }
-    return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
-}
-
-// The gradient that shades a sample of object `id`: the data's, or the object mask's.
-fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
-    if two_level.options.w > 0.5 {
-        return object_gradient(q, id);
-    }
-    return gradient_at(q);
-}
-
-// The drawn objects' union mask at voxel-space q, filtered trilinearly by the sampler.
-fn drawn_union(q: vec3<f32>) -> f32 {
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
-    return textureSampleLevel(drawn_mask, linear_clamp, uv, 0.0).r;
-}
 
 // Cool-to-warm tone shading (Gooch et al. 1998; the tutorial's "tone shading").
 fn tone(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
@@ -172,10 +117,34 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
     let columns = i32(two_level.options.z + 0.5);
     let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
 
+    // Importance-driven rendering: this pixel's buffers and the ray's view depth z(t).
+    let method = i32(two_level.importance.x + 0.5);
+    let level = i32(two_level.importance.y + 0.5);
+    let focus = u32(two_level.importance.z + 0.5);
+    let first_pass = two_level.importance.w > 0.5;
+    var imp = vec4<f32>(-1.0e30, 1.0, 0.0, -1.0);
+    var cut = vec4<f32>(0.0, 0.0, 1.0, 0.0);
+    var alpha_avg = 1.0;
+    if method != IMP_NONE {
+        imp = textureLoad(importance_buffer, vec2<i32>(position), 0);
+        cut = textureLoad(importance_cut, vec2<i32>(position), 0);
+        alpha_avg = max(textureLoad(occluder_stats, vec2<i32>(0), 0).x, 1e-6);
+    }
+    let z0 = -(ray.view * vec4<f32>(r.p0, 1.0)).z;
+    let dz = -(ray.view * vec4<f32>(r.dir, 0.0)).z;
+    // MImP: where the countersink cuts this ray (t), for the cut's shading normal.
+    var t_cut = -1.0e30;
+    if method == IMP_MIMP && imp.z < 0.5 && imp.x > -1.0e29 && abs(dz) > 1e-12 {
+        t_cut = (imp.x - z0) / dz;
+    }
+
     var total = vec4<f32>(0.0);
     var hit_t = -1.0;
-    // The open segment: its object (0 = none), table row, modes, and running state.
+    // The open segment: its key (object id · 2 + 1 when sparse/occluding; 0 = none), object,
+    // table row, modes, VPImC scale, and running state.
+    var current_key = 0u;
     var current = 0u;
+    var scale = 1.0;
     var row = 0;
     var mode = 0;
     var local = 0;
@@ -221,9 +190,37 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 id = 0u;
             }
         }
-        if id != current {
+        // Importance: drop the sample, or give it a level of sparseness s (flag: sparse or
+        // occluding, a segment of its own).
+        var flag = 0u;
+        var s = 1.0;
+        if method != IMP_NONE && id != 0u {
+            let z = z0 + dz * t;
+            let in_front = z < imp.x;
+            let s_o = clamp(object_info(id, 1u).z / max(imp.y, 1e-6), 0.0, 1.0);
+            if method == IMP_MIMP {
+                if (imp.z > 0.5 && id != focus) || (imp.z < 0.5 && in_front) {
+                    id = 0u;
+                }
+            } else if method == IMP_VPIMC {
+                if id != focus && in_front {
+                    flag = 1u;
+                    s = s_o;
+                } else if first_pass {
+                    id = 0u;
+                }
+            } else if method == IMP_AIMC_IMAGE || (id != focus && in_front) {
+                s = s_o;
+                if level == SPARSE_STYLE && s < 0.999 {
+                    flag = 1u;
+                }
+            }
+        }
+        let key = id * 2u + flag;
+        if key != current_key {
             // Close the open segment into the total with the global mode.
             if current != 0u && seg.a > 0.0 {
+                seg = corrected(seg, scale);
                 total = combine(total, seg, global_mode);
                 if hit_t < 0.0 {
                     hit_t = seg_first_t;
@@ -234,6 +231,8 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 break;
             }
             current = id;
+            current_key = key;
+            scale = 1.0;
             seg = vec4<f32>(0.0);
             best = -1e30;
             seg_first_t = -1.0;
@@ -246,6 +245,12 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 local = i32(info.z + 0.5);
                 iso = info.w;
                 domain = object_info(id, 1u).xy;
+                if flag == 1u && method == IMP_VPIMC && !first_pass {
+                    scale = s / alpha_avg;
+                } else if flag == 1u && method != IMP_VPIMC {
+                    mode = i32(two_level.sparse.x + 0.5);
+                    local = i32(two_level.sparse.y + 0.5);
+                }
             }
         }
         if jump {
@@ -257,6 +262,19 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         if current == 0u || seg_done {
             continue;
         }
+        // VPImC and sparse styles change the segment, not each sample; the screen door keeps
+        // a fraction s of the voxels as they are.
+        if flag == 1u {
+            s = 1.0;
+        }
+        if s < 1.0 && level == SPARSE_SCREEN_DOOR {
+            if screen_door(q) >= s {
+                continue;
+            }
+            s = 1.0;
+        }
+        // Just behind a countersink cut the cut surface shades the context (MImP).
+        let on_cut = t >= t_cut && t - t_cut <= two_level.sparse.z;
         let v = value_at(q);
         if no_data(v) {
             previous_value = NO_DATA;
@@ -269,7 +287,10 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                     t_hit = previous_t + h * (iso - previous_value) / (v - previous_value);
                 }
                 let p = r.p0 + r.dir * t_hit;
-                let n = view_normal(shading_gradient(r.q0 + r.dq * t_hit, current));
+                var n = view_normal(shading_gradient(r.q0 + r.dq * t_hit, current));
+                if on_cut {
+                    n = cut.xyz;
+                }
                 let hv = normalize(l + view_direction(p));
                 let base = table_lookup_row(iso, row, domain).rgb;
                 var c = base;
@@ -278,12 +299,13 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 } else if mode == MODE_TONE {
                     c = tone(base, n, l);
                 }
-                seg = vec4<f32>(c, 1.0);
+                let sparse = sparse_sample(c, 1.0, s, level);
+                seg = vec4<f32>(sparse.rgb * sparse.a, sparse.a);
                 seg_first_t = t_hit;
                 seg_normal = n;
                 seg_done = true;
                 if global_mode == 0 {
-                    total = combine(total, seg, global_mode);
+                    total = combine(total, corrected(seg, scale), global_mode);
                     if hit_t < 0.0 {
                         hit_t = seg_first_t;
                         out.normal = vec4<f32>(seg_normal, 1.0);
@@ -309,6 +331,9 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             let p = r.p0 + r.dir * t;
             let g = shading_gradient(q, current);
             n = view_normal(g);
+            if on_cut {
+                n = cut.xyz;
+            }
             let v_dir = view_direction(p);
             if mode == MODE_SHADED {
                 c = clamp(c * phong_term(n, l, normalize(l + v_dir)), vec3<f32>(0.0), vec3<f32>(1.0));
@@ -318,6 +343,11 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 let g_norm = clamp(length(g) / max(ray.dims.w, 1e-20), 0.0, 1.0);
                 a = a * g_norm * pow(1.0 - abs(dot(n, v_dir)), 8.0);
             }
+        }
+        if s < 1.0 {
+            let sparse = sparse_sample(c, a, s, level);
+            c = sparse.rgb;
+            a = sparse.a;
         }
         if local == LOCAL_MIP {
             // Contours maximise their intensity, the other modes the data value.
@@ -352,7 +382,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         if seg_done && global_mode == 0 {
             // Nothing more joins this segment: with global over, combine it now, and stop
             // the ray if it is opaque (the segment stays open, empty, until its object ends).
-            total = combine(total, seg, global_mode);
+            total = combine(total, corrected(seg, scale), global_mode);
             if hit_t < 0.0 {
                 hit_t = seg_first_t;
                 out.normal = vec4<f32>(seg_normal, 1.0);

@@ -27,6 +27,7 @@ pub fn port_color(ty: PortType) -> Color32 {
         PortType::TransferFunction => Color32::from_rgb(60, 200, 200),
         PortType::StyleSet => Color32::from_rgb(220, 120, 220),
         PortType::ObjectStyles => Color32::from_rgb(140, 200, 120),
+        PortType::Importance => Color32::from_rgb(250, 130, 60),
     }
 }
 

@@ -3,6 +3,7 @@
 
 #![allow(dead_code)]
 
+pub mod importance_reference;
 pub mod raycast_reference;
 pub mod two_level_reference;
 

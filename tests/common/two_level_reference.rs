@@ -39,6 +39,7 @@ pub enum Global {
     Sum,
 }
 
+#[derive(Clone)]
 pub struct Object {
     pub id: u16,
     pub tf: TransferFunction1D,

@@ -27,10 +27,13 @@ pub enum PortType {
     StyleSet,
     /// Per-object rendering settings of a segmented volume (two-level volume rendering).
     ObjectStyles,
+    /// Per-pixel importance-driven rendering data of one frame: focus footprint, countersink
+    /// depth and importance sums (Viola et al., importance compositing).
+    Importance,
 }
 
 impl PortType {
-    pub const ALL: [PortType; 11] = [
+    pub const ALL: [PortType; 12] = [
         PortType::Volume,
         PortType::Labels,
         PortType::Mesh,
@@ -42,6 +45,7 @@ impl PortType {
         PortType::TransferFunction,
         PortType::StyleSet,
         PortType::ObjectStyles,
+        PortType::Importance,
     ];
 
     pub fn name(self) -> &'static str {
@@ -57,6 +61,7 @@ impl PortType {
             PortType::TransferFunction => "TransferFunction",
             PortType::StyleSet => "StyleSet",
             PortType::ObjectStyles => "ObjectStyles",
+            PortType::Importance => "Importance",
         }
     }
 }

@@ -48,6 +48,7 @@ pub fn source_size(value: &Value) -> Option<(u32, u32)> {
         Value::Image(i) => &i.texture,
         Value::Mask(m) => &m.texture,
         Value::GBuffer(g) => &g.normal,
+        Value::Importance(i) => &i.buffer,
         Value::Volume(v) => return Some((v.data.dims[0], v.data.dims[1])),
         Value::Labels(l) => return Some((l.data.dims[0], l.data.dims[1])),
         Value::TransferFunction(_) => return Some((256, 32)),

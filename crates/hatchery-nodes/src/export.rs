@@ -18,10 +18,12 @@ fn read(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<TextureData, String
 }
 
 /// The raw data of a value: Image H×W×4 (premultiplied RGBA), Mask H×W, GBuffer H×W×4
-/// (depth, nx, ny, nz), Volume D×H×W, Mesh N×6 (position, normal per vertex).
+/// (depth, nx, ny, nz), Volume D×H×W, Mesh N×6 (position, normal per vertex), Importance H×W×4
+/// (countersink depth E, importance sum, footprint flag, focus last-hit depth).
 pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
     Ok(match value {
         Value::Image(image) => texture_array(read(gpu, &image.texture)?),
+        Value::Importance(i) => texture_array(read(gpu, &i.buffer)?),
         Value::Mask(mask) => {
             let t = read(gpu, &mask.texture)?;
             Array {
@@ -123,6 +125,20 @@ pub fn image_to_rgba8(t: &TextureData) -> image::RgbaImage {
 pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, String> {
     Ok(match value {
         Value::Image(image) => image_to_rgba8(&read(gpu, &image.texture)?),
+        Value::Importance(i) => {
+            // Red: the focus footprint; green: the importance sum (scaled to its largest
+            // value); blue: where the countersink cuts.
+            let t = read(gpu, &i.buffer)?;
+            let top = (0..t.height)
+                .flat_map(|y| (0..t.width).map(move |x| (x, y)))
+                .map(|(x, y)| t.texel(x, y)[1])
+                .fold(1e-6f32, f32::max);
+            image::RgbaImage::from_fn(t.width, t.height, |x, y| {
+                let [e, sum, inside, _] = [0, 1, 2, 3].map(|c| t.texel(x, y)[c]);
+                let cut = if e > -1e29 && inside < 0.5 { 0.6 } else { 0.0 };
+                image::Rgba([to_u8(inside), to_u8(sum / top), to_u8(cut), 255])
+            })
+        }
         Value::Mask(mask) => {
             let t = read(gpu, &mask.texture)?;
             image::RgbaImage::from_fn(t.width, t.height, |x, y| {

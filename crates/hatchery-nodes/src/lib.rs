@@ -10,6 +10,7 @@ pub mod export;
 pub mod fill;
 pub mod gbuffer;
 pub mod halftone;
+pub mod importance_compositing;
 pub mod label_mask;
 pub mod label_sources;
 pub mod light;
@@ -85,6 +86,7 @@ pub fn registry() -> Registry {
     r.register(label_sources::LabelsFromMapsNode);
     r.register(object_styles::ObjectStylesNode);
     r.register(two_level_raycast::TwoLevelRaycastNode);
+    r.register(importance_compositing::ImportanceCompositingNode);
     r.register(save_image::SaveImageNode);
     r
 }

@@ -30,6 +30,8 @@ pub const RAY_COMMON: &str = shader_file!("ray_common.wgsl");
 pub const RAY_CLASSIFY: &str = shader_file!("ray_classify.wgsl");
 pub const RAY_SHADE: &str = shader_file!("ray_shade.wgsl");
 pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
+pub const RAY_OBJECTS: &str = shader_file!("ray_objects.wgsl");
+pub const IMPORTANCE: &str = shader_file!("importance.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
 pub const TWO_LEVEL_RAYCAST: &str = shader_file!("two_level_raycast.wgsl");
 pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
@@ -80,10 +82,16 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         ),
         ("mask_combine", screen("mask_combine.wgsl", MASK_COMBINE)),
         ("raycast", ray("raycast.wgsl", RAYCAST)),
-        (
-            "two_level_raycast",
-            ray("two_level_raycast.wgsl", TWO_LEVEL_RAYCAST),
-        ),
+        ("two_level_raycast", {
+            let mut parts = ray("ray_objects.wgsl", RAY_OBJECTS);
+            parts.push(("two_level_raycast.wgsl", TWO_LEVEL_RAYCAST));
+            parts
+        }),
+        ("importance", {
+            let mut parts = ray("ray_objects.wgsl", RAY_OBJECTS);
+            parts.push(("importance.wgsl", IMPORTANCE));
+            parts
+        }),
         (
             "depth_from_texture",
             screen("depth_from_texture.wgsl", DEPTH_FROM_TEXTURE),

@@ -2,10 +2,14 @@
 //! per-object transfer functions, rendering and local compositing modes, combined along each
 //! ray by a global compositing mode (see shaders/two_level_raycast.wgsl).
 
+use crate::camera::Camera;
+use crate::importance_compositing::ImportancePipelines;
 use crate::raycast::{
     KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo, phong_params, phong_values,
 };
-use crate::value::{Compositing, Image, Labels, ObjectStyle, RenderMode};
+use crate::value::{
+    Compositing, Image, Importance, ImportanceMethod, Labels, ObjectStyle, RenderMode,
+};
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::LUT_SIZE;
 use hatchery_gpu::GpuError;
@@ -17,6 +21,70 @@ use std::sync::Arc;
 const GLOBAL: &[&str] = &["over", "mip", "sum"];
 const BOUNDARIES: &[&str] = &["filtered", "point"];
 const NORMALS: &[&str] = &["data", "objects"];
+const SPARSENESS: &[&str] = &["opacity", "saturation", "screen_door", "style"];
+const SPARSE_MODES: &[&str] = &["contours", "dvr", "shaded_dvr", "tone", "mip"];
+const SPARSE_COMPOSITINGS: &[&str] = &["mip", "over", "sum"];
+
+fn sparse_codes(mode: &str, compositing: &str) -> [f32; 2] {
+    let mode = match mode {
+        "dvr" => RenderMode::Dvr,
+        "shaded_dvr" => RenderMode::ShadedDvr,
+        "tone" => RenderMode::Tone,
+        "mip" => RenderMode::Mip,
+        _ => RenderMode::Contours,
+    };
+    let compositing = match compositing {
+        "over" => Compositing::Over,
+        "sum" => Compositing::Sum,
+        _ => Compositing::Mip,
+    };
+    [mode_code(mode), compositing_code(compositing)]
+}
+
+fn method_code(method: ImportanceMethod) -> f32 {
+    match method {
+        ImportanceMethod::Mimp => 1.0,
+        ImportanceMethod::AimcImage => 2.0,
+        ImportanceMethod::AimcObject => 3.0,
+        ImportanceMethod::Vpimc => 4.0,
+    }
+}
+
+/// The importance input, checked against this node's view; `styles` then take their
+/// importance from it (the sums were made with those values).
+fn importance_input(
+    inputs: &NodeInputs<Value>,
+    camera: &Camera,
+    styles: &mut Vec<ObjectStyle>,
+) -> Result<Option<Arc<Importance>>, NodeError> {
+    let Some(value) = inputs.get("importance") else {
+        return Ok(None);
+    };
+    let importance = value.importance("importance")?.clone();
+    let c = &importance.camera;
+    let same = c.width == camera.width
+        && c.height == camera.height
+        && c.view.abs_diff_eq(camera.view, 1e-5)
+        && c.proj.abs_diff_eq(camera.proj, 1e-5);
+    if !same {
+        return Err(NodeError::at_port(
+            "importance",
+            format!(
+                "made for another view ({}×{}) than this node's camera ({}×{}): connect the \
+                 same camera to ImportanceCompositing",
+                c.width, c.height, camera.width, camera.height
+            ),
+        ));
+    }
+    for s in styles.iter_mut() {
+        s.importance = importance
+            .importance
+            .iter()
+            .find(|(id, _)| *id == s.id)
+            .map_or(0.0, |(_, i)| *i);
+    }
+    Ok(Some(importance))
+}
 
 crate::uniform_block! {
     /// `TwoLevel` of shaders/two_level_raycast.wgsl: (global compositing 0 over / 1 mip /
@@ -24,6 +92,13 @@ crate::uniform_block! {
     /// objects' masks).
     pub struct TwoLevelUniforms in "two_level_raycast" as "TwoLevel" {
         pub options: [f32; 4],
+        /// Importance-driven rendering: (method 0 none / 1 MImP / 2 AImC image / 3 AImC
+        /// object / 4 VPImC, level of sparseness 0 opacity / 1 saturation / 2 screen door /
+        /// 3 style, focus id, 1 in VPImC's first pass).
+        pub importance: [f32; 4],
+        /// (sparse style's rendering mode, its local compositing, depth band shaded with the
+        /// countersink's normal in world units, 0).
+        pub sparse: [f32; 4],
     }
 }
 
@@ -48,21 +123,21 @@ fn compositing_code(c: Compositing) -> f32 {
 }
 
 /// The object table as textures: the TF rows (LUT_SIZE × drawn objects, RGBA) and, per id,
-/// (row + 1 or 0, mode, compositing, iso) / (domain lo, hi, 0, 0).
-struct ObjectTables {
-    tf_rows: Vec<f32>,
-    rows: u32,
+/// (row + 1 or 0, mode, compositing, iso) / (domain lo, hi, importance, 0).
+pub(crate) struct ObjectTables {
+    pub tf_rows: Vec<f32>,
+    pub rows: u32,
     /// Largest id + 1.
-    columns: u32,
+    pub columns: u32,
     /// TABLE_WIDTH × (2 · ceil(columns / TABLE_WIDTH)) texels.
-    table: Vec<f32>,
+    pub table: Vec<f32>,
 }
 
 /// Ids per row pair of the object table: id → column id % 256, rows 2 · (id / 256) (modes) and
 /// the one after (TF domain), so every u16 id fits any adapter's 2-D texture limit.
-const TABLE_WIDTH: u32 = 256;
+pub(crate) const TABLE_WIDTH: u32 = 256;
 
-fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
+pub(crate) fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
     let columns = styles
         .iter()
         .map(|s| s.id as u32 + 1)
@@ -88,7 +163,7 @@ fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
             s.iso,
         ]);
         let at = texel(s.id, 1);
-        table[at..at + 4].copy_from_slice(&[s.tf.domain[0], s.tf.domain[1], 0.0, 0.0]);
+        table[at..at + 4].copy_from_slice(&[s.tf.domain[0], s.tf.domain[1], s.importance, 0.0]);
     }
     if rows == 0 {
         rows = 1;
@@ -105,7 +180,7 @@ fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
 /// Per 8³-voxel brick: (0, 1, id, 0) where a sample in the brick can belong to a drawn object,
 /// (1, 0, id, 0) (an empty range: "skip") elsewhere; id = the one object every sample in the
 /// brick sees, or −1 where there are several (then each sample filters its 8 voxels).
-fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3], Vec<[f32; 4]>) {
+pub(crate) fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3], Vec<[f32; 4]>) {
     let mut drawn = vec![false; u16::MAX as usize + 1];
     for s in styles.iter().filter(|s| s.enabled) {
         drawn[s.id as usize] = true;
@@ -155,6 +230,11 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 PortSpec::input("styles", PortType::ObjectStyles, "the object table"),
                 PortSpec::input("camera", PortType::Camera, "the view"),
                 PortSpec::optional("light", PortType::Light, "the light (default: a headlight)"),
+                PortSpec::optional(
+                    "importance",
+                    PortType::Importance,
+                    "importance-driven rendering: ImportanceCompositing of the same view",
+                ),
             ],
             outputs: vec![
                 PortSpec::output("image", PortType::Image, "premultiplied colour"),
@@ -215,6 +295,26 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                     KERNELS,
                     "GPU path: fragment shader or compute kernel (same picture)",
                 ),
+                ParamSpec::choice(
+                    "sparseness",
+                    "opacity",
+                    SPARSENESS,
+                    "with `importance` (AImC): how a level of sparseness S shows — opacity × S, \
+                     opacity and colour saturation × S, a screen door keeping S of the voxels, \
+                     or a sparse rendering style where S < 1",
+                ),
+                ParamSpec::choice(
+                    "sparse_mode",
+                    "contours",
+                    SPARSE_MODES,
+                    "the sparse style's rendering mode",
+                ),
+                ParamSpec::choice(
+                    "sparse_compositing",
+                    "mip",
+                    SPARSE_COMPOSITINGS,
+                    "the sparse style's local compositing",
+                ),
             ],
             frame_dependent: true,
             sink: false,
@@ -229,8 +329,10 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
     ) -> Result<Vec<Value>, NodeError> {
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let labels = inputs.require("labels")?.labels("labels")?.clone();
-        let styles = inputs.require("styles")?.object_styles("styles")?.clone();
+        let mut styles: Vec<ObjectStyle> =
+            inputs.require("styles")?.object_styles("styles")?.to_vec();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
+        let importance = importance_input(inputs, &camera, &mut styles)?;
         let (l, v) = (&labels.data, &volume.data);
         if l.dims != v.dims {
             return Err(NodeError::at_port(
@@ -290,6 +392,21 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             skip_empty: p.bool("skip_empty"),
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
+        let pipelines = ctx
+            .cached("two_level_raycast.pipelines", |gpu| {
+                RayPipelines::new(gpu, "two_level_raycast")
+            })
+            .map_err(err)?;
+        let sampler = ctx
+            .cached("two_level_raycast.sampler", |gpu| {
+                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("linear clamp"),
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    ..Default::default()
+                }))
+            })
+            .map_err(err)?;
         let gpu = &ctx.gpu;
         let volume_texture = volume.texture(gpu).map_err(err)?;
         let contours = styles
@@ -327,24 +444,43 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             .position(|g| *g == p.choice("global"))
             .unwrap_or(0);
         let filtered = p.choice("boundary") != "point";
-        let two_level = TwoLevelUniforms {
+        let level = SPARSENESS
+            .iter()
+            .position(|g| *g == p.choice("sparseness"))
+            .unwrap_or(0);
+        let [sparse_mode, sparse_local] =
+            sparse_codes(p.choice("sparse_mode"), p.choice("sparse_compositing"));
+        let two_level = |first_pass: bool| TwoLevelUniforms {
             options: [
                 global as f32,
                 if filtered { 1.0 } else { 0.0 },
                 tables.columns as f32,
                 if object_normals { 1.0 } else { 0.0 },
             ],
+            importance: match &importance {
+                Some(i) => [
+                    method_code(i.method),
+                    level as f32,
+                    f32::from(i.focus),
+                    if first_pass { 1.0 } else { 0.0 },
+                ],
+                None => [0.0; 4],
+            },
+            // A cut shades the context down to 1.5 voxels behind it.
+            sparse: [sparse_mode, sparse_local, 1.5 * min_spacing, 0.0],
         };
         let ray_buffer = gpu.buffer_init(
             "two-level ray",
             bytemuck::bytes_of(&uniforms),
             wgpu::BufferUsages::UNIFORM,
         );
-        let two_level_buffer = gpu.buffer_init(
-            "two-level",
-            bytemuck::bytes_of(&two_level),
-            wgpu::BufferUsages::UNIFORM,
-        );
+        let two_level_buffer = |first_pass| {
+            gpu.buffer_init(
+                "two-level",
+                bytemuck::bytes_of(&two_level(first_pass)),
+                wgpu::BufferUsages::UNIFORM,
+            )
+        };
         let tf_texture = gpu.texture_2d_init(
             "object tfs",
             LUT_SIZE as u32,
@@ -386,26 +522,29 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             )
             .create_view(&Default::default()),
         ];
-        let pipelines = ctx
-            .cached("two_level_raycast.pipelines", |gpu| {
-                RayPipelines::new(gpu, "two_level_raycast")
-            })
-            .map_err(err)?;
-        let sampler = ctx
-            .cached("two_level_raycast.sampler", |gpu| {
-                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
-                    label: Some("linear clamp"),
-                    mag_filter: wgpu::FilterMode::Linear,
-                    min_filter: wgpu::FilterMode::Linear,
-                    ..Default::default()
-                }))
-            })
-            .map_err(err)?;
         let texture = |binding, view| wgpu::BindGroupEntry {
             binding,
             resource: wgpu::BindingResource::TextureView(view),
         };
-        let entries = [
+        let blank = |label| {
+            gpu.texture_2d_init(
+                label,
+                1,
+                1,
+                wgpu::TextureFormat::Rgba32Float,
+                bytemuck::cast_slice(&[1.0f32; 4]),
+            )
+            .create_view(&Default::default())
+        };
+        let (importance_view, cut_view) = match &importance {
+            Some(i) => (
+                i.buffer.create_view(&Default::default()),
+                i.cut.create_view(&Default::default()),
+            ),
+            None => (blank("no importance"), blank("no countersink")),
+        };
+        let no_occluder = blank("no occluder");
+        let fixed = vec![
             wgpu::BindGroupEntry {
                 binding: 0,
                 resource: ray_buffer.as_entire_binding(),
@@ -422,15 +561,73 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             texture(14, &views[5]),
             texture(11, &views[2]),
             texture(12, &views[3]),
-            wgpu::BindGroupEntry {
-                binding: 13,
-                resource: two_level_buffer.as_entire_binding(),
-            },
+            texture(15, &importance_view),
+            texture(16, &cut_view),
         ];
-        let (image, gbuffer) = pipelines.run(ctx, &camera, &entries, kernel)?;
+        let entries = |two_level, occluder| {
+            let mut all = fixed.clone();
+            all.push(wgpu::BindGroupEntry {
+                binding: 13,
+                resource: wgpu::BindingResource::Buffer(two_level),
+            });
+            all.push(texture(17, occluder));
+            all
+        };
+        let final_uniforms = two_level_buffer(false);
+        let first_uniforms = two_level_buffer(true);
+        let occluder = match &importance {
+            Some(i) if i.method == ImportanceMethod::Vpimc => {
+                // VPImC, first pass: only the occluding context; its mean opacity is α_avg.
+                let (occluding, _) = pipelines.run(
+                    ctx,
+                    &camera,
+                    &entries(first_uniforms.as_entire_buffer_binding(), &no_occluder),
+                    kernel,
+                )?;
+                Some(alpha_mean(ctx, &occluding).map_err(err)?)
+            }
+            _ => None,
+        };
+        let occluder_view = occluder
+            .as_ref()
+            .map(|t| t.create_view(&Default::default()));
+        let (image, gbuffer) = pipelines.run(
+            ctx,
+            &camera,
+            &entries(
+                final_uniforms.as_entire_buffer_binding(),
+                occluder_view.as_ref().unwrap_or(&no_occluder),
+            ),
+            kernel,
+        )?;
         Ok(vec![
             Value::Image(Arc::new(Image { texture: image })),
             Value::GBuffer(Arc::new(gbuffer)),
         ])
     }
+}
+
+/// VPImC's α_avg (eq. 3): the mean opacity of `picture` over its non-empty pixels, as a 1×1
+/// Rgba32Float texture (mean, pixel count, 0, 0) on the GPU.
+fn alpha_mean(ctx: &mut Ctx, picture: &wgpu::Texture) -> Result<wgpu::Texture, GpuError> {
+    let pipelines = ctx.cached("importance.pipelines", ImportancePipelines::new)?;
+    let gpu = &ctx.gpu;
+    let stats = gpu.storage_target("occluder stats", 1, 1, wgpu::TextureFormat::Rgba32Float);
+    let (picture_view, stats_view) = (
+        picture.create_view(&Default::default()),
+        stats.create_view(&Default::default()),
+    );
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    pipelines.dispatch(
+        gpu,
+        &mut encoder,
+        "alpha_mean",
+        &[
+            (34, wgpu::BindingResource::TextureView(&picture_view)),
+            (30, wgpu::BindingResource::TextureView(&stats_view)),
+        ],
+        (1, 1),
+    );
+    ctx.submit(encoder.finish());
+    Ok(stats)
 }

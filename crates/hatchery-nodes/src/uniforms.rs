@@ -60,6 +60,16 @@ pub fn all() -> Vec<UniformLayout> {
             ..raycast::RayUniforms::layout()
         },
         two_level_raycast::TwoLevelUniforms::layout(),
+        UniformLayout {
+            program: "importance",
+            ..two_level_raycast::TwoLevelUniforms::layout()
+        },
+        UniformLayout {
+            program: "importance",
+            ..raycast::RayUniforms::layout()
+        },
+        importance_compositing::ImportanceUniforms::layout(),
+        importance_compositing::PassUniforms::layout(),
         shaded_surface::ShadingUniform::layout(),
         secondary_geometry::SecondaryUniforms::layout(),
         depth_test_mask::DepthTestUniforms::layout(),

@@ -386,6 +386,45 @@ impl StyleSet {
     }
 }
 
+/// How importance compositing turns importance into levels of sparseness (Viola et al.).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImportanceMethod {
+    /// Maximum importance projection: in the focus footprint only the focus is drawn; around
+    /// it the context in front of the countersink (eq. 1) is cut away.
+    Mimp,
+    /// Average importance compositing, image space: every sample of object o at a pixel gets
+    /// S_o = I_o / Σ I (eq. 2) over the (dilated, averaged) footprints covering the pixel.
+    AimcImage,
+    /// Average importance compositing, object space: only context samples in front of the
+    /// countersink (in front of the focus) get S_o.
+    AimcObject,
+    /// Visibility-preserving importance compositing: the occluding context's accumulated
+    /// opacity is scaled by S_o / α_avg (eq. 3).
+    Vpimc,
+}
+
+/// The per-pixel data of importance compositing for one frame (ImportanceCompositing →
+/// TwoLevelRaycast), all on the GPU.
+pub struct Importance {
+    pub method: ImportanceMethod,
+    /// The focus object's id.
+    pub focus: u16,
+    /// Importance I_o of every drawn object, by id.
+    pub importance: Vec<(u16, f32)>,
+    /// Frame-sized Rgba32Float: (countersink depth E as view depth in world units — the
+    /// focus's first hit inside the footprint, e_max − d_i·s_c around it, −1e30 where nothing
+    /// is cut —, footprint-weighted importance sum Σ I, 1 inside the focus footprint else 0,
+    /// the focus's last-hit view depth or −1).
+    pub buffer: wgpu::Texture,
+    /// Frame-sized Rgba32Float: the countersink's view-space unit normal (xyz) and d_i, the
+    /// distance to the footprint in pixels (w).
+    pub cut: wgpu::Texture,
+    /// 1×1 Rgba32Float: (e_max, footprint size in pixels, 0, 0).
+    pub stats: wgpu::Texture,
+    /// The view the buffers were made for.
+    pub camera: crate::camera::Camera,
+}
+
 /// A value on an edge.
 #[derive(Clone)]
 pub enum Value {
@@ -400,6 +439,7 @@ pub enum Value {
     StyleSet(Arc<StyleSet>),
     Labels(Arc<Labels>),
     ObjectStyles(Arc<Vec<ObjectStyle>>),
+    Importance(Arc<Importance>),
 }
 
 impl Value {
@@ -416,6 +456,7 @@ impl Value {
             Value::StyleSet(_) => PortType::StyleSet,
             Value::Labels(_) => PortType::Labels,
             Value::ObjectStyles(_) => PortType::ObjectStyles,
+            Value::Importance(_) => PortType::Importance,
         }
     }
 }
@@ -452,3 +493,4 @@ accessor!(transfer_function, TransferFunction, Arc<TransferFunction>);
 accessor!(style_set, StyleSet, Arc<StyleSet>);
 accessor!(labels, Labels, Arc<Labels>);
 accessor!(object_styles, ObjectStyles, Arc<Vec<ObjectStyle>>);
+accessor!(importance, Importance, Arc<Importance>);

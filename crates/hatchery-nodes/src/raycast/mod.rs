@@ -9,7 +9,7 @@ mod uniforms;
 
 pub use pass::{RayPipelines, cast};
 pub use tables::check_same_grid;
-pub use uniforms::{RayUniforms, TableInfo};
+pub use uniforms::{Grid, RayUniforms, TableInfo};
 
 use crate::camera::Camera;
 use crate::value::Image;

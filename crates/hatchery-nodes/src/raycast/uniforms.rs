@@ -4,6 +4,7 @@ use super::RayOptions;
 use crate::camera::Camera;
 use glam::{Vec3, Vec4Swizzles};
 use hatchery_data::VolumeData;
+use hatchery_data::geometry::Geometry;
 
 crate::uniform_block! {
     /// Everything a ray needs besides textures; field by field the WGSL struct `Ray` (its
@@ -30,6 +31,25 @@ crate::uniform_block! {
         pub to_voxel: [[f32; 4]; 4],
         pub grad_to_world: [[f32; 4]; 4],
         pub texel: [f32; 4],
+    }
+}
+
+/// The voxel grid rays march through: its size, voxel → world geometry and value range.
+pub struct Grid<'a> {
+    pub dims: [u32; 3],
+    pub geometry: &'a Geometry,
+    pub value_range: [f32; 2],
+}
+
+impl Grid<'_> {
+    fn spacing(&self) -> [f32; 3] {
+        self.geometry.spacing.as_vec3().to_array()
+    }
+    fn origin(&self) -> [f32; 3] {
+        self.geometry.origin.as_vec3().to_array()
+    }
+    fn voxel_to_world(&self, v: Vec3) -> Vec3 {
+        self.geometry.voxel_to_world(v)
     }
 }
 
@@ -61,6 +81,24 @@ impl RayUniforms {
     pub fn new(
         camera: &Camera,
         data: &VolumeData,
+        o: &RayOptions,
+        t: &TableInfo,
+        max_gradient: f32,
+        texel_range: [f32; 2],
+    ) -> Self {
+        let grid = Grid {
+            dims: data.dims,
+            geometry: &data.geometry,
+            value_range: data.value_range,
+        };
+        Self::for_grid(camera, &grid, o, t, max_gradient, texel_range)
+    }
+
+    /// The block for rays through a voxel grid without a scalar volume (a label map: then
+    /// `value_range` is informative only).
+    pub fn for_grid(
+        camera: &Camera,
+        data: &Grid,
         o: &RayOptions,
         t: &TableInfo,
         max_gradient: f32,
@@ -142,7 +180,7 @@ impl RayUniforms {
 
 /// Nearest and farthest distance from the eye (perspective) or the near plane (orthographic) to
 /// the corners of the volume's box: the normalisation of ‖P − E‖ in eq. 5.
-fn corner_distances(camera: &Camera, data: &VolumeData) -> [f32; 2] {
+fn corner_distances(camera: &Camera, data: &Grid) -> [f32; 2] {
     let mut range = [f32::INFINITY, 0.0f32];
     let last = Vec3::new(
         (data.dims[0] - 1) as f32,

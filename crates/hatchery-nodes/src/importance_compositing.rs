@@ -1,0 +1,564 @@
+//! `ImportanceCompositing`: the importance compositing step of importance-driven volume
+//! rendering (Viola et al.; the tutorial's "Importance Compositing", eq. 1–3). From the labels,
+//! each object's importance and the camera it computes, per pixel, the focus object's footprint,
+//! the countersink depth (eq. 1) and the footprint-weighted importance sum (eq. 2's denominator),
+//! which `TwoLevelRaycast` turns into levels of sparseness (see shaders/importance.wgsl).
+//!
+//! The distance transform d_i of eq. 1 is jump flooding with one extra pass of step 1 (1+JFA,
+//! Rong & Tan 2006) instead of the paper's chamfer transform: Euclidean, and exact except for
+//! rare pixels whose nearest seed is lost between flooding steps (then off by a fraction of a
+//! pixel; tests/importance.rs compares it with a brute-force EDT).
+
+use crate::raycast::{Grid, Kernel, RayOptions, RayUniforms, TableInfo};
+use crate::two_level_raycast::{TABLE_WIDTH, TwoLevelUniforms, brick_table, object_tables};
+use crate::value::{Importance, ImportanceMethod, ObjectStyle};
+use crate::{Ctx, Value};
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+const METHODS: &[&str] = &["mimp", "aimc_image", "aimc_object", "vpimc"];
+const COUNTERSINKS: &[&str] = &["conical", "cylindrical"];
+/// Drawn objects that can take part in the importance sum (one bit each per pixel).
+const MAX_OBJECTS: usize = 32;
+
+crate::uniform_block! {
+    /// `ImportanceParams` of shaders/importance.wgsl.
+    pub struct ImportanceUniforms in "importance" as "ImportanceParams" {
+        pub frame: [f32; 4],
+        pub view: [f32; 4],
+        pub weights: [[f32; 4]; 8],
+    }
+}
+
+crate::uniform_block! {
+    /// `PassParams` of shaders/importance.wgsl: (axis or JFA step, radius, 0, 0).
+    pub struct PassUniforms in "importance" as "PassParams" {
+        pub step: [f32; 4],
+    }
+}
+
+const KERNELS: [&str; 9] = [
+    "footprint",
+    "dilate",
+    "weigh",
+    "box",
+    "jfa_init",
+    "jfa_step",
+    "reduce",
+    "finish",
+    "alpha_mean",
+];
+
+/// The compute pipelines of shaders/importance.wgsl, by entry point (`KERNELS` order).
+pub struct ImportancePipelines {
+    pipelines: Vec<wgpu::ComputePipeline>,
+}
+
+impl ImportancePipelines {
+    pub fn new(gpu: &GpuContext) -> Result<Self, GpuError> {
+        let source = crate::shaders::source("importance").expect("registered program");
+        let module = gpu.shader("importance", &source)?;
+        let pipelines = KERNELS
+            .iter()
+            .map(|entry| {
+                gpu.checked(&format!("pipeline importance/{entry}"), |device| {
+                    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                        label: Some(entry),
+                        layout: None,
+                        module: &module,
+                        entry_point: Some(entry),
+                        compilation_options: Default::default(),
+                        cache: None,
+                    })
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Self { pipelines })
+    }
+
+    fn get(&self, entry: &str) -> &wgpu::ComputePipeline {
+        let i = KERNELS.iter().position(|k| *k == entry).expect("a kernel");
+        &self.pipelines[i]
+    }
+
+    /// Records one dispatch of `entry` with its bindings (binding number, resource); `groups`
+    /// workgroups in x and y.
+    pub fn dispatch(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        entry: &str,
+        bindings: &[(u32, wgpu::BindingResource)],
+        groups: (u32, u32),
+    ) {
+        let pipeline = self.get(entry);
+        let entries: Vec<wgpu::BindGroupEntry> = bindings
+            .iter()
+            .map(|(binding, resource)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: resource.clone(),
+            })
+            .collect();
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(entry),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(entry),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups(groups.0, groups.1, 1);
+    }
+}
+
+/// The focus: `requested` if it is drawn, else (0) the drawn object of highest importance.
+fn focus_object(styles: &[ObjectStyle], requested: i64) -> Result<u16, NodeError> {
+    let drawn: Vec<&ObjectStyle> = styles.iter().filter(|s| s.enabled).collect();
+    if requested > 0 {
+        return match drawn.iter().find(|s| i64::from(s.id) == requested) {
+            Some(s) => Ok(s.id),
+            None => Err(NodeError::new(format!(
+                "parameter `focus`: object {requested} is not drawn by the object table (drawn: {})",
+                drawn
+                    .iter()
+                    .map(|s| s.id.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))),
+        };
+    }
+    drawn
+        .iter()
+        .max_by(|a, b| a.importance.total_cmp(&b.importance))
+        .map(|s| s.id)
+        .ok_or_else(|| NodeError::at_port("styles", "no object of the table is drawn"))
+}
+
+pub struct ImportanceCompositingNode;
+
+impl Node<Value, Ctx> for ImportanceCompositingNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "ImportanceCompositing",
+            category: "Volume",
+            doc: "Importance compositing (Viola et al., importance-driven feature enhancement): \
+                  per pixel, the focus object's footprint (its first and last hit along the \
+                  ray), the countersink depth e_i = e_max − d_i·s_c (eq. 1; d_i the distance to \
+                  the footprint by jump flooding, e_max the footprint's deepest last hit) and \
+                  the importance sum Σ I of the objects the ray meets, their footprints dilated \
+                  and averaged over `transition` pixels (image-space AImC, eq. 2). Feed it to \
+                  TwoLevelRaycast's `importance` input with the same camera. Methods: mimp \
+                  (maximum importance projection: only the focus in its footprint, the context \
+                  cut away in front of the countersink), aimc_image / aimc_object (average \
+                  importance compositing: levels of sparseness S_o = I_o / Σ I for every sample, \
+                  or for the context in front of the countersink only), vpimc (visibility \
+                  preserving: the occluding context's opacity scaled by S_o / α_avg, eq. 3). \
+                  Importance comes from ObjectStyles' `importance=`.",
+            inputs: vec![
+                PortSpec::input(
+                    "labels",
+                    PortType::Labels,
+                    "object ids on the volume's grid",
+                ),
+                PortSpec::input(
+                    "styles",
+                    PortType::ObjectStyles,
+                    "the object table: drawn objects and their importance",
+                ),
+                PortSpec::input("camera", PortType::Camera, "the view"),
+            ],
+            outputs: vec![PortSpec::output(
+                "importance",
+                PortType::Importance,
+                "footprint, countersink and importance sums of this view",
+            )],
+            params: vec![
+                ParamSpec::choice(
+                    "method",
+                    "mimp",
+                    METHODS,
+                    "importance compositing: mimp, aimc_image, aimc_object, vpimc",
+                ),
+                ParamSpec::int(
+                    "focus",
+                    0,
+                    0,
+                    65535,
+                    "the focus object's id (0: the drawn object of highest importance)",
+                ),
+                ParamSpec::choice(
+                    "countersink",
+                    "conical",
+                    COUNTERSINKS,
+                    "conical (eq. 1) or cylindrical (the footprint swept along the rays)",
+                ),
+                ParamSpec::float(
+                    "slope",
+                    1.0,
+                    0.05,
+                    20.0,
+                    "s_c of eq. 1: depth per unit of image-space distance (both in world units)",
+                ),
+                ParamSpec::float(
+                    "transition",
+                    0.0,
+                    0.0,
+                    64.0,
+                    "image-space AImC: dilate and average the footprints over this radius \
+                     (pixels) for smooth transitions between levels of sparseness",
+                ),
+                ParamSpec::float(
+                    "step",
+                    0.5,
+                    0.05,
+                    8.0,
+                    "sample distance along the rays in voxels (of the smallest spacing)",
+                ),
+                ParamSpec::choice(
+                    "boundary",
+                    "filtered",
+                    &["filtered", "point"],
+                    "object membership, as TwoLevelRaycast's",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let labels = inputs.require("labels")?.labels("labels")?.clone();
+        let styles = inputs.require("styles")?.object_styles("styles")?.clone();
+        let camera = inputs.require("camera")?.camera("camera")?.clone();
+        let method = match p.choice("method") {
+            "aimc_image" => ImportanceMethod::AimcImage,
+            "aimc_object" => ImportanceMethod::AimcObject,
+            "vpimc" => ImportanceMethod::Vpimc,
+            _ => ImportanceMethod::Mimp,
+        };
+        let focus = focus_object(&styles, p.int("focus"))?;
+        let drawn: Vec<&ObjectStyle> = styles.iter().filter(|s| s.enabled).collect();
+        if drawn.len() > MAX_OBJECTS {
+            ctx.warn(format!(
+                "{} objects are drawn; only the first {MAX_OBJECTS} count in importance sums",
+                drawn.len()
+            ));
+        }
+        let mut weights = [[0.0f32; 4]; 8];
+        for (i, s) in drawn.iter().take(MAX_OBJECTS).enumerate() {
+            weights[i / 4][i % 4] = s.importance.max(0.0);
+        }
+        let err = |e: GpuError| NodeError::new(e.to_string());
+        let pipelines = ctx
+            .cached("importance.pipelines", ImportancePipelines::new)
+            .map_err(err)?;
+        let sampler = ctx
+            .cached("importance.sampler", |gpu| {
+                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("linear clamp"),
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    ..Default::default()
+                }))
+            })
+            .map_err(err)?;
+        let gpu = &ctx.gpu;
+        let (w, h) = (camera.width, camera.height);
+        let l = &labels.data;
+        let grid = Grid {
+            dims: l.dims,
+            geometry: &l.geometry,
+            value_range: [0.0, 1.0],
+        };
+        let options = RayOptions {
+            mode: 0,
+            iso: 0.0,
+            step_voxels: p.f32("step"),
+            shading: 0,
+            lighting_model: "phong",
+            phong: [0.0; 4],
+            kappa: [0.0, 0.0],
+            contours: false,
+            thickness: 0.0,
+            transparency: false,
+            mip_bias: 0.0,
+            jitter: false,
+            early_termination: 1.0,
+            hit_opacity: 0.5,
+            light_view: glam::Vec3::Z,
+            skip_empty: false,
+            kernel: Kernel::Compute,
+        };
+        let info = TableInfo {
+            shading: 0.0,
+            domain: [0.0, 1.0],
+            nodes: 0.0,
+            map_size: 1.0,
+            use_labels: false,
+            label_range: [0.0, 1.0],
+            label_count: 0.0,
+            skip_empty: true,
+        };
+        let ray = RayUniforms::for_grid(&camera, &grid, &options, &info, 1.0, [0.0, 1.0]);
+        let tables = object_tables(&styles);
+        let two_level = TwoLevelUniforms {
+            options: [
+                0.0,
+                if p.choice("boundary") == "point" {
+                    0.0
+                } else {
+                    1.0
+                },
+                tables.columns as f32,
+                0.0,
+            ],
+            ..Default::default()
+        };
+        let proj_y = camera.proj.y_axis.y;
+        let slope = if p.choice("countersink") == "cylindrical" {
+            0.0
+        } else {
+            p.f32("slope")
+        };
+        let params = ImportanceUniforms {
+            frame: [
+                w as f32,
+                h as f32,
+                slope,
+                if camera.orthographic { 1.0 } else { 0.0 },
+            ],
+            view: [
+                2.0 / (proj_y * h as f32),
+                if method == ImportanceMethod::AimcImage {
+                    p.f32("transition").round()
+                } else {
+                    0.0
+                },
+                f32::from(focus),
+                drawn.len().min(MAX_OBJECTS) as f32,
+            ],
+            weights,
+        };
+        let uniform =
+            |label, bytes: &[u8]| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM);
+        let ray_buffer = uniform("importance ray", bytemuck::bytes_of(&ray));
+        let two_level_buffer = uniform("importance objects", bytemuck::bytes_of(&two_level));
+        let params_buffer = uniform("importance params", bytemuck::bytes_of(&params));
+        let ids = labels.texture(gpu).map_err(err)?;
+        let mut drawn_ids: Vec<u16> = drawn.iter().map(|s| s.id).collect();
+        drawn_ids.sort_unstable();
+        let drawn_mask = labels.drawn_mask(gpu, &drawn_ids).map_err(err)?;
+        let (brick_dims, brick_ranges) = brick_table(&labels, &styles);
+        let brick_texture = gpu.texture_3d_init(
+            "importance bricks",
+            brick_dims,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&brick_ranges),
+        );
+        let table_texture = gpu.texture_2d_init(
+            "importance object table",
+            TABLE_WIDTH,
+            (tables.table.len() / 4) as u32 / TABLE_WIDTH,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&tables.table),
+        );
+        use wgpu::TextureFormat as F;
+        let target = |label, format| gpu.storage_target(label, w, h, format);
+        let footprint = target("focus footprint", F::Rgba32Float);
+        let bits = [
+            target("object bits", F::R32Uint),
+            target("object bits'", F::R32Uint),
+        ];
+        let sums = [
+            target("importance sum", F::R32Float),
+            target("importance sum'", F::R32Float),
+        ];
+        let seeds = [
+            target("jfa seeds", F::Rg32Float),
+            target("jfa seeds'", F::Rg32Float),
+        ];
+        let stats = gpu.storage_target("importance stats", 1, 1, F::Rgba32Float);
+        let buffer = target("importance buffer", F::Rgba32Float);
+        let cut = target("countersink", F::Rgba32Float);
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let (footprint_v, stats_v, buffer_v, cut_v) =
+            (view(&footprint), view(&stats), view(&buffer), view(&cut));
+        let bits_v = [view(&bits[0]), view(&bits[1])];
+        let sums_v = [view(&sums[0]), view(&sums[1])];
+        let seeds_v = [view(&seeds[0]), view(&seeds[1])];
+        let tex = wgpu::BindingResource::TextureView;
+        let groups = (w.div_ceil(8), h.div_ceil(8));
+        let pass_buffer = |step: f32, radius: f32| {
+            uniform(
+                "importance pass",
+                bytemuck::bytes_of(&PassUniforms {
+                    step: [step, radius, 0.0, 0.0],
+                }),
+            )
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let (ids_v, drawn_v, bricks_v, table_v) = (
+            view(ids),
+            view(&drawn_mask),
+            view(&brick_texture),
+            view(&table_texture),
+        );
+        pipelines.dispatch(
+            gpu,
+            &mut encoder,
+            "footprint",
+            &[
+                (0, ray_buffer.as_entire_binding()),
+                (2, wgpu::BindingResource::Sampler(&sampler)),
+                (9, tex(&bricks_v)),
+                (11, tex(&ids_v)),
+                (12, tex(&table_v)),
+                (13, two_level_buffer.as_entire_binding()),
+                (14, tex(&drawn_v)),
+                (20, params_buffer.as_entire_binding()),
+                (22, tex(&footprint_v)),
+                (23, tex(&bits_v[0])),
+            ],
+            groups,
+        );
+        // Image-space AImC: dilate the footprints (OR of the bits), weigh, then average.
+        let radius = params.view[1];
+        let mut bits_at = 0;
+        let mut passes = Vec::new();
+        if radius > 0.0 {
+            for axis in [0.0, 1.0] {
+                passes.push(pass_buffer(axis, radius));
+                pipelines.dispatch(
+                    gpu,
+                    &mut encoder,
+                    "dilate",
+                    &[
+                        (20, params_buffer.as_entire_binding()),
+                        (21, passes.last().unwrap().as_entire_binding()),
+                        (24, tex(&bits_v[bits_at])),
+                        (23, tex(&bits_v[1 - bits_at])),
+                    ],
+                    groups,
+                );
+                bits_at = 1 - bits_at;
+            }
+        }
+        pipelines.dispatch(
+            gpu,
+            &mut encoder,
+            "weigh",
+            &[
+                (20, params_buffer.as_entire_binding()),
+                (24, tex(&bits_v[bits_at])),
+                (25, tex(&sums_v[0])),
+            ],
+            groups,
+        );
+        let mut sum_at = 0;
+        if radius > 0.0 {
+            for axis in [0.0, 1.0] {
+                passes.push(pass_buffer(axis, radius));
+                pipelines.dispatch(
+                    gpu,
+                    &mut encoder,
+                    "box",
+                    &[
+                        (20, params_buffer.as_entire_binding()),
+                        (21, passes.last().unwrap().as_entire_binding()),
+                        (26, tex(&sums_v[sum_at])),
+                        (25, tex(&sums_v[1 - sum_at])),
+                    ],
+                    groups,
+                );
+                sum_at = 1 - sum_at;
+            }
+        }
+        // 1+JFA: steps N/2, N/4, …, 1, then 1 again.
+        pipelines.dispatch(
+            gpu,
+            &mut encoder,
+            "jfa_init",
+            &[
+                (20, params_buffer.as_entire_binding()),
+                (27, tex(&footprint_v)),
+                (28, tex(&seeds_v[0])),
+            ],
+            groups,
+        );
+        let mut steps = Vec::new();
+        let mut k = w.max(h).next_power_of_two() / 2;
+        while k >= 1 {
+            steps.push(k);
+            k /= 2;
+        }
+        steps.push(1);
+        let mut seed_at = 0;
+        for k in steps {
+            passes.push(pass_buffer(k as f32, 0.0));
+            pipelines.dispatch(
+                gpu,
+                &mut encoder,
+                "jfa_step",
+                &[
+                    (20, params_buffer.as_entire_binding()),
+                    (21, passes.last().unwrap().as_entire_binding()),
+                    (29, tex(&seeds_v[seed_at])),
+                    (28, tex(&seeds_v[1 - seed_at])),
+                ],
+                groups,
+            );
+            seed_at = 1 - seed_at;
+        }
+        pipelines.dispatch(
+            gpu,
+            &mut encoder,
+            "reduce",
+            &[
+                (20, params_buffer.as_entire_binding()),
+                (27, tex(&footprint_v)),
+                (30, tex(&stats_v)),
+            ],
+            (1, 1),
+        );
+        pipelines.dispatch(
+            gpu,
+            &mut encoder,
+            "finish",
+            &[
+                (20, params_buffer.as_entire_binding()),
+                (26, tex(&sums_v[sum_at])),
+                (27, tex(&footprint_v)),
+                (29, tex(&seeds_v[seed_at])),
+                (31, tex(&stats_v)),
+                (32, tex(&buffer_v)),
+                (33, tex(&cut_v)),
+            ],
+            groups,
+        );
+        ctx.submit(encoder.finish());
+        let importance = drawn
+            .iter()
+            .map(|s| (s.id, s.importance.max(0.0)))
+            .collect();
+        Ok(vec![Value::Importance(Arc::new(Importance {
+            method,
+            focus,
+            importance,
+            buffer,
+            cut,
+            stats,
+            camera: (*camera).clone(),
+        }))])
+    }
+}

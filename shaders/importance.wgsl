@@ -1,0 +1,331 @@
+// ImportanceCompositing (Viola et al., importance-driven feature enhancement; the tutorial's
+// §"Importance Compositing"): per pixel of the frame, what the final synthesis in
+// TwoLevelRaycast needs to render the focus object densely and the context sparsely.
+//
+// Kernels, in order (one dispatch each, 8×8 pixels per workgroup unless noted):
+//   footprint   march the ray through the labels: the focus object's first and last hit (view
+//               depth) and a bit per object (table row) the ray meets.
+//   dilate      OR of the object bits over ±radius pixels along one axis (twice: x, then y):
+//               the dilated footprints of image-space AImC.
+//   weigh       Σ of the importance of the objects whose (dilated) footprint covers the pixel.
+//   box         mean of that sum over ±radius pixels along one axis (twice): the averaged
+//               footprints, so a footprint-weighted importance sum (eq. 2's denominator).
+//   jfa_init,   jump flooding (Rong & Tan 2006), 1+JFA: the nearest focus-footprint pixel of
+//   jfa_step    every pixel, so d_i, the image-space distance to the footprint (eq. 1).
+//   reduce      one workgroup: e_max, the largest last-hit depth of the footprint, and its size.
+//   finish      the importance buffer: countersink depth E (eq. 1: e_max − d_i·s_c outside the
+//               footprint, the focus's first hit inside), the importance sum, the footprint
+//               flag; and the countersink's view-space normal (its two in-plane components
+//               from the distance field's gradient, the third from the slope s_c).
+//   alpha_mean  one workgroup: the mean opacity of a picture over its non-empty pixels (VPImC's
+//               α_avg, eq. 3), for TwoLevelRaycast.
+// Prepended: ray_common, ray_skip, ray_objects.
+
+struct ImportanceParams {
+    // x, y = frame size; z = countersink slope s_c (≤ 0: cylindrical, no countersink); w = 1 for
+    // an orthographic camera.
+    frame: vec4<f32>,
+    // x = world size of a pixel (orthographic) or of a pixel at unit view depth (perspective);
+    // y = AImC transition radius in pixels; z = focus object id; w = number of table rows.
+    view: vec4<f32>,
+    // Importance of table row i (the drawn objects, in table order) at weights[i / 4][i % 4].
+    weights: array<vec4<f32>, 8>,
+};
+@group(0) @binding(20) var<uniform> imp: ImportanceParams;
+
+// One pass of a separable or iterated kernel: x = axis (0 = x, 1 = y) or JFA step; y = radius.
+struct PassParams {
+    step: vec4<f32>,
+};
+@group(0) @binding(21) var<uniform> pass_params: PassParams;
+
+@group(0) @binding(22) var footprint_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(23) var bits_out: texture_storage_2d<r32uint, write>;
+@group(0) @binding(24) var bits_in: texture_2d<u32>;
+@group(0) @binding(25) var sum_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(26) var sum_in: texture_2d<f32>;
+@group(0) @binding(27) var footprint_in: texture_2d<f32>;
+@group(0) @binding(28) var seed_out: texture_storage_2d<rg32float, write>;
+@group(0) @binding(29) var seed_in: texture_2d<f32>;
+@group(0) @binding(30) var stats_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(31) var stats_in: texture_2d<f32>;
+@group(0) @binding(32) var buffer_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(33) var cut_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(34) var picture_in: texture_2d<f32>;
+
+// A pixel without a seed (no footprint pixel found yet).
+const NO_SEED: f32 = -1.0e9;
+
+fn frame_size() -> vec2<i32> {
+    return vec2<i32>(imp.frame.xy + 0.5);
+}
+
+fn in_frame(id: vec2<u32>) -> bool {
+    let size = frame_size();
+    return i32(id.x) < size.x && i32(id.y) < size.y;
+}
+
+// Distance from the eye plane along the view direction (world units); positive in front.
+fn view_depth(p: vec3<f32>) -> f32 {
+    return -(ray.view * vec4<f32>(p, 1.0)).z;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let r = primary_ray(vec2<f32>(id.xy) + 0.5);
+    var first = -1.0;
+    var last = -1.0;
+    var bits = 0u;
+    let focus = u32(imp.view.z + 0.5);
+    let columns = i32(two_level.options.z + 0.5);
+    if r.hits {
+        let h = ray.box_min.w;
+        let count = min(u32(max(floor((r.t_out - r.t_in) / h), -1.0) + 1.0), 65536u);
+        for (var k = 0u; k < count; k++) {
+            let t = r.t_in + f32(k) * h;
+            let q = r.q0 + r.dq * t;
+            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
+            let info = textureLoad(bricks, brick, 0);
+            if ray.skip.x > 0.5 && info.x > info.y {
+                // No drawn object reaches this brick: jump to the first sample after it.
+                let exit = brick_exit(q, r.dq, t) - 1e-4 * h;
+                let next = min(max(ceil((exit - r.t_in) / h), f32(k + 1u)), f32(count));
+                k = u32(next) - 1u;
+                continue;
+            }
+            var object = 0u;
+            if info.z >= 0.0 {
+                object = u32(info.z);
+            } else if two_level.options.y > 0.5 && drawn_union(q) < 0.45 {
+                object = 0u;
+            } else {
+                object = object_at(q);
+            }
+            if object == 0u || i32(object) >= columns {
+                continue;
+            }
+            let row = object_info(object, 0u).x;
+            if row < 0.5 {
+                continue;
+            }
+            let slot = u32(row + 0.5) - 1u;
+            if slot < 32u {
+                bits = bits | (1u << slot);
+            }
+            if object == focus {
+                let d = view_depth(r.p0 + r.dir * t);
+                if first < 0.0 {
+                    first = d;
+                }
+                last = d;
+            }
+        }
+    }
+    textureStore(footprint_out, vec2<i32>(id.xy), vec4<f32>(first, last, 0.0, 0.0));
+    textureStore(bits_out, vec2<i32>(id.xy), vec4<u32>(bits, 0u, 0u, 0u));
+}
+
+fn axis_offset(o: i32) -> vec2<i32> {
+    if pass_params.step.x < 0.5 {
+        return vec2<i32>(o, 0);
+    }
+    return vec2<i32>(0, o);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn dilate(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let radius = i32(pass_params.step.y + 0.5);
+    let top = frame_size() - 1;
+    var bits = 0u;
+    for (var o = -radius; o <= radius; o++) {
+        let p = clamp(vec2<i32>(id.xy) + axis_offset(o), vec2<i32>(0), top);
+        bits = bits | textureLoad(bits_in, p, 0).r;
+    }
+    textureStore(bits_out, vec2<i32>(id.xy), vec4<u32>(bits, 0u, 0u, 0u));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn weigh(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let bits = textureLoad(bits_in, vec2<i32>(id.xy), 0).r;
+    var sum = 0.0;
+    for (var slot = 0u; slot < 32u; slot++) {
+        if (bits & (1u << slot)) != 0u {
+            sum += imp.weights[slot / 4u][slot % 4u];
+        }
+    }
+    textureStore(sum_out, vec2<i32>(id.xy), vec4<f32>(sum, 0.0, 0.0, 0.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn box(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let radius = i32(pass_params.step.y + 0.5);
+    let size = frame_size();
+    var sum = 0.0;
+    var n = 0.0;
+    for (var o = -radius; o <= radius; o++) {
+        let p = vec2<i32>(id.xy) + axis_offset(o);
+        if all(p >= vec2<i32>(0)) && all(p < size) {
+            sum += textureLoad(sum_in, p, 0).r;
+            n += 1.0;
+        }
+    }
+    textureStore(sum_out, vec2<i32>(id.xy), vec4<f32>(sum / max(n, 1.0), 0.0, 0.0, 0.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn jfa_init(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    var seed = vec2<f32>(NO_SEED);
+    if textureLoad(footprint_in, vec2<i32>(id.xy), 0).y >= 0.0 {
+        seed = vec2<f32>(id.xy);
+    }
+    textureStore(seed_out, vec2<i32>(id.xy), vec4<f32>(seed, 0.0, 0.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn jfa_step(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let k = i32(pass_params.step.x + 0.5);
+    let size = frame_size();
+    let here = vec2<f32>(id.xy);
+    var best = textureLoad(seed_in, vec2<i32>(id.xy), 0).xy;
+    var best_d = 1e30;
+    if best.x > NO_SEED * 0.5 {
+        best_d = distance(best, here);
+    }
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let p = vec2<i32>(id.xy) + vec2<i32>(dx, dy) * k;
+            if any(p < vec2<i32>(0)) || any(p >= size) {
+                continue;
+            }
+            let s = textureLoad(seed_in, p, 0).xy;
+            if s.x > NO_SEED * 0.5 {
+                let d = distance(s, here);
+                if d < best_d {
+                    best_d = d;
+                    best = s;
+                }
+            }
+        }
+    }
+    textureStore(seed_out, vec2<i32>(id.xy), vec4<f32>(best, 0.0, 0.0));
+}
+
+var<workgroup> partial_max: array<f32, 256>;
+var<workgroup> partial_sum: array<f32, 256>;
+
+@compute @workgroup_size(256, 1, 1)
+fn reduce(@builtin(local_invocation_index) lane: u32) {
+    let size = frame_size();
+    let n = u32(size.x * size.y);
+    var m = -1.0;
+    var count = 0.0;
+    for (var i = lane; i < n; i += 256u) {
+        let last = textureLoad(footprint_in, vec2<i32>(i32(i % u32(size.x)), i32(i / u32(size.x))), 0).y;
+        if last >= 0.0 {
+            m = max(m, last);
+            count += 1.0;
+        }
+    }
+    partial_max[lane] = m;
+    partial_sum[lane] = count;
+    workgroupBarrier();
+    for (var half = 128u; half > 0u; half /= 2u) {
+        if lane < half {
+            partial_max[lane] = max(partial_max[lane], partial_max[lane + half]);
+            partial_sum[lane] += partial_sum[lane + half];
+        }
+        workgroupBarrier();
+    }
+    if lane == 0u {
+        textureStore(stats_out, vec2<i32>(0), vec4<f32>(partial_max[0], partial_sum[0], 0.0, 0.0));
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let pixel = vec2<i32>(id.xy);
+    let fp = textureLoad(footprint_in, pixel, 0);
+    let stats = textureLoad(stats_in, vec2<i32>(0), 0);
+    let sum = textureLoad(sum_in, pixel, 0).r;
+    let slope = imp.frame.z;
+    var e = -1.0e30;
+    var inside = 0.0;
+    var normal = vec3<f32>(0.0, 0.0, 1.0);
+    var d = 0.0;
+    if fp.y >= 0.0 {
+        // In the footprint: the context in front of the focus's first hit.
+        e = fp.x;
+        inside = 1.0;
+    } else {
+        let seed = textureLoad(seed_in, pixel, 0).xy;
+        if seed.x > NO_SEED * 0.5 && stats.y > 0.0 {
+            let away = vec2<f32>(id.xy) - seed;
+            d = length(away);
+            if slope > 0.0 {
+                let e_max = stats.x;
+                var pixel_world = imp.view.x;
+                if imp.frame.w < 0.5 {
+                    pixel_world = imp.view.x * e_max;
+                }
+                // Eq. 1: e_i = e_max − d_i · s_c (d_i in world units at the footprint's depth).
+                e = e_max - d * pixel_world * slope;
+                // The countersink z_view = −e_max + s_c · d(x, y): its normal towards the viewer
+                // is (−s_c ∇d, 1), ∇d the unit vector away from the footprint (y up in view).
+                let u = away / max(d, 1e-6);
+                normal = normalize(vec3<f32>(-slope * u.x, slope * u.y, 1.0));
+            }
+        }
+    }
+    textureStore(buffer_out, pixel, vec4<f32>(e, sum, inside, fp.y));
+    textureStore(cut_out, pixel, vec4<f32>(normal, d));
+}
+
+@compute @workgroup_size(256, 1, 1)
+fn alpha_mean(@builtin(local_invocation_index) lane: u32) {
+    let size = vec2<i32>(textureDimensions(picture_in));
+    let n = u32(size.x * size.y);
+    var sum = 0.0;
+    var count = 0.0;
+    for (var i = lane; i < n; i += 256u) {
+        let a = textureLoad(picture_in, vec2<i32>(i32(i % u32(size.x)), i32(i / u32(size.x))), 0).a;
+        if a > 0.0 {
+            sum += a;
+            count += 1.0;
+        }
+    }
+    partial_max[lane] = sum;
+    partial_sum[lane] = count;
+    workgroupBarrier();
+    for (var half = 128u; half > 0u; half /= 2u) {
+        if lane < half {
+            partial_max[lane] += partial_max[lane + half];
+            partial_sum[lane] += partial_sum[lane + half];
+        }
+        workgroupBarrier();
+    }
+    if lane == 0u {
+        let mean = partial_max[0] / max(partial_sum[0], 1.0);
+        textureStore(stats_out, vec2<i32>(0), vec4<f32>(mean, partial_sum[0], 0.0, 0.0));
+    }
+}

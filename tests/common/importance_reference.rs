@@ -1,0 +1,327 @@
+//! CPU reference of importance-driven volume rendering (Viola et al.; the tutorial's importance
+//! compositing, eq. 1–3), the rules shaders/importance.wgsl and the importance part of
+//! shaders/two_level_raycast.wgsl implement, written out plainly:
+//!
+//! - Footprint: the same samples as two-level rendering (no jitter); per pixel the focus
+//!   object's first and last sample's view depth `z = −(V p).z`, and Σ I over the distinct drawn
+//!   objects the ray meets (no transition smoothing here).
+//! - Countersink (eq. 1): e_max = the largest last-hit depth of the footprint; outside it
+//!   `E = e_max − d · s_c · w_px` with d the exact Euclidean distance (pixels, between pixel
+//!   indices) to the nearest footprint pixel and w_px the world size of a pixel (orthographic),
+//!   or that at depth e_max (perspective); inside, E = the focus's first hit. Cylindrical
+//!   (s_c = 0): nothing outside the footprint is cut.
+//! - Final synthesis, per sample of drawn object o at depth z:
+//!   MImP — in the footprint only the focus is drawn, outside samples with z < E are dropped;
+//!   AImC image space — opacity × S_o (S_o = I_o / Σ I, eq. 2) for every sample;
+//!   AImC object space — the same, for non-focus samples with z < E only;
+//!   VPImC — non-focus samples with z < E form their own segments ("occluding") whose
+//!   accumulated colour and opacity are scaled by S_o / α_avg (eq. 3), α_avg the mean opacity
+//!   of a first pass drawing only those segments, over its non-empty pixels.
+
+#![allow(dead_code)]
+
+use super::raycast_reference::{RayParams, box_margin, intersect_box, pixel_ray, world_step};
+use super::two_level_reference::{Local, Object, object_at};
+use glam::{Vec3, Vec4};
+use hatchery_data::VolumeData;
+use hatchery_data::segmentation::LabelData;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    Mimp,
+    AimcImage,
+    AimcObject,
+    Vpimc,
+}
+
+pub struct Setup {
+    pub method: Method,
+    pub focus: u16,
+    /// Importance by object id.
+    pub importance: Vec<(u16, f32)>,
+    /// s_c; 0 for a cylindrical countersink.
+    pub slope: f32,
+}
+
+/// Per pixel: (E, Σ I, 1 in the footprint, focus last-hit depth or −1), like the GPU buffer,
+/// and d (pixels to the footprint; 0 inside).
+pub struct Buffers {
+    pub pixels: Vec<[f32; 4]>,
+    pub distance: Vec<f32>,
+    pub e_max: f32,
+}
+
+fn view_depth(p: &RayParams, point: Vec3) -> f32 {
+    -(p.view * point.extend(1.0)).z
+}
+
+/// The importance buffers of `setup` for the drawn `objects` (see the module docs).
+pub fn buffers(
+    volume: &VolumeData,
+    labels: &LabelData,
+    objects: &[Object],
+    setup: &Setup,
+    p: &RayParams,
+    pixel_world: f32,
+) -> Buffers {
+    let h = world_step(volume, p);
+    let margin = box_margin(volume);
+    let last = Vec3::new(
+        (volume.dims[0] - 1) as f32,
+        (volume.dims[1] - 1) as f32,
+        (volume.dims[2] - 1) as f32,
+    );
+    let importance = |id: u16| {
+        setup
+            .importance
+            .iter()
+            .find(|(i, _)| *i == id)
+            .map_or(0.0, |(_, v)| *v)
+    };
+    let mut hits = Vec::new(); // (first, last, sum)
+    for y in 0..p.height {
+        for x in 0..p.width {
+            let (origin, dir) = pixel_ray(p, x, y);
+            let q0 = volume.world_to_voxel(origin);
+            let dq = volume.world_to_voxel(origin + dir) - q0;
+            let mut first = -1.0f32;
+            let mut last_hit = -1.0f32;
+            let mut met: Vec<u16> = Vec::new();
+            if let Some((t_in, t_out)) = intersect_box(-margin, last + margin, q0, dq) {
+                let count = ((t_out - t_in) / h).floor().max(-1.0) as i64 + 1;
+                for k in 0..count.max(0) {
+                    let t = t_in + k as f32 * h;
+                    let id = object_at(labels, q0 + dq * t, true);
+                    if id == 0 || !objects.iter().any(|o| o.id == id) {
+                        continue;
+                    }
+                    if !met.contains(&id) {
+                        met.push(id);
+                    }
+                    if id == setup.focus {
+                        let z = view_depth(p, origin + dir * t);
+                        if first < 0.0 {
+                            first = z;
+                        }
+                        last_hit = z;
+                    }
+                }
+            }
+            let sum: f32 = met.iter().map(|&id| importance(id)).sum();
+            hits.push((first, last_hit, sum));
+        }
+    }
+    let footprint: Vec<(f32, f32)> = hits
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| h.1 >= 0.0)
+        .map(|(i, _)| ((i as u32 % p.width) as f32, (i as u32 / p.width) as f32))
+        .collect();
+    let e_max = hits.iter().map(|h| h.1).fold(-1.0f32, f32::max);
+    let mut pixels = Vec::new();
+    let mut distance = Vec::new();
+    for (i, &(first, last_hit, sum)) in hits.iter().enumerate() {
+        let (x, y) = ((i as u32 % p.width) as f32, (i as u32 / p.width) as f32);
+        if last_hit >= 0.0 {
+            pixels.push([first, sum, 1.0, last_hit]);
+            distance.push(0.0);
+            continue;
+        }
+        let d = footprint
+            .iter()
+            .map(|&(fx, fy)| ((fx - x).powi(2) + (fy - y).powi(2)).sqrt())
+            .fold(f32::INFINITY, f32::min);
+        let mut e = -1.0e30;
+        if setup.slope > 0.0 && d.is_finite() {
+            let w = if p.orthographic {
+                pixel_world
+            } else {
+                pixel_world * e_max
+            };
+            e = e_max - d * w * setup.slope;
+        }
+        pixels.push([e, sum, 0.0, -1.0]);
+        distance.push(if d.is_finite() { d } else { 0.0 });
+    }
+    Buffers {
+        pixels,
+        distance,
+        e_max,
+    }
+}
+
+/// Importance-driven two-level rendering with global over, opacity as the level of
+/// sparseness; premultiplied RGBA per pixel. `objects` use local over, sum or mip.
+pub fn render(
+    volume: &VolumeData,
+    labels: &LabelData,
+    objects: &[Object],
+    setup: &Setup,
+    buffers: &Buffers,
+    p: &RayParams,
+) -> Vec<[f32; 4]> {
+    let alpha_avg = if setup.method == Method::Vpimc {
+        let first = render_pass(volume, labels, objects, setup, buffers, p, true, 1.0);
+        let (sum, n) = first
+            .iter()
+            .filter(|c| c[3] > 0.0)
+            .fold((0.0f32, 0u32), |(s, n), c| (s + c[3], n + 1));
+        sum / n.max(1) as f32
+    } else {
+        1.0
+    };
+    render_pass(volume, labels, objects, setup, buffers, p, false, alpha_avg)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn render_pass(
+    volume: &VolumeData,
+    labels: &LabelData,
+    objects: &[Object],
+    setup: &Setup,
+    buffers: &Buffers,
+    p: &RayParams,
+    first_pass: bool,
+    alpha_avg: f32,
+) -> Vec<[f32; 4]> {
+    let h = world_step(volume, p);
+    let margin = box_margin(volume);
+    let last = Vec3::new(
+        (volume.dims[0] - 1) as f32,
+        (volume.dims[1] - 1) as f32,
+        (volume.dims[2] - 1) as f32,
+    );
+    let importance = |id: u16| {
+        setup
+            .importance
+            .iter()
+            .find(|(i, _)| *i == id)
+            .map_or(0.0, |(_, v)| *v)
+    };
+    let mut out = Vec::with_capacity((p.width * p.height) as usize);
+    for y in 0..p.height {
+        for x in 0..p.width {
+            let [e, sum, inside, _] = buffers.pixels[(y * p.width + x) as usize];
+            let inside = inside > 0.5;
+            let (origin, dir) = pixel_ray(p, x, y);
+            let q0 = volume.world_to_voxel(origin);
+            let dq = volume.world_to_voxel(origin + dir) - q0;
+            let Some((t_in, t_out)) = intersect_box(-margin, last + margin, q0, dq) else {
+                out.push([0.0; 4]);
+                continue;
+            };
+            let count = ((t_out - t_in) / h).floor().max(-1.0) as i64 + 1;
+            let mut total = Vec4::ZERO;
+            // (key, object index, colour, best, done, scale)
+            let mut segment: Option<(u32, usize, Vec4, f32, bool, f32)> = None;
+            let close = |total: &mut Vec4, seg: Vec4, scale: f32| {
+                if seg.w <= 0.0 {
+                    return;
+                }
+                let seg = if scale != 1.0 {
+                    seg * scale.min(1.0 / seg.w)
+                } else {
+                    seg
+                };
+                let s = Vec4::new(seg.x, seg.y, seg.z, seg.w.min(1.0));
+                *total += (1.0 - total.w) * s;
+            };
+            for k in 0..=count.max(0) {
+                let t = t_in + k as f32 * h;
+                let q = q0 + dq * t;
+                let mut id = if k < count {
+                    object_at(labels, q, true)
+                } else {
+                    0
+                };
+                if !objects.iter().any(|o| o.id == id) {
+                    id = 0;
+                }
+                let mut flag = 0u32;
+                let mut s = 1.0f32;
+                if id != 0 {
+                    let z = view_depth(p, origin + dir * t);
+                    let in_front = z < e;
+                    let s_o = (importance(id) / sum.max(1e-6)).clamp(0.0, 1.0);
+                    match setup.method {
+                        Method::Mimp => {
+                            if (inside && id != setup.focus) || (!inside && in_front) {
+                                id = 0;
+                            }
+                        }
+                        Method::Vpimc => {
+                            if id != setup.focus && in_front {
+                                flag = 1;
+                                s = s_o;
+                            } else if first_pass {
+                                id = 0;
+                            }
+                        }
+                        Method::AimcImage => s = s_o,
+                        Method::AimcObject => {
+                            if id != setup.focus && in_front {
+                                s = s_o;
+                            }
+                        }
+                    }
+                }
+                let key = u32::from(id) * 2 + flag;
+                if Some(key) != segment.map(|s| s.0) {
+                    if let Some((_, _, seg, _, _, scale)) = segment {
+                        close(&mut total, seg, scale);
+                    }
+                    if total.w >= p.early_termination {
+                        break;
+                    }
+                    segment = (id != 0).then(|| {
+                        let o = objects.iter().position(|o| o.id == id).unwrap();
+                        let scale = if flag == 1 && !first_pass {
+                            s / alpha_avg
+                        } else {
+                            1.0
+                        };
+                        (key, o, Vec4::ZERO, f32::NEG_INFINITY, false, scale)
+                    });
+                }
+                let Some((_, o, seg, best, done, _)) = segment.as_mut() else {
+                    continue;
+                };
+                if *done {
+                    continue;
+                }
+                if flag == 1 {
+                    s = 1.0;
+                }
+                let object = &objects[*o];
+                let v = volume.sample_trilinear(q);
+                let c = object.tf.lookup(v);
+                let a = c[3] * s;
+                match object.local {
+                    Local::Mip => {
+                        if v > *best && a > 0.0 {
+                            *best = v;
+                            *seg = Vec4::new(c[0] * a, c[1] * a, c[2] * a, a);
+                        }
+                    }
+                    Local::Over | Local::Sum => {
+                        if a <= 0.0 {
+                            continue;
+                        }
+                        let a = 1.0 - (1.0 - a.clamp(0.0, 1.0)).powf(p.step_voxels);
+                        let sample = Vec4::new(c[0] * a, c[1] * a, c[2] * a, a);
+                        if object.local == Local::Over {
+                            *seg += (1.0 - seg.w) * sample;
+                            *done = seg.w >= p.early_termination;
+                        } else {
+                            *seg += sample;
+                        }
+                    }
+                    Local::Iso(_) => unimplemented!("the importance reference has no iso"),
+                }
+            }
+            let t = total.min(Vec4::ONE);
+            out.push([t.x, t.y, t.z, t.w]);
+        }
+    }
+    out
+}

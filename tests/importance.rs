@@ -1,0 +1,643 @@
+//! Importance-driven volume rendering (Viola et al., eq. 1–3): ImportanceCompositing's buffers
+//! and TwoLevelRaycast's final synthesis against the CPU reference
+//! (tests/common/importance_reference.rs) and against plain and focus-only renderings, on
+//! synthetic nested objects seen orthographically along an axis.
+
+mod common;
+
+use common::importance_reference::{self as reference, Method, Setup};
+use common::raycast_reference::{Mode, RayParams, Shading};
+use common::two_level_reference::{Local, Object};
+use glam::Vec3;
+use hatchery_data::VolumeData;
+use hatchery_data::geometry::Geometry;
+use hatchery_data::segmentation::LabelData;
+use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
+use hatchery_graph::ParamValue;
+use hatchery_nodes::camera::Camera;
+use hatchery_nodes::value::{Compositing, Labels, ObjectStyle, RenderMode, Volume};
+use hatchery_nodes::{Session, Value, export};
+use std::sync::Arc;
+
+const N: u32 = 40;
+const SIZE: u32 = 48;
+const STEP: f32 = 0.37;
+const HALF_WIDTH: f32 = 22.0;
+
+fn session() -> Session {
+    common::session_from_text(
+        r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
+        SIZE,
+        SIZE,
+    )
+}
+
+/// An N³ grid centred at the origin whose ids come from `id(x, y, z)`; value = 100 · id.
+fn grid(id: impl Fn(u32, u32, u32) -> u16) -> (VolumeData, LabelData) {
+    let mut ids = Vec::new();
+    for z in 0..N {
+        for y in 0..N {
+            for x in 0..N {
+                ids.push(id(x, y, z));
+            }
+        }
+    }
+    let half = (N - 1) as f64 / 2.0;
+    let geometry = Geometry::axis_aligned([1.0; 3], [-half; 3]);
+    let values = ids.iter().map(|&id| 100.0 * f32::from(id)).collect();
+    let volume = VolumeData::with_geometry([N; 3], geometry, values).unwrap();
+    (volume, LabelData::new([N; 3], geometry, ids))
+}
+
+/// Nested spheres: id 3 for r < 0.3, 2 for r < 0.6, 1 for r < 0.85 (r relative to the
+/// half-size), or only ids 2 (r < 0.45) and 1 (r < 0.85) with `three = false`.
+fn nested(three: bool) -> (VolumeData, LabelData) {
+    let half = (N - 1) as f32 / 2.0;
+    grid(|x, y, z| {
+        let r = Vec3::new(x as f32 - half, y as f32 - half, z as f32 - half).length() / half;
+        match (three, r) {
+            (true, r) if r < 0.3 => 3,
+            (true, r) if r < 0.6 => 2,
+            (false, r) if r < 0.45 => 2,
+            (_, r) if r < 0.85 => 1,
+            _ => 0,
+        }
+    })
+}
+
+fn flat(rgba: [f32; 4]) -> TransferFunction1D {
+    TransferFunction1D::from_points(&[
+        ControlPoint { value: 0.0, rgba },
+        ControlPoint { value: 400.0, rgba },
+    ])
+    .unwrap()
+}
+
+/// Orthographic along −z (the eye on +z), the volume filling most of the frame.
+fn camera(session: &mut Session) -> Camera {
+    session.ctx.set_size(SIZE, SIZE).unwrap();
+    let fov = 2.0 * (HALF_WIDTH / 60.0).atan().to_degrees();
+    Camera::orbit(
+        Vec3::ZERO,
+        0.0,
+        0.0,
+        60.0,
+        fov,
+        true,
+        0.05,
+        200.0,
+        false,
+        SIZE,
+        SIZE,
+    )
+}
+
+fn ray_params(cam: &Camera) -> RayParams {
+    RayParams {
+        view_proj: cam.view_proj(),
+        view: cam.view,
+        width: cam.width,
+        height: cam.height,
+        orthographic: true,
+        step_voxels: STEP,
+        mode: Mode::Dvr,
+        shading: Shading::None,
+        light_dir_view: Vec3::Z,
+        early_termination: 0.99,
+    }
+}
+
+/// World size of a pixel of `cam` (orthographic), as ImportanceCompositing computes it.
+fn pixel_world(cam: &Camera) -> f32 {
+    2.0 / (cam.proj.y_axis.y * cam.height as f32)
+}
+
+fn style(o: &Object, importance: f32) -> ObjectStyle {
+    ObjectStyle {
+        id: o.id,
+        name: format!("object {}", o.id),
+        enabled: true,
+        tf: o.tf.clone(),
+        mode: RenderMode::Dvr,
+        compositing: match o.local {
+            Local::Mip => Compositing::Mip,
+            Local::Sum => Compositing::Sum,
+            _ => Compositing::Over,
+        },
+        iso: 0.0,
+        importance,
+    }
+}
+
+fn method_name(m: Method) -> &'static str {
+    match m {
+        Method::Mimp => "mimp",
+        Method::AimcImage => "aimc_image",
+        Method::AimcObject => "aimc_object",
+        Method::Vpimc => "vpimc",
+    }
+}
+
+struct Scene {
+    volume: VolumeData,
+    labels: LabelData,
+    objects: Vec<Object>,
+}
+
+impl Scene {
+    fn styles(&self, setup: &Setup) -> Vec<ObjectStyle> {
+        self.objects
+            .iter()
+            .map(|o| {
+                let i = setup.importance.iter().find(|(id, _)| *id == o.id);
+                style(o, i.map_or(1.0, |(_, v)| *v))
+            })
+            .collect()
+    }
+}
+
+fn pixels(value: &Value, session: &Session) -> Vec<[f32; 4]> {
+    let a = export::to_array(value, &session.ctx.gpu).unwrap();
+    a.data
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
+}
+
+/// ImportanceCompositing's buffer (E, Σ I, footprint, last hit) and TwoLevelRaycast's picture
+/// with it (or, with `setup = None`, without importance).
+fn render_gpu(
+    session: &mut Session,
+    cam: &Camera,
+    scene: &Scene,
+    setup: Option<&Setup>,
+    extra: &[(&str, ParamValue)],
+) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
+    let labels = Value::Labels(Arc::new(Labels::new(scene.labels.clone())));
+    let default_setup = Setup {
+        method: Method::Mimp,
+        focus: 0,
+        importance: vec![],
+        slope: 0.0,
+    };
+    let styles = Value::ObjectStyles(Arc::new(scene.styles(setup.unwrap_or(&default_setup))));
+    let camera = Value::Camera(Arc::new(cam.clone()));
+    let mut inputs = vec![
+        (
+            "volume",
+            Value::Volume(Arc::new(Volume::new(scene.volume.clone()))),
+        ),
+        ("labels", labels.clone()),
+        ("styles", styles.clone()),
+        ("camera", camera.clone()),
+    ];
+    let mut buffer = Vec::new();
+    if let Some(setup) = setup {
+        let countersink = if setup.slope > 0.0 {
+            "conical"
+        } else {
+            "cylindrical"
+        };
+        let out = common::run_node(
+            session,
+            "ImportanceCompositing",
+            vec![("labels", labels), ("styles", styles), ("camera", camera)],
+            &[
+                (
+                    "method",
+                    ParamValue::Choice(method_name(setup.method).into()),
+                ),
+                ("focus", ParamValue::Int(i64::from(setup.focus))),
+                ("countersink", ParamValue::Choice(countersink.into())),
+                ("slope", ParamValue::Float(setup.slope.max(0.05) as f64)),
+                ("step", ParamValue::Float(STEP as f64)),
+            ],
+        );
+        buffer = pixels(&out[0], session);
+        inputs.push(("importance", out[0].clone()));
+    }
+    let mut params = vec![
+        ("step", ParamValue::Float(STEP as f64)),
+        ("jitter", ParamValue::Bool(false)),
+    ];
+    params.extend(extra.iter().cloned());
+    let out = common::run_node(session, "TwoLevelRaycast", inputs, &params);
+    let errors = session.ctx.gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:?}");
+    (buffer, pixels(&out[0], session))
+}
+
+/// The largest channel difference of two pixels.
+fn diff(a: [f32; 4], b: [f32; 4]) -> f32 {
+    (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max)
+}
+
+/// Every pixel selected by `which` within `tolerance`, reporting the worst one.
+fn assert_close_where(
+    name: &str,
+    gpu: &[[f32; 4]],
+    cpu: &[[f32; 4]],
+    tolerance: f32,
+    which: impl Fn(usize) -> bool,
+) {
+    let (mut worst, mut at) = (0.0f32, 0);
+    for i in (0..gpu.len()).filter(|&i| which(i)) {
+        let d = diff(gpu[i], cpu[i]);
+        if d > worst {
+            (worst, at) = (d, i);
+        }
+    }
+    assert!(
+        worst <= tolerance,
+        "{name}: pixel ({}, {}) differs by {worst}: {:?} vs {:?}",
+        at % SIZE as usize,
+        at / SIZE as usize,
+        gpu[at],
+        cpu[at]
+    );
+}
+
+const SHELL: [f32; 4] = [1.0, 0.2, 0.1, 0.25];
+const CORE: [f32; 4] = [0.1, 0.9, 0.2, 0.6];
+const INNER: [f32; 4] = [0.2, 0.3, 1.0, 0.5];
+
+fn two_objects() -> Scene {
+    let (volume, labels) = nested(false);
+    Scene {
+        volume,
+        labels,
+        objects: vec![
+            Object {
+                id: 1,
+                tf: flat(SHELL),
+                local: Local::Over,
+            },
+            Object {
+                id: 2,
+                tf: flat(CORE),
+                local: Local::Over,
+            },
+        ],
+    }
+}
+
+#[test]
+fn cylindrical_mimp_shows_only_the_focus_in_its_footprint_and_the_plain_rendering_elsewhere() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    let scene = two_objects();
+    let setup = Setup {
+        method: Method::Mimp,
+        focus: 2,
+        importance: vec![(1, 0.2), (2, 0.8)],
+        slope: 0.0,
+    };
+    let (buffer, mimp) = render_gpu(&mut session, &cam, &scene, Some(&setup), &[]);
+    let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
+    let focus_only = Scene {
+        objects: scene.objects.iter().skip(1).cloned().collect(),
+        volume: scene.volume.clone(),
+        labels: scene.labels.clone(),
+    };
+    let (_, focus) = render_gpu(&mut session, &cam, &focus_only, None, &[]);
+    let inside = |i: usize| buffer[i][2] > 0.5;
+    let footprint = (0..buffer.len()).filter(|&i| inside(i)).count();
+    // The core (r < 0.45 of the half-size 19.5 voxels) covers about π·(8.8 / 0.917)² pixels.
+    assert!(
+        (200..400).contains(&footprint),
+        "footprint of {footprint} pixels"
+    );
+    assert_close_where(
+        "footprint vs focus only",
+        &mimp,
+        &focus,
+        1.0 / 255.0,
+        inside,
+    );
+    assert_close_where("outside vs plain", &mimp, &plain, 1.0 / 255.0, |i| {
+        !inside(i)
+    });
+    // Not trivially equal: in the footprint the plain rendering shows the shell in front.
+    let changed = (0..buffer.len())
+        .filter(|&i| inside(i) && diff(plain[i], focus[i]) > 0.05)
+        .count();
+    assert!(changed > footprint / 2, "only {changed} pixels changed");
+    // And the CPU reference agrees everywhere.
+    let p = ray_params(&cam);
+    let reference_buffers = reference::buffers(
+        &scene.volume,
+        &scene.labels,
+        &scene.objects,
+        &setup,
+        &p,
+        pixel_world(&cam),
+    );
+    let cpu = reference::render(
+        &scene.volume,
+        &scene.labels,
+        &scene.objects,
+        &setup,
+        &reference_buffers,
+        &p,
+    );
+    assert_close_where("MImP vs CPU", &mimp, &cpu, 1.0 / 255.0, |_| true);
+}
+
+#[test]
+fn conical_mimp_starts_rays_on_the_countersink_of_eq_1() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    let scene = two_objects();
+    let setup = Setup {
+        method: Method::Mimp,
+        focus: 2,
+        importance: vec![(1, 0.2), (2, 0.8)],
+        slope: 0.7,
+    };
+    let (buffer, gpu) = render_gpu(&mut session, &cam, &scene, Some(&setup), &[]);
+    let p = ray_params(&cam);
+    let w = pixel_world(&cam);
+    let cpu_buffers =
+        reference::buffers(&scene.volume, &scene.labels, &scene.objects, &setup, &p, w);
+    // Eq. 1 at every pixel outside the footprint: E = e_max − d·s_c (world units). Jump
+    // flooding's distance may exceed the exact one by a fraction of a pixel at rare pixels:
+    // allow 0.5 pixel of distance, and count how many differ at all.
+    let mut inexact = 0;
+    let mut checked = 0;
+    for (i, (g, c)) in buffer.iter().zip(&cpu_buffers.pixels).enumerate() {
+        assert_eq!(g[2], c[2], "footprint flag at pixel {i}");
+        if c[2] > 0.5 {
+            assert!(
+                (g[0] - c[0]).abs() < 1e-3,
+                "first hit at {i}: {g:?} vs {c:?}"
+            );
+            continue;
+        }
+        checked += 1;
+        let error = (g[0] - c[0]).abs();
+        assert!(
+            error <= 0.5 * w * setup.slope + 1e-3,
+            "E at pixel {i} (d = {}): GPU {} vs eq. 1 {}",
+            cpu_buffers.distance[i],
+            g[0],
+            c[0]
+        );
+        if error > 1e-3 {
+            inexact += 1;
+        }
+    }
+    assert!(checked > 1000);
+    assert!(inexact * 100 <= checked, "{inexact} of {checked} inexact");
+    // The countersink cuts the shell around the core: some pixels outside the footprint
+    // lose shell in front (brighter core-free, less shell) compared with cylindrical MImP.
+    let cylindrical = Setup {
+        slope: 0.0,
+        ..setup
+    };
+    let (_, cyl) = render_gpu(&mut session, &cam, &scene, Some(&cylindrical), &[]);
+    let cut = (0..buffer.len())
+        .filter(|&i| buffer[i][2] < 0.5 && diff(gpu[i], cyl[i]) > 0.02)
+        .count();
+    assert!(cut > 50, "the countersink changed only {cut} pixels");
+    // The whole picture against the CPU reference (pixels where jump flooding is inexact
+    // excluded: there the cut may move by a sample).
+    let setup = Setup {
+        slope: 0.7,
+        ..cylindrical
+    };
+    let cpu = reference::render(
+        &scene.volume,
+        &scene.labels,
+        &scene.objects,
+        &setup,
+        &cpu_buffers,
+        &p,
+    );
+    assert_close_where("conical MImP vs CPU", &gpu, &cpu, 2.0 / 255.0, |i| {
+        (buffer[i][0] - cpu_buffers.pixels[i][0]).abs() <= 1e-3
+    });
+}
+
+fn three_objects() -> Scene {
+    let (volume, labels) = nested(true);
+    Scene {
+        volume,
+        labels,
+        objects: vec![
+            Object {
+                id: 1,
+                tf: flat(SHELL),
+                local: Local::Over,
+            },
+            Object {
+                id: 2,
+                tf: flat(CORE),
+                local: Local::Over,
+            },
+            Object {
+                id: 3,
+                tf: flat(INNER),
+                local: Local::Over,
+            },
+        ],
+    }
+}
+
+#[test]
+fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    let scene = three_objects();
+    let importance = vec![(1, 0.1), (2, 0.3), (3, 0.6)];
+    let p = ray_params(&cam);
+    for method in [Method::AimcImage, Method::AimcObject] {
+        let setup = Setup {
+            method,
+            focus: 3,
+            importance: importance.clone(),
+            slope: 1.0,
+        };
+        let (buffer, gpu) = render_gpu(&mut session, &cam, &scene, Some(&setup), &[]);
+        // The centre column meets all three objects: S_o = I_o / (0.1 + 0.3 + 0.6).
+        let centre = buffer[(SIZE / 2 * SIZE + SIZE / 2) as usize];
+        for (id, i) in &importance {
+            let s = i / centre[1];
+            assert!(
+                (s - i / 1.0).abs() < 1e-3,
+                "{method:?}: S_{id} = {s}, eq. 2 gives {i}"
+            );
+        }
+        // A column through the shell only: Σ = I_1, S_1 = 1 (no suppression).
+        let edge = buffer[(SIZE / 2 * SIZE + SIZE / 2 - 15) as usize];
+        assert!((0.1 / edge[1] - 1.0).abs() < 1e-3, "shell only: {edge:?}");
+        let cpu_buffers = reference::buffers(
+            &scene.volume,
+            &scene.labels,
+            &scene.objects,
+            &setup,
+            &p,
+            pixel_world(&cam),
+        );
+        let cpu = reference::render(
+            &scene.volume,
+            &scene.labels,
+            &scene.objects,
+            &setup,
+            &cpu_buffers,
+            &p,
+        );
+        let name = format!("{method:?} vs CPU");
+        assert_close_where(&name, &gpu, &cpu, 2.0 / 255.0, |i| {
+            (buffer[i][0] - cpu_buffers.pixels[i][0]).abs() <= 1e-3
+        });
+        let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
+        let centre = (SIZE / 2 * SIZE + SIZE / 2) as usize;
+        assert!(
+            diff(gpu[centre], plain[centre]) > 0.05,
+            "{method:?}: the centre is not sparser than the plain rendering"
+        );
+    }
+}
+
+/// A context slab (id 1, voxels z 26..=33) in front of a focus cube (id 2, z 10..=20), both
+/// seen along −z: every ray through the focus crosses the same slab thickness.
+fn slab_and_cube(focus_alpha: f32) -> Scene {
+    let (volume, labels) = grid(|x, y, z| {
+        let within = |v: u32, lo: u32, hi: u32| (lo..=hi).contains(&v);
+        if within(x, 8, 31) && within(y, 8, 31) && within(z, 26, 33) {
+            1
+        } else if within(x, 14, 25) && within(y, 14, 25) && within(z, 10, 20) {
+            2
+        } else {
+            0
+        }
+    });
+    Scene {
+        volume,
+        labels,
+        objects: vec![
+            Object {
+                id: 1,
+                tf: flat([0.9, 0.3, 0.2, 0.12]),
+                local: Local::Over,
+            },
+            Object {
+                id: 2,
+                tf: flat([0.2, 0.8, 0.3, focus_alpha]),
+                local: Local::Over,
+            },
+        ],
+    }
+}
+
+#[test]
+fn vpimc_scales_the_occluding_context_to_the_opacity_s_o_of_eq_3() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    // An invisible focus: the picture's opacity in the footprint is the occluding part's.
+    let scene = slab_and_cube(0.0);
+    let p = ray_params(&cam);
+    for (i_context, i_focus) in [(0.2f32, 0.8f32), (0.5, 0.5), (0.7, 0.3)] {
+        let setup = Setup {
+            method: Method::Vpimc,
+            focus: 2,
+            importance: vec![(1, i_context), (2, i_focus)],
+            slope: 0.0,
+        };
+        let (buffer, gpu) = render_gpu(&mut session, &cam, &scene, Some(&setup), &[]);
+        let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
+        let s_o = i_context / (i_context + i_focus);
+        let mut sampled = 0;
+        for i in (0..buffer.len()).filter(|&i| buffer[i][2] > 0.5) {
+            sampled += 1;
+            assert!(
+                (gpu[i][3] - s_o).abs() < 1e-3,
+                "I = ({i_context}, {i_focus}): opacity {} at pixel {i}, S_o = {s_o} (plain {})",
+                gpu[i][3],
+                plain[i][3]
+            );
+        }
+        assert!(sampled > 100, "footprint of {sampled} pixels");
+        // Outside the footprint the slab keeps its plain opacity (VPImC suppresses only the
+        // occluding part).
+        let outside = (SIZE / 2 * SIZE + 12) as usize;
+        assert!(buffer[outside][2] < 0.5);
+        assert!(diff(gpu[outside], plain[outside]) < 1.0 / 255.0);
+        let cpu_buffers = reference::buffers(
+            &scene.volume,
+            &scene.labels,
+            &scene.objects,
+            &setup,
+            &p,
+            pixel_world(&cam),
+        );
+        let cpu = reference::render(
+            &scene.volume,
+            &scene.labels,
+            &scene.objects,
+            &setup,
+            &cpu_buffers,
+            &p,
+        );
+        assert_close_where("VPImC vs CPU", &gpu, &cpu, 1.0 / 255.0, |_| true);
+    }
+}
+
+#[test]
+fn levels_of_sparseness_change_the_context_as_named() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    let scene = slab_and_cube(0.8);
+    let setup = Setup {
+        method: Method::AimcObject,
+        focus: 2,
+        importance: vec![(1, 0.25), (2, 0.75)],
+        slope: 0.0,
+    };
+    let centre = (SIZE / 2 * SIZE + SIZE / 2) as usize;
+    let level = |name: &str| ("sparseness", ParamValue::Choice(name.into()));
+    let (_, opacity) = render_gpu(
+        &mut session,
+        &cam,
+        &scene,
+        Some(&setup),
+        &[level("opacity")],
+    );
+    let (_, saturation) = render_gpu(
+        &mut session,
+        &cam,
+        &scene,
+        Some(&setup),
+        &[level("saturation")],
+    );
+    let (_, door) = render_gpu(
+        &mut session,
+        &cam,
+        &scene,
+        Some(&setup),
+        &[level("screen_door")],
+    );
+    let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
+    // Opacity and saturation: the same opacity; saturation greys the slab's red (0.9, 0.3,
+    // 0.2) towards its luminance 0.47, so the slab adds less red and more green.
+    assert!((opacity[centre][3] - saturation[centre][3]).abs() < 1e-3);
+    assert!(saturation[centre][0] < opacity[centre][0] - 0.01);
+    assert!(saturation[centre][1] > opacity[centre][1] + 0.01);
+    // Both show more of the focus (green) than the plain rendering.
+    assert!(opacity[centre][1] > plain[centre][1] + 0.05);
+    // The screen door keeps about S = 1/4 of the slab's voxels: its colour lies between the
+    // plain rendering and the slab removed, not equal to either.
+    assert!(door[centre][1] > plain[centre][1] + 0.05);
+    // Outside the focus footprint nothing changes.
+    let outside = (SIZE / 2 * SIZE + 12) as usize;
+    for (name, picture) in [
+        ("opacity", &opacity),
+        ("saturation", &saturation),
+        ("door", &door),
+    ] {
+        assert!(
+            diff(picture[outside], plain[outside]) < 1.0 / 255.0,
+            "{name}"
+        );
+    }
+}
