@@ -3,9 +3,9 @@
 //! Guidelines (§6.4): annotations must not overlap; connecting (leader) lines must not cross;
 //! annotations should not occlude other structures; an annotation should be as close as possible to
 //! its anchor. Labels are placed outside the convex hull of the visible objects' projected bounding
-//! volumes, at a position given by one parameter `t ∈ [0, 1)` of the hull's arc-length
-//! parameterisation ([`HullPath`]), initially the hull position closest to the anchor. Then, until
-//! nothing is left to resolve or `max_iterations` is reached:
+//! volumes, at a position given by one parameter `t ∈ [0, 1)` of an arc-length parameterisation
+//! ([`HullPath`]), initially the position closest to the anchor. Then, until nothing is left to
+//! resolve or `max_iterations` is reached:
 //!
 //! 1. if the leader lines of two labels cross, the labels exchange positions;
 //! 2. if exchanging the positions of two labels brings both closer to their anchors, they exchange;
@@ -44,6 +44,10 @@ pub struct LayoutParams {
     /// Move labels that would stick out of the frame back inside, unless that makes them touch
     /// the hull. Default true.
     pub keep_in_frame: bool,
+    /// Temporal coherence: with a previous layout, how far (arc length) a label may move from its
+    /// previous position towards the hull position closest to its anchor before the iterations,
+    /// per call. Default 4 px.
+    pub coherence_pull: f32,
 }
 
 impl Default for LayoutParams {
@@ -57,6 +61,7 @@ impl Default for LayoutParams {
             min_opacity: 0.3,
             depth_range: None,
             keep_in_frame: true,
+            coherence_pull: 4.0,
         }
     }
 }
@@ -68,17 +73,13 @@ pub struct PlacedLabel {
     pub anchor: usize,
     /// The label's box, px (top-left origin, y down). Its size is the given label size.
     pub rect: Rect,
-    /// Position along the grown hull path, t ∈ [0, 1).
+    /// Position along [`Layout::path`] (the hull grown by the margin), t ∈ [0, 1): the parameter of
+    /// the path point closest to the label's centre.
     pub parameter: f32,
-    /// The point of the grown hull path at `parameter`, px; the label touches the path there
-    /// (from outside) unless it was moved back into the frame.
+    /// The path point at `parameter`, px. The label touches the path near it, from outside.
     pub path_point: Vec2,
     /// The hull polygon point the label belongs to (`path_point` moved back by the margin), px.
     pub hull_point: Vec2,
-    /// The parameter closest to the anchor, where the label started (without `previous`).
-    pub home: f32,
-    /// The grown-path point at `home`, px.
-    pub home_point: Vec2,
     /// Leader (connecting) line from the anchor to the label's attachment point (the point of
     /// `rect` closest to the anchor), px.
     pub leader: [Vec2; 2],
@@ -89,6 +90,9 @@ pub struct PlacedLabel {
     pub shown: bool,
     /// Whether `rect` lies inside the frame.
     pub inside_frame: bool,
+    /// Whether this label exchanged places with another one (steps 1 and 2) in this layout; the
+    /// jumps of a label between frames come from these (or from labels shown or hidden).
+    pub swapped: bool,
 }
 
 /// The result of [`layout`].
@@ -96,7 +100,7 @@ pub struct PlacedLabel {
 pub struct Layout {
     /// One entry per anchor, in anchor order (shown or not).
     pub labels: Vec<PlacedLabel>,
-    /// The grown hull path the labels were placed along.
+    /// The convex hull grown by the margin: the silhouette the labels sit on.
     pub path: HullPath,
     /// Iterations of steps 1–3 run, all rounds together.
     pub iterations: u32,
@@ -115,34 +119,44 @@ impl Layout {
 
 /// Lays out one label per anchor around the convex hull of `hull_points` (§6.4).
 ///
-/// * `anchors`: projected anchors (px, window depth), see [`project_anchors`](crate::project_anchors).
+/// * `anchors`: projected anchors (px, window depth, priority), see
+///   [`project_anchors`](crate::project_anchors).
 /// * `sizes`: label box width × height per anchor, px; must have the same length as `anchors`
 ///   (panics otherwise).
 /// * `hull_points`: the projected footprint of the visible objects (e.g. bounding-box corners,
 ///   [`project_footprint`](crate::project_footprint)), px; any number, the hull is computed here.
-///   With no points the anchors themselves are used.
+///   With no points the visible anchors themselves are used.
 /// * `frame`: width × height of the frame, px.
-/// * `previous`: the layout of the previous frame for temporal coherence: each label that was
-///   shown there starts from its previous position (re-projected onto the new hull) moved along the
-///   hull by as much as its anchor's closest hull position moved; other labels start at the hull
-///   position closest to their anchor. `previous` must come from the same anchor list.
+/// * `previous`: the layout of the previous frame, for temporal coherence (`None`: every label
+///   starts at the position closest to its anchor, as in §6.4). Each label that was shown there
+///   starts from its previous place (the closest place to its previous centre on the new hull),
+///   then moves towards the place closest to its anchor by at most `params.coherence_pull` px
+///   where that creates no overlap or crossing, so labels follow their anchors smoothly and stay
+///   put in a still scene. Labels not shown there start at the closest place. `previous` must come
+///   from the same anchor list.
 ///
 /// Choices where §6.4 leaves room:
-/// * Labels are placed outside the hull grown by `margin`: the label box touches the grown path at
-///   `t` from outside (its centre is moved along the outward normal `n` by its support distance
-///   `|n.x|·w/2 + |n.y|·h/2`), so it never intersects the hull.
-/// * Step 3's "predecessor" is any overlapping label behind along the hull (the shorter way round);
-///   both labels of an overlapping pair move apart by δ (the one ahead forwards, the other backwards),
-///   which spreads clusters symmetrically instead of pushing them all one way.
+/// * Placement: label `i` at parameter `t` has its centre at the point `t` of its own path, the
+///   boundary of *hull ⊕ margin disc ⊕ label box* (Minkowski sum), parameterised by arc length
+///   from the point nearest the hull path's `t = 0`. So the box touches the grown hull from outside
+///   (never intersecting the hull) and its centre moves exactly as far as the parameter does, also
+///   around corners, where a box that merely touched the hull at `t` would swing by half its width.
+///   The shared [`Layout::path`] parameter is reported in [`PlacedLabel::parameter`].
+/// * "Exchange positions" gives each label the place on its own path closest to the other's
+///   centre. Step 1 keeps an exchange only if it uncrosses the pair. Step 3's "predecessor" is any overlapping label behind it along the hull (by the polar
+///   angle of the centres around the hull's centroid, the shorter way round); both labels of an
+///   overlapping pair move apart by δ (the one ahead forwards, the other backwards), spreading
+///   clusters symmetrically instead of pushing them all one way.
 /// * Disabling: among the labels involved in a remaining overlap or crossing, the one with the
-///   lowest [`ProjectedAnchor::priority`] goes first; among equal priorities the one with the largest anchor depth
-///   (farthest, as in §6.4); then the larger index. After each, steps 1–3 run again for
-///   `iterations_after_disable` iterations. This ends with no overlaps and no crossings among shown
-///   labels.
+///   lowest [`ProjectedAnchor::priority`] goes first; among equal priorities one that was not shown
+///   in `previous` (hysteresis against flicker while depths reorder during a rotation); then the
+///   one with the largest anchor depth (farthest, as in §6.4); then the larger index. After each,
+///   steps 1–3 run again for `iterations_after_disable` iterations. This ends with no overlaps and
+///   no crossings among shown labels.
 /// * Leader opacity: with `(d₀, d₁)` the depth range (`params.depth_range`, or the visible anchors'
-///   smallest and largest depth), `opacity = 1 − s·(1 − min_opacity)`, `s = clamp((depth − d₀)/(d₁ − d₀), 0, 1)`
-///   (1 when d₁ = d₀); 0 for anchors that are not visible, whose labels are never shown.
-///
+///   smallest and largest depth), `opacity = 1 − s·(1 − min_opacity)`,
+///   `s = clamp((depth − d₀)/(d₁ − d₀), 0, 1)` (1 when d₁ = d₀); 0 for anchors that are not
+///   visible, whose labels are never shown.
 pub fn layout(
     anchors: &[ProjectedAnchor],
     sizes: &[Vec2],
@@ -162,36 +176,34 @@ pub fn layout(
     } else {
         convex_hull(hull_points)
     };
-    let path = HullPath::new(&hull, params.margin.max(0.5));
+    let margin = params.margin.max(0.0);
+    let path = HullPath::new(&hull, margin);
     let mut solver = Solver::new(anchors, sizes, &path, frame, params);
 
-    // Initial positions: the closest hull position, or the previous frame's.
-    for i in 0..anchors.len() {
-        if !solver.active[i] {
-            continue;
-        }
-        let prev = previous
-            .and_then(|p| p.labels.get(i))
-            .filter(|l| l.shown && l.anchor == i);
-        solver.t[i] = match prev {
-            Some(l) => {
-                let moved = parameter_delta(path.parameter_of(l.home_point), solver.home[i]);
-                (path.parameter_of(l.path_point) + moved).rem_euclid(1.0)
+    let mut was_shown = vec![false; anchors.len()];
+    if let Some(prev) = previous {
+        for (i, shown) in was_shown.iter_mut().enumerate() {
+            let Some(l) = prev.labels.get(i).filter(|l| l.shown && l.anchor == i) else {
+                continue;
+            };
+            *shown = true;
+            if solver.active[i] {
+                solver.t[i] = solver.parameter_near(i, l.rect.center());
+                solver.update(i);
             }
-            None => solver.home[i],
-        };
-        solver.update(i);
+        }
+        solver.pull(&was_shown, params.coherence_pull);
     }
 
     let mut budget = params.max_iterations;
     let mut disabled = 0;
     loop {
         solver.iterate(budget);
-        let involved = solver.conflicting();
-        let victim = involved.into_iter().min_by(|&a, &b| {
+        let victim = solver.conflicting().into_iter().min_by(|&a, &b| {
             anchors[a]
                 .priority
                 .total_cmp(&anchors[b].priority)
+                .then(was_shown[a].cmp(&was_shown[b]))
                 .then(anchors[b].depth.total_cmp(&anchors[a].depth))
                 .then(b.cmp(&a))
         });
@@ -221,18 +233,19 @@ pub fn layout(
             } else {
                 1.0
             };
+            let parameter = path.parameter_of(g.rect.center());
+            let sample = path.sample(parameter);
             PlacedLabel {
                 anchor: i,
                 rect: g.rect,
-                parameter: solver.t[i].rem_euclid(1.0),
-                path_point: g.path_point,
-                hull_point: g.hull_point,
-                home: solver.home[i],
-                home_point: path.point_at(solver.home[i]),
+                parameter,
+                path_point: sample.point,
+                hull_point: sample.base,
                 leader: [a.screen, g.end],
                 opacity,
                 shown: solver.active[i],
                 inside_frame: g.rect.inside_frame(frame),
+                swapped: solver.swapped[i],
             }
         })
         .collect();
@@ -245,6 +258,22 @@ pub fn layout(
     }
 }
 
+/// The path of label centres for a box of `size` around `hull` grown by `margin`: the boundary of
+/// hull ⊕ disc(margin) ⊕ box, with its parameter origin moved to the point closest to `origin`.
+fn centre_path(hull: &[Vec2], size: Vec2, margin: f32, origin: Vec2) -> (HullPath, f32) {
+    let half = size.max(Vec2::ZERO) * 0.5;
+    let corners = [
+        Vec2::new(-half.x, -half.y),
+        Vec2::new(half.x, -half.y),
+        Vec2::new(half.x, half.y),
+        Vec2::new(-half.x, half.y),
+    ];
+    let sum: Vec<Vec2> = hull.iter().flat_map(|&v| corners.map(|c| v + c)).collect();
+    let path = HullPath::new(&convex_hull(&sum), margin);
+    let offset = path.parameter_of(origin);
+    (path, offset)
+}
+
 /// Where one label sits for its current parameter.
 #[derive(Clone, Copy, Debug)]
 struct Geo {
@@ -253,8 +282,8 @@ struct Geo {
     padded: Rect,
     /// Leader end (attachment point).
     end: Vec2,
-    path_point: Vec2,
-    hull_point: Vec2,
+    /// Polar angle of the centre around the hull centroid, for "ahead"/"behind".
+    angle: f32,
 }
 
 struct Solver<'a> {
@@ -263,9 +292,15 @@ struct Solver<'a> {
     path: &'a HullPath,
     frame: Vec2,
     params: &'a LayoutParams,
+    centroid: Vec2,
+    /// Per label: its centre path and the offset of that path's parameter origin.
+    loci: Vec<HullPath>,
+    origins: Vec<f32>,
+    /// Per label: parameter on its own centre path (relative to its origin).
     t: Vec<f32>,
     home: Vec<f32>,
     active: Vec<bool>,
+    swapped: Vec<bool>,
     geo: Vec<Geo>,
     iterations: u32,
     swaps: u32,
@@ -279,13 +314,30 @@ impl<'a> Solver<'a> {
         frame: Vec2,
         params: &'a LayoutParams,
     ) -> Self {
-        let home: Vec<f32> = anchors
-            .iter()
-            .map(|a| path.parameter_of(a.screen))
-            .collect();
-        let active = anchors
+        let hull = path.vertices();
+        let centroid = if hull.is_empty() {
+            frame * 0.5
+        } else {
+            hull.iter().sum::<Vec2>() / hull.len() as f32
+        };
+        let origin = path.point_at(0.0);
+        let active: Vec<bool> = anchors
             .iter()
             .map(|a| a.visible && a.screen.is_finite())
+            .collect();
+        let (loci, origins): (Vec<HullPath>, Vec<f32>) = sizes
+            .iter()
+            .zip(&active)
+            .map(|(&size, &on)| {
+                if on {
+                    centre_path(hull, size, params.margin.max(0.0), origin)
+                } else {
+                    (HullPath::new(&[], 0.0), 0.0)
+                }
+            })
+            .unzip();
+        let home: Vec<f32> = (0..anchors.len())
+            .map(|i| (loci[i].parameter_of(anchors[i].screen) - origins[i]).rem_euclid(1.0))
             .collect();
         let mut s = Self {
             anchors,
@@ -293,8 +345,12 @@ impl<'a> Solver<'a> {
             path,
             frame,
             params,
+            centroid,
+            loci,
+            origins,
             t: home.clone(),
             home,
+            swapped: vec![false; anchors.len()],
             active,
             geo: Vec::with_capacity(anchors.len()),
             iterations: 0,
@@ -304,12 +360,15 @@ impl<'a> Solver<'a> {
         s
     }
 
+    /// Parameter of label `i`'s place closest to point `p`.
+    fn parameter_near(&self, i: usize, p: Vec2) -> f32 {
+        (self.loci[i].parameter_of(p) - self.origins[i]).rem_euclid(1.0)
+    }
+
     /// The label box of label `i` at parameter `t`.
     fn place(&self, i: usize, t: f32) -> Geo {
-        let s = self.path.sample(t);
-        let size = self.sizes[i].max(Vec2::ZERO);
-        let support = s.normal.x.abs() * size.x * 0.5 + s.normal.y.abs() * size.y * 0.5;
-        let mut rect = Rect::from_center_size(s.point + s.normal * support, size);
+        let center = self.loci[i].point_at(t + self.origins[i]);
+        let mut rect = Rect::from_center_size(center, self.sizes[i].max(Vec2::ZERO));
         if self.params.keep_in_frame && !rect.inside_frame(self.frame) {
             let shift_axis = |lo: f32, hi: f32, extent: f32| {
                 if lo < 0.0 {
@@ -331,12 +390,12 @@ impl<'a> Solver<'a> {
                 rect = moved;
             }
         }
+        let d = rect.center() - self.centroid;
         Geo {
             rect,
             padded: rect.expanded(0.5 * self.params.label_gap),
             end: rect.closest_point(self.anchors[i].screen),
-            path_point: s.point,
-            hull_point: s.base,
+            angle: d.y.atan2(d.x),
         }
     }
 
@@ -357,26 +416,46 @@ impl<'a> Solver<'a> {
         self.geo[i].padded.overlaps(&self.geo[j].padded)
     }
 
+    /// Exchanges the places of labels `i` and `j` (each to its place nearest the other's centre).
     fn swap(&mut self, i: usize, j: usize) {
-        self.t.swap(i, j);
+        let ti = self.parameter_near(i, self.geo[j].rect.center());
+        let tj = self.parameter_near(j, self.geo[i].rect.center());
+        self.t[i] = ti;
+        self.t[j] = tj;
         self.update(i);
         self.update(j);
         self.swaps += 1;
     }
 
+    /// Step 1: exchanges `i` and `j`, keeping it only if that uncrosses their leaders.
+    fn uncross(&mut self, i: usize, j: usize) {
+        let (ti, tj) = (self.t[i], self.t[j]);
+        self.swap(i, j);
+        if self.crosses(i, j) {
+            self.t[i] = ti;
+            self.t[j] = tj;
+            self.update(i);
+            self.update(j);
+            self.swaps -= 1;
+        } else {
+            self.swapped[i] = true;
+            self.swapped[j] = true;
+        }
+    }
+
     /// Runs steps 1–3 until an iteration finds nothing to do, at most `budget` times.
     fn iterate(&mut self, budget: u32) {
         let ids: Vec<usize> = (0..self.t.len()).filter(|&i| self.active[i]).collect();
-        let step = self.params.delta / self.path.length().max(1e-6);
         let mut push = vec![0i32; self.t.len()];
         for _ in 0..budget {
             let mut busy = false;
-            // Step 1: crossing leaders exchange positions.
+            // Step 1: crossing leaders exchange positions (kept only where that uncrosses them:
+            // two labels stacked on one place cross either way, and step 3 separates them first).
             for (k, &i) in ids.iter().enumerate() {
                 for &j in &ids[k + 1..] {
                     if self.crosses(i, j) {
-                        self.swap(i, j);
                         busy = true;
+                        self.uncross(i, j);
                     }
                 }
             }
@@ -392,10 +471,12 @@ impl<'a> Solver<'a> {
                     {
                         continue;
                     }
-                    let gi = self.place(i, self.t[j]);
-                    let gj = self.place(j, self.t[i]);
+                    let gi = self.place(i, self.parameter_near(i, self.geo[j].rect.center()));
+                    let gj = self.place(j, self.parameter_near(j, self.geo[i].rect.center()));
                     if ai.distance(gi.end) < di - 1e-3 && aj.distance(gj.end) < dj - 1e-3 {
                         self.swap(i, j);
+                        self.swapped[i] = true;
+                        self.swapped[j] = true;
                         busy = true;
                     }
                 }
@@ -404,7 +485,7 @@ impl<'a> Solver<'a> {
             for (k, &i) in ids.iter().enumerate() {
                 for &j in &ids[k + 1..] {
                     if self.overlaps(i, j) {
-                        let ahead = parameter_delta(self.t[i], self.t[j]);
+                        let ahead = angle_delta(self.geo[i].angle, self.geo[j].angle);
                         let (back, front) = if ahead >= 0.0 { (i, j) } else { (j, i) };
                         push[front] += 1;
                         push[back] -= 1;
@@ -414,6 +495,7 @@ impl<'a> Solver<'a> {
             }
             for &i in &ids {
                 if push[i] != 0 {
+                    let step = self.params.delta / self.loci[i].length().max(1e-6);
                     self.t[i] = (self.t[i] + step * push[i].signum() as f32).rem_euclid(1.0);
                     self.update(i);
                     push[i] = 0;
@@ -422,6 +504,40 @@ impl<'a> Solver<'a> {
             self.iterations += 1;
             if !busy {
                 break;
+            }
+        }
+    }
+
+    /// Whether label `i` overlaps or crosses any other active label.
+    fn in_conflict(&self, i: usize) -> bool {
+        (0..self.t.len())
+            .any(|j| j != i && self.active[j] && (self.overlaps(i, j) || self.crosses(i, j)))
+    }
+
+    /// Moves each label in `which` towards its home by at most `max_px` of arc length, taking the
+    /// largest of max_px, max_px/2, max_px/4 that creates no conflict for it (none if all do, or
+    /// if it is in conflict already). Labels farthest from home go first.
+    fn pull(&mut self, which: &[bool], max_px: f32) {
+        let gap = |s: &Self, i: usize| parameter_delta(s.t[i], s.home[i]);
+        let mut order: Vec<usize> = (0..self.t.len())
+            .filter(|&i| which[i] && self.active[i])
+            .collect();
+        order.sort_by(|&a, &b| gap(self, b).abs().total_cmp(&gap(self, a).abs()));
+        for i in order {
+            let want = gap(self, i);
+            if want == 0.0 || self.in_conflict(i) {
+                continue;
+            }
+            let limit = max_px / self.loci[i].length().max(1e-6);
+            let start = self.t[i];
+            for fraction in [1.0, 0.5, 0.25] {
+                self.t[i] = (start + want.clamp(-limit, limit) * fraction).rem_euclid(1.0);
+                self.update(i);
+                if !self.in_conflict(i) {
+                    break;
+                }
+                self.t[i] = start;
+                self.update(i);
             }
         }
     }
@@ -440,4 +556,10 @@ impl<'a> Solver<'a> {
         }
         (0..self.t.len()).filter(|&i| involved[i]).collect()
     }
+}
+
+/// Signed difference `b − a` of two angles, wrapped into [−π, π).
+fn angle_delta(a: f32, b: f32) -> f32 {
+    use std::f32::consts::{PI, TAU};
+    (b - a + PI).rem_euclid(TAU) - PI
 }

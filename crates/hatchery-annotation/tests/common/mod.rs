@@ -3,6 +3,10 @@
 #![allow(dead_code)]
 
 use glam::Vec2;
+use hatchery_annotation::{ProjectedAnchor, convex_hull};
+
+/// The frame of the layout tests, px.
+pub const FRAME: Vec2 = Vec2::new(800.0, 600.0);
 
 /// SplitMix64 (Steele, Lea & Flood 2014): deterministic, seedable, good enough for test inputs.
 pub struct Rng(u64);
@@ -58,7 +62,9 @@ fn strictly_inside_convex(poly: &[Vec2], p: Vec2) -> bool {
     if n < 3 {
         return false;
     }
-    let signs: Vec<f64> = (0..n).map(|i| orient(poly[i], poly[(i + 1) % n], p)).collect();
+    let signs: Vec<f64> = (0..n)
+        .map(|i| orient(poly[i], poly[(i + 1) % n], p))
+        .collect();
     signs.iter().all(|&s| s > 1e-6) || signs.iter().all(|&s| s < -1e-6)
 }
 
@@ -82,4 +88,56 @@ pub fn box_hits_polygon(b: (Vec2, Vec2), poly: &[Vec2]) -> bool {
     (0..n).any(|i| {
         (0..4).any(|k| cross_f64(poly[i], poly[(i + 1) % n], corners[k], corners[(k + 1) % 4]))
     })
+}
+
+/// A random scene: a hull from 4–40 points in a rotated ellipse around the frame centre, 5–30
+/// anchors inside it, label boxes of 40–120 × 12–18 px, random depths, 5 % invisible anchors.
+pub struct Scene {
+    pub anchors: Vec<ProjectedAnchor>,
+    pub sizes: Vec<Vec2>,
+    pub hull_points: Vec<Vec2>,
+}
+
+pub fn random_scene(rng: &mut Rng) -> Scene {
+    let center = FRAME * 0.5 + Vec2::new(rng.range(-60.0, 60.0), rng.range(-40.0, 40.0));
+    let radii = Vec2::new(rng.range(60.0, 220.0), rng.range(50.0, 160.0));
+    let rotation = rng.range(0.0, std::f32::consts::TAU);
+    let (s, c) = rotation.sin_cos();
+    let in_ellipse = |rng: &mut Rng, on_rim: bool| {
+        let a = rng.range(0.0, std::f32::consts::TAU);
+        let r = if on_rim {
+            rng.range(0.7, 1.0)
+        } else {
+            rng.unit().sqrt() * 0.95
+        };
+        let e = Vec2::new(a.cos() * radii.x, a.sin() * radii.y) * r;
+        center + Vec2::new(c * e.x - s * e.y, s * e.x + c * e.y)
+    };
+    let hull_points: Vec<Vec2> = (0..rng.int(4, 40)).map(|_| in_ellipse(rng, true)).collect();
+    let hull = convex_hull(&hull_points);
+    let n = rng.int(5, 30);
+    let mut anchors = Vec::with_capacity(n);
+    while anchors.len() < n {
+        // Anchors inside the hull: convex combinations of hull vertices.
+        let w: Vec<f32> = hull.iter().map(|_| rng.unit().powi(3)).collect();
+        let sum: f32 = w.iter().sum();
+        if sum <= 0.0 {
+            continue;
+        }
+        let p = hull.iter().zip(&w).map(|(&v, &wi)| v * wi).sum::<Vec2>() / sum;
+        anchors.push(ProjectedAnchor {
+            screen: p,
+            depth: rng.range(0.2, 0.95),
+            visible: rng.unit() > 0.05,
+            priority: 0.0,
+        });
+    }
+    let sizes = (0..n)
+        .map(|_| Vec2::new(rng.range(40.0, 120.0), rng.range(12.0, 18.0)))
+        .collect();
+    Scene {
+        anchors,
+        sizes,
+        hull_points,
+    }
 }
