@@ -77,11 +77,14 @@ enum Piece {
     /// A hull edge moved out by the margin: from `a` to `b`, outward normal `normal`.
     Segment { a: Vec2, b: Vec2, normal: Vec2 },
     /// The arc of radius `r` around hull vertex `center`, from angle `start` over `sweep` ≥ 0 rad
-    /// (angles of the outward normal, increasing in the hull's orientation).
+    /// (angles of the outward normal, increasing in the hull's orientation); `from` and `to` are
+    /// the unit normals at its ends, for the trigonometry-free tests of `parameter_of`.
     Arc {
         center: Vec2,
         start: f32,
         sweep: f32,
+        from: Vec2,
+        to: Vec2,
     },
 }
 
@@ -126,6 +129,8 @@ impl HullPath {
                 center: hull[0],
                 start: 0.0,
                 sweep: TAU,
+                from: Vec2::X,
+                to: Vec2::X,
             }),
             n => {
                 let normal_of = |i: usize| {
@@ -150,6 +155,8 @@ impl HullPath {
                             center: b,
                             start,
                             sweep,
+                            from: normal,
+                            to: next,
                         });
                     }
                 }
@@ -224,6 +231,7 @@ impl HullPath {
                 center,
                 start,
                 sweep,
+                ..
             } => {
                 let angle = start + (local / self.margin).min(sweep);
                 let normal = Vec2::new(angle.cos(), angle.sin());
@@ -253,43 +261,65 @@ impl HullPath {
         if self.is_empty() {
             return 0.0;
         }
-        let mut best = (f32::MAX, 0.0f32);
-        for (piece, &start) in self.pieces.iter().zip(&self.starts) {
-            let (dist, local) = match *piece {
-                Piece::Segment { a, b, .. } => {
-                    let ab = b - a;
-                    let len2 = ab.length_squared();
-                    let u = if len2 > 0.0 {
-                        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    (p.distance(a + ab * u), u * len2.sqrt())
-                }
+        // Closest piece by distance first (no trigonometry), then the position along it.
+        let mut best = (f32::MAX, 0usize);
+        for (k, piece) in self.pieces.iter().enumerate() {
+            let dist = match *piece {
+                Piece::Segment { a, b, .. } => point_segment_distance(p, a, b),
                 Piece::Arc {
                     center,
-                    start: a0,
                     sweep,
+                    from,
+                    to,
+                    ..
                 } => {
                     let d = p - center;
-                    let rel = (d.y.atan2(d.x) - a0).rem_euclid(TAU);
-                    // Outside the arc's angular range the nearest arc point is an end.
-                    let rel = if rel <= sweep {
-                        rel
-                    } else if rel - sweep < TAU - rel {
-                        sweep
+                    // Arcs sweep at most π (a full turn only for a one-point hull).
+                    let within =
+                        sweep >= TAU - 1e-3 || (cross(from, d) >= 0.0 && cross(d, to) >= 0.0);
+                    if within {
+                        (d.length() - self.margin).abs()
                     } else {
-                        0.0
-                    };
-                    let q = center + Vec2::new((a0 + rel).cos(), (a0 + rel).sin()) * self.margin;
-                    (p.distance(q), rel * self.margin)
+                        p.distance(center + from * self.margin)
+                            .min(p.distance(center + to * self.margin))
+                    }
                 }
             };
             if dist < best.0 {
-                best = (dist, start + local);
+                best = (dist, k);
             }
         }
-        (best.1 / self.length).rem_euclid(1.0)
+        let k = best.1;
+        let local = match self.pieces[k] {
+            Piece::Segment { a, b, .. } => {
+                let ab = b - a;
+                let len2 = ab.length_squared();
+                if len2 > 0.0 {
+                    ((p - a).dot(ab) / len2).clamp(0.0, 1.0) * len2.sqrt()
+                } else {
+                    0.0
+                }
+            }
+            Piece::Arc {
+                center,
+                start,
+                sweep,
+                ..
+            } => {
+                let d = p - center;
+                let rel = (d.y.atan2(d.x) - start).rem_euclid(TAU);
+                // Outside the arc's angular range the nearest arc point is an end.
+                let rel = if rel <= sweep {
+                    rel
+                } else if rel - sweep < TAU - rel {
+                    sweep
+                } else {
+                    0.0
+                };
+                rel * self.margin
+            }
+        };
+        ((self.starts[k] + local) / self.length).rem_euclid(1.0)
     }
 
     /// Distance from `p` to the hull polygon's boundary, px (for tests and diagnostics).

@@ -41,8 +41,8 @@ pub struct LayoutParams {
     /// Window-depth range mapped to opacity 1 … `min_opacity`; `None` takes the smallest and
     /// largest depth among the visible anchors. Default `None`.
     pub depth_range: Option<(f32, f32)>,
-    /// Move labels that would stick out of the frame back inside, unless that makes them touch
-    /// the hull. Default true.
+    /// Move labels that would stick out of the frame back inside, as far as that keeps half the
+    /// margin between label and hull. Default true.
     pub keep_in_frame: bool,
     /// Temporal coherence: with a previous layout, how far (arc length) a label may move from its
     /// previous position towards the hull position closest to its anchor before the iterations,
@@ -282,6 +282,10 @@ struct Geo {
     padded: Rect,
     /// Leader end (attachment point).
     end: Vec2,
+    /// The leader's bounding box, for a quick rejection before the crossing test.
+    leader_box: Rect,
+    /// Squared leader length, px².
+    leader_len2: f32,
     /// Polar angle of the centre around the hull centroid, for "ahead"/"behind".
     angle: f32,
 }
@@ -383,18 +387,42 @@ impl<'a> Solver<'a> {
                 shift_axis(rect.min.x, rect.max.x, self.frame.x),
                 shift_axis(rect.min.y, rect.max.y, self.frame.y),
             );
-            let moved = rect.translated(shift);
-            // Keep at least half the margin from the hull when moving back into the frame.
-            let clearance = moved.expanded(0.5 * self.path.margin());
-            if !rect_intersects_convex_polygon(&clearance, self.path.vertices()) {
-                rect = moved;
-            }
+            // Move by the largest part of `shift` that keeps half the margin from the hull (found
+            // by bisection, so the result varies continuously as the hull moves).
+            let clear = |f: f32| {
+                let moved = rect
+                    .translated(shift * f)
+                    .expanded(0.5 * self.path.margin());
+                !rect_intersects_convex_polygon(&moved, self.path.vertices())
+            };
+            let fraction = if clear(1.0) {
+                1.0
+            } else {
+                let (mut lo, mut hi) = (0.0f32, 1.0f32);
+                for _ in 0..10 {
+                    let mid = 0.5 * (lo + hi);
+                    if clear(mid) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                lo
+            };
+            rect = rect.translated(shift * fraction);
         }
         let d = rect.center() - self.centroid;
+        let anchor = self.anchors[i].screen;
+        let end = rect.closest_point(anchor);
         Geo {
             rect,
             padded: rect.expanded(0.5 * self.params.label_gap),
-            end: rect.closest_point(self.anchors[i].screen),
+            end,
+            leader_box: Rect {
+                min: anchor.min(end),
+                max: anchor.max(end),
+            },
+            leader_len2: anchor.distance_squared(end),
             angle: d.y.atan2(d.x),
         }
     }
@@ -404,6 +432,10 @@ impl<'a> Solver<'a> {
     }
 
     fn crosses(&self, i: usize, j: usize) -> bool {
+        let (a, b) = (&self.geo[i].leader_box, &self.geo[j].leader_box);
+        if a.max.x < b.min.x || b.max.x < a.min.x || a.max.y < b.min.y || b.max.y < a.min.y {
+            return false;
+        }
         segments_cross(
             self.anchors[i].screen,
             self.geo[i].end,
@@ -427,8 +459,9 @@ impl<'a> Solver<'a> {
         self.swaps += 1;
     }
 
-    /// Step 1: exchanges `i` and `j`, keeping it only if that uncrosses their leaders.
-    fn uncross(&mut self, i: usize, j: usize) {
+    /// Step 1: exchanges `i` and `j`, keeping it only if that uncrosses their leaders; returns
+    /// whether it was kept.
+    fn uncross(&mut self, i: usize, j: usize) -> bool {
         let (ti, tj) = (self.t[i], self.t[j]);
         self.swap(i, j);
         if self.crosses(i, j) {
@@ -437,25 +470,28 @@ impl<'a> Solver<'a> {
             self.update(i);
             self.update(j);
             self.swaps -= 1;
+            false
         } else {
             self.swapped[i] = true;
             self.swapped[j] = true;
+            true
         }
     }
 
-    /// Runs steps 1–3 until an iteration finds nothing to do, at most `budget` times.
+    /// Runs steps 1–3 at most `budget` times, until an iteration changes nothing (then it is
+    /// resolved, or stuck on crossings that an exchange does not undo, which more iterations
+    /// would not change either).
     fn iterate(&mut self, budget: u32) {
         let ids: Vec<usize> = (0..self.t.len()).filter(|&i| self.active[i]).collect();
         let mut push = vec![0i32; self.t.len()];
         for _ in 0..budget {
-            let mut busy = false;
+            let mut changed = false;
             // Step 1: crossing leaders exchange positions (kept only where that uncrosses them:
             // two labels stacked on one place cross either way, and step 3 separates them first).
             for (k, &i) in ids.iter().enumerate() {
                 for &j in &ids[k + 1..] {
-                    if self.crosses(i, j) {
-                        busy = true;
-                        self.uncross(i, j);
+                    if self.crosses(i, j) && self.uncross(i, j) {
+                        changed = true;
                     }
                 }
             }
@@ -463,21 +499,21 @@ impl<'a> Solver<'a> {
             for (k, &i) in ids.iter().enumerate() {
                 for &j in &ids[k + 1..] {
                     let (ai, aj) = (self.anchors[i].screen, self.anchors[j].screen);
-                    let di = ai.distance(self.geo[i].end);
-                    let dj = aj.distance(self.geo[j].end);
+                    let (di2, dj2) = (self.geo[i].leader_len2, self.geo[j].leader_len2);
                     // Cheap test with the other label's current box first.
-                    if ai.distance(self.geo[j].rect.closest_point(ai)) >= di
-                        || aj.distance(self.geo[i].rect.closest_point(aj)) >= dj
+                    if ai.distance_squared(self.geo[j].rect.closest_point(ai)) >= di2
+                        || aj.distance_squared(self.geo[i].rect.closest_point(aj)) >= dj2
                     {
                         continue;
                     }
                     let gi = self.place(i, self.parameter_near(i, self.geo[j].rect.center()));
                     let gj = self.place(j, self.parameter_near(j, self.geo[i].rect.center()));
+                    let (di, dj) = (di2.sqrt(), dj2.sqrt());
                     if ai.distance(gi.end) < di - 1e-3 && aj.distance(gj.end) < dj - 1e-3 {
                         self.swap(i, j);
                         self.swapped[i] = true;
                         self.swapped[j] = true;
-                        busy = true;
+                        changed = true;
                     }
                 }
             }
@@ -489,12 +525,12 @@ impl<'a> Solver<'a> {
                         let (back, front) = if ahead >= 0.0 { (i, j) } else { (j, i) };
                         push[front] += 1;
                         push[back] -= 1;
-                        busy = true;
                     }
                 }
             }
             for &i in &ids {
                 if push[i] != 0 {
+                    changed = true;
                     let step = self.params.delta / self.loci[i].length().max(1e-6);
                     self.t[i] = (self.t[i] + step * push[i].signum() as f32).rem_euclid(1.0);
                     self.update(i);
@@ -502,7 +538,7 @@ impl<'a> Solver<'a> {
                 }
             }
             self.iterations += 1;
-            if !busy {
+            if !changed {
                 break;
             }
         }
