@@ -89,4 +89,11 @@ run two_level_frog \
     --set 5:ray.shading=none $(frog_camera) \
     --scenario orbit:camera --size "$sq"
 
+# 6. Importance-driven rendering (issue 11): conical MImP of the frog (liver as focus, the
+# ImportanceCompositing pass included, re-run every frame as the camera orbits) vs. the same
+# objects by TwoLevelRaycast without importance.
+run importance_frog \
+    graphs/importance_frog_mimp.ron benches/graphs/frog_dense.ron \
+    --scenario orbit:camera --size "$sq"
+
 echo "results in $out/"

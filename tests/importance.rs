@@ -617,7 +617,21 @@ fn levels_of_sparseness_change_the_context_as_named() {
         Some(&setup),
         &[level("screen_door")],
     );
+    let (_, style) = render_gpu(
+        &mut session,
+        &cam,
+        &scene,
+        Some(&setup),
+        &[
+            level("style"),
+            ("sparse_mode", ParamValue::Choice("mip".into())),
+        ],
+    );
     let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
+    // A sparse style: the slab in front of the focus as a MIP segment (one sample's colour
+    // and opacity, 0.12, instead of the slab's accumulated opacity), so more focus shows.
+    assert!(style[centre][1] > plain[centre][1] + 0.05);
+    assert!(diff(style[centre], opacity[centre]) > 0.01);
     // Opacity and saturation: the same opacity; saturation greys the slab's red (0.9, 0.3,
     // 0.2) towards its luminance 0.47, so the slab adds less red and more green.
     assert!((opacity[centre][3] - saturation[centre][3]).abs() < 1e-3);

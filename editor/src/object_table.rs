@@ -36,9 +36,17 @@ pub fn object_table(ui: &mut Ui, salt: &str, rows: &mut Vec<Row>, names: &[(u16,
     let mut remove = None;
     Grid::new(("object table", salt))
         .striped(true)
-        .num_columns(6)
+        .num_columns(7)
         .show(ui, |ui| {
-            for label in ["object", "mode", "compositing", "tf", "iso", ""] {
+            for label in [
+                "object",
+                "mode",
+                "compositing",
+                "tf",
+                "iso",
+                "importance",
+                "",
+            ] {
                 ui.strong(label);
             }
             ui.end_row();
@@ -87,6 +95,20 @@ pub fn object_table(ui: &mut Ui, salt: &str, rows: &mut Vec<Row>, names: &[(u16,
                     }
                 } else {
                     ui.label("");
+                }
+                if ui
+                    .add(
+                        DragValue::new(&mut row.importance)
+                            .range(0.0..=10.0)
+                            .speed(0.01),
+                    )
+                    .on_hover_text(
+                        "importance-driven rendering: where a less important object occludes \
+                         this one it is drawn sparser (ImportanceCompositing)",
+                    )
+                    .changed()
+                {
+                    changed = true;
                 }
                 if ui
                     .small_button("x")

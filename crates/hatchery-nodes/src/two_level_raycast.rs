@@ -55,7 +55,7 @@ fn method_code(method: ImportanceMethod) -> f32 {
 fn importance_input(
     inputs: &NodeInputs<Value>,
     camera: &Camera,
-    styles: &mut Vec<ObjectStyle>,
+    styles: &mut [ObjectStyle],
 ) -> Result<Option<Arc<Importance>>, NodeError> {
     let Some(value) = inputs.get("importance") else {
         return Ok(None);

@@ -5,7 +5,7 @@ use super::*;
 use hatchery_nodes::Session;
 
 /// Clicks a numeric or text field and replaces its text.
-fn type_into(h: &mut Harness<EditorApp>, at: egui::Pos2, text: &str) {
+pub fn type_into(h: &mut Harness<EditorApp>, at: egui::Pos2, text: &str) {
     selection::click_mod(h, at, Modifiers::NONE);
     h.key_press_modifiers(Modifiers::COMMAND, Key::A);
     h.event(egui::Event::Text(text.into()));

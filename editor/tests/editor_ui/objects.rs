@@ -67,8 +67,21 @@ fn the_object_table_names_objects_and_edits_rows_by_clicks() {
         "1: shaded_dvr over off; 2: tone mip; 3: shaded_dvr over"
     );
 
+    // Row 2's importance, typed into its field (the numeric field on row 2's line).
+    let row = h.get_by_label("2 object 2").rect().center().y;
+    let field = h
+        .get_all_by_role(Role::SpinButton)
+        .map(|n| n.rect())
+        .find(|r| (r.center().y - row).abs() < 6.0)
+        .expect("an importance field on row 2");
+    super::export::type_into(&mut h, field.center(), "0.25");
+    assert_eq!(
+        objects(&h),
+        "1: shaded_dvr over off; 2: tone mip importance=0.25; 3: shaded_dvr over"
+    );
+
     // Each edit is one undo step.
-    for _ in 0..3 {
+    for _ in 0..4 {
         h.state_mut().state.undo();
     }
     h.run();
