@@ -21,6 +21,8 @@ mod anchor;
 mod geometry;
 mod hull;
 mod layout;
+mod simplify;
+mod trace;
 
 pub use anchor::{
     Anchor, ProjectedAnchor, box_corners, project_anchors, project_footprint, project_point,
@@ -28,3 +30,5 @@ pub use anchor::{
 pub use geometry::{Rect, point_segment_distance, rect_intersects_convex_polygon, segments_cross};
 pub use hull::{HullPath, PathSample, convex_contains, convex_hull, parameter_delta, signed_area};
 pub use layout::{Layout, LayoutParams, PlacedLabel, layout};
+pub use simplify::simplify;
+pub use trace::{Polyline, trace_mask};
