@@ -22,6 +22,7 @@ mod geometry;
 mod hull;
 mod layout;
 mod simplify;
+mod svg;
 mod trace;
 
 pub use anchor::{
@@ -31,4 +32,8 @@ pub use geometry::{Rect, point_segment_distance, rect_intersects_convex_polygon,
 pub use hull::{HullPath, PathSample, convex_contains, convex_hull, parameter_delta, signed_area};
 pub use layout::{Layout, LayoutParams, PlacedLabel, layout};
 pub use simplify::simplify;
+pub use svg::{
+    Color, DESCENT, LINE_HEIGHT, LabelStyle, Layer, MEAN_ADVANCE, PathCommand, PathData, PathStyle,
+    Stroke, SvgDocument, estimate_label_size, label_baseline,
+};
 pub use trace::{Polyline, trace_mask};

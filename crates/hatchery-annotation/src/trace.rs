@@ -56,7 +56,7 @@ pub fn trace_mask(
         *vertex_of.entry(edge).or_insert_with(|| {
             let cell = edge / 2;
             let (x, y) = (cell % width, cell / width);
-            let (x1, y1) = if edge % 2 == 0 {
+            let (x1, y1) = if edge.is_multiple_of(2) {
                 (x + 1, y)
             } else {
                 (x, y + 1)
