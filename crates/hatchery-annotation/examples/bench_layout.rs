@@ -4,6 +4,10 @@
 //! from scratch (no previous layout) and per animation frame (from the previous 1° step).
 //!
 //! `cargo run --release -p hatchery-annotation --example bench_layout`
+//!
+//! Measured on the 2-core development machine (shared, so ±40 % between runs): from scratch
+//! median 1.3–2.0 ms (311 iterations: the first round runs its full 300 before one label is
+//! disabled), from the previous frame median 0.16–0.24 ms.
 
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use glam::{Mat4, Vec2, Vec3};
