@@ -5,6 +5,7 @@
 
 pub mod importance_reference;
 pub mod raycast_reference;
+pub mod selection_reference;
 pub mod two_level_reference;
 
 use hatchery_graph::{Graph, GraphDocument, NodeInputs, ParamValue, Params};

@@ -29,6 +29,7 @@ pub mod save_image;
 pub mod screen_pass;
 pub mod secondary_geometry;
 pub mod select_image;
+pub mod selection_render;
 mod session;
 pub mod shaded_surface;
 pub mod shaders;
@@ -87,6 +88,7 @@ pub fn registry() -> Registry {
     r.register(object_styles::ObjectStylesNode);
     r.register(two_level_raycast::TwoLevelRaycastNode);
     r.register(importance_compositing::ImportanceCompositingNode);
+    r.register(selection_render::SelectionRenderNode);
     r.register(save_image::SaveImageNode);
     r
 }

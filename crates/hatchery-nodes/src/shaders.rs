@@ -32,6 +32,7 @@ pub const RAY_SHADE: &str = shader_file!("ray_shade.wgsl");
 pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
 pub const RAY_OBJECTS: &str = shader_file!("ray_objects.wgsl");
 pub const IMPORTANCE: &str = shader_file!("importance.wgsl");
+pub const SELECTION_RENDER: &str = shader_file!("selection_render.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
 pub const TWO_LEVEL_RAYCAST: &str = shader_file!("two_level_raycast.wgsl");
 pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
@@ -87,6 +88,10 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             parts.push(("two_level_raycast.wgsl", TWO_LEVEL_RAYCAST));
             parts
         }),
+        (
+            "selection_render",
+            ray("selection_render.wgsl", SELECTION_RENDER),
+        ),
         ("importance", {
             let mut parts = ray("ray_objects.wgsl", RAY_OBJECTS);
             parts.push(("importance.wgsl", IMPORTANCE));

@@ -205,6 +205,39 @@ pub(crate) fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3],
     (bricks.dims, table)
 }
 
+/// Labels and volume must share one grid: the same voxel counts and voxel → world transform.
+pub(crate) fn check_labels_grid(
+    labels: &Labels,
+    volume: &crate::value::Volume,
+) -> Result<(), NodeError> {
+    let (l, v) = (&labels.data, &volume.data);
+    if l.dims != v.dims {
+        return Err(NodeError::at_port(
+            "labels",
+            format!(
+                "the labels are {:?} voxels, the volume {:?}: they must share the grid",
+                l.dims, v.dims
+            ),
+        ));
+    }
+    let tolerance = 1e-3 * v.geometry.spacing.min_element();
+    if !l
+        .geometry
+        .to_world()
+        .abs_diff_eq(v.geometry.to_world(), tolerance)
+    {
+        return Err(NodeError::at_port(
+            "labels",
+            format!(
+                "the labels lie elsewhere in the world ({}) than the volume ({})",
+                l.geometry.describe(),
+                v.geometry.describe()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 pub struct TwoLevelRaycastNode;
 
 impl Node<Value, Ctx> for TwoLevelRaycastNode {
@@ -333,31 +366,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             inputs.require("styles")?.object_styles("styles")?.to_vec();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let importance = importance_input(inputs, &camera, &mut styles)?;
-        let (l, v) = (&labels.data, &volume.data);
-        if l.dims != v.dims {
-            return Err(NodeError::at_port(
-                "labels",
-                format!(
-                    "the labels are {:?} voxels, the volume {:?}: they must share the grid",
-                    l.dims, v.dims
-                ),
-            ));
-        }
-        let tolerance = 1e-3 * v.geometry.spacing.min_element();
-        if !l
-            .geometry
-            .to_world()
-            .abs_diff_eq(v.geometry.to_world(), tolerance)
-        {
-            return Err(NodeError::at_port(
-                "labels",
-                format!(
-                    "the labels lie elsewhere in the world ({}) than the volume ({})",
-                    l.geometry.describe(),
-                    v.geometry.describe()
-                ),
-            ));
-        }
+        check_labels_grid(&labels, &volume)?;
+        let v = &volume.data;
         if !styles.iter().any(|s| s.enabled) {
             ctx.warn("no object of the table is enabled: the picture is empty");
         }

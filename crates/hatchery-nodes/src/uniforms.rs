@@ -70,6 +70,11 @@ pub fn all() -> Vec<UniformLayout> {
         },
         importance_compositing::ImportanceUniforms::layout(),
         importance_compositing::PassUniforms::layout(),
+        selection_render::SelectionUniforms::layout(),
+        UniformLayout {
+            program: "selection_render",
+            ..raycast::RayUniforms::layout()
+        },
         shaded_surface::ShadingUniform::layout(),
         secondary_geometry::SecondaryUniforms::layout(),
         depth_test_mask::DepthTestUniforms::layout(),

@@ -65,6 +65,8 @@ pub struct Labels {
     bricks: OnceLock<BrickObjects>,
     /// The last union mask of drawn objects, with the ids it was made for.
     drawn_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
+    /// The last selection mask (SelectionRender), with its ids.
+    selection_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
 }
 
 /// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
@@ -82,6 +84,7 @@ impl Labels {
             texture: OnceLock::new(),
             bricks: OnceLock::new(),
             drawn_mask: std::sync::Mutex::new(None),
+            selection_mask: std::sync::Mutex::new(None),
         }
     }
 
@@ -94,7 +97,38 @@ impl Labels {
         gpu: &GpuContext,
         drawn: &[u16],
     ) -> Result<Arc<wgpu::Texture>, GpuError> {
-        let mut cached = self.drawn_mask.lock().unwrap_or_else(|e| e.into_inner());
+        self.indicator(gpu, drawn, false)
+    }
+
+    /// The indicator of `ids` (sorted) as a texture whose trilinear filtering is the selection
+    /// degree f_S of VolumeShop (SelectionRender): R8Unorm, or R16Unorm on CPU adapters, whose
+    /// sampler filters 8-bit textures in 8-bit arithmetic (see `volume_texture`). Kept for the
+    /// last set.
+    pub fn selection_mask(
+        &self,
+        gpu: &GpuContext,
+        ids: &[u16],
+    ) -> Result<Arc<wgpu::Texture>, GpuError> {
+        let wide = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
+            && gpu
+                .device
+                .features()
+                .contains(wgpu::Features::TEXTURE_FORMAT_16BIT_NORM);
+        self.indicator(gpu, ids, wide)
+    }
+
+    fn indicator(
+        &self,
+        gpu: &GpuContext,
+        drawn: &[u16],
+        wide: bool,
+    ) -> Result<Arc<wgpu::Texture>, GpuError> {
+        let slot = if wide {
+            &self.selection_mask
+        } else {
+            &self.drawn_mask
+        };
+        let mut cached = slot.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((ids, texture)) = cached.as_ref()
             && ids == drawn
         {
@@ -106,16 +140,20 @@ impl Labels {
         }
         let [nx, ny, _] = self.data.dims.map(|d| d as usize);
         let ids = &self.data.ids;
+        let (format, one): (_, &[u8]) = if wide {
+            (wgpu::TextureFormat::R16Unorm, &[255, 255])
+        } else {
+            (wgpu::TextureFormat::R8Unorm, &[255])
+        };
+        let zero = vec![0u8; one.len()];
         let texture = Arc::new(gpu.volume_texture_by_slabs(
-            "drawn objects",
+            "object indicator",
             self.data.dims,
-            wgpu::TextureFormat::R8Unorm,
+            format,
             |z0, z1, out| {
-                let slab = &ids[z0 as usize * nx * ny..z1 as usize * nx * ny];
-                out.extend(
-                    slab.iter()
-                        .map(|&id| if is_drawn[id as usize] { 255u8 } else { 0 }),
-                );
+                for &id in &ids[z0 as usize * nx * ny..z1 as usize * nx * ny] {
+                    out.extend_from_slice(if is_drawn[id as usize] { one } else { &zero });
+                }
             },
         )?);
         *cached = Some((drawn.to_vec(), texture.clone()));

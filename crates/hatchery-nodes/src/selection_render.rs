@@ -1,0 +1,467 @@
+//! `SelectionRender`: VolumeShop's selective illustration (Bruckner & Gröller; the tutorial's
+//! VolumeShop chapter §4 eq. 1–5, §6.2 cutaways and ghosting, §6.3 placement): background,
+//! ghost and a movable selection of one volume, with cutaways of the background and a ghosting
+//! factor (see shaders/selection_render.wgsl).
+
+use crate::camera::Camera;
+use crate::raycast::{KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo};
+use crate::value::{Image, Labels, TransferFunction};
+use crate::{Ctx, Value};
+use glam::{EulerRot, Mat3, Mat4, Vec3, Vec4Swizzles};
+use hatchery_data::lighting;
+use hatchery_data::transfer_function::{LUT_SIZE, TransferFunction1D};
+use hatchery_gpu::GpuError;
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+const PLACEMENTS: &[&str] = &["integrated", "pinned", "decoupled"];
+const CUTAWAYS: &[&str] = &["ghost", "selection", "both", "none"];
+const SHADINGS: &[&str] = &["phong_contour", "phong", "cartoon", "metal", "none"];
+
+crate::uniform_block! {
+    /// `Selection` of shaders/selection_render.wgsl.
+    pub struct SelectionUniforms in "selection_render" as "Selection" {
+        pub to_source: [[f32; 4]; 4],
+        pub rotation: [[f32; 4]; 4],
+        pub options: [f32; 4],
+        pub domains: [f32; 4],
+        pub domains2: [f32; 4],
+    }
+}
+
+/// How the selection is placed (§6.3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Placement {
+    /// Moved by `translate`/`rotate` in the world: it follows the view like the scene.
+    Integrated,
+    /// Its centre stays at the screen point `pin`; it turns with the view like the scene.
+    Pinned,
+    /// Its centre stays at `pin` and its orientation is fixed relative to the viewer.
+    Decoupled,
+}
+
+/// The selection transform T (world → world, the source selection to where it is shown) for
+/// `camera`: rotation `rotate` (XYZ Euler degrees; world axes, or view axes when decoupled)
+/// about the selection's centre `centre`, then the centre moved to `centre + translate`
+/// (integrated), or to the point under the frame fraction `pin` (x right, y down) at the view
+/// depth of `centre + translate` (pinned) or of the camera's target (decoupled).
+pub fn selection_transform(
+    camera: &Camera,
+    placement: Placement,
+    centre: Vec3,
+    translate: Vec3,
+    rotate_deg: Vec3,
+    pin: [f32; 2],
+) -> Mat4 {
+    let r = Mat3::from_euler(
+        EulerRot::XYZ,
+        rotate_deg.x.to_radians(),
+        rotate_deg.y.to_radians(),
+        rotate_deg.z.to_radians(),
+    );
+    let view_depth = |p: Vec3| -(camera.view * p.extend(1.0)).z;
+    let pinned_at = |depth: f32| {
+        // The ray through the pin point, to the given view depth.
+        let inverse = camera.view_proj().inverse();
+        let ndc = glam::Vec2::new(pin[0] * 2.0 - 1.0, 1.0 - pin[1] * 2.0);
+        let unproject = |z: f32| {
+            let h = inverse * ndc.extend(z).extend(1.0);
+            h.xyz() / h.w
+        };
+        let (near, far) = (unproject(0.0), unproject(1.0));
+        let (dn, df) = (view_depth(near), view_depth(far));
+        near + (far - near) * ((depth - dn) / (df - dn))
+    };
+    let (position, rotation) = match placement {
+        Placement::Integrated => (centre + translate, r),
+        Placement::Pinned => (pinned_at(view_depth(centre + translate)), r),
+        Placement::Decoupled => {
+            let view_rotation = Mat3::from_mat4(camera.view);
+            (
+                pinned_at(view_depth(camera.target)),
+                view_rotation.inverse() * r,
+            )
+        }
+    };
+    Mat4::from_translation(position) * Mat4::from_mat3(rotation) * Mat4::from_translation(-centre)
+}
+
+/// Parses "10" or "10, 11 12" into label ids.
+fn parse_ids(text: &str) -> Result<Vec<u16>, NodeError> {
+    let ids: Result<Vec<u16>, _> = text
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse::<u16>())
+        .collect();
+    match ids {
+        Ok(ids) if !ids.is_empty() => Ok(ids),
+        _ => Err(NodeError::new(format!(
+            "parameter `objects`: `{text}` is not a list of label ids (e.g. \"10\" or \"10, 11\")"
+        ))),
+    }
+}
+
+/// The world-space centre (mean voxel position) of the voxels holding `ids`, or None.
+fn centre_of(labels: &Labels, ids: &[u16]) -> Option<Vec3> {
+    let l = &labels.data;
+    let [nx, ny, _] = l.dims.map(|d| d as usize);
+    let (mut sum, mut count) = (glam::DVec3::ZERO, 0u64);
+    for (i, id) in l.ids.iter().enumerate() {
+        if ids.contains(id) {
+            sum += glam::DVec3::new(
+                (i % nx) as f64,
+                (i / nx % ny) as f64,
+                (i / (nx * ny)) as f64,
+            );
+            count += 1;
+        }
+    }
+    (count > 0).then(|| l.geometry.voxel_to_world((sum / count as f64).as_vec3()))
+}
+
+fn color_tf(
+    inputs: &NodeInputs<Value>,
+    port: &str,
+) -> Result<Option<TransferFunction1D>, NodeError> {
+    let Some(value) = inputs.get(port) else {
+        return Ok(None);
+    };
+    match value.transfer_function(port)?.as_ref() {
+        TransferFunction::Color(f) => Ok(Some(f.clone())),
+        TransferFunction::Style { .. } => Err(NodeError::at_port(
+            port,
+            "a style transfer function; SelectionRender takes colour transfer functions",
+        )),
+    }
+}
+
+pub struct SelectionRenderNode;
+
+impl Node<Value, Ctx> for SelectionRenderNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "SelectionRender",
+            category: "Volume",
+            doc: "VolumeShop selective illustration (Bruckner & Gröller, the tutorial's §4, \
+                  §6.2–6.3): the labels listed in `objects` form the selection; the volume is \
+                  drawn as background (tf), ghost (the selection where it was, tf_ghost) and \
+                  selection (moved by translate/rotate, tf_selection), combined by eq. 1–5 \
+                  (fuzzy sets: membership = min(selection degree, opacity); colour = \
+                  membership-weighted mean, opacity = max). Cutaways act on the background in \
+                  front of the ghost and/or the selection; `ghosting` goes from 0 (no ghosting) \
+                  to 1 (full cutaway), combined with the lighting transfer function's opacity \
+                  enhancement (eq. 8) so that enhanced contours survive ghosting. Placement: \
+                  integrated (moves with the scene), pinned (its centre fixed on screen at \
+                  `pin`, turning with the view) or decoupled (fixed on screen and in \
+                  orientation).",
+            inputs: vec![
+                PortSpec::input("volume", PortType::Volume, "the scalar field f_V"),
+                PortSpec::input(
+                    "labels",
+                    PortType::Labels,
+                    "object ids on the volume's grid; `objects` picks the selection",
+                ),
+                PortSpec::input("camera", PortType::Camera, "the view"),
+                PortSpec::input(
+                    "tf",
+                    PortType::TransferFunction,
+                    "the background's colour TF",
+                ),
+                PortSpec::optional(
+                    "tf_ghost",
+                    PortType::TransferFunction,
+                    "the ghost's (default: tf)",
+                ),
+                PortSpec::optional(
+                    "tf_selection",
+                    PortType::TransferFunction,
+                    "the selection's (default: tf)",
+                ),
+                PortSpec::optional("light", PortType::Light, "the light (default: a headlight)"),
+            ],
+            outputs: vec![
+                PortSpec::output("image", PortType::Image, "premultiplied colour"),
+                PortSpec::output(
+                    "gbuffer",
+                    PortType::GBuffer,
+                    "depth and normal where opaque",
+                ),
+            ],
+            params: vec![
+                ParamSpec::text(
+                    "objects",
+                    "1",
+                    "label ids of the selection, e.g. \"10\" or \"10, 11\"",
+                ),
+                ParamSpec::vec3(
+                    "translate",
+                    [0.0, 0.0, 0.0],
+                    "integrated: the selection's move, world units",
+                ),
+                ParamSpec::vec3(
+                    "rotate",
+                    [0.0, 0.0, 0.0],
+                    "rotation about the selection's centre, XYZ Euler degrees (world axes; view axes when decoupled)",
+                ),
+                ParamSpec::choice(
+                    "placement",
+                    "integrated",
+                    PLACEMENTS,
+                    "integrated, pinned or decoupled (§6.3)",
+                ),
+                ParamSpec::float(
+                    "pin_x",
+                    0.75,
+                    0.0,
+                    1.0,
+                    "pinned/decoupled: the centre's screen position, fraction of the width from the left",
+                ),
+                ParamSpec::float(
+                    "pin_y",
+                    0.3,
+                    0.0,
+                    1.0,
+                    "pinned/decoupled: fraction of the height from the top",
+                ),
+                ParamSpec::choice(
+                    "cutaway",
+                    "ghost",
+                    CUTAWAYS,
+                    "whose far side the background is cut in front of",
+                ),
+                ParamSpec::float(
+                    "ghosting",
+                    0.7,
+                    0.0,
+                    1.0,
+                    "0: no ghosting … 1: full cutaway",
+                ),
+                ParamSpec::choice(
+                    "shading",
+                    "phong_contour",
+                    SHADINGS,
+                    "lighting transfer function (eq. 8) or none",
+                ),
+                ParamSpec::float(
+                    "step",
+                    0.5,
+                    0.05,
+                    8.0,
+                    "sample distance in voxels (of the smallest spacing)",
+                ),
+                ParamSpec::bool("jitter", true, "jitter the first sample per pixel"),
+                ParamSpec::float(
+                    "early_termination",
+                    0.99,
+                    0.5,
+                    1.0,
+                    "stop a ray at this opacity (1 = never)",
+                ),
+                ParamSpec::choice(
+                    "kernel",
+                    "auto",
+                    KERNELS,
+                    "GPU path: fragment shader or compute kernel (same picture)",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let volume = inputs.require("volume")?.volume("volume")?.clone();
+        let labels = inputs.require("labels")?.labels("labels")?.clone();
+        let camera = inputs.require("camera")?.camera("camera")?.clone();
+        crate::two_level_raycast::check_labels_grid(&labels, &volume)?;
+        let background = color_tf(inputs, "tf")?.expect("a required input");
+        let ghost = color_tf(inputs, "tf_ghost")?.unwrap_or_else(|| background.clone());
+        let selected = color_tf(inputs, "tf_selection")?.unwrap_or_else(|| background.clone());
+        let ids = parse_ids(p.text("objects"))?;
+        let centre = centre_of(&labels, &ids).ok_or_else(|| {
+            NodeError::new(format!(
+                "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {})",
+                labels
+                    .data
+                    .objects
+                    .keys()
+                    .map(|id| id.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
+        })?;
+        let placement = match p.choice("placement") {
+            "pinned" => Placement::Pinned,
+            "decoupled" => Placement::Decoupled,
+            _ => Placement::Integrated,
+        };
+        let transform = selection_transform(
+            &camera,
+            placement,
+            centre,
+            Vec3::from(p.vec3("translate")),
+            Vec3::from(p.vec3("rotate")),
+            [p.f32("pin_x"), p.f32("pin_y")],
+        );
+        let v = &volume.data;
+        let shading = p.choice("shading");
+        let shaded = shading != "none";
+        let kernel = Kernel::choose(p.choice("kernel"), &ctx.gpu);
+        let options = RayOptions {
+            mode: 0,
+            iso: 0.0,
+            step_voxels: p.f32("step"),
+            shading: 0,
+            lighting_model: "phong",
+            phong: [0.0; 4],
+            kappa: [0.0, 0.0],
+            contours: false,
+            thickness: 0.0,
+            transparency: false,
+            mip_bias: 0.0,
+            jitter: p.bool("jitter"),
+            early_termination: p.f32("early_termination"),
+            hit_opacity: 0.5,
+            light_view: crate::raycast::light_direction(inputs, &camera)?,
+            skip_empty: false,
+            kernel,
+        };
+        let info = TableInfo {
+            shading: 0.0,
+            domain: background.domain,
+            nodes: 0.0,
+            map_size: 1.0,
+            use_labels: false,
+            label_range: [0.0, 1.0],
+            label_count: 0.0,
+            skip_empty: false,
+        };
+        let err = |e: GpuError| NodeError::new(e.to_string());
+        let pipelines = ctx
+            .cached("selection_render.pipelines", |gpu| {
+                RayPipelines::new(gpu, "selection_render")
+            })
+            .map_err(err)?;
+        let sampler = ctx
+            .cached("selection_render.sampler", |gpu| {
+                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("linear clamp"),
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    ..Default::default()
+                }))
+            })
+            .map_err(err)?;
+        let gpu = &ctx.gpu;
+        let volume_texture = volume.texture(gpu).map_err(err)?;
+        let max_gradient = if shaded { volume.max_gradient() } else { 1.0 };
+        let uniforms = RayUniforms::new(
+            &camera,
+            v,
+            &options,
+            &info,
+            max_gradient,
+            volume_texture.texel_range,
+        );
+        let cutaway = match p.choice("cutaway") {
+            "ghost" => 1.0,
+            "selection" => 2.0,
+            "both" => 3.0,
+            _ => 0.0,
+        };
+        let to_voxel = v.geometry.to_voxel().as_mat4();
+        let selection = SelectionUniforms {
+            to_source: (to_voxel * transform.inverse()).to_cols_array_2d(),
+            rotation: Mat4::from_mat3(Mat3::from_mat4(transform)).to_cols_array_2d(),
+            options: [
+                p.f32("ghosting"),
+                cutaway,
+                if shaded { 1.0 } else { 0.0 },
+                0.0,
+            ],
+            domains: [
+                background.domain[0],
+                background.domain[1],
+                ghost.domain[0],
+                ghost.domain[1],
+            ],
+            domains2: [selected.domain[0], selected.domain[1], 0.0, 0.0],
+        };
+        let tf_rows: Vec<f32> = [&background, &ghost, &selected]
+            .iter()
+            .flat_map(|f| f.lut.iter().flatten().copied())
+            .collect();
+        let lighting_model = lighting::lighting_tf(if shaded { shading } else { "phong" })
+            .ok_or_else(|| NodeError::new(format!("unknown lighting model `{shading}`")))?;
+        let lighting_flat: Vec<f32> = lighting_model.table.iter().flatten().copied().collect();
+        let size = lighting::LIGHTING_SIZE as u32;
+        let ray_buffer = gpu.buffer_init(
+            "selection ray",
+            bytemuck::bytes_of(&uniforms),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let selection_buffer = gpu.buffer_init(
+            "selection",
+            bytemuck::bytes_of(&selection),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let tf_texture = gpu.texture_2d_init(
+            "selection tfs",
+            LUT_SIZE as u32,
+            3,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&tf_rows),
+        );
+        let lighting_texture = gpu.texture_2d_init(
+            "selection lighting tf",
+            size,
+            size,
+            wgpu::TextureFormat::Rgba32Float,
+            bytemuck::cast_slice(&lighting_flat),
+        );
+        let mut sorted = ids.clone();
+        sorted.sort_unstable();
+        let mask = labels.selection_mask(gpu, &sorted).map_err(err)?;
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let views = [
+            view(&volume_texture.texture),
+            view(&tf_texture),
+            view(&lighting_texture),
+            view(&mask),
+        ];
+        let texture = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
+        let entries = [
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: ray_buffer.as_entire_binding(),
+            },
+            texture(1, &views[0]),
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            texture(3, &views[1]),
+            texture(4, &views[2]),
+            wgpu::BindGroupEntry {
+                binding: 13,
+                resource: selection_buffer.as_entire_binding(),
+            },
+            texture(14, &views[3]),
+        ];
+        let (image, gbuffer) = pipelines.run(ctx, &camera, &entries, kernel)?;
+        Ok(vec![
+            Value::Image(Arc::new(Image { texture: image })),
+            Value::GBuffer(Arc::new(gbuffer)),
+        ])
+    }
+}

@@ -1,0 +1,385 @@
+//! SelectionRender (VolumeShop selective illustration) against its CPU reference
+//! (tests/common/selection_reference.rs): ghosting from "no ghosting" to "full cutaway", and the
+//! selection's placement (integrated, pinned, decoupled) under a rotating camera.
+
+mod common;
+
+use common::raycast_reference::{Mode, RayParams, Shading};
+use common::selection_reference::{self as reference, Cutaway, Setup};
+use glam::{Mat4, Vec3};
+use hatchery_data::VolumeData;
+use hatchery_data::geometry::Geometry;
+use hatchery_data::segmentation::LabelData;
+use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
+use hatchery_graph::ParamValue;
+use hatchery_nodes::camera::Camera;
+use hatchery_nodes::selection_render::{Placement, selection_transform};
+use hatchery_nodes::value::{Labels, TransferFunction, Volume};
+use hatchery_nodes::{Session, Value, export};
+use std::sync::Arc;
+
+const N: u32 = 40;
+const SIZE: u32 = 48;
+const STEP: f32 = 0.37;
+
+fn session() -> Session {
+    common::session_from_text(
+        r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
+        SIZE,
+        SIZE,
+    )
+}
+
+/// The half of a ball (value 100, r < 0.85 of the half-size) towards +z (the viewer of the
+/// tests' cameras at azimuth 0), around a cube of voxels 22..=30 (value 200, label 1: the
+/// selection), on an N³ grid centred at the origin: over the cube's footprint every
+/// background sample lies in front of the cube's far side, in the cutaway region.
+fn scene() -> (VolumeData, LabelData) {
+    let half = (N - 1) as f32 / 2.0;
+    let (mut values, mut ids) = (Vec::new(), Vec::new());
+    for z in 0..N {
+        for y in 0..N {
+            for x in 0..N {
+                let cube = [x, y, z].iter().all(|&c| (22..=30).contains(&c));
+                let r = Vec3::new(x as f32 - half, y as f32 - half, z as f32 - half).length();
+                values.push(if cube {
+                    200.0
+                } else if r < 0.85 * half && z >= 20 {
+                    100.0
+                } else {
+                    0.0
+                });
+                ids.push(u16::from(cube));
+            }
+        }
+    }
+    let geometry = Geometry::axis_aligned([1.0; 3], [-(half as f64); 3]);
+    let volume = VolumeData::with_geometry([N; 3], geometry, values).unwrap();
+    (volume, LabelData::new([N; 3], geometry, ids))
+}
+
+/// The cube's centre in world units.
+const CUBE_CENTRE: Vec3 = Vec3::splat(26.0 - 19.5);
+
+fn tf(points: &[(f32, [f32; 4])]) -> TransferFunction1D {
+    TransferFunction1D::from_points(
+        &points
+            .iter()
+            .map(|&(value, rgba)| ControlPoint { value, rgba })
+            .collect::<Vec<_>>(),
+    )
+    .unwrap()
+}
+
+struct Tfs {
+    background: TransferFunction1D,
+    ghost: TransferFunction1D,
+    selection: TransferFunction1D,
+}
+
+fn tfs(visible_context: bool) -> Tfs {
+    let a = if visible_context { 1.0 } else { 0.0 };
+    Tfs {
+        background: tf(&[
+            (0.0, [0.8, 0.7, 0.6, 0.0]),
+            (50.0, [0.8, 0.7, 0.6, 0.03 * a]),
+            (300.0, [0.8, 0.7, 0.6, 0.03 * a]),
+        ]),
+        ghost: tf(&[
+            (0.0, [1.0, 0.1, 0.1, 0.01 * a]),
+            (300.0, [1.0, 0.1, 0.1, 0.01 * a]),
+        ]),
+        selection: tf(&[
+            (0.0, [0.1, 0.8, 0.2, 0.0]),
+            (150.0, [0.1, 0.8, 0.2, 0.5]),
+            (300.0, [0.1, 0.8, 0.2, 0.5]),
+        ]),
+    }
+}
+
+/// Orthographic along −z rotated by `azimuth` about the y axis, showing 2·22 world units.
+fn camera(session: &mut Session, azimuth: f32) -> Camera {
+    session.ctx.set_size(SIZE, SIZE).unwrap();
+    let fov = 2.0 * (22.0f32 / 60.0).atan().to_degrees();
+    Camera::orbit(
+        Vec3::ZERO,
+        azimuth,
+        0.0,
+        60.0,
+        fov,
+        true,
+        0.05,
+        200.0,
+        false,
+        SIZE,
+        SIZE,
+    )
+}
+
+fn ray_params(cam: &Camera) -> RayParams {
+    RayParams {
+        view_proj: cam.view_proj(),
+        view: cam.view,
+        width: cam.width,
+        height: cam.height,
+        orthographic: true,
+        step_voxels: STEP,
+        mode: Mode::Dvr,
+        shading: Shading::None,
+        light_dir_view: Vec3::Z,
+        early_termination: 0.99,
+    }
+}
+
+fn tf_value(f: &TransferFunction1D) -> Value {
+    Value::TransferFunction(Arc::new(TransferFunction::Color(f.clone())))
+}
+
+fn render_gpu(
+    session: &mut Session,
+    cam: &Camera,
+    tfs: &Tfs,
+    params: &[(&str, ParamValue)],
+) -> Vec<[f32; 4]> {
+    let (volume, labels) = scene();
+    let mut all = vec![
+        ("objects", ParamValue::Text("1".into())),
+        ("shading", ParamValue::Choice("none".into())),
+        ("step", ParamValue::Float(STEP as f64)),
+        ("jitter", ParamValue::Bool(false)),
+    ];
+    all.extend(params.iter().cloned());
+    let out = common::run_node(
+        session,
+        "SelectionRender",
+        vec![
+            ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
+            ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+            ("tf", tf_value(&tfs.background)),
+            ("tf_ghost", tf_value(&tfs.ghost)),
+            ("tf_selection", tf_value(&tfs.selection)),
+        ],
+        &all,
+    );
+    let errors = session.ctx.gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:?}");
+    let a = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+    a.data
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
+}
+
+fn diff(a: [f32; 4], b: [f32; 4]) -> f32 {
+    (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max)
+}
+
+/// GPU against CPU: at most 1 % of the pixels beyond 1/255 and none beyond 6/255. The sample
+/// lattice is anchored at the near plane (`t = k h`, the first k with t ≥ t_in), so where
+/// t_in / h lies within float rounding of an integer the GPU and the CPU may start one sample
+/// apart: a handful of pixels, each off by about one sample's share.
+fn assert_close(name: &str, gpu: &[[f32; 4]], cpu: &[[f32; 4]]) {
+    let (mut worst, mut at) = (0.0f32, 0);
+    for (i, (a, b)) in gpu.iter().zip(cpu).enumerate() {
+        let d = diff(*a, *b);
+        if d > worst {
+            (worst, at) = (d, i);
+        }
+    }
+    let over = gpu
+        .iter()
+        .zip(cpu)
+        .filter(|(a, b)| diff(**a, **b) > 1.0 / 255.0)
+        .count();
+    assert!(
+        worst <= 6.0 / 255.0 && over * 100 <= gpu.len(),
+        "{name}: {over} pixels beyond 1/255; pixel ({}, {}) differs by {worst}: GPU {:?}, CPU {:?}",
+        at % SIZE as usize,
+        at / SIZE as usize,
+        gpu[at],
+        cpu[at]
+    );
+}
+
+/// Every pixel within 1/255 (two GPU renderings of the same samples).
+fn assert_same(name: &str, a: &[[f32; 4]], b: &[[f32; 4]]) {
+    let worst = a
+        .iter()
+        .zip(b)
+        .map(|(a, b)| diff(*a, *b))
+        .fold(0.0, f32::max);
+    assert!(worst <= 1.0 / 255.0, "{name}: differs by {worst}");
+}
+
+fn vec3_param(v: Vec3) -> ParamValue {
+    ParamValue::Vec3([v.x as f64, v.y as f64, v.z as f64])
+}
+
+const MOVE: Vec3 = Vec3::new(-14.0, 0.0, 0.0);
+
+#[test]
+fn ghosting_goes_from_no_ghosting_to_a_full_cutaway_as_the_cpu_reference() {
+    let mut session = session();
+    let cam = camera(&mut session, 0.0);
+    let tfs = tfs(true);
+    let (volume, labels) = scene();
+    let p = ray_params(&cam);
+    let transform = Mat4::from_translation(MOVE);
+    let render = |session: &mut Session, cutaway: &str, g: f32| {
+        render_gpu(
+            session,
+            &cam,
+            &tfs,
+            &[
+                ("translate", vec3_param(MOVE)),
+                ("cutaway", ParamValue::Choice(cutaway.into())),
+                ("ghosting", ParamValue::Float(g as f64)),
+            ],
+        )
+    };
+    let none = render(&mut session, "none", 0.7);
+    // Ghosting 0 is the rendering without cutaway.
+    assert_same(
+        "ghosting 0 vs no cutaway",
+        &render(&mut session, "ghost", 0.0),
+        &none,
+    );
+    // Every ghosting factor against the CPU reference, and the background's mean opacity over
+    // the ghost's footprint falls as the factor grows.
+    let footprint: Vec<usize> = (0..(SIZE * SIZE) as usize)
+        .filter(|&i| {
+            let (x, y) = ((i as u32 % SIZE) as f32, (i as u32 / SIZE) as f32);
+            // The cube (world 2.5..10.5 in x and y) seen along −z, ~1.09 px per unit.
+            let to_px = |w: f32| (w + 22.0) / 44.0 * SIZE as f32;
+            x + 0.5 > to_px(3.5)
+                && x + 0.5 < to_px(9.5)
+                && SIZE as f32 - (y + 0.5) > to_px(3.5)
+                && SIZE as f32 - (y + 0.5) < to_px(9.5)
+        })
+        .collect();
+    assert!(footprint.len() > 20, "{} footprint pixels", footprint.len());
+    let mut previous = f32::INFINITY;
+    let mut first = None;
+    for g in [0.0f32, 0.25, 0.5, 0.75, 1.0] {
+        let gpu = render(&mut session, "ghost", g);
+        let setup = Setup {
+            ids: &[1],
+            background: &tfs.background,
+            ghost: &tfs.ghost,
+            selection: &tfs.selection,
+            transform,
+            cutaway: Cutaway::Ghost,
+            ghosting: g,
+        };
+        let cpu = reference::render(&volume, &labels, &setup, &p);
+        assert_close(&format!("ghosting {g}"), &gpu, &cpu);
+        let mean = footprint.iter().map(|&i| gpu[i][3]).sum::<f32>() / footprint.len() as f32;
+        eprintln!("ghosting {g}: mean opacity over the ghost's footprint {mean}");
+        assert!(
+            mean < previous - 1e-4,
+            "ghosting {g}: mean opacity {mean} (before {previous})"
+        );
+        previous = mean;
+        first.get_or_insert(mean);
+    }
+    let first = first.unwrap();
+    // Full cutaway removes most of what covered the footprint (the background in front of the
+    // cube's far side; the two voxel layers of the half-ball behind it and the faint ghost stay).
+    assert!(
+        first - previous > 0.05,
+        "the cutaway removed only {} of {first}",
+        first - previous
+    );
+}
+
+/// The screen centroid (pixels) of a picture's opacity.
+fn centroid(picture: &[[f32; 4]]) -> glam::Vec2 {
+    let (mut sum, mut weight) = (glam::Vec2::ZERO, 0.0);
+    for (i, c) in picture.iter().enumerate() {
+        let at = glam::Vec2::new(
+            (i as u32 % SIZE) as f32 + 0.5,
+            (i as u32 / SIZE) as f32 + 0.5,
+        );
+        sum += at * c[3];
+        weight += c[3];
+    }
+    assert!(weight > 5.0, "the selection is not in the picture");
+    sum / weight
+}
+
+fn project(cam: &Camera, w: Vec3) -> glam::Vec2 {
+    let ndc = cam.view_proj().project_point3(w);
+    glam::Vec2::new(
+        (ndc.x + 1.0) * 0.5 * SIZE as f32,
+        (1.0 - ndc.y) * 0.5 * SIZE as f32,
+    )
+}
+
+#[test]
+fn placements_keep_the_selection_where_vol_shop_says_as_the_camera_turns() {
+    let mut session = session();
+    // Only the selection is visible.
+    let tfs = tfs(false);
+    let (volume, labels) = scene();
+    let render = |session: &mut Session, cam: &Camera, placement: &str| {
+        render_gpu(
+            session,
+            cam,
+            &tfs,
+            &[
+                ("translate", vec3_param(Vec3::new(0.0, -12.0, 0.0))),
+                ("rotate", vec3_param(Vec3::new(0.0, 0.0, 30.0))),
+                ("placement", ParamValue::Choice(placement.into())),
+                ("pin_x", ParamValue::Float(0.3)),
+                ("pin_y", ParamValue::Float(0.4)),
+            ],
+        )
+    };
+    let mut decoupled = Vec::new();
+    for azimuth in [0.0f32, 35.0] {
+        let cam = camera(&mut session, azimuth);
+        // Integrated: the selection's centre follows the projection of its moved centre.
+        let integrated = render(&mut session, &cam, "integrated");
+        let expected = project(&cam, CUBE_CENTRE + Vec3::new(0.0, -12.0, 0.0));
+        let got = centroid(&integrated);
+        assert!(
+            got.distance(expected) < 1.0,
+            "integrated at {azimuth}°: {got} vs {expected}"
+        );
+        // And the picture equals the CPU reference with the same transform.
+        let transform = selection_transform(
+            &cam,
+            Placement::Integrated,
+            CUBE_CENTRE,
+            Vec3::new(0.0, -12.0, 0.0),
+            Vec3::new(0.0, 0.0, 30.0),
+            [0.3, 0.4],
+        );
+        let setup = Setup {
+            ids: &[1],
+            background: &tfs.background,
+            ghost: &tfs.ghost,
+            selection: &tfs.selection,
+            transform,
+            cutaway: Cutaway::None,
+            ghosting: 0.0,
+        };
+        let cpu = reference::render(&volume, &labels, &setup, &ray_params(&cam));
+        assert_close(&format!("integrated at {azimuth}°"), &integrated, &cpu);
+        // Pinned: the centre stays at the pin point whatever the view.
+        let pinned = centroid(&render(&mut session, &cam, "pinned"));
+        let pin = glam::Vec2::new(0.3 * SIZE as f32, 0.4 * SIZE as f32);
+        assert!(
+            pinned.distance(pin) < 1.0,
+            "pinned at {azimuth}°: {pinned} vs {pin}"
+        );
+        decoupled.push(render(&mut session, &cam, "decoupled"));
+    }
+    // Decoupled: neither position nor orientation follow the view — the same picture.
+    assert!(
+        centroid(&decoupled[0]).distance(glam::Vec2::new(0.3 * SIZE as f32, 0.4 * SIZE as f32))
+            < 1.0
+    );
+    assert_close("decoupled at 0° vs 35°", &decoupled[1], &decoupled[0]);
+}
