@@ -115,6 +115,47 @@ impl ImportancePipelines {
         pass.set_bind_group(0, &group, &[]);
         pass.dispatch_workgroups(groups.0, groups.1, 1);
     }
+
+    /// Passes of `entry` that read `views[i]` at binding `read` and write the other at `write`,
+    /// one per `(step, radius)` (`PassParams`), starting from `views[0]`; the index of the view
+    /// holding the result.
+    #[allow(clippy::too_many_arguments)]
+    fn ping_pong(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        entry: &str,
+        params: &wgpu::Buffer,
+        views: &[wgpu::TextureView; 2],
+        (read, write): (u32, u32),
+        steps: &[[f32; 2]],
+        groups: (u32, u32),
+    ) -> usize {
+        let mut at = 0;
+        for &[step, radius] in steps {
+            let pass = gpu.buffer_init(
+                "importance pass",
+                bytemuck::bytes_of(&PassUniforms {
+                    step: [step, radius, 0.0, 0.0],
+                }),
+                wgpu::BufferUsages::UNIFORM,
+            );
+            self.dispatch(
+                gpu,
+                encoder,
+                entry,
+                &[
+                    (20, params.as_entire_binding()),
+                    (21, pass.as_entire_binding()),
+                    (read, wgpu::BindingResource::TextureView(&views[at])),
+                    (write, wgpu::BindingResource::TextureView(&views[1 - at])),
+                ],
+                groups,
+            );
+            at = 1 - at;
+        }
+        at
+    }
 }
 
 /// The focus: `requested` if it is drawn, else (0) the drawn object of highest importance.
@@ -263,16 +304,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let pipelines = ctx
             .cached("importance.pipelines", ImportancePipelines::new)
             .map_err(err)?;
-        let sampler = ctx
-            .cached("importance.sampler", |gpu| {
-                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
-                    label: Some("linear clamp"),
-                    mag_filter: wgpu::FilterMode::Linear,
-                    min_filter: wgpu::FilterMode::Linear,
-                    ..Default::default()
-                }))
-            })
-            .map_err(err)?;
+        let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
         let gpu = &ctx.gpu;
         let (w, h) = (camera.width, camera.height);
         let l = &labels.data;
@@ -281,25 +313,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             geometry: &l.geometry,
             value_range: [0.0, 1.0],
         };
-        let options = RayOptions {
-            mode: 0,
-            iso: 0.0,
-            step_voxels: p.f32("step"),
-            shading: 0,
-            lighting_model: "phong",
-            phong: [0.0; 4],
-            kappa: [0.0, 0.0],
-            contours: false,
-            thickness: 0.0,
-            transparency: false,
-            mip_bias: 0.0,
-            jitter: false,
-            early_termination: 1.0,
-            hit_opacity: 0.5,
-            light_view: glam::Vec3::Z,
-            skip_empty: false,
-            kernel: Kernel::Compute,
-        };
+        let options = RayOptions::plain(p.f32("step"), false, 1.0, glam::Vec3::Z, Kernel::Compute);
         let info = TableInfo {
             shading: 0.0,
             domain: [0.0, 1.0],
@@ -399,14 +413,6 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let seeds_v = [view(&seeds[0]), view(&seeds[1])];
         let tex = wgpu::BindingResource::TextureView;
         let groups = (w.div_ceil(8), h.div_ceil(8));
-        let pass_buffer = |step: f32, radius: f32| {
-            uniform(
-                "importance pass",
-                bytemuck::bytes_of(&PassUniforms {
-                    step: [step, radius, 0.0, 0.0],
-                }),
-            )
-        };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let (ids_v, drawn_v, bricks_v, table_v) = (
             view(ids),
@@ -432,28 +438,24 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             ],
             groups,
         );
-        // Image-space AImC: dilate the footprints (OR of the bits), weigh, then average.
+        // Image-space AImC: dilate the footprints (OR of the bits), weigh, then average, each
+        // separably (x, then y).
         let radius = params.view[1];
-        let mut bits_at = 0;
-        let mut passes = Vec::new();
-        if radius > 0.0 {
-            for axis in [0.0, 1.0] {
-                passes.push(pass_buffer(axis, radius));
-                pipelines.dispatch(
-                    gpu,
-                    &mut encoder,
-                    "dilate",
-                    &[
-                        (20, params_buffer.as_entire_binding()),
-                        (21, passes.last().unwrap().as_entire_binding()),
-                        (24, tex(&bits_v[bits_at])),
-                        (23, tex(&bits_v[1 - bits_at])),
-                    ],
-                    groups,
-                );
-                bits_at = 1 - bits_at;
-            }
-        }
+        let separable: &[[f32; 2]] = if radius > 0.0 {
+            &[[0.0, radius], [1.0, radius]]
+        } else {
+            &[]
+        };
+        let bits_at = pipelines.ping_pong(
+            gpu,
+            &mut encoder,
+            "dilate",
+            &params_buffer,
+            &bits_v,
+            (24, 23),
+            separable,
+            groups,
+        );
         pipelines.dispatch(
             gpu,
             &mut encoder,
@@ -465,25 +467,16 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             ],
             groups,
         );
-        let mut sum_at = 0;
-        if radius > 0.0 {
-            for axis in [0.0, 1.0] {
-                passes.push(pass_buffer(axis, radius));
-                pipelines.dispatch(
-                    gpu,
-                    &mut encoder,
-                    "box",
-                    &[
-                        (20, params_buffer.as_entire_binding()),
-                        (21, passes.last().unwrap().as_entire_binding()),
-                        (26, tex(&sums_v[sum_at])),
-                        (25, tex(&sums_v[1 - sum_at])),
-                    ],
-                    groups,
-                );
-                sum_at = 1 - sum_at;
-            }
-        }
+        let sum_at = pipelines.ping_pong(
+            gpu,
+            &mut encoder,
+            "box",
+            &params_buffer,
+            &sums_v,
+            (26, 25),
+            separable,
+            groups,
+        );
         // 1+JFA: steps N/2, N/4, …, 1, then 1 again.
         pipelines.dispatch(
             gpu,
@@ -499,27 +492,20 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let mut steps = Vec::new();
         let mut k = w.max(h).next_power_of_two() / 2;
         while k >= 1 {
-            steps.push(k);
+            steps.push([k as f32, 0.0]);
             k /= 2;
         }
-        steps.push(1);
-        let mut seed_at = 0;
-        for k in steps {
-            passes.push(pass_buffer(k as f32, 0.0));
-            pipelines.dispatch(
-                gpu,
-                &mut encoder,
-                "jfa_step",
-                &[
-                    (20, params_buffer.as_entire_binding()),
-                    (21, passes.last().unwrap().as_entire_binding()),
-                    (29, tex(&seeds_v[seed_at])),
-                    (28, tex(&seeds_v[1 - seed_at])),
-                ],
-                groups,
-            );
-            seed_at = 1 - seed_at;
-        }
+        steps.push([1.0, 0.0]);
+        let seed_at = pipelines.ping_pong(
+            gpu,
+            &mut encoder,
+            "jfa_step",
+            &params_buffer,
+            &seeds_v,
+            (29, 28),
+            &steps,
+            groups,
+        );
         pipelines.dispatch(
             gpu,
             &mut encoder,

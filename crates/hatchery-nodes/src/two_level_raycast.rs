@@ -373,23 +373,15 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         }
         let kernel = Kernel::choose(p.choice("kernel"), &ctx.gpu);
         let options = RayOptions {
-            mode: 0,
-            iso: 0.0,
-            step_voxels: p.f32("step"),
             shading: 1,
-            lighting_model: "phong",
             phong: phong_values(p),
-            kappa: [0.0, 0.0],
-            contours: false,
-            thickness: 0.0,
-            transparency: false,
-            mip_bias: 0.0,
-            jitter: p.bool("jitter"),
-            early_termination: p.f32("early_termination"),
-            hit_opacity: 0.5,
-            light_view: crate::raycast::light_direction(inputs, &camera)?,
-            skip_empty: false,
-            kernel,
+            ..RayOptions::plain(
+                p.f32("step"),
+                p.bool("jitter"),
+                p.f32("early_termination"),
+                crate::raycast::light_direction(inputs, &camera)?,
+                kernel,
+            )
         };
         let info = TableInfo {
             shading: 1.0,
@@ -407,16 +399,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 RayPipelines::new(gpu, "two_level_raycast")
             })
             .map_err(err)?;
-        let sampler = ctx
-            .cached("two_level_raycast.sampler", |gpu| {
-                Ok::<_, GpuError>(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
-                    label: Some("linear clamp"),
-                    mag_filter: wgpu::FilterMode::Linear,
-                    min_filter: wgpu::FilterMode::Linear,
-                    ..Default::default()
-                }))
-            })
-            .map_err(err)?;
+        let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
         let gpu = &ctx.gpu;
         let volume_texture = volume.texture(gpu).map_err(err)?;
         let contours = styles

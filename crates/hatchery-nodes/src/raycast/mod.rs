@@ -47,6 +47,51 @@ pub struct RayOptions<'a> {
     pub kernel: Kernel,
 }
 
+impl RayOptions<'static> {
+    /// DVR options for ray casters that classify and shade on their own (TwoLevelRaycast,
+    /// ImportanceCompositing, SelectionRender): no shading, contours or skipping in the shared
+    /// uniform block.
+    pub fn plain(
+        step_voxels: f32,
+        jitter: bool,
+        early_termination: f32,
+        light_view: Vec3,
+        kernel: Kernel,
+    ) -> Self {
+        Self {
+            mode: 0,
+            iso: 0.0,
+            step_voxels,
+            shading: 0,
+            lighting_model: "phong",
+            phong: [0.0; 4],
+            kappa: [0.0, 0.0],
+            contours: false,
+            thickness: 0.0,
+            transparency: false,
+            mip_bias: 0.0,
+            jitter,
+            early_termination,
+            hit_opacity: 0.5,
+            light_view,
+            skip_empty: false,
+            kernel,
+        }
+    }
+}
+
+/// The trilinear, clamp-to-edge sampler of the ray casters' volumes, made once per device.
+pub fn linear_clamp_sampler(ctx: &mut Ctx) -> Result<Arc<wgpu::Sampler>, hatchery_gpu::GpuError> {
+    ctx.cached("ray.linear_clamp", |gpu| {
+        Ok(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("linear clamp"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        }))
+    })
+}
+
 /// The GPU path of a ray-casting pass: a full-screen fragment shader, or a compute kernel over
 /// 8×8-pixel tiles. Same rays, same samples, same picture (tests/raycast.rs compares them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
