@@ -30,10 +30,12 @@ pub enum PortType {
     /// Per-pixel importance-driven rendering data of one frame: focus footprint, countersink
     /// depth and importance sums (Viola et al., importance compositing).
     Importance,
+    /// Labelled 3-D anchors and, once laid out, their labels' places (VolumeShop §6.4).
+    Annotations,
 }
 
 impl PortType {
-    pub const ALL: [PortType; 12] = [
+    pub const ALL: [PortType; 13] = [
         PortType::Volume,
         PortType::Labels,
         PortType::Mesh,
@@ -46,6 +48,7 @@ impl PortType {
         PortType::StyleSet,
         PortType::ObjectStyles,
         PortType::Importance,
+        PortType::Annotations,
     ];
 
     pub fn name(self) -> &'static str {
@@ -62,6 +65,7 @@ impl PortType {
             PortType::StyleSet => "StyleSet",
             PortType::ObjectStyles => "ObjectStyles",
             PortType::Importance => "Importance",
+            PortType::Annotations => "Annotations",
         }
     }
 }

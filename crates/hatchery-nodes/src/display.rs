@@ -56,7 +56,11 @@ pub fn source_size(value: &Value) -> Option<(u32, u32)> {
             let size = s.maps.first().map_or(1, |m| m.size);
             return Some((size * s.maps.len().max(1) as u32, size));
         }
-        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
+        Value::Mesh(_)
+        | Value::Camera(_)
+        | Value::Light(_)
+        | Value::ObjectStyles(_)
+        | Value::Annotations(_) => {
             return None;
         }
     };

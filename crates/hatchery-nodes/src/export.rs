@@ -90,6 +90,31 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
                 data: l.data.ids.iter().map(|&id| f32::from(id)).collect(),
             }
         }
+        Value::Annotations(a) => {
+            // N × 7: anchor x, y, z (world), shown (0/1), label rectangle min x, min y (pixels;
+            // NaN before AnnotationLayout), leader opacity.
+            let mut data = Vec::new();
+            for (i, anchor) in a.anchors.iter().enumerate() {
+                let label = a
+                    .placed
+                    .as_ref()
+                    .and_then(|p| p.layout.labels.iter().find(|l| l.anchor == i));
+                data.extend_from_slice(&anchor.position.to_array());
+                match label {
+                    Some(l) => data.extend_from_slice(&[
+                        f32::from(u8::from(l.shown)),
+                        l.rect.min.x,
+                        l.rect.min.y,
+                        l.opacity,
+                    ]),
+                    None => data.extend_from_slice(&[0.0, f32::NAN, f32::NAN, 0.0]),
+                }
+            }
+            Array {
+                shape: vec![a.anchors.len(), 7],
+                data,
+            }
+        }
         Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
             return Err(format!(
                 "a {} value holds no array to dump",
@@ -209,7 +234,11 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Str
                 image::Rgba([to_u8(t[0]), to_u8(t[1]), to_u8(t[2]), to_u8(t[3])])
             })
         }
-        Value::Mesh(_) | Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
+        Value::Mesh(_)
+        | Value::Camera(_)
+        | Value::Light(_)
+        | Value::ObjectStyles(_)
+        | Value::Annotations(_) => {
             return Err(format!(
                 "a {} value has no picture; dump it to .npy instead",
                 value.port_type()

@@ -1,5 +1,6 @@
 //! hatchery's node catalogue. One module per node kind; [`registry`] lists them all.
 
+pub mod annotations;
 pub mod camera;
 pub mod context;
 pub mod depth_peel;
@@ -11,6 +12,7 @@ pub mod fill;
 pub mod gbuffer;
 pub mod halftone;
 pub mod importance_compositing;
+pub mod label_font;
 pub mod label_mask;
 pub mod label_sources;
 pub mod light;
@@ -89,6 +91,8 @@ pub fn registry() -> Registry {
     r.register(two_level_raycast::TwoLevelRaycastNode);
     r.register(importance_compositing::ImportanceCompositingNode);
     r.register(selection_render::SelectionRenderNode);
+    r.register(annotations::AnnotationListNode);
+    r.register(annotations::AnnotationsFromLabelsNode);
     r.register(save_image::SaveImageNode);
     r
 }

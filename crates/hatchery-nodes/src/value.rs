@@ -478,6 +478,7 @@ pub enum Value {
     Labels(Arc<Labels>),
     ObjectStyles(Arc<Vec<ObjectStyle>>),
     Importance(Arc<Importance>),
+    Annotations(Arc<crate::annotations::Annotations>),
 }
 
 impl Value {
@@ -495,6 +496,7 @@ impl Value {
             Value::Labels(_) => PortType::Labels,
             Value::ObjectStyles(_) => PortType::ObjectStyles,
             Value::Importance(_) => PortType::Importance,
+            Value::Annotations(_) => PortType::Annotations,
         }
     }
 }
@@ -532,3 +534,8 @@ accessor!(style_set, StyleSet, Arc<StyleSet>);
 accessor!(labels, Labels, Arc<Labels>);
 accessor!(object_styles, ObjectStyles, Arc<Vec<ObjectStyle>>);
 accessor!(importance, Importance, Arc<Importance>);
+accessor!(
+    annotations,
+    Annotations,
+    Arc<crate::annotations::Annotations>
+);
