@@ -30,7 +30,9 @@ enum Command {
     /// Render a graph: run its SaveImage nodes (and any --dump ports).
     Render {
         graph: PathBuf,
-        /// Output PNG; replaces the path of the graph's single SaveImage node.
+        /// Output file: a .png replaces the path of the graph's single SaveImage node, a .svg
+        /// that of its single SaveSvg node; a single saver of the other kind writes the same
+        /// name with its own extension.
         #[arg(short, long)]
         output: Option<PathBuf>,
         #[command(flatten)]
@@ -297,27 +299,43 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
         .map(|n| n.id.clone())
         .collect();
     if let Some(output) = output {
+        let svg = output
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        let kind = if svg { "SaveSvg" } else { "SaveImage" };
         let savers: Vec<&String> = sinks
             .iter()
-            .filter(|id| {
-                session
-                    .graph
-                    .node(id)
-                    .is_some_and(|n| n.kind == "SaveImage")
-            })
+            .filter(|id| session.graph.node(id).is_some_and(|n| n.kind == kind))
             .collect();
         match savers.as_slice() {
             [one] => {
                 let one = (*one).clone();
                 let abs = std::path::absolute(output)?;
                 session.set_param_text(&one, "path", &abs.to_string_lossy())?;
+                // The figure's other format (a graph with one SaveImage and one SaveSvg) goes
+                // next to it: -o figure.png also writes figure.svg, and the other way round.
+                let (other, extension) = if svg {
+                    ("SaveImage", "png")
+                } else {
+                    ("SaveSvg", "svg")
+                };
+                let others: Vec<String> = sinks
+                    .iter()
+                    .filter(|id| session.graph.node(id).is_some_and(|n| n.kind == other))
+                    .cloned()
+                    .collect();
+                if let [single] = others.as_slice() {
+                    let path = abs.with_extension(extension);
+                    session.set_param_text(single, "path", &path.to_string_lossy())?;
+                }
             }
             [] => bail!(
-                "{}: -o needs a SaveImage node in the graph (or use --dump NODE.PORT=FILE)",
-                graph.display()
+                "{}: -o {} needs a {kind} node in the graph (or use --dump NODE.PORT=FILE)",
+                graph.display(),
+                output.display()
             ),
             many => bail!(
-                "{}: -o is ambiguous with {} SaveImage nodes ({}); set each with --set NODE.path=FILE",
+                "{}: -o is ambiguous with {} {kind} nodes ({}); set each with --set NODE.path=FILE",
                 graph.display(),
                 many.len(),
                 many.iter()
@@ -349,7 +367,7 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
     targets.extend(requests.iter().map(|(n, _, _)| n.as_str()));
     if targets.is_empty() {
         bail!(
-            "{}: nothing to render: the graph has no SaveImage node and no --dump was given",
+            "{}: nothing to render: the graph has no SaveImage or SaveSvg node and no --dump was given",
             graph.display()
         );
     }
@@ -389,7 +407,11 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
         println!("dumped {node}.{port} to {}", path.display());
     }
     for sink in &sinks {
-        if let Some(node) = session.graph.node(sink).filter(|n| n.kind == "SaveImage") {
+        if let Some(node) = session
+            .graph
+            .node(sink)
+            .filter(|n| n.kind == "SaveImage" || n.kind == "SaveSvg")
+        {
             println!("wrote {}", node.params.path("path").display());
         }
     }

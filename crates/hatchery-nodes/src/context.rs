@@ -41,6 +41,11 @@ impl RenderContext {
         (self.width, self.height)
     }
 
+    /// The id of the node executing now (None between executions).
+    pub fn current_node(&self) -> Option<&str> {
+        self.current_node.as_deref()
+    }
+
     pub fn set_size(&mut self, width: u32, height: u32) -> Result<(), GpuError> {
         self.gpu.check_2d_size("the frame", width, height)?;
         self.width = width;

@@ -1,5 +1,6 @@
 //! hatchery's node catalogue. One module per node kind; [`registry`] lists them all.
 
+pub mod annotation_layout;
 pub mod annotations;
 pub mod camera;
 pub mod context;
@@ -28,6 +29,7 @@ pub mod over;
 pub mod procedural_volume;
 pub mod raycast;
 pub mod save_image;
+pub mod save_svg;
 pub mod screen_pass;
 pub mod secondary_geometry;
 pub mod select_image;
@@ -93,6 +95,8 @@ pub fn registry() -> Registry {
     r.register(selection_render::SelectionRenderNode);
     r.register(annotations::AnnotationListNode);
     r.register(annotations::AnnotationsFromLabelsNode);
+    r.register(annotation_layout::AnnotationLayoutNode);
+    r.register(save_svg::SaveSvgNode);
     r.register(save_image::SaveImageNode);
     r
 }
