@@ -383,3 +383,39 @@ fn placements_keep_the_selection_where_vol_shop_says_as_the_camera_turns() {
     );
     assert_close("decoupled at 0° vs 35°", &decoupled[1], &decoupled[0]);
 }
+
+#[test]
+fn the_annotations_output_holds_the_ghost_and_the_moved_selection_with_their_boxes() {
+    let mut session = session();
+    let cam = camera(&mut session, 0.0);
+    let tfs = tfs(true);
+    let (volume, labels) = scene();
+    let out = common::run_node(
+        &mut session,
+        "SelectionRender",
+        vec![
+            ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
+            ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+            ("tf", tf_value(&tfs.background)),
+        ],
+        &[
+            ("objects", ParamValue::Text("1".into())),
+            ("translate", vec3_param(MOVE)),
+            ("jitter", ParamValue::Bool(false)),
+        ],
+    );
+    let Value::Annotations(a) = &out[2] else {
+        panic!("the third output is not Annotations");
+    };
+    assert_eq!(a.anchors.len(), 2);
+    assert!(a.anchors[0].position.distance(CUBE_CENTRE) < 1e-3);
+    assert!(a.anchors[1].position.distance(CUBE_CENTRE + MOVE) < 1e-3);
+    // The cube's voxel centres span 22..=30, world 2.5..10.5; the moved box is shifted by MOVE.
+    let [lo, hi] = a.bounds[0].unwrap();
+    assert!(lo.distance(Vec3::splat(2.5)) < 1e-3 && hi.distance(Vec3::splat(10.5)) < 1e-3);
+    let [lo, hi] = a.bounds[1].unwrap();
+    assert!(
+        lo.distance(Vec3::splat(2.5) + MOVE) < 1e-3 && hi.distance(Vec3::splat(10.5) + MOVE) < 1e-3
+    );
+}

@@ -3,6 +3,7 @@
 //! ghost and a movable selection of one volume, with cutaways of the background and a ghosting
 //! factor (see shaders/selection_render.wgsl).
 
+use crate::annotations::Annotations;
 use crate::camera::Camera;
 use crate::raycast::{KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo};
 use crate::value::{Image, Labels, TransferFunction};
@@ -103,22 +104,64 @@ fn parse_ids(text: &str) -> Result<Vec<u16>, NodeError> {
     }
 }
 
-/// The world-space centre (mean voxel position) of the voxels holding `ids`, or None.
-fn centre_of(labels: &Labels, ids: &[u16]) -> Option<Vec3> {
+/// The world-space centre (mean voxel position) of the voxels holding `ids` and their world
+/// box (of voxel centres), or None when there are none.
+fn extent_of(labels: &Labels, ids: &[u16]) -> Option<(Vec3, [Vec3; 2])> {
     let l = &labels.data;
     let [nx, ny, _] = l.dims.map(|d| d as usize);
     let (mut sum, mut count) = (glam::DVec3::ZERO, 0u64);
+    let (mut lo, mut hi) = (glam::DVec3::splat(f64::MAX), glam::DVec3::splat(f64::MIN));
     for (i, id) in l.ids.iter().enumerate() {
         if ids.contains(id) {
-            sum += glam::DVec3::new(
+            let v = glam::DVec3::new(
                 (i % nx) as f64,
                 (i / nx % ny) as f64,
                 (i / (nx * ny)) as f64,
             );
+            sum += v;
+            lo = lo.min(v);
+            hi = hi.max(v);
             count += 1;
         }
     }
-    (count > 0).then(|| l.geometry.voxel_to_world((sum / count as f64).as_vec3()))
+    if count == 0 {
+        return None;
+    }
+    let world = |v: Vec3| l.geometry.voxel_to_world(v);
+    let corners = hatchery_annotation::box_corners(lo.as_vec3(), hi.as_vec3()).map(world);
+    let min = corners.iter().copied().fold(Vec3::INFINITY, Vec3::min);
+    let max = corners.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max);
+    Some((world((sum / count as f64).as_vec3()), [min, max]))
+}
+
+/// The ghost (anchor 0, where the selection was) and the selection (anchor 1, where it is
+/// shown), with their world boxes: what Arrow, Fan and BoundingBox draw (§6.3).
+fn ghost_and_selection(
+    name: String,
+    centre: Vec3,
+    bounds: [Vec3; 2],
+    transform: Mat4,
+) -> Annotations {
+    let moved = hatchery_annotation::box_corners(bounds[0], bounds[1])
+        .map(|c| transform.transform_point3(c));
+    let moved_box = [
+        moved.iter().copied().fold(Vec3::INFINITY, Vec3::min),
+        moved.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max),
+    ];
+    let anchor = |position, text: String, priority| hatchery_annotation::Anchor {
+        position,
+        text,
+        object: 0,
+        priority,
+    };
+    Annotations {
+        anchors: vec![
+            anchor(centre, format!("{name} (original place)"), 0.5),
+            anchor(transform.transform_point3(centre), name, 1.0),
+        ],
+        bounds: vec![Some(bounds), Some(moved_box)],
+        placed: None,
+    }
 }
 
 fn color_tf(
@@ -285,7 +328,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         let ghost = color_tf(inputs, "tf_ghost")?.unwrap_or_else(|| background.clone());
         let selected = color_tf(inputs, "tf_selection")?.unwrap_or_else(|| background.clone());
         let ids = parse_ids(p.text("objects"))?;
-        let centre = centre_of(&labels, &ids).ok_or_else(|| {
+        let (centre, bounds) = extent_of(&labels, &ids).ok_or_else(|| {
             NodeError::new(format!(
                 "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {})",
                 labels
@@ -438,9 +481,24 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             texture(14, &views[3]),
         ];
         let (image, gbuffer) = pipelines.run(ctx, &camera, &entries, kernel)?;
+        let name = ids
+            .iter()
+            .map(|id| {
+                labels
+                    .data
+                    .objects
+                    .get(id)
+                    .cloned()
+                    .unwrap_or_else(|| format!("object {id}"))
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
         Ok(vec![
             Value::Image(Arc::new(Image { texture: image })),
             Value::GBuffer(Arc::new(gbuffer)),
+            Value::Annotations(Arc::new(ghost_and_selection(
+                name, centre, bounds, transform,
+            ))),
         ])
     }
 }
