@@ -412,3 +412,28 @@ fn a_camera_dumps_to_json_for_other_tools() {
     ]);
     assert_clean_failure(&output, &[".json is written for cameras"]);
 }
+
+#[test]
+fn the_readme_main_command_renders_the_labelled_default_as_png_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("figure.png");
+    let output = hatchery(&[
+        "render",
+        "graphs/default.ron",
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "480x360",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let picture = common::read_png(&png);
+    assert_eq!(picture.dimensions(), (480, 360));
+    // The SVG beside it carries the labels as text.
+    let svg = std::fs::read_to_string(dir.path().join("figure.svg")).unwrap();
+    for part in ["cylinder bore", "piston", "oil gallery"] {
+        assert!(svg.contains(&format!(">{part}<")), "no label `{part}` in the SVG");
+    }
+    // Nothing was written into graphs/.
+    assert!(!common::repo_root().join("graphs/default.svg").exists());
+    assert!(!common::repo_root().join("graphs/default.png").exists());
+}
