@@ -26,6 +26,7 @@ pub mod mix_by_mask;
 pub mod multiply_by_mask;
 pub mod object_styles;
 pub mod over;
+pub mod overlay;
 pub mod procedural_volume;
 pub mod raycast;
 pub mod save_image;
@@ -44,6 +45,7 @@ pub mod transfer_function_1d;
 pub mod two_level_raycast;
 pub mod uniforms;
 pub mod value;
+pub mod visual_conventions;
 pub mod volume_file;
 pub mod volume_texture;
 
@@ -97,6 +99,10 @@ pub fn registry() -> Registry {
     r.register(annotations::AnnotationsFromLabelsNode);
     r.register(annotation_layout::AnnotationLayoutNode);
     r.register(save_svg::SaveSvgNode);
+    r.register(overlay::AnnotationOverlayNode);
+    r.register(visual_conventions::ArrowNode);
+    r.register(visual_conventions::FanNode);
+    r.register(visual_conventions::BoundingBoxNode);
     r.register(save_image::SaveImageNode);
     r
 }

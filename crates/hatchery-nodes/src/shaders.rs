@@ -38,6 +38,7 @@ pub const TWO_LEVEL_RAYCAST: &str = shader_file!("two_level_raycast.wgsl");
 pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
 pub const OVER: &str = shader_file!("over.wgsl");
 pub const DISPLAY: &str = shader_file!("display.wgsl");
+pub const OVERLAY: &str = shader_file!("overlay.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
@@ -103,6 +104,8 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         ),
         ("over", screen("over.wgsl", OVER)),
         ("display", screen("display.wgsl", DISPLAY)),
+        // Instanced quads with their own vertex stage (crate::overlay).
+        ("overlay", vec![("overlay.wgsl", OVERLAY)]),
     ]
 }
 

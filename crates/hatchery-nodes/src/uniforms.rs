@@ -86,6 +86,7 @@ pub fn all() -> Vec<UniformLayout> {
         mix_by_mask::MixUniforms::layout(),
         multiply_by_mask::MultiplyUniforms::layout(),
         silhouette::SilhouetteUniforms::layout(),
+        overlay::OverlayUniforms::layout(),
     ];
     // The camera block is shared by every mesh shader (shaders/mesh_common.wgsl).
     for program in [
