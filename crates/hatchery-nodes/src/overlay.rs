@@ -540,7 +540,7 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
                 ),
                 ParamSpec::color(
                     "leader_color",
-                    [0.25, 0.25, 0.25, 1.0],
+                    [0.2, 0.2, 0.2, 1.0],
                     "leader line and anchor dot colour (alpha times the label's opacity)",
                 ),
                 ParamSpec::float("leader_width", 1.0, 0.0, 16.0, "leader line width, pixels"),
