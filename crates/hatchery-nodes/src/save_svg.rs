@@ -48,7 +48,13 @@ impl Node<Value, Ctx> for SaveSvgNode {
             ),
             ParamSpec::color("text_color", [0.0, 0.0, 0.0, 1.0], "label text colour"),
             ParamSpec::color("halo_color", [1.0, 1.0, 1.0, 1.0], "label halo colour"),
-            ParamSpec::float("halo", 2.0, 0.0, 20.0, "label halo width, pixels (0: none)"),
+            ParamSpec::float(
+                "halo_width",
+                2.0,
+                0.0,
+                20.0,
+                "label halo width, pixels (0: none)",
+            ),
             ParamSpec::color("leader_color", [0.2, 0.2, 0.2, 1.0], "leader line colour"),
             ParamSpec::float("leader_width", 1.0, 0.1, 20.0, "leader line width, pixels"),
         ];
@@ -166,7 +172,7 @@ impl Node<Value, Ctx> for SaveSvgNode {
         if let Some(a) = inputs.get("annotations") {
             let a = a.annotations("annotations")?;
             let placed = a.placed("annotations")?;
-            let halo = p.f32("halo");
+            let halo = p.f32("halo_width");
             let style = LabelStyle {
                 font_family: label_font::FAMILY.to_owned(),
                 font_size: placed.font_size,
