@@ -126,10 +126,21 @@ pub fn run_node(
                 .map(|(_, v)| v.clone())
         })
         .collect();
-    node.execute(
-        &mut session.ctx,
-        &NodeInputs::new(names, ordered),
-        &Params::new(values, None),
-    )
-    .unwrap_or_else(|e| panic!("{kind}: {e}"))
+    let outputs = node
+        .execute(
+            &mut session.ctx,
+            &NodeInputs::new(names, ordered),
+            &Params::new(values, None),
+        )
+        .unwrap_or_else(|e| panic!("{kind}: {e}"));
+    // What the executor checks: one value per declared output, of the declared type.
+    assert_eq!(
+        outputs.len(),
+        schema.outputs.len(),
+        "{kind}: outputs vs schema"
+    );
+    for (value, port) in outputs.iter().zip(&schema.outputs) {
+        assert_eq!(value.port_type(), port.ty, "{kind}: output `{}`", port.name);
+    }
+    outputs
 }

@@ -315,14 +315,8 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         };
         let options = RayOptions::plain(p.f32("step"), false, 1.0, glam::Vec3::Z, Kernel::Compute);
         let info = TableInfo {
-            shading: 0.0,
-            domain: [0.0, 1.0],
-            nodes: 0.0,
-            map_size: 1.0,
-            use_labels: false,
-            label_range: [0.0, 1.0],
-            label_count: 0.0,
             skip_empty: true,
+            ..TableInfo::plain()
         };
         let ray = RayUniforms::for_grid(&camera, &grid, &options, &info, 1.0, [0.0, 1.0]);
         let tables = object_tables(&styles);

@@ -4,6 +4,8 @@ pub mod annotation_layout;
 pub mod annotations;
 pub mod camera;
 pub mod context;
+pub mod curvature;
+pub mod curvature_color;
 pub mod depth_peel;
 pub mod depth_test_mask;
 pub mod diffuse_intensity;
@@ -99,6 +101,8 @@ pub fn registry() -> Registry {
     r.register(annotations::AnnotationsFromLabelsNode);
     r.register(annotation_layout::AnnotationLayoutNode);
     r.register(save_svg::SaveSvgNode);
+    r.register(curvature::CurvatureNode);
+    r.register(curvature_color::CurvatureColorNode);
     r.register(overlay::AnnotationOverlayNode);
     r.register(visual_conventions::ArrowNode);
     r.register(visual_conventions::FanNode);

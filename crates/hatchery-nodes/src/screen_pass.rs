@@ -12,7 +12,8 @@ pub const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// Format of `Image` values (premultiplied RGBA).
 pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-fn pipeline(
+/// A full-screen pass's pipeline: `vs_main` and `fs_main` of `program`, one `format` target.
+pub fn pipeline(
     gpu: &GpuContext,
     program: &str,
     format: wgpu::TextureFormat,

@@ -231,6 +231,12 @@ impl Node<Value, Ctx> for SelectionRenderNode {
                     PortType::GBuffer,
                     "depth and normal where opaque",
                 ),
+                PortSpec::output(
+                    "annotations",
+                    PortType::Annotations,
+                    "anchor 0: the ghost's centre, anchor 1: the selection's, with their boxes \
+                     (for Arrow, Fan, BoundingBox and labels)",
+                ),
             ],
             params: vec![
                 ParamSpec::text(
@@ -365,14 +371,8 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             kernel,
         );
         let info = TableInfo {
-            shading: 0.0,
             domain: background.domain,
-            nodes: 0.0,
-            map_size: 1.0,
-            use_labels: false,
-            label_range: [0.0, 1.0],
-            label_count: 0.0,
-            skip_empty: false,
+            ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
         let pipelines = ctx

@@ -33,6 +33,8 @@ pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
 pub const RAY_OBJECTS: &str = shader_file!("ray_objects.wgsl");
 pub const IMPORTANCE: &str = shader_file!("importance.wgsl");
 pub const SELECTION_RENDER: &str = shader_file!("selection_render.wgsl");
+pub const CURVATURE: &str = shader_file!("curvature.wgsl");
+pub const CURVATURE_COLOR: &str = shader_file!("curvature_color.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
 pub const TWO_LEVEL_RAYCAST: &str = shader_file!("two_level_raycast.wgsl");
 pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
@@ -93,6 +95,14 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             "selection_render",
             ray("selection_render.wgsl", SELECTION_RENDER),
         ),
+        (
+            "curvature",
+            vec![
+                ("fullscreen.wgsl", FULLSCREEN),
+                ("ray_common.wgsl", RAY_COMMON),
+                ("curvature.wgsl", CURVATURE),
+            ],
+        ),
         ("importance", {
             let mut parts = ray("ray_objects.wgsl", RAY_OBJECTS);
             parts.push(("importance.wgsl", IMPORTANCE));
@@ -103,6 +113,10 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             screen("depth_from_texture.wgsl", DEPTH_FROM_TEXTURE),
         ),
         ("over", screen("over.wgsl", OVER)),
+        (
+            "curvature_color",
+            screen("curvature_color.wgsl", CURVATURE_COLOR),
+        ),
         ("display", screen("display.wgsl", DISPLAY)),
         // Instanced quads with their own vertex stage (crate::overlay).
         ("overlay", vec![("overlay.wgsl", OVERLAY)]),

@@ -385,13 +385,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         };
         let info = TableInfo {
             shading: 1.0,
-            domain: [0.0, 1.0],
-            nodes: 0.0,
-            map_size: 1.0,
-            use_labels: false,
-            label_range: [0.0, 1.0],
-            label_count: 0.0,
             skip_empty: p.bool("skip_empty"),
+            ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
         let pipelines = ctx

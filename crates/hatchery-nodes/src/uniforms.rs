@@ -71,6 +71,12 @@ pub fn all() -> Vec<UniformLayout> {
         importance_compositing::ImportanceUniforms::layout(),
         importance_compositing::PassUniforms::layout(),
         selection_render::SelectionUniforms::layout(),
+        curvature::CurvatureUniforms::layout(),
+        curvature_color::CurvatureColorUniforms::layout(),
+        UniformLayout {
+            program: "curvature",
+            ..raycast::RayUniforms::layout()
+        },
         UniformLayout {
             program: "selection_render",
             ..raycast::RayUniforms::layout()

@@ -71,6 +71,23 @@ pub struct TableInfo {
     pub skip_empty: bool,
 }
 
+impl TableInfo {
+    /// No tables: casters that classify on their own (or not at all) — a colour TF domain of
+    /// [0, 1], no labels, no skipping.
+    pub fn plain() -> Self {
+        Self {
+            shading: 0.0,
+            domain: [0.0, 1.0],
+            nodes: 0.0,
+            map_size: 1.0,
+            use_labels: false,
+            label_range: [0.0, 1.0],
+            label_count: 0.0,
+            skip_empty: false,
+        }
+    }
+}
+
 fn bool_f(b: bool) -> f32 {
     if b { 1.0 } else { 0.0 }
 }

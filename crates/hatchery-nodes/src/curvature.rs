@@ -1,0 +1,149 @@
+//! `Curvature`: principal curvatures and directions of the iso-surface in a G-buffer, from the
+//! volume's gradient and Hessian (Hadwiger's deferred iso-surface shading, the tutorial's §1;
+//! see shaders/curvature.wgsl for the rule and the output's channels).
+
+use crate::raycast::{Kernel, RayOptions, RayUniforms, TableInfo, linear_clamp_sampler};
+use crate::screen_pass::{self, IMAGE_FORMAT};
+use crate::value::Image;
+use crate::{Ctx, Value};
+use hatchery_gpu::GpuError;
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+crate::uniform_block! {
+    /// `CurvatureParams` of shaders/curvature.wgsl: (finite-difference step h in world units,
+    /// 0, 0, 0).
+    pub struct CurvatureUniforms in "curvature" as "CurvatureParams" {
+        pub step: [f32; 4],
+    }
+}
+
+pub struct CurvatureNode;
+
+impl Node<Value, Ctx> for CurvatureNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "Curvature",
+            category: "Volume",
+            doc: "Principal curvatures of the iso-surface in a G-buffer (Hadwiger's deferred \
+                  iso-surface shading, the tutorial's §1): at each pixel's surface point the \
+                  volume's gradient g and Hessian H (central differences of the gradient at \
+                  ±`step` voxels along the world axes), the shape operator −P H P / |g| in the \
+                  tangent plane, its eigenvalues κ1 ≥ κ2 (world units⁻¹, positive where the \
+                  surface bulges towards lower values) and the first principal direction. \
+                  Output image channels: (κ1, κ2, θ, 1) with θ the first direction's screen \
+                  angle (radians, x right, y down, in [−π/2, π/2)); 0 where there is no surface. \
+                  Connect the G-buffer of Raycast (mode iso) over the same volume.",
+            inputs: vec![
+                PortSpec::input("gbuffer", PortType::GBuffer, "the iso-surface's depth"),
+                PortSpec::input(
+                    "volume",
+                    PortType::Volume,
+                    "the scalar field it is a level of",
+                ),
+            ],
+            outputs: vec![PortSpec::output(
+                "curvature",
+                PortType::Image,
+                "(κ1, κ2, θ, 1) per pixel (data, not colour)",
+            )],
+            params: vec![ParamSpec::float(
+                "step",
+                1.0,
+                0.25,
+                8.0,
+                "finite-difference step of the Hessian, voxels (of the smallest spacing)",
+            )],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        let volume = inputs.require("volume")?.volume("volume")?.clone();
+        let camera = &gbuffer.camera;
+        let err = |e: GpuError| NodeError::new(e.to_string());
+        let pipeline = ctx
+            .cached("curvature.pipeline", |gpu| {
+                screen_pass::pipeline(gpu, "curvature", IMAGE_FORMAT)
+            })
+            .map_err(err)?;
+        let sampler = linear_clamp_sampler(ctx).map_err(err)?;
+        let gpu = &ctx.gpu;
+        let v = &volume.data;
+        let texture = volume.texture(gpu).map_err(err)?;
+        let options = RayOptions::plain(1.0, false, 1.0, glam::Vec3::Z, Kernel::Fragment);
+        let info = TableInfo::plain();
+        let ray = RayUniforms::new(camera, v, &options, &info, 1.0, texture.texel_range);
+        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+        let params = CurvatureUniforms {
+            step: [p.f32("step") * min_spacing, 0.0, 0.0, 0.0],
+        };
+        let uniform =
+            |label, bytes: &[u8]| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM);
+        let ray_buffer = uniform("curvature ray", bytemuck::bytes_of(&ray));
+        let params_buffer = uniform("curvature params", bytemuck::bytes_of(&params));
+        let volume_view = texture.texture.create_view(&Default::default());
+        let depth_view = gbuffer.depth.create_view(&wgpu::TextureViewDescriptor {
+            aspect: wgpu::TextureAspect::DepthOnly,
+            ..Default::default()
+        });
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("curvature"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: ray_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&volume_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 20,
+                    resource: wgpu::BindingResource::TextureView(&depth_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 22,
+                    resource: params_buffer.as_entire_binding(),
+                },
+            ],
+        });
+        let output = gpu.render_target("curvature", camera.width, camera.height, IMAGE_FORMAT);
+        let output_view = output.create_view(&Default::default());
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("curvature"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &output_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                ..Default::default()
+            });
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        ctx.submit(encoder.finish());
+        Ok(vec![Value::Image(Arc::new(Image { texture: output }))])
+    }
+}

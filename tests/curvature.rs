@@ -1,0 +1,290 @@
+//! Curvature of iso-surfaces (Hadwiger's deferred shading, the tutorial's §1) against analytic
+//! answers: sphere (κ1 = κ2 = 1/r), cylinder (1/r and 0, the first direction around it), torus
+//! (1/r and cos v/(R + r cos v)) and a saddle (Monge-patch formulas), seen orthographically
+//! along −z through IsoSurfaceRaycast → Curvature.
+
+mod common;
+
+use glam::{Vec2, Vec3};
+use hatchery_data::VolumeData;
+use hatchery_data::geometry::Geometry;
+use hatchery_graph::ParamValue;
+use hatchery_nodes::camera::Camera;
+use hatchery_nodes::value::Volume;
+use hatchery_nodes::{Session, Value, export};
+use std::sync::Arc;
+
+const N: u32 = 96;
+const SIZE: u32 = 64;
+
+/// `f` sampled on an N³ grid over world [-1, 1]³.
+fn field(f: impl Fn(Vec3) -> f32) -> VolumeData {
+    let spacing = 2.0 / (N - 1) as f64;
+    let geometry = Geometry::axis_aligned([spacing; 3], [-1.0; 3]);
+    let mut values = Vec::with_capacity((N * N * N) as usize);
+    for z in 0..N {
+        for y in 0..N {
+            for x in 0..N {
+                let p = Vec3::new(x as f32, y as f32, z as f32) * spacing as f32 - 1.0;
+                values.push(f(p));
+            }
+        }
+    }
+    VolumeData::with_geometry([N; 3], geometry, values).unwrap()
+}
+
+/// IsoSurfaceRaycast (iso 0) → Curvature of `volume`, orthographic along −z showing
+/// [-1.1, 1.1]²: the session, the curvature image, the G-buffer and the camera.
+fn run(volume: VolumeData) -> (Session, Value, Value, Camera) {
+    let mut session = common::session_from_text(
+        r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
+        SIZE,
+        SIZE,
+    );
+    let fov = 2.0 * (1.1f32 / 5.0).atan().to_degrees();
+    let cam = Camera::orbit(
+        Vec3::ZERO,
+        0.0,
+        0.0,
+        5.0,
+        fov,
+        true,
+        0.1,
+        20.0,
+        false,
+        SIZE,
+        SIZE,
+    );
+    let volume = Value::Volume(Arc::new(Volume::new(volume)));
+    let gbuffer = common::run_node(
+        &mut session,
+        "IsoSurfaceRaycast",
+        vec![
+            ("volume", volume.clone()),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+        ],
+        &[
+            ("iso", ParamValue::Float(0.0)),
+            ("step", ParamValue::Float(0.25)),
+        ],
+    )
+    .remove(0);
+    let k = common::run_node(
+        &mut session,
+        "Curvature",
+        vec![("gbuffer", gbuffer.clone()), ("volume", volume)],
+        &[],
+    )
+    .remove(0);
+    let errors = session.ctx.gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:?}");
+    (session, k, gbuffer, cam)
+}
+
+/// Per pixel: the hit point (world) and (κ1, κ2, θ) from Curvature, where it found a surface
+/// facing the viewer.
+fn curvature(volume: VolumeData) -> Vec<Option<(Vec3, [f32; 3])>> {
+    let (session, k, gbuffer, cam) = run(volume);
+    let k = export::to_array(&k, &session.ctx.gpu).unwrap();
+    let g = export::to_array(&gbuffer, &session.ctx.gpu).unwrap();
+    let inverse = cam.view_proj().inverse();
+    (0..(SIZE * SIZE) as usize)
+        .map(|i| {
+            let c = &k.data[i * 4..i * 4 + 4];
+            let depth = g.data[i * 4];
+            let normal_z = g.data[i * 4 + 3];
+            // Only pixels facing the viewer (grazing hits are refined least precisely).
+            if c[3] < 0.5 || depth >= 1.0 || normal_z < 0.5 {
+                return None;
+            }
+            let (x, y) = (
+                (i as u32 % SIZE) as f32 + 0.5,
+                (i as u32 / SIZE) as f32 + 0.5,
+            );
+            let ndc = Vec2::new(x / SIZE as f32 * 2.0 - 1.0, 1.0 - y / SIZE as f32 * 2.0);
+            let p = inverse.project_point3(ndc.extend(depth));
+            Some((p, [c[0], c[1], c[2]]))
+        })
+        .collect()
+}
+
+/// Every valid pixel selected by `which` has κ1, κ2 within 5 % of the larger |κ| of `expected`
+/// at its hit point; returns how many were checked.
+fn check(
+    name: &str,
+    pixels: &[Option<(Vec3, [f32; 3])>],
+    which: impl Fn(Vec3) -> bool,
+    expected: impl Fn(Vec3) -> [f32; 2],
+) -> usize {
+    let mut checked = 0;
+    for (p, k) in pixels.iter().flatten().filter(|(p, _)| which(*p)) {
+        let [e1, e2] = expected(*p);
+        let scale = e1.abs().max(e2.abs());
+        assert!(
+            (k[0] - e1).abs() <= 0.05 * scale && (k[1] - e2).abs() <= 0.05 * scale,
+            "{name} at {p}: κ = ({}, {}), expected ({e1}, {e2})",
+            k[0],
+            k[1]
+        );
+        checked += 1;
+    }
+    assert!(checked >= 20, "{name}: only {checked} pixels checked");
+    checked
+}
+
+#[test]
+fn a_sphere_has_both_curvatures_one_over_its_radius() {
+    let r = 0.6;
+    let pixels = curvature(field(|p| r - p.length()));
+    check("sphere", &pixels, |_| true, |_| [1.0 / r, 1.0 / r]);
+}
+
+#[test]
+fn a_cylinder_curves_around_and_not_along_its_axis() {
+    // Axis along y, radius 0.5: κ1 = 2 around it (screen x at the front), κ2 = 0.
+    let r = 0.5;
+    let pixels = curvature(field(|p| r - (p.x * p.x + p.z * p.z).sqrt()));
+    let inner = |p: Vec3| p.y.abs() < 0.8 && p.x.abs() < 0.3;
+    check("cylinder", &pixels, inner, |_| [1.0 / r, 0.0]);
+    // The first principal direction: circumferential, on screen along x (θ = 0) within 5°.
+    for (p, k) in pixels.iter().flatten().filter(|(p, _)| inner(*p)) {
+        assert!(
+            k[2].abs() <= 5f32.to_radians(),
+            "direction at {p}: θ = {}°",
+            k[2].to_degrees()
+        );
+    }
+}
+
+#[test]
+fn a_torus_has_the_tube_and_ring_curvatures() {
+    // Ring of radius R around z, tube radius r; seen from +z. At a point of the tube at angle v
+    // (cos v = (ρ − R)/r, ρ the distance from the axis): 1/r across the tube, cos v/(R + r cos v)
+    // = (ρ − R)/(r ρ) along the ring.
+    let (big, small) = (0.55f32, 0.28f32);
+    let pixels = curvature(field(|p| {
+        let rho = (p.x * p.x + p.y * p.y).sqrt();
+        small - ((rho - big).powi(2) + p.z * p.z).sqrt()
+    }));
+    let rho = |p: Vec3| (p.x * p.x + p.y * p.y).sqrt();
+    check(
+        "torus",
+        &pixels,
+        |p| (rho(p) - big).abs() < 0.6 * small,
+        |p| {
+            let ring = (rho(p) - big) / (small * rho(p));
+            let tube = 1.0 / small;
+            if ring > tube {
+                [ring, tube]
+            } else {
+                [tube, ring]
+            }
+        },
+    );
+}
+
+#[test]
+fn a_saddle_curves_both_ways_as_the_monge_patch_formulas_say() {
+    // The surface z = s(x² − y²), the field larger below it.
+    let s = 0.5f32;
+    let pixels = curvature(field(|p| s * (p.x * p.x - p.y * p.y) - p.z));
+    let expected = |p: Vec3| {
+        // Monge patch h(x, y): mean H and Gaussian K with the normal up (+z); κ here is positive
+        // where the surface curves away from the outward normal, so κ = −k.
+        let (hx, hy, hxx, hyy) = (2.0 * s * p.x, -2.0 * s * p.y, 2.0 * s, -2.0 * s);
+        let w = 1.0 + hx * hx + hy * hy;
+        let k_gauss = hxx * hyy / (w * w);
+        let mean = ((1.0 + hx * hx) * hyy + (1.0 + hy * hy) * hxx) / (2.0 * w.powf(1.5));
+        let root = (mean * mean - k_gauss).max(0.0).sqrt();
+        [-(mean - root), -(mean + root)]
+    };
+    check(
+        "saddle",
+        &pixels,
+        |p| p.x.abs() < 0.6 && p.y.abs() < 0.6,
+        expected,
+    );
+    // At the centre the first direction (κ1 = +2s, curving away from the normal) is along y:
+    // on screen vertical, θ = ±90° within 5°.
+    let centre = pixels
+        .iter()
+        .flatten()
+        .min_by(|a, b| a.0.truncate().length().total_cmp(&b.0.truncate().length()))
+        .unwrap();
+    let off_vertical = 90.0 - centre.1[2].to_degrees().abs();
+    assert!(
+        off_vertical <= 5.0,
+        "θ at the centre = {}°",
+        centre.1[2].to_degrees()
+    );
+}
+
+#[test]
+fn curvature_colour_maps_each_measure_through_the_transfer_function() {
+    use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
+    use hatchery_nodes::value::TransferFunction;
+    // A torus: the measures vary over the picture.
+    let (mut session, k, _, _) = run(field(|p| {
+        let rho = (p.x * p.x + p.y * p.y).sqrt();
+        0.28 - ((rho - 0.55).powi(2) + p.z * p.z).sqrt()
+    }));
+    let tf = TransferFunction1D::from_points(&[
+        ControlPoint {
+            value: -4.0,
+            rgba: [0.0, 0.2, 1.0, 1.0],
+        },
+        ControlPoint {
+            value: 0.0,
+            rgba: [1.0, 1.0, 1.0, 0.6],
+        },
+        ControlPoint {
+            value: 6.0,
+            rgba: [1.0, 0.1, 0.0, 1.0],
+        },
+    ])
+    .unwrap();
+    let curv = export::to_array(&k, &session.ctx.gpu).unwrap();
+    for (measure, f) in [
+        ("k1", (|a: f32, _b: f32| a) as fn(f32, f32) -> f32),
+        ("k2", |_a, b| b),
+        ("mean", |a, b| 0.5 * (a + b)),
+        ("gaussian", |a, b| a * b),
+        ("curvedness", |a, b| (a * a + b * b).sqrt()),
+    ] {
+        let out = common::run_node(
+            &mut session,
+            "CurvatureColor",
+            vec![
+                ("curvature", k.clone()),
+                (
+                    "tf",
+                    Value::TransferFunction(Arc::new(TransferFunction::Color(tf.clone()))),
+                ),
+            ],
+            &[("measure", ParamValue::Choice(measure.into()))],
+        );
+        let colour = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+        let mut valid = 0;
+        for i in 0..(SIZE * SIZE) as usize {
+            let c = &curv.data[i * 4..i * 4 + 4];
+            let got = &colour.data[i * 4..i * 4 + 4];
+            if c[3] < 0.5 {
+                assert!(
+                    got.iter().all(|&v| v == 0.0),
+                    "{measure}: colour without a surface"
+                );
+                continue;
+            }
+            valid += 1;
+            let e = tf.lookup(f(c[0], c[1]));
+            let want = [e[0] * e[3], e[1] * e[3], e[2] * e[3], e[3]];
+            for ch in 0..4 {
+                assert!(
+                    (got[ch] - want[ch]).abs() <= 2.0 / 255.0,
+                    "{measure} at pixel {i}: {got:?} vs {want:?}"
+                );
+            }
+        }
+        assert!(valid > 300, "{valid} surface pixels");
+    }
+}
