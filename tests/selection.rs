@@ -419,3 +419,91 @@ fn the_annotations_output_holds_the_ghost_and_the_moved_selection_with_their_box
         lo.distance(Vec3::splat(2.5) + MOVE) < 1e-3 && hi.distance(Vec3::splat(10.5) + MOVE) < 1e-3
     );
 }
+
+#[test]
+fn the_svg_figure_carries_the_arrow_fan_and_boxes_as_paths() {
+    let mut session = session();
+    let cam = camera(&mut session, 0.0);
+    let tfs = tfs(true);
+    let (volume, labels) = scene();
+    let out = common::run_node(
+        &mut session,
+        "SelectionRender",
+        vec![
+            ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
+            ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+            ("tf", tf_value(&tfs.background)),
+        ],
+        &[
+            ("objects", ParamValue::Text("1".into())),
+            ("translate", vec3_param(MOVE + Vec3::new(0.0, 0.0, 8.0))),
+        ],
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("figure.svg");
+    common::run_node(
+        &mut session,
+        "SaveSvg",
+        vec![
+            ("image", out[0].clone()),
+            ("selection", out[2].clone()),
+            ("camera", Value::Camera(Arc::new(cam.clone()))),
+        ],
+        &[
+            (
+                "path",
+                ParamValue::Path(path.to_string_lossy().into_owned()),
+            ),
+            ("fan", ParamValue::Bool(true)),
+            ("boxes", ParamValue::Choice("both".into())),
+        ],
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let arrows = doc
+        .descendants()
+        .find(|n| n.attribute("id") == Some("arrows"))
+        .unwrap();
+    let paths: Vec<&str> = arrows
+        .descendants()
+        .filter(|n| n.tag_name().name() == "path")
+        .map(|n| n.attribute("d").unwrap())
+        .collect();
+    // Fan: fill, two rectangles, two connecting lines; 24 box edges; the arrow's shaft and head.
+    assert_eq!(paths.len(), 1 + 2 + 2 + 24 + 2, "{} paths", paths.len());
+    // The shaft starts at the projected ghost; the head's tip is the projected selection.
+    let first_point = |d: &str| -> glam::Vec2 {
+        let v: Vec<f32> = d
+            .trim_start_matches('M')
+            .split(|c: char| c == ' ' || c == ',' || c.is_ascii_alphabetic())
+            .filter(|s| !s.is_empty())
+            .take(2)
+            .map(|s| s.parse().unwrap())
+            .collect();
+        glam::Vec2::new(v[0], v[1])
+    };
+    let shaft = paths[paths.len() - 2];
+    let head = paths[paths.len() - 1];
+    let ghost = project(&cam, CUBE_CENTRE);
+    let moved = project(&cam, CUBE_CENTRE + MOVE + Vec3::new(0.0, 0.0, 8.0));
+    assert!(
+        first_point(shaft).distance(ghost) < 0.01,
+        "shaft from {}",
+        first_point(shaft)
+    );
+    assert!(
+        first_point(head).distance(moved) < 0.01,
+        "head at {}",
+        first_point(head)
+    );
+    // The depth difference (the selection moved 8 units towards the viewer, 8.7 px here) bends
+    // the shaft by curvature 0.5 × 8.7 ≈ 4.4 px: its points leave the chord by more than 3 px.
+    let points: Vec<glam::Vec2> = shaft.split('L').map(|s| first_point(s.trim())).collect();
+    let chord = (moved - ghost).normalize();
+    let off = points
+        .iter()
+        .map(|q| (*q - ghost).perp_dot(chord).abs())
+        .fold(0.0, f32::max);
+    assert!(off > 3.0, "a straight arrow ({off} px off the chord)");
+}

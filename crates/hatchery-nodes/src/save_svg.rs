@@ -7,7 +7,7 @@ use crate::annotation_layout::LABEL_PADDING;
 use crate::{Ctx, Value, export, label_font};
 use glam::Vec2;
 use hatchery_annotation::{
-    Color, LabelStyle, Layer, PathData, PathStyle, Stroke, SvgDocument, trace_mask,
+    Color, LabelStyle, Layer, PathData, PathStyle, Stroke, SvgDocument, signed_area, trace_mask,
 };
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
@@ -58,6 +58,43 @@ impl Node<Value, Ctx> for SaveSvgNode {
             ParamSpec::color("leader_color", [0.2, 0.2, 0.2, 1.0], "leader line colour"),
             ParamSpec::float("leader_width", 1.0, 0.1, 20.0, "leader line width, pixels"),
         ];
+        params.extend([
+            ParamSpec::bool(
+                "arrow",
+                true,
+                "with `selection`: the arrow ghost → selection",
+            ),
+            ParamSpec::bool(
+                "fan",
+                false,
+                "with `selection`: the fan between their rectangles",
+            ),
+            ParamSpec::choice(
+                "boxes",
+                "none",
+                &["none", "ghost", "selection", "both"],
+                "with `selection`: whose world box to draw",
+            ),
+            ParamSpec::color(
+                "convention_color",
+                [0.8, 0.1, 0.1, 1.0],
+                "colour of the arrow, fan and boxes",
+            ),
+            ParamSpec::float(
+                "convention_width",
+                2.0,
+                0.1,
+                32.0,
+                "line width of the arrow, fan and boxes, pixels",
+            ),
+            ParamSpec::float(
+                "curvature",
+                0.5,
+                0.0,
+                4.0,
+                "the arrow's bend per pixel of depth difference (as Arrow's)",
+            ),
+        ]);
         for (color_name, width_name) in [
             ("color1", "width1"),
             ("color2", "width2"),
@@ -96,6 +133,17 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 PortSpec::optional("lines1", PortType::Mask, "a line or silhouette mask"),
                 PortSpec::optional("lines2", PortType::Mask, "another, with its own stroke"),
                 PortSpec::optional("lines3", PortType::Mask, "a third"),
+                PortSpec::optional(
+                    "selection",
+                    PortType::Annotations,
+                    "ghost (anchor 0) and selection (anchor 1), e.g. SelectionRender's: arrow, \
+                     fan and boxes as paths",
+                ),
+                PortSpec::optional(
+                    "camera",
+                    PortType::Camera,
+                    "the view of the picture (for `selection`)",
+                ),
             ],
             outputs: vec![],
             params,
@@ -194,6 +242,16 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 doc.text(&a.anchors[label.anchor].text, at, &style);
             }
         }
+        if let Some(selection) = inputs.get("selection") {
+            let selection = selection.annotations("selection")?;
+            let camera = inputs
+                .get("camera")
+                .ok_or_else(|| {
+                    NodeError::at_port("camera", "`selection` needs the camera of the picture")
+                })?
+                .camera("camera")?;
+            conventions(&mut doc, selection, camera, (width, height), p)?;
+        }
         let path = p.path("path");
         let file = std::fs::File::create(&path)
             .map_err(|e| NodeError::new(format!("cannot write {}: {e}", path.display())))?;
@@ -202,4 +260,102 @@ impl Node<Value, Ctx> for SaveSvgNode {
         tracing::info!(path = %path.display(), "SVG written");
         Ok(vec![])
     }
+}
+
+/// A closed path through `points`.
+fn polygon(points: &[Vec2]) -> PathData {
+    let mut d = PathData::new();
+    for (i, &q) in points.iter().enumerate() {
+        d = if i == 0 { d.move_to(q) } else { d.line_to(q) };
+    }
+    d.close()
+}
+
+/// The rectangle (lo, hi) as corner points, in the winding opposite to `hull`'s (so that the
+/// non-zero rule leaves it out of a fill together with the hull).
+fn rect_points((lo, hi): (Vec2, Vec2), hull: &[Vec2]) -> Vec<Vec2> {
+    let mut r = vec![lo, Vec2::new(hi.x, lo.y), hi, Vec2::new(lo.x, hi.y)];
+    if (signed_area(&r) > 0.0) == (signed_area(hull) > 0.0) {
+        r.reverse();
+    }
+    r
+}
+
+/// VolumeShop's visual conventions (§6.3) as paths in the arrows layer, the same geometry the
+/// Arrow, Fan and BoundingBox nodes draw.
+fn conventions(
+    doc: &mut SvgDocument,
+    selection: &crate::annotations::Annotations,
+    camera: &crate::camera::Camera,
+    frame: (u32, u32),
+    p: &Params,
+) -> Result<(), NodeError> {
+    use crate::visual_conventions::{arrow_shape, box_edges, fan_shape};
+    let at_port = |e: NodeError| NodeError::at_port("selection", e.message);
+    let color = color(p.color("convention_color"));
+    let width = p.f32("convention_width");
+    let stroke = Stroke::new(color, width);
+    let stroked = PathStyle {
+        fill: None,
+        stroke: Some(stroke),
+    };
+    if p.bool("fan")
+        && let Some(fan) = fan_shape(selection, camera, frame).map_err(at_port)?
+    {
+        let mut fill = polygon(&fan.hull);
+        for rect in fan.rects {
+            fill.0.extend(polygon(&rect_points(rect, &fan.hull)).0);
+        }
+        let fill_style = PathStyle {
+            fill: Some((color, 0.15)),
+            stroke: None,
+        };
+        doc.path(Layer::Arrows, fill, fill_style);
+        for rect in fan.rects {
+            doc.path(
+                Layer::Arrows,
+                polygon(&rect_points(rect, &fan.hull)),
+                stroked,
+            );
+        }
+        for [a, b] in fan.bridges {
+            doc.path(
+                Layer::Arrows,
+                PathData::new().move_to(a).line_to(b),
+                stroked,
+            );
+        }
+    }
+    let which: &[usize] = match p.choice("boxes") {
+        "ghost" => &[0],
+        "selection" => &[1],
+        "both" => &[0, 1],
+        _ => &[],
+    };
+    for [a, b] in box_edges(selection, camera, frame, which).map_err(at_port)? {
+        doc.path(
+            Layer::Arrows,
+            PathData::new().move_to(a).line_to(b),
+            stroked,
+        );
+    }
+    if p.bool("arrow")
+        && let Some((shaft, head)) =
+            arrow_shape(selection, camera, frame, width, p.f32("curvature")).map_err(at_port)?
+    {
+        let mut d = PathData::new();
+        for (i, &q) in shaft.iter().enumerate() {
+            d = if i == 0 { d.move_to(q) } else { d.line_to(q) };
+        }
+        doc.path(Layer::Arrows, d, stroked);
+        doc.path(
+            Layer::Arrows,
+            polygon(&head),
+            PathStyle {
+                fill: Some((color, 1.0)),
+                stroke: None,
+            },
+        );
+    }
+    Ok(())
 }

@@ -237,53 +237,72 @@ impl Node<Value, Ctx> for ArrowNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let (image, annotations, camera) = inputs_of(inputs)?;
-        let (ghost, selection) = (
-            anchor_position(&annotations, 0)?,
-            anchor_position(&annotations, 1)?,
-        );
         let width = pixels(p, "width")?;
         let curvature = pixels(p, "curvature")?;
         let color = p.color("color");
         let (w, h) = (image.texture.width(), image.texture.height());
-        let view = Projector::new(&camera, w, h);
         let mut canvas = Canvas::new(w, h);
-        let (Some(from), Some(to), Some(scale)) = (
-            view.pixels(ghost),
-            view.pixels(selection),
-            view.pixels_per_unit((ghost + selection) * 0.5),
-        ) else {
+        let Some((shaft, head)) = arrow_shape(&annotations, &camera, (w, h), width, curvature)?
+        else {
             ctx.warn("the ghost or the selection is behind the camera: no arrow");
             return draw(ctx, canvas, &image);
         };
-        let depth_pixels = (view.view_z(selection) - view.view_z(ghost)) * scale;
-        // Bounded so that a degenerate camera cannot send the curve to infinity.
-        let limit = 2.0 * (w.max(h) as f32);
-        let bulge = (curvature * depth_pixels).clamp(-limit, limit);
-        let path = arrow_path(from, to, bulge, 64);
-        // The head: tip at the selection, along the curve's end tangent.
-        let head_length = 3.0 * width + 6.0;
-        let tangent = path
-            .iter()
-            .rev()
-            .find(|q| q.distance(to) >= head_length * 0.5)
-            .map_or(Vec2::ZERO, |q| (to - *q).normalize_or_zero());
-        let tangent = if tangent == Vec2::ZERO {
-            (to - from).normalize_or(Vec2::X)
-        } else {
-            tangent
-        };
-        let side = Vec2::new(-tangent.y, tangent.x) * head_length * 0.5;
-        let base = to - tangent * head_length;
-        let mut shaft: Vec<Vec2> = path
-            .iter()
-            .copied()
-            .take_while(|q| q.distance(to) > head_length * 0.7 || q.distance(from) < 1e-3)
-            .collect();
-        shaft.push(to - tangent * head_length * 0.5);
         canvas.polyline(&shaft, width, color);
-        canvas.triangle([to, base + side, base - side], color);
+        canvas.triangle(head, color);
         draw(ctx, canvas, &image)
     }
+}
+
+/// The arrow from the ghost (anchor 0) to the selection (anchor 1) in a `frame` of pixels seen
+/// by `camera`: its shaft (a polyline, `width` px wide when drawn) and its head (a triangle with
+/// the tip at the selection), bent by `curvature` × the depth difference in pixels (see
+/// `Arrow`'s doc). `None` when either anchor is behind the camera; an error when the anchors are
+/// missing.
+pub fn arrow_shape(
+    annotations: &Annotations,
+    camera: &Camera,
+    (w, h): (u32, u32),
+    width: f32,
+    curvature: f32,
+) -> Result<Option<(Vec<Vec2>, [Vec2; 3])>, NodeError> {
+    let (ghost, selection) = (
+        anchor_position(annotations, 0)?,
+        anchor_position(annotations, 1)?,
+    );
+    let view = Projector::new(camera, w, h);
+    let (Some(from), Some(to), Some(scale)) = (
+        view.pixels(ghost),
+        view.pixels(selection),
+        view.pixels_per_unit((ghost + selection) * 0.5),
+    ) else {
+        return Ok(None);
+    };
+    let depth_pixels = (view.view_z(selection) - view.view_z(ghost)) * scale;
+    // Bounded so that a degenerate camera cannot send the curve to infinity.
+    let limit = 2.0 * (w.max(h) as f32);
+    let bulge = (curvature * depth_pixels).clamp(-limit, limit);
+    let path = arrow_path(from, to, bulge, 64);
+    // The head: tip at the selection, along the curve's end tangent.
+    let head_length = 3.0 * width + 6.0;
+    let tangent = path
+        .iter()
+        .rev()
+        .find(|q| q.distance(to) >= head_length * 0.5)
+        .map_or(Vec2::ZERO, |q| (to - *q).normalize_or_zero());
+    let tangent = if tangent == Vec2::ZERO {
+        (to - from).normalize_or(Vec2::X)
+    } else {
+        tangent
+    };
+    let side = Vec2::new(-tangent.y, tangent.x) * head_length * 0.5;
+    let base = to - tangent * head_length;
+    let mut shaft: Vec<Vec2> = path
+        .iter()
+        .copied()
+        .take_while(|q| q.distance(to) > head_length * 0.7 || q.distance(from) < 1e-3)
+        .collect();
+    shaft.push(to - tangent * head_length * 0.5);
+    Ok(Some((shaft, [to, base + side, base - side])))
 }
 
 /// The connecting lines of a fan: the edges of the convex hull of both rectangles' corners that
@@ -345,26 +364,52 @@ impl Node<Value, Ctx> for FanNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let (image, annotations, camera) = inputs_of(inputs)?;
-        let boxes = [anchor_box(&annotations, 0)?, anchor_box(&annotations, 1)?];
         let width = pixels(p, "width")?;
         let color = p.color("color");
         let (w, h) = (image.texture.width(), image.texture.height());
-        let view = Projector::new(&camera, w, h);
         let mut canvas = Canvas::new(w, h);
-        let (Some(ghost), Some(selection)) = (view.rect(boxes[0]), view.rect(boxes[1])) else {
+        let Some(fan) = fan_shape(&annotations, &camera, (w, h))? else {
             ctx.warn("the ghost or the selection is behind the camera: no fan");
             return draw(ctx, canvas, &image);
         };
-        let (hull, bridges) = fan_bridges(ghost, selection);
-        canvas.convex_polygon(&hull, p.color("fill"), [Some(ghost), Some(selection)]);
-        for (lo, hi) in [ghost, selection] {
+        let [ghost, selection] = fan.rects;
+        canvas.convex_polygon(&fan.hull, p.color("fill"), [Some(ghost), Some(selection)]);
+        for (lo, hi) in fan.rects {
             canvas.rect_outline(lo, hi, width, color);
         }
-        for [a, b] in bridges {
+        for [a, b] in fan.bridges {
             canvas.line(a, b, width, color);
         }
         draw(ctx, canvas, &image)
     }
+}
+
+/// A fan's screen geometry (pixels): the ghost's and the selection's rectangles, the convex hull
+/// of their corners (the filled part, less the rectangles) and the connecting lines.
+pub struct FanShape {
+    pub rects: [(Vec2, Vec2); 2],
+    pub hull: Vec<Vec2>,
+    pub bridges: Vec<[Vec2; 2]>,
+}
+
+/// The fan between the ghost's (anchor 0) and the selection's (anchor 1) world boxes in a
+/// `frame` of pixels seen by `camera`; `None` when either box is wholly behind the camera.
+pub fn fan_shape(
+    annotations: &Annotations,
+    camera: &Camera,
+    (w, h): (u32, u32),
+) -> Result<Option<FanShape>, NodeError> {
+    let boxes = [anchor_box(annotations, 0)?, anchor_box(annotations, 1)?];
+    let view = Projector::new(camera, w, h);
+    let (Some(ghost), Some(selection)) = (view.rect(boxes[0]), view.rect(boxes[1])) else {
+        return Ok(None);
+    };
+    let (hull, bridges) = fan_bridges(ghost, selection);
+    Ok(Some(FanShape {
+        rects: [ghost, selection],
+        hull,
+        bridges,
+    }))
 }
 
 pub struct BoundingBoxNode;
@@ -410,25 +455,38 @@ impl Node<Value, Ctx> for BoundingBoxNode {
         let width = pixels(p, "width")?;
         let color = p.color("color");
         let (w, h) = (image.texture.width(), image.texture.height());
-        let view = Projector::new(&camera, w, h);
         let mut canvas = Canvas::new(w, h);
-        for &i in which {
-            let [lo, hi] = anchor_box(&annotations, i)?;
-            let corners = box_corners(lo, hi);
-            for a in 0..8 {
-                for bit in [1, 2, 4] {
-                    let b = a | bit;
-                    if b == a {
-                        continue;
-                    }
-                    if let Some([u, v]) = view.segment(corners[a], corners[b]) {
-                        canvas.line(u, v, width, color);
-                    }
-                }
-            }
+        for [u, v] in box_edges(&annotations, &camera, (w, h), which)? {
+            canvas.line(u, v, width, color);
         }
         draw(ctx, canvas, &image)
     }
+}
+
+/// The 12 edges of the world boxes of anchors `which` (0 ghost, 1 selection) in a `frame` of
+/// pixels seen by `camera`, clipped at the near plane.
+pub fn box_edges(
+    annotations: &Annotations,
+    camera: &Camera,
+    (w, h): (u32, u32),
+    which: &[usize],
+) -> Result<Vec<[Vec2; 2]>, NodeError> {
+    let view = Projector::new(camera, w, h);
+    let mut edges = Vec::new();
+    for &i in which {
+        let [lo, hi] = anchor_box(annotations, i)?;
+        let corners = box_corners(lo, hi);
+        for a in 0..8 {
+            for bit in [1, 2, 4] {
+                let b = a | bit;
+                if b == a {
+                    continue;
+                }
+                edges.extend(view.segment(corners[a], corners[b]));
+            }
+        }
+    }
+    Ok(edges)
 }
 
 #[cfg(test)]
