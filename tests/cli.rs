@@ -431,7 +431,10 @@ fn the_readme_main_command_renders_the_labelled_default_as_png_and_svg() {
     // The SVG beside it carries the labels as text.
     let svg = std::fs::read_to_string(dir.path().join("figure.svg")).unwrap();
     for part in ["cylinder bore", "piston", "oil gallery"] {
-        assert!(svg.contains(&format!(">{part}<")), "no label `{part}` in the SVG");
+        assert!(
+            svg.contains(&format!(">{part}<")),
+            "no label `{part}` in the SVG"
+        );
     }
     // Nothing was written into graphs/.
     assert!(!common::repo_root().join("graphs/default.svg").exists());

@@ -253,6 +253,9 @@ impl Node<Value, Ctx> for ArrowNode {
     }
 }
 
+/// An arrow on screen (pixels): its shaft polyline and its head triangle (tip first).
+pub type ArrowShape = (Vec<Vec2>, [Vec2; 3]);
+
 /// The arrow from the ghost (anchor 0) to the selection (anchor 1) in a `frame` of pixels seen
 /// by `camera`: its shaft (a polyline, `width` px wide when drawn) and its head (a triangle with
 /// the tip at the selection), bent by `curvature` × the depth difference in pixels (see
@@ -264,7 +267,7 @@ pub fn arrow_shape(
     (w, h): (u32, u32),
     width: f32,
     curvature: f32,
-) -> Result<Option<(Vec<Vec2>, [Vec2; 3])>, NodeError> {
+) -> Result<Option<ArrowShape>, NodeError> {
     let (ghost, selection) = (
         anchor_position(annotations, 0)?,
         anchor_position(annotations, 1)?,
