@@ -288,3 +288,63 @@ fn curvature_colour_maps_each_measure_through_the_transfer_function() {
         assert!(valid > 300, "{valid} surface pixels");
     }
 }
+
+#[test]
+fn ridges_and_valleys_lie_on_the_crests_and_troughs_of_a_corrugated_plane() {
+    // z = a cos(k x): crests (ridges, κ1 = a k²) at x = 0, ±0.5, ±1; troughs (valleys,
+    // κ2 = −a k²) at x = ±0.25, ±0.75. The field is larger below the surface.
+    let (a, k) = (0.06f32, std::f32::consts::TAU / 0.5);
+    let (mut session, curvature, _, cam) = run(field(|p| a * (k * p.x).cos() - p.z));
+    let out = common::run_node(
+        &mut session,
+        "RidgeValley",
+        vec![("curvature", curvature)],
+        &[
+            ("threshold", ParamValue::Float((0.5 * a * k * k) as f64)),
+            ("thickness", ParamValue::Float(1.5)),
+        ],
+    );
+    let to_px = |x: f32| cam.view_proj().project_point3(Vec3::new(x, 0.0, 0.0)).x;
+    let column = |x: f32| (to_px(x) + 1.0) * 0.5 * SIZE as f32;
+    let rows = |x_ndc_lines: &[f32]| x_ndc_lines.iter().map(|&x| column(x)).collect::<Vec<f32>>();
+    for (name, mask, lines) in [
+        ("ridges", &out[0], rows(&[-0.5, 0.0, 0.5])),
+        ("valleys", &out[1], rows(&[-0.75, -0.25, 0.25, 0.75])),
+    ] {
+        let m = export::to_array(mask, &session.ctx.gpu).unwrap();
+        let on = |x: usize, y: usize| m.data[y * SIZE as usize + x] > 0.5;
+        // Every line pixel lies within 1 px of an analytic line (pixel centres at x + 0.5).
+        let mut pixels = 0;
+        for y in 0..SIZE as usize {
+            for x in 0..SIZE as usize {
+                if on(x, y) {
+                    pixels += 1;
+                    let d = lines
+                        .iter()
+                        .map(|c| (x as f32 + 0.5 - c).abs())
+                        .fold(f32::INFINITY, f32::min);
+                    assert!(
+                        d <= 1.0,
+                        "{name}: pixel ({x}, {y}) is {d} px from the lines"
+                    );
+                }
+            }
+        }
+        // And each analytic line is found along ≥ 95 % of its rows (away from the frame edge).
+        let inner: Vec<usize> = (6..SIZE as usize - 6).collect();
+        for &c in &lines {
+            let found = inner
+                .iter()
+                .filter(|&&y| {
+                    (0..SIZE as usize).any(|x| on(x, y) && (x as f32 + 0.5 - c).abs() <= 1.0)
+                })
+                .count();
+            assert!(
+                found as f32 >= 0.95 * inner.len() as f32,
+                "{name}: the line at column {c} found in {found} of {} rows",
+                inner.len()
+            );
+        }
+        assert!(pixels > 100, "{name}: {pixels} pixels");
+    }
+}

@@ -31,6 +31,7 @@ pub mod over;
 pub mod overlay;
 pub mod procedural_volume;
 pub mod raycast;
+pub mod ridge_valley;
 pub mod save_image;
 pub mod save_svg;
 pub mod screen_pass;
@@ -103,6 +104,7 @@ pub fn registry() -> Registry {
     r.register(save_svg::SaveSvgNode);
     r.register(curvature::CurvatureNode);
     r.register(curvature_color::CurvatureColorNode);
+    r.register(ridge_valley::RidgeValleyNode);
     r.register(overlay::AnnotationOverlayNode);
     r.register(visual_conventions::ArrowNode);
     r.register(visual_conventions::FanNode);

@@ -35,6 +35,7 @@ pub const IMPORTANCE: &str = shader_file!("importance.wgsl");
 pub const SELECTION_RENDER: &str = shader_file!("selection_render.wgsl");
 pub const CURVATURE: &str = shader_file!("curvature.wgsl");
 pub const CURVATURE_COLOR: &str = shader_file!("curvature_color.wgsl");
+pub const RIDGE_VALLEY: &str = shader_file!("ridge_valley.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
 pub const TWO_LEVEL_RAYCAST: &str = shader_file!("two_level_raycast.wgsl");
 pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
@@ -117,6 +118,7 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             "curvature_color",
             screen("curvature_color.wgsl", CURVATURE_COLOR),
         ),
+        ("ridge_valley", screen("ridge_valley.wgsl", RIDGE_VALLEY)),
         ("display", screen("display.wgsl", DISPLAY)),
         // Instanced quads with their own vertex stage (crate::overlay).
         ("overlay", vec![("overlay.wgsl", OVERLAY)]),

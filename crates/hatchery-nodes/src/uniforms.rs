@@ -73,6 +73,7 @@ pub fn all() -> Vec<UniformLayout> {
         selection_render::SelectionUniforms::layout(),
         curvature::CurvatureUniforms::layout(),
         curvature_color::CurvatureColorUniforms::layout(),
+        ridge_valley::RidgeValleyUniforms::layout(),
         UniformLayout {
             program: "curvature",
             ..raycast::RayUniforms::layout()

@@ -1,0 +1,83 @@
+//! `RidgeValley`: ridge and valley lines from principal curvatures (the tutorial's §1, Fig. 12;
+//! see shaders/ridge_valley.wgsl for the extremality test).
+
+use crate::screen_pass;
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+crate::uniform_block! {
+    /// `RidgeValley` of shaders/ridge_valley.wgsl: (threshold, thickness px, 0 ridges / 1
+    /// valleys, 0).
+    pub struct RidgeValleyUniforms in "ridge_valley" as "RidgeValley" {
+        pub options: [f32; 4],
+    }
+}
+
+pub struct RidgeValleyNode;
+
+impl Node<Value, Ctx> for RidgeValleyNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "RidgeValley",
+            category: "Volume",
+            doc: "Ridge and valley lines of an iso-surface (the tutorial's §1, Fig. 12) from \
+                  Curvature's image: ridges where κ1 > threshold and κ1 is a maximum along its \
+                  principal direction, valleys where κ2 < −threshold and κ2 is a minimum along \
+                  its direction (the extremality test: a parabola through the curvature one \
+                  pixel before, at and after, along the direction on screen). Lines `thickness` \
+                  pixels wide, as masks.",
+            inputs: vec![PortSpec::input(
+                "curvature",
+                PortType::Image,
+                "Curvature's output",
+            )],
+            outputs: vec![
+                PortSpec::output("ridges", PortType::Mask, "1 on ridge lines"),
+                PortSpec::output("valleys", PortType::Mask, "1 on valley lines"),
+            ],
+            params: vec![
+                ParamSpec::float(
+                    "threshold",
+                    1.0,
+                    0.0,
+                    1.0e6,
+                    "smallest |κ| of a line, world units⁻¹",
+                ),
+                ParamSpec::float("thickness", 1.5, 0.5, 16.0, "line width, pixels"),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let curvature = inputs.require("curvature")?.image("curvature")?.clone();
+        let size = (curvature.texture.width(), curvature.texture.height());
+        let mut outputs = Vec::new();
+        for kind in [0.0, 1.0] {
+            let uniforms = RidgeValleyUniforms {
+                options: [p.f32("threshold"), p.f32("thickness"), kind, 0.0],
+            };
+            let mask = screen_pass::render(
+                ctx,
+                "ridge_valley",
+                wgpu::TextureFormat::R32Float,
+                size,
+                &[&curvature.texture],
+                Some(bytemuck::bytes_of(&uniforms)),
+            )
+            .map_err(|e| NodeError::new(e.to_string()))?;
+            outputs.push(Value::Mask(Arc::new(Mask { texture: mask })));
+        }
+        Ok(outputs)
+    }
+}
