@@ -47,7 +47,8 @@ struct Ray {
     // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
     grad_to_world: mat4x4<f32>,
     // x, y: data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format
-    // follows the voxel type, see hatchery_nodes::volume_texture).
+    // follows the voxel type, see hatchery_nodes::volume_texture); z = 1 when strokes are
+    // embedded (Raycast); w = global alpha ρ scaling every sample's opacity (Raycast, DVR).
     texel: vec4<f32>,
 };
 

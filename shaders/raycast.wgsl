@@ -33,6 +33,35 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     return out;
 }
 
+// Strokes embedded in the volume rendering (Yuan & Chen 2005 §5): a stroke mask and the depth
+// of the surface it was drawn on. Where a stroke covers a pixel the ray stops at the stroke's
+// depth (no sample behind it contributes) and the stroke's colour is composited there, under
+// what the ray gathered in front of it. ray.texel.z = 1 when strokes are bound; ray.texel.w =
+// the global alpha ρ that scales every sample's opacity.
+@group(0) @binding(15) var stroke_depth: texture_depth_2d;
+@group(0) @binding(16) var stroke_mask: texture_2d<f32>;
+struct Strokes {
+    // Straight RGBA of the strokes.
+    color: vec4<f32>,
+};
+@group(0) @binding(17) var<uniform> strokes: Strokes;
+
+// The stroke at `position`: (coverage, t along the ray where it lies; 1e30 for none).
+fn stroke_at(position: vec2<f32>, p0: vec3<f32>, dir: vec3<f32>) -> vec2<f32> {
+    if ray.texel.z < 0.5 {
+        return vec2<f32>(0.0, 1e30);
+    }
+    let pixel = vec2<i32>(floor(position));
+    let m = clamp(textureLoad(stroke_mask, pixel, 0).r, 0.0, 1.0);
+    let z = textureLoad(stroke_depth, pixel, 0);
+    if m <= 0.0 || z >= 1.0 {
+        return vec2<f32>(0.0, 1e30);
+    }
+    let ndc = vec2<f32>(position.x / ray.frame.x * 2.0 - 1.0, 1.0 - position.y / ray.frame.y * 2.0);
+    let h4 = ray.inv_view_proj * vec4<f32>(ndc, z, 1.0);
+    return vec2<f32>(m, dot(h4.xyz / h4.w - p0, dir));
+}
+
 fn cast_ray(position: vec2<f32>) -> RayResult {
     var out: RayResult;
     out.color = vec4<f32>(0.0);
@@ -40,14 +69,21 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     out.depth = 1.0;
 
     let r = primary_ray(position);
+    let stroke = stroke_at(position, r.p0, r.dir);
+    let stroke_alpha = stroke.x * strokes.color.a;
     if !r.hits {
+        out.color = vec4<f32>(strokes.color.rgb * stroke_alpha, stroke_alpha);
         return out;
     }
     let p0 = r.p0;
     let dir = r.dir;
     let q0 = r.q0;
     let dq = r.dq;
-    let t_out = r.t_out;
+    // DVR stops at an embedded stroke; MIP and iso ignore strokes.
+    var t_out = r.t_out;
+    if i32(ray.mode.x + 0.5) == 0 {
+        t_out = min(t_out, stroke.y);
+    }
 
     let h = ray.box_min.w;
     let step_voxels = ray.box_max.w;
@@ -177,8 +213,9 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
                 c = clamp(c * phong_term(n, l, hv), vec3<f32>(0.0), vec3<f32>(1.0));
             }
         }
-        // Opacity correction for the step length (TF opacities are per voxel).
-        a = 1.0 - pow(1.0 - clamp(a, 0.0, 1.0), step_voxels);
+        // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
+        // (TF opacities are per voxel).
+        a = 1.0 - pow(1.0 - clamp(a * ray.texel.w, 0.0, 1.0), step_voxels);
         if shading == 2 {
             // VolumeShop lighting transfer function, eq. 8 (on the corrected opacity).
             let lt = lighting_lookup(dot(n, l), dot(n, hv));
@@ -221,6 +258,10 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         out.normal = vec4<f32>(n, 1.0);
         out.depth = to_window_depth(p);
         return out;
+    }
+    if stroke_alpha > 0.0 && alpha < ray.frame.w {
+        color += (1.0 - alpha) * stroke_alpha * strokes.color.rgb;
+        alpha += (1.0 - alpha) * stroke_alpha;
     }
     out.color = vec4<f32>(color, alpha);
     if hit_t >= 0.0 {

@@ -55,6 +55,7 @@ pub fn all() -> Vec<UniformLayout> {
     use crate::*;
     let mut all = vec![
         raycast::RayUniforms::layout(),
+        raycast::StrokeUniforms::layout(),
         UniformLayout {
             program: "two_level_raycast",
             ..raycast::RayUniforms::layout()

@@ -7,7 +7,7 @@ mod pass;
 mod tables;
 mod uniforms;
 
-pub use pass::{RayPipelines, cast};
+pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
 pub use tables::check_same_grid;
 pub use uniforms::{Grid, RayUniforms, TableInfo};
 
@@ -45,6 +45,10 @@ pub struct RayOptions<'a> {
     pub skip_empty: bool,
     /// Which GPU path runs the rays (the same rays and picture either way).
     pub kernel: Kernel,
+    /// Global alpha ρ: every sample's opacity × ρ before the step correction (DVR).
+    pub rho: f32,
+    /// Whether strokes are embedded (`cast`'s `strokes`).
+    pub embed: bool,
 }
 
 impl RayOptions<'static> {
@@ -76,6 +80,8 @@ impl RayOptions<'static> {
             light_view,
             skip_empty: false,
             kernel,
+            rho: 1.0,
+            embed: false,
         }
     }
 }
@@ -160,7 +166,10 @@ impl Node<Value, Ctx> for RaycastNode {
                   intensity), iso (first hit, refined linearly). Shading: none, phong (eq. 3), lighting \
                   (VolumeShop lighting transfer function, eq. 8), context_preserving (eq. 5; κt = 0 is \
                   plain DVR). A StyleTransferFunction on `tf` switches to style shading (Bruckner & \
-                  Gröller 2007: lit spheres, style contours eq. 1, illustrative transparency eq. 2).",
+                  Gröller 2007: lit spheres, style contours eq. 1, illustrative transparency eq. 2). \
+                  Strokes (a mask with the depth of its surface) are embedded as Yuan & Chen \
+                  2005 §5 do: rays stop at a stroke and its colour lies under what is in front; \
+                  `rho` scales every sample's opacity (DVR).",
             inputs: vec![
                 PortSpec::input("volume", PortType::Volume, "the scalar field"),
                 PortSpec::input("camera", PortType::Camera, "the view"),
@@ -174,6 +183,16 @@ impl Node<Value, Ctx> for RaycastNode {
                     "labels",
                     PortType::Volume,
                     "object labels on the same grid (per-label style rows, §4.2)",
+                ),
+                PortSpec::optional(
+                    "strokes",
+                    PortType::Mask,
+                    "lines or strokes to embed (Yuan & Chen §5), with `strokes_depth`",
+                ),
+                PortSpec::optional(
+                    "strokes_depth",
+                    PortType::GBuffer,
+                    "the depth of the surface the strokes were drawn on",
                 ),
             ],
             outputs: vec![
@@ -244,6 +263,19 @@ impl Node<Value, Ctx> for RaycastNode {
                     "jitter the first sample per pixel (hides wood-grain artefacts)",
                 ),
                 ParamSpec::float(
+                    "rho",
+                    1.0,
+                    0.0,
+                    1.0,
+                    "global alpha ρ (Yuan & Chen §5): every sample's opacity × ρ (DVR), so \
+                     embedded strokes show through",
+                ),
+                ParamSpec::color(
+                    "stroke_color",
+                    [0.0, 0.0, 0.0, 1.0],
+                    "colour of embedded strokes",
+                ),
+                ParamSpec::float(
                     "early_termination",
                     0.99,
                     0.5,
@@ -310,17 +342,44 @@ impl Node<Value, Ctx> for RaycastNode {
             kernel: Kernel::choose(p.choice("kernel"), &ctx.gpu),
             hit_opacity: p.f32("hit_opacity"),
             light_view: light_direction(inputs, &camera)?,
+            rho: p.f32("rho"),
+            embed: false,
         };
         let labels = inputs
             .get("labels")
             .map(|l| l.volume("labels").cloned())
             .transpose()?;
+        let strokes = match (inputs.get("strokes"), inputs.get("strokes_depth")) {
+            (Some(m), Some(g)) => Some(Strokes {
+                mask: m.mask("strokes")?.clone(),
+                depth: g.gbuffer("strokes_depth")?.clone(),
+                color: p.color("stroke_color"),
+            }),
+            (None, None) => None,
+            (Some(_), None) => {
+                return Err(NodeError::at_port(
+                    "strokes_depth",
+                    "embedded strokes need the depth of their surface (a G-buffer)",
+                ));
+            }
+            (None, Some(_)) => {
+                return Err(NodeError::at_port(
+                    "strokes",
+                    "a stroke depth without strokes: connect the stroke mask",
+                ));
+            }
+        };
+        let options = RayOptions {
+            embed: strokes.is_some(),
+            ..options
+        };
         let (image, gbuffer) = cast(
             ctx,
             &volume,
             &camera,
             Some(&tf),
             labels.as_deref(),
+            strokes.as_ref(),
             &options,
         )?;
         Ok(vec![
@@ -384,8 +443,10 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             light_view: Vec3::Z,
             skip_empty: true,
             kernel: Kernel::choose("auto", &ctx.gpu),
+            rho: 1.0,
+            embed: false,
         };
-        let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, &options)?;
+        let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])
     }
 }

@@ -12,6 +12,21 @@ use crate::value::{GBuffer, TransferFunction, Volume};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::NodeError;
 
+/// Strokes embedded in a DVR (Yuan & Chen 2005 §5): their mask (coverage), the depth of the
+/// surface they were drawn on, and their straight RGBA colour.
+pub struct Strokes {
+    pub mask: std::sync::Arc<crate::value::Mask>,
+    pub depth: std::sync::Arc<GBuffer>,
+    pub color: [f32; 4],
+}
+
+crate::uniform_block! {
+    /// `Strokes` of shaders/raycast.wgsl: the embedded strokes' straight RGBA colour.
+    pub struct StrokeUniforms in "raycast" as "Strokes" {
+        pub color: [f32; 4],
+    }
+}
+
 /// The static GPU objects of the ray caster.
 pub struct Statics {
     pipelines: RayPipelines,
@@ -22,6 +37,9 @@ pub struct Statics {
     pub blank_index: wgpu::Texture,
     pub blank_labels: wgpu::Texture,
     pub blank_label_rows: wgpu::Texture,
+    /// 1×1 stand-ins when no strokes are embedded: a depth (cleared to 1) and a mask.
+    pub blank_depth: wgpu::Texture,
+    pub blank_mask: wgpu::Texture,
 }
 
 /// A ray caster's pipelines: the full-screen fragment shader, the same rays as a compute kernel
@@ -149,6 +167,14 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         wgpu::TextureFormat::Rgba32Float,
         &[0u8; 32],
     );
+    let blank_depth = gpu.render_target("blank stroke depth", 1, 1, DEPTH_FORMAT);
+    let blank_mask = gpu.texture_2d_init(
+        "blank stroke mask",
+        1,
+        1,
+        wgpu::TextureFormat::R32Float,
+        &[0u8; 4],
+    );
     Ok(Statics {
         pipelines,
         sampler,
@@ -157,6 +183,8 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         blank_index,
         blank_labels,
         blank_label_rows,
+        blank_depth,
+        blank_mask,
     })
 }
 
@@ -169,6 +197,7 @@ pub fn cast(
     camera: &Camera,
     tf: Option<&TransferFunction>,
     labels: Option<&Volume>,
+    strokes: Option<&Strokes>,
     o: &RayOptions,
 ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
     let err = |e: GpuError| NodeError::new(e.to_string());
@@ -194,6 +223,37 @@ pub fn cast(
         bytemuck::bytes_of(&uniforms),
         wgpu::BufferUsages::UNIFORM,
     );
+    if let Some(s) = strokes {
+        let (w, h) = (s.mask.texture.width(), s.mask.texture.height());
+        let (dw, dh) = (s.depth.depth.width(), s.depth.depth.height());
+        if (w, h) != (camera.width, camera.height) || (dw, dh) != (camera.width, camera.height) {
+            return Err(NodeError::at_port(
+                "strokes",
+                format!(
+                    "strokes {w}×{h} and their depth {dw}×{dh} must match the frame {}×{}",
+                    camera.width, camera.height
+                ),
+            ));
+        }
+    }
+    let stroke_uniforms = StrokeUniforms {
+        color: strokes.map_or([0.0; 4], |s| s.color),
+    };
+    let strokes_buffer = gpu.buffer_init(
+        "strokes",
+        bytemuck::bytes_of(&stroke_uniforms),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let depth_only = wgpu::TextureViewDescriptor {
+        aspect: wgpu::TextureAspect::DepthOnly,
+        ..Default::default()
+    };
+    let stroke_depth_view = strokes
+        .map_or(&st.blank_depth, |s| &s.depth.depth)
+        .create_view(&depth_only);
+    let stroke_mask_view = strokes
+        .map_or(&st.blank_mask, |s| &s.mask.texture)
+        .create_view(&Default::default());
     let volume_view = volume_texture.texture.create_view(&Default::default());
     let texture_views = [
         (1, &volume_view),
@@ -205,6 +265,8 @@ pub fn cast(
         (8, &tables.label_rows),
         (9, &tables.bricks),
         (10, &tables.visibility),
+        (15, &stroke_depth_view),
+        (16, &stroke_mask_view),
     ];
     let mut entries = vec![
         wgpu::BindGroupEntry {
@@ -214,6 +276,10 @@ pub fn cast(
         wgpu::BindGroupEntry {
             binding: 2,
             resource: wgpu::BindingResource::Sampler(&st.sampler),
+        },
+        wgpu::BindGroupEntry {
+            binding: 17,
+            resource: strokes_buffer.as_entire_binding(),
         },
     ];
     entries.extend(

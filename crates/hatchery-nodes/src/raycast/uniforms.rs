@@ -190,7 +190,7 @@ impl RayUniforms {
             ],
             to_voxel: data.geometry.to_voxel().as_mat4().to_cols_array_2d(),
             grad_to_world: normal_matrix.to_cols_array_2d(),
-            texel: [texel_range[0], texel_range[1], 0.0, 0.0],
+            texel: [texel_range[0], texel_range[1], bool_f(o.embed), o.rho],
         }
     }
 }
