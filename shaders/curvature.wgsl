@@ -12,6 +12,22 @@
 
 @group(0) @binding(20) var gbuffer_depth: texture_depth_2d;
 
+// θ of a pixel without a surface (outside [−π/2, π/2)).
+const NONE: f32 = -10.0;
+
+// The screen angle of world direction d, wrapped into [−π/2, π/2) (a direction, not an
+// orientation).
+fn screen_angle(d: vec3<f32>) -> f32 {
+    let dv = (ray.view * vec4<f32>(d, 0.0)).xyz;
+    var theta = atan2(-dv.y, dv.x);
+    if theta >= 1.5707964 {
+        theta -= 3.1415927;
+    } else if theta < -1.5707964 {
+        theta += 3.1415927;
+    }
+    return theta;
+}
+
 struct CurvatureParams {
     // x = finite-difference step h (world units).
     step: vec4<f32>,
@@ -27,7 +43,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let pixel = pixel_of(in.position);
     let z = textureLoad(gbuffer_depth, pixel, 0);
     if z >= 1.0 {
-        return vec4<f32>(0.0);
+        return vec4<f32>(0.0, 0.0, NONE, NONE);
     }
     let ndc = vec2<f32>(in.position.x / ray.frame.x * 2.0 - 1.0, 1.0 - in.position.y / ray.frame.y * 2.0);
     let h4 = ray.inv_view_proj * vec4<f32>(ndc, z, 1.0);
@@ -35,7 +51,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let g = world_gradient(p);
     let g_length = length(g);
     if g_length < 1e-12 {
-        return vec4<f32>(0.0);
+        return vec4<f32>(0.0, 0.0, NONE, NONE);
     }
     let h = curvature_params.step.x;
     var columns: array<vec3<f32>, 3>;
@@ -67,13 +83,5 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
         v = vec2<f32>(0.0, 1.0);
     }
     let d = normalize(v.x * t1 + v.y * t2);
-    let dv = (ray.view * vec4<f32>(d, 0.0)).xyz;
-    var theta = atan2(-dv.y, dv.x);
-    // A direction, not an orientation: wrap into [−π/2, π/2).
-    if theta >= 1.5707964 {
-        theta -= 3.1415927;
-    } else if theta < -1.5707964 {
-        theta += 3.1415927;
-    }
-    return vec4<f32>(k1, k2, theta, 1.0);
+    return vec4<f32>(k1, k2, screen_angle(d), screen_angle(cross(n, d)));
 }

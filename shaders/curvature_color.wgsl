@@ -1,4 +1,4 @@
-// CurvatureColor: a curvature measure of each pixel (from Curvature's (κ1, κ2, θ, valid)) mapped
+// CurvatureColor: a curvature measure of each pixel (from Curvature's (κ1, κ2, θ1, θ2)) mapped
 // through a 1-D transfer function (Hadwiger's curvature colour mapping, the tutorial's §1,
 // Fig. 10): κ1, κ2, mean (κ1 + κ2)/2, Gaussian κ1·κ2, or curvedness √(κ1² + κ2²). Output
 // premultiplied; nothing where there is no surface.
@@ -33,7 +33,7 @@ fn measure(k: vec2<f32>) -> f32 {
 @fragment
 fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let c = textureLoad(curvature, pixel_of(in.position), 0);
-    if c.w < 0.5 {
+    if c.z < -5.0 {
         return vec4<f32>(0.0);
     }
     let span = params.options.z - params.options.y;

@@ -94,7 +94,7 @@ fn curvature(volume: VolumeData) -> Vec<Option<(Vec3, [f32; 3])>> {
             let depth = g.data[i * 4];
             let normal_z = g.data[i * 4 + 3];
             // Only pixels facing the viewer (grazing hits are refined least precisely).
-            if c[3] < 0.5 || depth >= 1.0 || normal_z < 0.5 {
+            if c[2] < -5.0 || depth >= 1.0 || normal_z < 0.5 {
                 return None;
             }
             let (x, y) = (
@@ -268,7 +268,7 @@ fn curvature_colour_maps_each_measure_through_the_transfer_function() {
         for i in 0..(SIZE * SIZE) as usize {
             let c = &curv.data[i * 4..i * 4 + 4];
             let got = &colour.data[i * 4..i * 4 + 4];
-            if c[3] < 0.5 {
+            if c[2] < -5.0 {
                 assert!(
                     got.iter().all(|&v| v == 0.0),
                     "{measure}: colour without a surface"
@@ -346,5 +346,22 @@ fn ridges_and_valleys_lie_on_the_crests_and_troughs_of_a_corrugated_plane() {
             );
         }
         assert!(pixels > 100, "{name}: {pixels} pixels");
+    }
+}
+
+#[test]
+fn constant_curvature_draws_no_ridge_or_valley() {
+    // A sphere: κ1 = κ2 = 1/r everywhere, no maximum along any direction.
+    let (mut session, curvature, _, _) = run(field(|p| 0.6 - p.length()));
+    let out = common::run_node(
+        &mut session,
+        "RidgeValley",
+        vec![("curvature", curvature)],
+        &[("threshold", ParamValue::Float(0.5))],
+    );
+    for (name, mask) in [("ridges", &out[0]), ("valleys", &out[1])] {
+        let m = export::to_array(mask, &session.ctx.gpu).unwrap();
+        let on = m.data.iter().filter(|&&v| v > 0.5).count();
+        assert!(on * 100 <= m.data.len(), "{name}: {on} pixels on a sphere");
     }
 }

@@ -3,7 +3,7 @@
 //! see shaders/curvature.wgsl for the rule and the output's channels).
 
 use crate::raycast::{Kernel, RayOptions, RayUniforms, TableInfo, linear_clamp_sampler};
-use crate::screen_pass::{self, IMAGE_FORMAT};
+use crate::screen_pass;
 use crate::value::Image;
 use crate::{Ctx, Value};
 use hatchery_gpu::GpuError;
@@ -20,6 +20,13 @@ crate::uniform_block! {
     }
 }
 
+/// The curvature image's format: data, not colour, so full float precision (RidgeValley's
+/// extremality test compares neighbouring pixels' curvatures).
+pub const CURVATURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// θ of a pixel without a surface (outside [−π/2, π/2)): shaders test θ1 < −5.
+pub const NO_SURFACE: f32 = -10.0;
+
 pub struct CurvatureNode;
 
 impl Node<Value, Ctx> for CurvatureNode {
@@ -33,9 +40,10 @@ impl Node<Value, Ctx> for CurvatureNode {
                   ±`step` voxels along the world axes), the shape operator −P H P / |g| in the \
                   tangent plane, its eigenvalues κ1 ≥ κ2 (world units⁻¹, positive where the \
                   surface bulges towards lower values) and the first principal direction. \
-                  Output image channels: (κ1, κ2, θ, 1) with θ the first direction's screen \
-                  angle (radians, x right, y down, in [−π/2, π/2)); 0 where there is no surface. \
-                  Connect the G-buffer of Raycast (mode iso) over the same volume.",
+                  Output image channels (32-bit float data): (κ1, κ2, θ1, θ2) with θ1, θ2 the \
+                  principal directions' screen angles (radians, x right, y down, in \
+                  [−π/2, π/2)); θ1 = θ2 = −10 where there is no surface. Connect the G-buffer \
+                  of IsoSurfaceRaycast (or Raycast, mode iso) over the same volume.",
             inputs: vec![
                 PortSpec::input("gbuffer", PortType::GBuffer, "the iso-surface's depth"),
                 PortSpec::input(
@@ -47,7 +55,7 @@ impl Node<Value, Ctx> for CurvatureNode {
             outputs: vec![PortSpec::output(
                 "curvature",
                 PortType::Image,
-                "(κ1, κ2, θ, 1) per pixel (data, not colour)",
+                "(κ1, κ2, θ1, θ2) per pixel (data, not colour)",
             )],
             params: vec![ParamSpec::float(
                 "step",
@@ -73,7 +81,7 @@ impl Node<Value, Ctx> for CurvatureNode {
         let err = |e: GpuError| NodeError::new(e.to_string());
         let pipeline = ctx
             .cached("curvature.pipeline", |gpu| {
-                screen_pass::pipeline(gpu, "curvature", IMAGE_FORMAT)
+                screen_pass::pipeline(gpu, "curvature", CURVATURE_FORMAT)
             })
             .map_err(err)?;
         let sampler = linear_clamp_sampler(ctx).map_err(err)?;
@@ -122,7 +130,7 @@ impl Node<Value, Ctx> for CurvatureNode {
                 },
             ],
         });
-        let output = gpu.render_target("curvature", camera.width, camera.height, IMAGE_FORMAT);
+        let output = gpu.render_target("curvature", camera.width, camera.height, CURVATURE_FORMAT);
         let output_view = output.create_view(&Default::default());
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         {

@@ -27,8 +27,9 @@ impl Node<Value, Ctx> for RidgeValleyNode {
             doc: "Ridge and valley lines of an iso-surface (the tutorial's §1, Fig. 12) from \
                   Curvature's image: ridges where κ1 > threshold and κ1 is a maximum along its \
                   principal direction, valleys where κ2 < −threshold and κ2 is a minimum along \
-                  its direction (the extremality test: a parabola through the curvature one \
-                  pixel before, at and after, along the direction on screen). Lines `thickness` \
+                  the second principal direction (the extremality test: a parabola through the \
+                  curvature one pixel before, at and after, along the direction on screen, with \
+                  a clear maximum: constant curvature draws no line). Lines `thickness` \
                   pixels wide, as masks.",
             inputs: vec![PortSpec::input(
                 "curvature",
@@ -47,7 +48,7 @@ impl Node<Value, Ctx> for RidgeValleyNode {
                     1.0e6,
                     "smallest |κ| of a line, world units⁻¹",
                 ),
-                ParamSpec::float("thickness", 1.5, 0.5, 16.0, "line width, pixels"),
+                ParamSpec::float("thickness", 1.5, 0.5, 3.0, "line width, pixels (up to 3)"),
             ],
             frame_dependent: true,
             sink: false,
