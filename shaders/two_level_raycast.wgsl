@@ -203,7 +203,8 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                     id = 0u;
                 }
             } else if method == IMP_VPIMC {
-                if id != focus && in_front {
+                // The occluding part: context in front of the focus, in its footprint only.
+                if id != focus && in_front && imp.z > 0.5 {
                     flag = 1u;
                     s = s_o;
                 } else if first_pass {
@@ -211,7 +212,14 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 }
             } else if method == IMP_AIMC_IMAGE || (id != focus && in_front) {
                 s = s_o;
-                if level == SPARSE_STYLE && s < 0.999 {
+                // In the countersink around the footprint the ray misses the focus, so the sum
+                // lacks it: count it, as the context there is in front of its surroundings.
+                if method == IMP_AIMC_OBJECT && imp.z < 0.5 {
+                    let with_focus = imp.y + object_info(focus, 1u).z;
+                    s = clamp(object_info(id, 1u).z / max(with_focus, 1e-6), 0.0, 1.0);
+                }
+                // The focus keeps its own style; only the context turns sparse.
+                if level == SPARSE_STYLE && s < 0.999 && id != focus {
                     flag = 1u;
                 }
             }

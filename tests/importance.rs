@@ -448,7 +448,8 @@ fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
     let mut session = session();
     let cam = camera(&mut session);
     let scene = three_objects();
-    let importance = vec![(1, 0.1), (2, 0.3), (3, 0.6)];
+    // Importances summing to 2, so that S_o = I_o / Σ is not I_o itself.
+    let importance = vec![(1, 0.2), (2, 0.5), (3, 1.3)];
     let p = ray_params(&cam);
     for method in [Method::AimcImage, Method::AimcObject] {
         let setup = Setup {
@@ -458,18 +459,36 @@ fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
             slope: 1.0,
         };
         let (buffer, gpu) = render_gpu(&mut session, &cam, &scene, Some(&setup), &[]);
-        // The centre column meets all three objects: S_o = I_o / (0.1 + 0.3 + 0.6).
+        // The centre column meets all three objects: S_o = I_o / (0.2 + 0.5 + 1.3).
         let centre = buffer[(SIZE / 2 * SIZE + SIZE / 2) as usize];
         for (id, i) in &importance {
             let s = i / centre[1];
             assert!(
-                (s - i / 1.0).abs() < 1e-3,
-                "{method:?}: S_{id} = {s}, eq. 2 gives {i}"
+                (s - i / 2.0).abs() < 1e-3,
+                "{method:?}: S_{id} = {s}, eq. 2 gives {}",
+                i / 2.0
             );
         }
         // A column through the shell only: Σ = I_1, S_1 = 1 (no suppression).
         let edge = buffer[(SIZE / 2 * SIZE + SIZE / 2 - 15) as usize];
-        assert!((0.1 / edge[1] - 1.0).abs() < 1e-3, "shell only: {edge:?}");
+        assert!((0.2 / edge[1] - 1.0).abs() < 1e-3, "shell only: {edge:?}");
+        if method == Method::AimcObject {
+            // The countersink around the footprint suppresses the context there too: pixels
+            // outside the footprint differ from the cylindrical (no countersink) rendering.
+            let cylindrical = Setup {
+                slope: 0.0,
+                importance: importance.clone(),
+                ..setup
+            };
+            let (_, cyl) = render_gpu(&mut session, &cam, &scene, Some(&cylindrical), &[]);
+            let cut = (0..buffer.len())
+                .filter(|&i| buffer[i][2] < 0.5 && diff(gpu[i], cyl[i]) > 0.02)
+                .count();
+            assert!(
+                cut > 30,
+                "the countersink changed {cut} pixels outside the footprint"
+            );
+        }
         let cpu_buffers = reference::buffers(
             &scene.volume,
             &scene.labels,
@@ -563,6 +582,19 @@ fn vpimc_scales_the_occluding_context_to_the_opacity_s_o_of_eq_3() {
         let outside = (SIZE / 2 * SIZE + 12) as usize;
         assert!(buffer[outside][2] < 0.5);
         assert!(diff(gpu[outside], plain[outside]) < 1.0 / 255.0);
+        // Also with a conical countersink: the slab around the footprint stays as it is.
+        let conical = Setup {
+            slope: 1.0,
+            importance: setup.importance.clone(),
+            ..setup
+        };
+        let (cone_buffer, cone) = render_gpu(&mut session, &cam, &scene, Some(&conical), &[]);
+        for i in (0..cone.len()).filter(|&i| cone_buffer[i][2] < 0.5) {
+            assert!(
+                diff(cone[i], plain[i]) < 1.0 / 255.0,
+                "conical VPImC changed pixel {i} outside the footprint"
+            );
+        }
         let cpu_buffers = reference::buffers(
             &scene.volume,
             &scene.labels,

@@ -13,8 +13,9 @@
 //! - Final synthesis, per sample of drawn object o at depth z:
 //!   MImP — in the footprint only the focus is drawn, outside samples with z < E are dropped;
 //!   AImC image space — opacity × S_o (S_o = I_o / Σ I, eq. 2) for every sample;
-//!   AImC object space — the same, for non-focus samples with z < E only;
-//!   VPImC — non-focus samples with z < E form their own segments ("occluding") whose
+//!   AImC object space — the same, for non-focus samples with z < E only; outside the footprint
+//!   (in the countersink) the focus's importance is added to the sum;
+//!   VPImC — non-focus samples with z < E in the footprint form their own segments ("occluding") whose
 //!   accumulated colour and opacity are scaled by S_o / α_avg (eq. 3), α_avg the mean opacity
 //!   of a first pass drawing only those segments, over its non-empty pixels.
 
@@ -250,7 +251,7 @@ fn render_pass(
                             }
                         }
                         Method::Vpimc => {
-                            if id != setup.focus && in_front {
+                            if id != setup.focus && in_front && inside {
                                 flag = 1;
                                 s = s_o;
                             } else if first_pass {
@@ -261,6 +262,11 @@ fn render_pass(
                         Method::AimcObject => {
                             if id != setup.focus && in_front {
                                 s = s_o;
+                                if !inside {
+                                    // The countersink: the focus counts in the sum.
+                                    let with_focus = sum + importance(setup.focus);
+                                    s = (importance(id) / with_focus.max(1e-6)).clamp(0.0, 1.0);
+                                }
                             }
                         }
                     }

@@ -70,18 +70,33 @@ fn importance_input(
         return Err(NodeError::at_port(
             "importance",
             format!(
-                "made for another view ({}×{}) than this node's camera ({}×{}): connect the \
-                 same camera to ImportanceCompositing",
+                "made for another view ({}×{}, or other view/projection matrices) than this \
+                 node's camera ({}×{}): connect the same camera to ImportanceCompositing",
                 c.width, c.height, camera.width, camera.height
             ),
         ));
     }
+    let mut missing = Vec::new();
     for s in styles.iter_mut() {
-        s.importance = importance
-            .importance
-            .iter()
-            .find(|(id, _)| *id == s.id)
-            .map_or(0.0, |(_, i)| *i);
+        match importance.importance.iter().find(|(id, _)| *id == s.id) {
+            Some((_, i)) => s.importance = *i,
+            None => {
+                s.importance = 0.0;
+                if s.enabled {
+                    missing.push(s.id.to_string());
+                }
+            }
+        }
+    }
+    if !missing.is_empty() {
+        return Err(NodeError::at_port(
+            "importance",
+            format!(
+                "objects {} are drawn here but not in ImportanceCompositing's object table: \
+                 connect the same ObjectStyles to both",
+                missing.join(", ")
+            ),
+        ));
     }
     Ok(Some(importance))
 }
