@@ -34,9 +34,10 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
 }
 
 // Strokes embedded in the volume rendering (Yuan & Chen 2005 §5): a stroke mask and the depth
-// of the surface it was drawn on. Where a stroke covers a pixel the ray stops at the stroke's
-// depth (no sample behind it contributes) and the stroke's colour is composited there, under
-// what the ray gathered in front of it. ray.texel.z = 1 when strokes are bound; ray.texel.w =
+// of the surface it was drawn on. Where a stroke covers a pixel its colour, with opacity
+// coverage × alpha, is composited as a layer at the stroke's depth: under what the ray gathered
+// in front of it, over what lies behind (an opaque stroke ends the ray: no sample behind it
+// contributes; a soft edge lets the volume behind show through). DVR only. ray.texel.z = 1 when strokes are bound; ray.texel.w =
 // the global alpha ρ that scales every sample's opacity.
 @group(0) @binding(15) var stroke_depth: texture_depth_2d;
 @group(0) @binding(16) var stroke_mask: texture_2d<f32>;
@@ -71,19 +72,20 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     let r = primary_ray(position);
     let stroke = stroke_at(position, r.p0, r.dir);
     let stroke_alpha = stroke.x * strokes.color.a;
+    let dvr = i32(ray.mode.x + 0.5) == 0;
     if !r.hits {
-        out.color = vec4<f32>(strokes.color.rgb * stroke_alpha, stroke_alpha);
+        if dvr {
+            out.color = vec4<f32>(strokes.color.rgb * stroke_alpha, stroke_alpha);
+        }
         return out;
     }
     let p0 = r.p0;
     let dir = r.dir;
     let q0 = r.q0;
     let dq = r.dq;
-    // DVR stops at an embedded stroke; MIP and iso ignore strokes.
-    var t_out = r.t_out;
-    if i32(ray.mode.x + 0.5) == 0 {
-        t_out = min(t_out, stroke.y);
-    }
+    let t_out = r.t_out;
+    // DVR composites an embedded stroke at its depth; MIP and iso ignore strokes.
+    var stroke_pending = dvr && stroke_alpha > 0.0;
 
     let h = ray.box_min.w;
     let step_voxels = ray.box_max.w;
@@ -112,6 +114,14 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     let skipping = ray.skip.x > 0.5;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
+        if stroke_pending && t >= stroke.y {
+            stroke_pending = false;
+            color += (1.0 - alpha) * stroke_alpha * strokes.color.rgb;
+            alpha += (1.0 - alpha) * stroke_alpha;
+            if alpha >= ray.frame.w {
+                break;
+            }
+        }
         let p = p0 + dir * t;
         let q = q0 + dq * t;
         if skipping {
@@ -259,7 +269,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         out.depth = to_window_depth(p);
         return out;
     }
-    if stroke_alpha > 0.0 && alpha < ray.frame.w {
+    if stroke_pending && alpha < ray.frame.w {
         color += (1.0 - alpha) * stroke_alpha * strokes.color.rgb;
         alpha += (1.0 - alpha) * stroke_alpha;
     }

@@ -71,7 +71,7 @@ fn camera(session: &mut Session) -> Camera {
 
 /// Raycast of the slab (grey, opaque), with a red line along row `ROW` on the plane z =
 /// `plane_z` embedded when `plane_z` is given; premultiplied RGBA per pixel.
-fn render(session: &mut Session, plane_z: Option<f32>, rho: f32) -> Vec<[f32; 4]> {
+fn render(session: &mut Session, plane_z: Option<f32>, rho: f32, coverage: f32) -> Vec<[f32; 4]> {
     let cam = camera(session);
     let camera = Value::Camera(Arc::new(cam.clone()));
     let tf = TransferFunction1D::from_points(&[
@@ -110,7 +110,7 @@ fn render(session: &mut Session, plane_z: Option<f32>, rho: f32) -> Vec<[f32; 4]
         .remove(0);
         let mut line = vec![0.0f32; (SIZE * SIZE) as usize];
         for x in 0..SIZE {
-            line[(ROW * SIZE + x) as usize] = 1.0;
+            line[(ROW * SIZE + x) as usize] = coverage;
         }
         let texture = session.ctx.gpu.texture_2d_init(
             "line",
@@ -152,9 +152,9 @@ fn a_stroke_behind_an_opaque_slab_is_hidden_exactly_where_the_slab_is_nearer() {
         SIZE,
         SIZE,
     );
-    let plain = render(&mut session, None, 1.0);
-    let behind = render(&mut session, Some(0.0), 1.0);
-    let in_front = render(&mut session, Some(18.0), 1.0);
+    let plain = render(&mut session, None, 1.0, 1.0);
+    let behind = render(&mut session, Some(0.0), 1.0, 1.0);
+    let in_front = render(&mut session, Some(18.0), 1.0, 1.0);
     let red = [1.0, 0.0, 0.0, 1.0];
     let (mut hidden, mut shown) = (0, 0);
     // Columns whose rays cross the volume's box (the plane exists there): world |x| < 19.
@@ -195,7 +195,7 @@ fn a_stroke_behind_an_opaque_slab_is_hidden_exactly_where_the_slab_is_nearer() {
         }
     }
     // A global alpha ρ < 1 lets the stroke show through the slab.
-    let thin = render(&mut session, Some(0.0), 0.02);
+    let thin = render(&mut session, Some(0.0), 0.02, 1.0);
     let i = (ROW * SIZE + 8) as usize;
     assert!(
         plain[i][3] >= 0.99 && thin[i][0] > thin[i][1] + 0.05,

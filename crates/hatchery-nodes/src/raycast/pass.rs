@@ -225,14 +225,23 @@ pub fn cast(
     );
     if let Some(s) = strokes {
         let (w, h) = (s.mask.texture.width(), s.mask.texture.height());
-        let (dw, dh) = (s.depth.depth.width(), s.depth.depth.height());
-        if (w, h) != (camera.width, camera.height) || (dw, dh) != (camera.width, camera.height) {
+        if (w, h) != (camera.width, camera.height) {
             return Err(NodeError::at_port(
                 "strokes",
                 format!(
-                    "strokes {w}×{h} and their depth {dw}×{dh} must match the frame {}×{}",
+                    "{w}×{h} pixels, the frame {}×{}",
                     camera.width, camera.height
                 ),
+            ));
+        }
+        let c = &s.depth.camera;
+        let same_view = (c.width, c.height) == (camera.width, camera.height)
+            && c.view.abs_diff_eq(camera.view, 1e-5)
+            && c.proj.abs_diff_eq(camera.proj, 1e-5);
+        if !same_view {
+            return Err(NodeError::at_port(
+                "strokes_depth",
+                "rendered with another camera or size than this node's: connect the same camera",
             ));
         }
     }
