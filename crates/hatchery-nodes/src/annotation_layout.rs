@@ -100,8 +100,8 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
                   δ, until resolved or `max_iterations`; what stays unresolved is left out, \
                   lowest priority and farthest (screen depth) first. Leader opacity falls with \
                   the anchor's depth; anchors hidden behind the `gbuffer` surface get no label. \
-                  Starts from this node's previous layout (temporal coherence) when the anchors \
-                  and frame are unchanged.",
+                  Starts from this node's previous layout (temporal coherence) when the labels \
+                  and frame size are unchanged.",
             inputs: vec![
                 PortSpec::input("annotations", PortType::Annotations, "the anchors"),
                 PortSpec::input("camera", PortType::Camera, "the view"),
@@ -186,11 +186,30 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
             Some(m) => {
                 let mask = export::to_array(m, &ctx.gpu)
                     .map_err(|e| NodeError::at_port("footprint", e))?;
+                if mask.shape[0] != camera.height as usize || mask.shape[1] != camera.width as usize
+                {
+                    return Err(NodeError::at_port(
+                        "footprint",
+                        format!(
+                            "{}×{} pixels, the camera's frame {}×{}",
+                            mask.shape[1], mask.shape[0], camera.width, camera.height
+                        ),
+                    ));
+                }
                 convex_hull(&mask_boundary(&mask))
             }
             None => {
+                // The visible objects' boxes (§6.4: the hull of what is shown).
                 let mut points = Vec::new();
-                for (a, bounds) in annotations.anchors.iter().zip(&annotations.bounds) {
+                for ((a, bounds), projected) in annotations
+                    .anchors
+                    .iter()
+                    .zip(&annotations.bounds)
+                    .zip(&projected)
+                {
+                    if !projected.visible {
+                        continue;
+                    }
                     match bounds {
                         Some([lo, hi]) => points.extend(box_corners(*lo, *hi)),
                         None => points.push(a.position),
@@ -216,15 +235,19 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
             ctx.current_node().unwrap_or("")
         );
         let memory = ctx
-            .cached(&key, |_| Ok(Mutex::new(None::<(usize, Vec2, Layout)>)))
+            .cached(&key, |_| {
+                Ok(Mutex::new(None::<(Vec<String>, Vec2, Layout)>))
+            })
             .map_err(|e| NodeError::new(e.to_string()))?;
         let mut memory = memory.lock().unwrap_or_else(|e| e.into_inner());
+        // The same labels (texts, in order) in the same frame: start from the last layout.
+        let texts: Vec<String> = annotations.anchors.iter().map(|a| a.text.clone()).collect();
         let previous = memory
             .as_ref()
-            .filter(|(n, f, _)| p.bool("coherent") && *n == projected.len() && *f == frame)
+            .filter(|(t, f, _)| p.bool("coherent") && *t == texts && *f == frame)
             .map(|(_, _, l)| l);
         let placed = layout(&projected, &sizes, &hull_points, frame, &params, previous);
-        *memory = Some((projected.len(), frame, placed.clone()));
+        *memory = Some((texts, frame, placed.clone()));
         let hull = placed.path.vertices().to_vec();
         let mut out = Annotations::clone(annotations);
         out.placed = Some(Arc::new(Placed {

@@ -261,15 +261,25 @@ impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
         };
         let listed = p.text("objects").trim();
         let ids: Vec<u16> = if !listed.is_empty() {
-            listed
+            let mut ids: Vec<u16> = Vec::new();
+            for s in listed
                 .split(|c: char| c == ',' || c.is_whitespace())
                 .filter(|s| !s.is_empty())
-                .map(|s| {
-                    s.parse::<u16>().map_err(|_| {
-                        NodeError::new(format!("parameter `objects`: `{s}` is not a label id"))
-                    })
-                })
-                .collect::<Result<_, _>>()?
+            {
+                match s.parse::<u16>() {
+                    Ok(id) if id > 0 => {
+                        if !ids.contains(&id) {
+                            ids.push(id);
+                        }
+                    }
+                    _ => {
+                        return Err(NodeError::new(format!(
+                            "parameter `objects`: `{s}` is not a label id (1–65535)"
+                        )));
+                    }
+                }
+            }
+            ids
         } else if let Some(styles) = &styles {
             styles.iter().filter(|s| s.enabled).map(|s| s.id).collect()
         } else {
@@ -282,11 +292,15 @@ impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
                 .collect()
         };
         let (mut anchors, bounds) = anchors_for(&labels, &ids);
-        if anchors.len() < ids.len() {
+        let empty: Vec<String> = ids
+            .iter()
+            .filter(|id| !anchors.iter().any(|a| a.object == **id))
+            .map(|id| id.to_string())
+            .collect();
+        if !empty.is_empty() {
             ctx.warn(format!(
-                "{} of the {} objects have no voxel in the labels",
-                ids.len() - anchors.len(),
-                ids.len()
+                "objects {} have no voxel in the labels: no anchor for them",
+                empty.join(", ")
             ));
         }
         if let Some(styles) = &styles {

@@ -5,7 +5,7 @@ use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use std::sync::OnceLock;
 
 /// The label font's family name, as SVG text names it (with generic fallbacks).
-pub const FAMILY: &str = "Ubuntu, 'Ubuntu Light', 'DejaVu Sans', sans-serif";
+pub const FAMILY: &str = "'Ubuntu Light', Ubuntu, 'DejaVu Sans', sans-serif";
 
 fn font() -> &'static FontRef<'static> {
     static FONT: OnceLock<FontRef<'static>> = OnceLock::new();

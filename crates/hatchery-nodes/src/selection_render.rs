@@ -91,17 +91,32 @@ pub fn selection_transform(
 
 /// Parses "10" or "10, 11 12" into label ids.
 fn parse_ids(text: &str) -> Result<Vec<u16>, NodeError> {
-    let ids: Result<Vec<u16>, _> = text
+    let mut ids = Vec::new();
+    for word in text
         .split(|c: char| c == ',' || c.is_whitespace())
         .filter(|s| !s.is_empty())
-        .map(|s| s.parse::<u16>())
-        .collect();
-    match ids {
-        Ok(ids) if !ids.is_empty() => Ok(ids),
-        _ => Err(NodeError::new(format!(
-            "parameter `objects`: `{text}` is not a list of label ids (e.g. \"10\" or \"10, 11\")"
-        ))),
+    {
+        match word.parse::<u64>() {
+            Ok(id @ 1..=65535) => ids.push(id as u16),
+            Ok(id) => {
+                return Err(NodeError::new(format!(
+                    "parameter `objects`: label id {id} is out of range (1–65535; 0 is the \
+                     background)"
+                )));
+            }
+            Err(_) => {
+                return Err(NodeError::new(format!(
+                    "parameter `objects`: `{word}` is not a label id (e.g. \"10\" or \"10, 11\")"
+                )));
+            }
+        }
     }
+    if ids.is_empty() {
+        return Err(NodeError::new(
+            "parameter `objects`: no label id given (e.g. \"10\" or \"10, 11\")",
+        ));
+    }
+    Ok(ids)
 }
 
 /// The world-space centre (mean voxel position) of the voxels holding `ids` and their world
