@@ -674,6 +674,18 @@ fn levels_of_sparseness_change_the_context_as_named() {
     // The screen door keeps about S = 1/4 of the slab's voxels: its colour lies between the
     // plain rendering and the slab removed, not equal to either.
     assert!(door[centre][1] > plain[centre][1] + 0.05);
+    let focus_only = Scene {
+        objects: scene.objects.iter().skip(1).cloned().collect(),
+        volume: scene.volume.clone(),
+        labels: scene.labels.clone(),
+    };
+    let (_, removed) = render_gpu(&mut session, &cam, &focus_only, None, &[]);
+    assert!(
+        door[centre][1] < removed[centre][1] - 0.02,
+        "the screen door removed the whole slab: {:?} vs {:?}",
+        door[centre],
+        removed[centre]
+    );
     // Outside the focus footprint nothing changes.
     let outside = (SIZE / 2 * SIZE + 12) as usize;
     for (name, picture) in [
