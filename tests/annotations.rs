@@ -279,3 +279,42 @@ fn anchors_hidden_behind_the_rendered_surface_get_no_label() {
         "the centre of the sphere is hidden by its surface"
     );
 }
+
+#[test]
+fn a_frame_too_narrow_for_a_label_leaves_it_out_rather_than_cut() {
+    let mut session = session();
+    session.ctx.set_size(90, 240).unwrap();
+    let cam = Camera::orbit(
+        Vec3::ZERO,
+        30.0,
+        20.0,
+        120.0,
+        30.0,
+        false,
+        1.0,
+        500.0,
+        false,
+        90,
+        240,
+    );
+    let source = common::run_node(
+        &mut session,
+        "AnnotationsFromLabels",
+        vec![("labels", Value::Labels(Arc::new(Labels::new(labels()))))],
+        &[],
+    )
+    .remove(0);
+    let a = layout(&mut session, &cam, &source);
+    let placed = a.placed("annotations").unwrap();
+    for l in placed.layout.shown() {
+        assert!(
+            l.rect.min.x >= 0.0
+                && l.rect.min.y >= 0.0
+                && l.rect.max.x <= 90.0
+                && l.rect.max.y <= 240.0,
+            "{} is cut by the frame: {:?}",
+            a.anchors[l.anchor].text,
+            l.rect
+        );
+    }
+}

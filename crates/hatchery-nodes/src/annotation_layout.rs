@@ -246,8 +246,24 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
             .as_ref()
             .filter(|(t, f, _)| p.bool("coherent") && *t == texts && *f == frame)
             .map(|(_, _, l)| l);
-        let placed = layout(&projected, &sizes, &hull_points, frame, &params, previous);
+        let mut placed = layout(&projected, &sizes, &hull_points, frame, &params, previous);
         *memory = Some((texts, frame, placed.clone()));
+        // A label the frame cuts is worse than none (a narrow frame around a wide hull).
+        let mut cut = Vec::new();
+        for label in placed
+            .labels
+            .iter_mut()
+            .filter(|l| l.shown && !l.inside_frame)
+        {
+            label.shown = false;
+            cut.push(annotations.anchors[label.anchor].text.clone());
+        }
+        if !cut.is_empty() {
+            ctx.warn(format!(
+                "no room in the frame for the labels {}: left out",
+                cut.join(", ")
+            ));
+        }
         let hull = placed.path.vertices().to_vec();
         let mut out = Annotations::clone(annotations);
         out.placed = Some(Arc::new(Placed {
