@@ -227,6 +227,19 @@ fn render_gpu(
     (buffer, pixels(&out[0], session))
 }
 
+/// The CPU reference's importance buffers and picture of `scene` with `setup` (no jitter).
+fn cpu_reference(
+    scene: &Scene,
+    setup: &Setup,
+    cam: &Camera,
+) -> (reference::Buffers, Vec<[f32; 4]>) {
+    let p = ray_params(cam);
+    let (volume, labels, objects) = (&scene.volume, &scene.labels, &scene.objects);
+    let buffers = reference::buffers(volume, labels, objects, setup, &p, pixel_world(cam));
+    let picture = reference::render(volume, labels, objects, setup, &buffers, &p);
+    (buffers, picture)
+}
+
 /// The largest channel difference of two pixels.
 fn diff(a: [f32; 4], b: [f32; 4]) -> f32 {
     (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max)
@@ -323,23 +336,7 @@ fn cylindrical_mimp_shows_only_the_focus_in_its_footprint_and_the_plain_renderin
         .count();
     assert!(changed > footprint / 2, "only {changed} pixels changed");
     // And the CPU reference agrees everywhere.
-    let p = ray_params(&cam);
-    let reference_buffers = reference::buffers(
-        &scene.volume,
-        &scene.labels,
-        &scene.objects,
-        &setup,
-        &p,
-        pixel_world(&cam),
-    );
-    let cpu = reference::render(
-        &scene.volume,
-        &scene.labels,
-        &scene.objects,
-        &setup,
-        &reference_buffers,
-        &p,
-    );
+    let (_, cpu) = cpu_reference(&scene, &setup, &cam);
     assert_close_where("MImP vs CPU", &mimp, &cpu, 1.0 / 255.0, |_| true);
 }
 
@@ -450,7 +447,6 @@ fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
     let scene = three_objects();
     // Importances summing to 2, so that S_o = I_o / Σ is not I_o itself.
     let importance = vec![(1, 0.2), (2, 0.5), (3, 1.3)];
-    let p = ray_params(&cam);
     for method in [Method::AimcImage, Method::AimcObject] {
         let setup = Setup {
             method,
@@ -489,22 +485,7 @@ fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
                 "the countersink changed {cut} pixels outside the footprint"
             );
         }
-        let cpu_buffers = reference::buffers(
-            &scene.volume,
-            &scene.labels,
-            &scene.objects,
-            &setup,
-            &p,
-            pixel_world(&cam),
-        );
-        let cpu = reference::render(
-            &scene.volume,
-            &scene.labels,
-            &scene.objects,
-            &setup,
-            &cpu_buffers,
-            &p,
-        );
+        let (cpu_buffers, cpu) = cpu_reference(&scene, &setup, &cam);
         let name = format!("{method:?} vs CPU");
         assert_close_where(&name, &gpu, &cpu, 2.0 / 255.0, |i| {
             (buffer[i][0] - cpu_buffers.pixels[i][0]).abs() <= 1e-3
@@ -555,7 +536,6 @@ fn vpimc_scales_the_occluding_context_to_the_opacity_s_o_of_eq_3() {
     let cam = camera(&mut session);
     // An invisible focus: the picture's opacity in the footprint is the occluding part's.
     let scene = slab_and_cube(0.0);
-    let p = ray_params(&cam);
     for (i_context, i_focus) in [(0.2f32, 0.8f32), (0.5, 0.5), (0.7, 0.3)] {
         let setup = Setup {
             method: Method::Vpimc,
@@ -595,22 +575,7 @@ fn vpimc_scales_the_occluding_context_to_the_opacity_s_o_of_eq_3() {
                 "conical VPImC changed pixel {i} outside the footprint"
             );
         }
-        let cpu_buffers = reference::buffers(
-            &scene.volume,
-            &scene.labels,
-            &scene.objects,
-            &setup,
-            &p,
-            pixel_world(&cam),
-        );
-        let cpu = reference::render(
-            &scene.volume,
-            &scene.labels,
-            &scene.objects,
-            &setup,
-            &cpu_buffers,
-            &p,
-        );
+        let (_, cpu) = cpu_reference(&scene, &setup, &cam);
         assert_close_where("VPImC vs CPU", &gpu, &cpu, 1.0 / 255.0, |_| true);
     }
 }

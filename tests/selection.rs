@@ -135,13 +135,23 @@ fn tf_value(f: &TransferFunction1D) -> Value {
     Value::TransferFunction(Arc::new(TransferFunction::Color(f.clone())))
 }
 
+/// SelectionRender's volume, labels (the scene), camera and background TF inputs.
+fn scene_inputs(cam: &Camera, background: &TransferFunction1D) -> Vec<(&'static str, Value)> {
+    let (volume, labels) = scene();
+    vec![
+        ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
+        ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
+        ("camera", Value::Camera(Arc::new(cam.clone()))),
+        ("tf", tf_value(background)),
+    ]
+}
+
 fn render_gpu(
     session: &mut Session,
     cam: &Camera,
     tfs: &Tfs,
     params: &[(&str, ParamValue)],
 ) -> Vec<[f32; 4]> {
-    let (volume, labels) = scene();
     let mut all = vec![
         ("objects", ParamValue::Text("1".into())),
         ("shading", ParamValue::Choice("none".into())),
@@ -152,14 +162,12 @@ fn render_gpu(
     let out = common::run_node(
         session,
         "SelectionRender",
-        vec![
-            ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
-            ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
-            ("camera", Value::Camera(Arc::new(cam.clone()))),
-            ("tf", tf_value(&tfs.background)),
-            ("tf_ghost", tf_value(&tfs.ghost)),
-            ("tf_selection", tf_value(&tfs.selection)),
-        ],
+        {
+            let mut inputs = scene_inputs(cam, &tfs.background);
+            inputs.push(("tf_ghost", tf_value(&tfs.ghost)));
+            inputs.push(("tf_selection", tf_value(&tfs.selection)));
+            inputs
+        },
         &all,
     );
     let errors = session.ctx.gpu.take_uncaptured_errors();
@@ -389,16 +397,10 @@ fn the_annotations_output_holds_the_ghost_and_the_moved_selection_with_their_box
     let mut session = session();
     let cam = camera(&mut session, 0.0);
     let tfs = tfs(true);
-    let (volume, labels) = scene();
     let out = common::run_node(
         &mut session,
         "SelectionRender",
-        vec![
-            ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
-            ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
-            ("camera", Value::Camera(Arc::new(cam.clone()))),
-            ("tf", tf_value(&tfs.background)),
-        ],
+        scene_inputs(&cam, &tfs.background),
         &[
             ("objects", ParamValue::Text("1".into())),
             ("translate", vec3_param(MOVE)),
@@ -425,16 +427,10 @@ fn the_svg_figure_carries_the_arrow_fan_and_boxes_as_paths() {
     let mut session = session();
     let cam = camera(&mut session, 0.0);
     let tfs = tfs(true);
-    let (volume, labels) = scene();
     let out = common::run_node(
         &mut session,
         "SelectionRender",
-        vec![
-            ("volume", Value::Volume(Arc::new(Volume::new(volume)))),
-            ("labels", Value::Labels(Arc::new(Labels::new(labels)))),
-            ("camera", Value::Camera(Arc::new(cam.clone()))),
-            ("tf", tf_value(&tfs.background)),
-        ],
+        scene_inputs(&cam, &tfs.background),
         &[
             ("objects", ParamValue::Text("1".into())),
             ("translate", vec3_param(MOVE + Vec3::new(0.0, 0.0, 8.0))),

@@ -130,28 +130,8 @@ impl Node<Value, Ctx> for CurvatureNode {
                 },
             ],
         });
-        let output = gpu.render_target("curvature", camera.width, camera.height, CURVATURE_FORMAT);
-        let output_view = output.create_view(&Default::default());
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("curvature"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &output_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                ..Default::default()
-            });
-            pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &group, &[]);
-            pass.draw(0..3, 0..1);
-        }
-        ctx.submit(encoder.finish());
+        let size = (camera.width, camera.height);
+        let output = screen_pass::draw(ctx, "curvature", &pipeline, &group, CURVATURE_FORMAT, size);
         Ok(vec![Value::Image(Arc::new(Image { texture: output }))])
     }
 }

@@ -119,12 +119,33 @@ pub fn render(
         layout: &pipeline.get_bind_group_layout(0),
         entries: &entries,
     });
-    let output = gpu.render_target(program, width, height, format);
+    Ok(draw(
+        ctx,
+        program,
+        &pipeline,
+        &bind_group,
+        format,
+        (width, height),
+    ))
+}
+
+/// One full-screen triangle of `pipeline` with `bind_group` into a new `format` target of
+/// `width` × `height` (cleared to transparent), submitted; the target.
+pub fn draw(
+    ctx: &mut Ctx,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    bind_group: &wgpu::BindGroup,
+    format: wgpu::TextureFormat,
+    (width, height): (u32, u32),
+) -> wgpu::Texture {
+    let gpu = &ctx.gpu;
+    let output = gpu.render_target(label, width, height, format);
     let output_view = output.create_view(&Default::default());
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(program),
+            label: Some(label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view: &output_view,
                 depth_slice: None,
@@ -136,13 +157,13 @@ pub fn render(
             })],
             ..Default::default()
         });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
     let work = encoder.finish();
     ctx.submit(work);
-    Ok(output)
+    output
 }
 
 /// [`run`] producing a `Mask` value.
