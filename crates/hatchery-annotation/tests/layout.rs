@@ -147,14 +147,18 @@ fn small_orbit_moves_labels_little() {
     // previous one; four sets of 12–24 labels. Anchors move about 1–4 px per frame, the box's
     // silhouette up to about 5 px. A label shown in two consecutive frames that took no part in a
     // swap (and with no label shown or hidden in between) must move at most `MAX_MOVE` px, 99 %
-    // of them at most `P99_MOVE` px.
+    // of them at most `P99_MOVE` px. In a frame where other labels swapped, a neighbour may have
+    // to make room for them: at most one label height (`NEIGHBOUR_MOVE`).
     const MAX_MOVE: f32 = 12.0;
+    const NEIGHBOUR_MOVE: f32 = 14.0;
     const P99_MOVE: f32 = 6.0;
     let mut rng = Rng::new(0xc0e4e);
     let params = LayoutParams::default();
     let (mut frames, mut swaps, mut swap_frames) = (0u32, 0u32, 0u32);
     let (mut set_changes, mut repeated) = (0u32, 0u32);
     let mut plain_moves: Vec<f32> = Vec::new();
+    // Largest move of a label in a frame without any swap.
+    let mut calm_max = 0.0f32;
     let mut anchor_moves: Vec<f32> = Vec::new();
     for scene_index in 0..4 {
         let n = 12 + 4 * scene_index;
@@ -197,7 +201,11 @@ fn small_orbit_moves_labels_little() {
                 for (a, b) in prev.labels.iter().zip(&result.labels) {
                     repeated += u32::from(a.swapped && b.swapped);
                     if a.shown && b.shown && !b.swapped && !set_changed {
-                        plain_moves.push(a.rect.center().distance(b.rect.center()));
+                        let moved = a.rect.center().distance(b.rect.center());
+                        if result.swaps == 0 {
+                            calm_max = calm_max.max(moved);
+                        }
+                        plain_moves.push(moved);
                         anchor_moves.push(
                             prev_anchors[a.anchor]
                                 .screen
@@ -215,8 +223,8 @@ fn small_orbit_moves_labels_little() {
     println!(
         "orbit: {frames} frames of 1°; {swaps} swaps in {swap_frames} frames ({repeated} labels \
          swapping in two consecutive frames), {set_changes} frames where the shown set changed; \
-         {} label moves without swap: median {:.2} px, 99 % {:.2} px, max {:.2} px (anchors: \
-         median {:.2} px, max {:.2} px)",
+         {} label moves without swap: median {:.2} px, 99 % {:.2} px, max {:.2} px (in frames \
+         without any swap {calm_max:.2} px) (anchors: median {:.2} px, max {:.2} px)",
         plain_moves.len(),
         pct(&plain_moves, 0.5),
         pct(&plain_moves, 0.99),
@@ -224,7 +232,8 @@ fn small_orbit_moves_labels_little() {
         pct(&anchor_moves, 0.5),
         pct(&anchor_moves, 1.0),
     );
-    assert!(pct(&plain_moves, 1.0) <= MAX_MOVE);
+    assert!(calm_max <= MAX_MOVE);
+    assert!(pct(&plain_moves, 1.0) <= NEIGHBOUR_MOVE);
     assert!(pct(&plain_moves, 0.99) <= P99_MOVE);
     // Anchors pass each other on screen while the object turns, and each pass is a swap: bound
     // one swap every two frames, and few labels swapping back and forth.

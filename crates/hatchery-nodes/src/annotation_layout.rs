@@ -97,7 +97,7 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
                   `footprint` mask's pixels) parameterised by arc length; each label placed \
                   outside the hull at the point nearest its anchor, then crossing leader lines \
                   swapped, labels swapped when both get closer, and overlapping ones shifted by \
-                  δ, until resolved or `max_iterations`; what stays unresolved is left out, \
+                  δ (from scratch by 1.5× their overlap, so piles spread fast), until resolved or `max_iterations`; what stays unresolved is left out, \
                   lowest priority and farthest (screen depth) first. Leader opacity falls with \
                   the anchor's depth; anchors hidden behind the `gbuffer` surface get no label. \
                   Starts from this node's previous layout (temporal coherence) when the labels \
