@@ -21,6 +21,11 @@ pub struct BrickRanges {
     pub ranges: Vec<[f32; 2]>,
 }
 
+/// Brick grid dims of `volume`: `ceil(dims / BRICK)` per axis.
+pub fn brick_dims(volume: &VolumeData) -> [u32; 3] {
+    volume.dims.map(|n| n.div_ceil(BRICK))
+}
+
 /// The value ranges of the bricks of `volume`. A sample at voxel-space position `q` (clamped to
 /// the grid) lies in brick `floor(q / BRICK)` and interpolates voxels `floor(q)` and
 /// `floor(q) + 1` along each axis, so a brick's range covers its voxels plus one more layer on
@@ -28,14 +33,31 @@ pub struct BrickRanges {
 /// lower precision than the data. Non-finite values ("no data") are left out; a brick of only
 /// no data gets the empty range `[f32::MAX, f32::MIN]` (min > max).
 pub fn brick_ranges(volume: &VolumeData, pad: f32) -> BrickRanges {
+    let dims = brick_dims(volume);
+    let ranges = brick_range_layers(volume, pad, 0..dims[2]);
+    BrickRanges { dims, ranges }
+}
+
+/// [`brick_ranges`] of the brick layers `layers` (brick z indices) only, x fastest — so a big
+/// volume's table can be built and uploaded a slab at a time.
+pub fn brick_range_layers(
+    volume: &VolumeData,
+    pad: f32,
+    layers: std::ops::Range<u32>,
+) -> Vec<[f32; 2]> {
     let [nx, ny, nz] = volume.dims;
-    let dims = [nx, ny, nz].map(|n| n.div_ceil(BRICK));
-    let ranges: Vec<[f32; 2]> = (0..dims[2])
+    let dims = brick_dims(volume);
+    let per_layer = dims[0] as usize * dims[1] as usize;
+    let count = per_layer * layers.len();
+    // An indexed iterator collects straight into one vector of the exact size.
+    (0..count)
         .into_par_iter()
-        .flat_map_iter(|bz| {
-            (0..dims[1]).flat_map(move |by| (0..dims[0]).map(move |bx| [bx, by, bz]))
-        })
-        .map(|b| {
+        .map(|k| {
+            let b = [
+                (k % dims[0] as usize) as u32,
+                (k / dims[0] as usize % dims[1] as usize) as u32,
+                layers.start + (k / per_layer) as u32,
+            ];
             let span = |axis: usize, n: u32| {
                 let first = b[axis] * BRICK;
                 first..=((first + BRICK).min(n - 1))
@@ -58,8 +80,7 @@ pub fn brick_ranges(volume: &VolumeData, pad: f32) -> BrickRanges {
             }
             [lo - pad, hi + pad]
         })
-        .collect();
-    BrickRanges { dims, ranges }
+        .collect()
 }
 
 /// One table of a transfer function: its domain and the classified opacity of each of its

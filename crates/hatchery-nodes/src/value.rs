@@ -39,14 +39,22 @@ impl Volume {
     /// values in half precision.
     pub fn bricks(&self, gpu: &GpuContext) -> &wgpu::Texture {
         self.bricks.get_or_init(|| {
+            use hatchery_data::bricks::{brick_dims, brick_range_layers};
             let [lo, hi] = self.data.value_range;
-            let bricks = hatchery_data::bricks::brick_ranges(&self.data, (hi - lo) * 1e-3);
-            gpu.texture_3d_init(
+            let pad = (hi - lo) * 1e-3;
+            // Built and uploaded a slab of brick layers at a time: the whole table (8 MiB at
+            // 800³) never sits in host memory next to its staging copy and the texture.
+            gpu.volume_texture_by_slabs(
                 "bricks",
-                bricks.dims,
+                brick_dims(&self.data),
                 wgpu::TextureFormat::Rg32Float,
-                bytemuck::cast_slice(&bricks.ranges),
+                |z0, z1, out| {
+                    let ranges = brick_range_layers(&self.data, pad, z0..z1);
+                    out.extend_from_slice(bytemuck::cast_slice(&ranges));
+                },
             )
+            // The table has 1/512 of the voxels, 8 bytes each: it fits wherever the volume did.
+            .expect("the brick table fits the adapter's limits")
         })
     }
     /// The largest gradient magnitude (world units), computed once: normalises |g| to [0, 1].
