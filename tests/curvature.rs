@@ -7,7 +7,6 @@ mod common;
 
 use glam::{Vec2, Vec3};
 use hatchery_data::VolumeData;
-use hatchery_data::geometry::Geometry;
 use hatchery_graph::ParamValue;
 use hatchery_nodes::camera::Camera;
 use hatchery_nodes::value::Volume;
@@ -19,18 +18,7 @@ const SIZE: u32 = 64;
 
 /// `f` sampled on an N³ grid over world [-1, 1]³.
 fn field(f: impl Fn(Vec3) -> f32) -> VolumeData {
-    let spacing = 2.0 / (N - 1) as f64;
-    let geometry = Geometry::axis_aligned([spacing; 3], [-1.0; 3]);
-    let mut values = Vec::with_capacity((N * N * N) as usize);
-    for z in 0..N {
-        for y in 0..N {
-            for x in 0..N {
-                let p = Vec3::new(x as f32, y as f32, z as f32) * spacing as f32 - 1.0;
-                values.push(f(p));
-            }
-        }
-    }
-    VolumeData::with_geometry([N; 3], geometry, values).unwrap()
+    common::field_on_cube(N, f)
 }
 
 /// IsoSurfaceRaycast (iso 0) → Curvature of `volume`, orthographic along −z showing

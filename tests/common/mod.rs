@@ -144,3 +144,19 @@ pub fn run_node(
     }
     outputs
 }
+
+/// `f` sampled on an n³ grid over world [-1, 1]³ (analytic surfaces as level sets).
+pub fn field_on_cube(n: u32, f: impl Fn(glam::Vec3) -> f32) -> hatchery_data::VolumeData {
+    let spacing = 2.0 / (n - 1) as f64;
+    let geometry = hatchery_data::geometry::Geometry::axis_aligned([spacing; 3], [-1.0; 3]);
+    let mut values = Vec::with_capacity((n * n * n) as usize);
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let p = glam::Vec3::new(x as f32, y as f32, z as f32) * spacing as f32 - 1.0;
+                values.push(f(p));
+            }
+        }
+    }
+    hatchery_data::VolumeData::with_geometry([n; 3], geometry, values).unwrap()
+}

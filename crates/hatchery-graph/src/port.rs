@@ -32,10 +32,12 @@ pub enum PortType {
     Importance,
     /// Labelled 3-D anchors and, once laid out, their labels' places (VolumeShop §6.4).
     Annotations,
+    /// Hatching strokes as polylines in pixels (HatchStrokes), for vector export.
+    Strokes,
 }
 
 impl PortType {
-    pub const ALL: [PortType; 13] = [
+    pub const ALL: [PortType; 14] = [
         PortType::Volume,
         PortType::Labels,
         PortType::Mesh,
@@ -49,6 +51,7 @@ impl PortType {
         PortType::ObjectStyles,
         PortType::Importance,
         PortType::Annotations,
+        PortType::Strokes,
     ];
 
     pub fn name(self) -> &'static str {
@@ -66,6 +69,7 @@ impl PortType {
             PortType::ObjectStyles => "ObjectStyles",
             PortType::Importance => "Importance",
             PortType::Annotations => "Annotations",
+            PortType::Strokes => "Strokes",
         }
     }
 }

@@ -60,7 +60,8 @@ pub fn source_size(value: &Value) -> Option<(u32, u32)> {
         | Value::Camera(_)
         | Value::Light(_)
         | Value::ObjectStyles(_)
-        | Value::Annotations(_) => {
+        | Value::Annotations(_)
+        | Value::Strokes(_) => {
             return None;
         }
     };

@@ -115,6 +115,27 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
                 data,
             }
         }
+        Value::Strokes(s) => {
+            // One row per stroke point: stroke index, seed (mesh vertex), cross-hatching (0/1),
+            // x, y (pixels).
+            let mut data = Vec::new();
+            let lines = s.lines(gpu)?;
+            for (i, line) in lines.iter().enumerate() {
+                for q in &line.points {
+                    data.extend_from_slice(&[
+                        i as f32,
+                        line.seed as f32,
+                        f32::from(u8::from(line.cross)),
+                        q.x,
+                        q.y,
+                    ]);
+                }
+            }
+            Array {
+                shape: vec![data.len() / 5, 5],
+                data,
+            }
+        }
         Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
             return Err(format!(
                 "a {} value holds no array to dump",
@@ -238,7 +259,8 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Str
         | Value::Camera(_)
         | Value::Light(_)
         | Value::ObjectStyles(_)
-        | Value::Annotations(_) => {
+        | Value::Annotations(_)
+        | Value::Strokes(_) => {
             return Err(format!(
                 "a {} value has no picture; dump it to .npy instead",
                 value.port_type()

@@ -14,6 +14,7 @@ pub mod export;
 pub mod fill;
 pub mod gbuffer;
 pub mod halftone;
+pub mod hatch_strokes;
 pub mod importance_compositing;
 pub mod label_font;
 pub mod label_mask;
@@ -105,6 +106,7 @@ pub fn registry() -> Registry {
     r.register(curvature::CurvatureNode);
     r.register(curvature_color::CurvatureColorNode);
     r.register(ridge_valley::RidgeValleyNode);
+    r.register(hatch_strokes::HatchStrokesNode);
     r.register(overlay::AnnotationOverlayNode);
     r.register(visual_conventions::ArrowNode);
     r.register(visual_conventions::FanNode);

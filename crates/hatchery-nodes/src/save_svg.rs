@@ -94,6 +94,11 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 4.0,
                 "the arrow's bend per pixel of depth difference (as Arrow's)",
             ),
+            ParamSpec::color(
+                "strokes_color",
+                [0.0, 0.0, 0.0, 1.0],
+                "colour of the hatching `strokes`",
+            ),
         ]);
         for (color_name, width_name) in [
             ("color1", "width1"),
@@ -119,8 +124,8 @@ impl Node<Value, Ctx> for SaveSvgNode {
             doc: "Writes an SVG figure whose Inkscape layers are: the picture (the `image` as an \
                   embedded PNG), lines (each `lines` mask's region above 0.5, traced by \
                   marching squares and simplified, as a filled path in its own colour, or its \
-                  outlines as strokes), leader \
-                  lines, arrows, and labels as <text> (from laid-out `annotations`). Open it in \
+                  outlines as strokes), hatching `strokes` as \
+                  open polylines, leader lines, arrows, and labels as <text> (from laid-out `annotations`). Open it in \
                   Inkscape or Illustrator to edit lines and text. `hatchery render -o x.svg` \
                   replaces the path. Relative paths are relative to the graph file's folder.",
             inputs: vec![
@@ -133,6 +138,11 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 PortSpec::optional("lines1", PortType::Mask, "a line or silhouette mask"),
                 PortSpec::optional("lines2", PortType::Mask, "another, with its own stroke"),
                 PortSpec::optional("lines3", PortType::Mask, "a third"),
+                PortSpec::optional(
+                    "strokes",
+                    PortType::Strokes,
+                    "hatching strokes (HatchStrokes): one open polyline each, round caps",
+                ),
                 PortSpec::optional(
                     "selection",
                     PortType::Annotations,
@@ -215,6 +225,20 @@ impl Node<Value, Ctx> for SaveSvgNode {
                         }),
                     },
                 );
+            }
+        }
+        if let Some(s) = inputs.get("strokes") {
+            let s = s.strokes("strokes")?;
+            let stroke = Stroke::new(color(p.color("strokes_color")), s.width);
+            for line in s
+                .lines(&ctx.gpu)
+                .map_err(|e| NodeError::at_port("strokes", e))?
+            {
+                let line = hatchery_annotation::Polyline {
+                    points: line.points.clone(),
+                    closed: false,
+                };
+                doc.polyline(&line, stroke);
             }
         }
         if let Some(a) = inputs.get("annotations") {

@@ -42,6 +42,8 @@ pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
 pub const OVER: &str = shader_file!("over.wgsl");
 pub const DISPLAY: &str = shader_file!("display.wgsl");
 pub const OVERLAY: &str = shader_file!("overlay.wgsl");
+pub const HATCH_STROKES: &str = shader_file!("hatch_strokes.wgsl");
+pub const MASK_COPY: &str = shader_file!("mask_copy.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
@@ -122,6 +124,9 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         ("display", screen("display.wgsl", DISPLAY)),
         // Instanced quads with their own vertex stage (crate::overlay).
         ("overlay", vec![("overlay.wgsl", OVERLAY)]),
+        // Compute tracing plus instanced segments (crate::hatch_strokes).
+        ("hatch_strokes", vec![("hatch_strokes.wgsl", HATCH_STROKES)]),
+        ("mask_copy", screen("mask_copy.wgsl", MASK_COPY)),
     ]
 }
 

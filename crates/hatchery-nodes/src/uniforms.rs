@@ -75,6 +75,7 @@ pub fn all() -> Vec<UniformLayout> {
         curvature::CurvatureUniforms::layout(),
         curvature_color::CurvatureColorUniforms::layout(),
         ridge_valley::RidgeValleyUniforms::layout(),
+        hatch_strokes::HatchUniforms::layout(),
         UniformLayout {
             program: "curvature",
             ..raycast::RayUniforms::layout()

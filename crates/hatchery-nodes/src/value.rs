@@ -311,7 +311,8 @@ impl Mesh {
                 vertices: gpu.buffer_init(
                     "mesh vertices",
                     bytemuck::cast_slice(&interleaved),
-                    wgpu::BufferUsages::VERTEX,
+                    // Storage too: HatchStrokes reads the vertices as seeds.
+                    wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
                 ),
                 indices: gpu.buffer_init(
                     "mesh indices",
@@ -487,6 +488,7 @@ pub enum Value {
     ObjectStyles(Arc<Vec<ObjectStyle>>),
     Importance(Arc<Importance>),
     Annotations(Arc<crate::annotations::Annotations>),
+    Strokes(Arc<crate::hatch_strokes::Strokes>),
 }
 
 impl Value {
@@ -505,6 +507,7 @@ impl Value {
             Value::ObjectStyles(_) => PortType::ObjectStyles,
             Value::Importance(_) => PortType::Importance,
             Value::Annotations(_) => PortType::Annotations,
+            Value::Strokes(_) => PortType::Strokes,
         }
     }
 }
@@ -547,3 +550,4 @@ accessor!(
     Annotations,
     Arc<crate::annotations::Annotations>
 );
+accessor!(strokes, Strokes, Arc<crate::hatch_strokes::Strokes>);

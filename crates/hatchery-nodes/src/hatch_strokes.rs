@@ -1,0 +1,508 @@
+//! `HatchStrokes`: hatching strokes along the principal curvature directions of an iso-surface
+//! (Nagy et al. 2002; Yuan & Chen 2005 §4.4), traced and drawn on the GPU
+//! (shaders/hatch_strokes.wgsl), output as a coverage mask and as vector polylines for SaveSvg.
+//!
+//! Seeds are the vertices of a mesh of the same surface (e.g. MarchingCubes of the volume at the
+//! iso value): surface points, not pixels, so an orbiting view keeps its strokes (Yuan–Chen's
+//! "subset of the surface points"); each seed's random number is a hash of its index.
+
+use crate::screen_pass::MASK_FORMAT;
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use glam::Vec2;
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::{Arc, OnceLock};
+
+crate::uniform_block! {
+    /// `Hatch` of shaders/hatch_strokes.wgsl (see there for the channels).
+    pub struct HatchUniforms in "hatch_strokes" as "Hatch" {
+        pub view_proj: [[f32; 4]; 4],
+        pub view: [[f32; 4]; 4],
+        pub inv_proj: [[f32; 4]; 4],
+        pub frame: [f32; 4],
+        pub options: [f32; 4],
+        pub shape: [f32; 4],
+        pub counts: [f32; 4],
+    }
+}
+
+/// Format the strokes are drawn in: blendable (max of overlapping strokes), then copied into a
+/// 32-bit Mask.
+const DRAW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
+/// Most RK4 steps per half stroke.
+const MAX_STEPS: u32 = 128;
+
+/// One traced stroke, pixels (top-left origin, y down).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StrokeLine {
+    /// Index of the seed (mesh vertex) it grew from.
+    pub seed: u32,
+    /// Whether it is a cross-hatching stroke (along the other principal direction).
+    pub cross: bool,
+    /// Its points, one RK4 step apart, the seed among them.
+    pub points: Vec<Vec2>,
+}
+
+/// The strokes of one HatchStrokes run: the GPU buffers they were traced into, and their
+/// polylines read back on first use (SaveSvg, tests).
+pub struct Strokes {
+    counter: wgpu::Buffer,
+    headers: wgpu::Buffer,
+    points: wgpu::Buffer,
+    /// Point slots per stroke (2 · steps + 1).
+    slots: u32,
+    max_strokes: u32,
+    /// Stroke width in the middle, px (the ends taper).
+    pub width: f32,
+    /// Frame width × height, px.
+    pub frame: (u32, u32),
+    lines: OnceLock<Result<Vec<StrokeLine>, String>>,
+}
+
+impl Strokes {
+    /// The strokes as polylines of at least two points (read back from the GPU once).
+    pub fn lines(&self, gpu: &GpuContext) -> Result<&[StrokeLine], String> {
+        self.lines
+            .get_or_init(|| self.read_back(gpu))
+            .as_deref()
+            .map_err(Clone::clone)
+    }
+
+    fn read_back(&self, gpu: &GpuContext) -> Result<Vec<StrokeLine>, String> {
+        let read = |buffer: &wgpu::Buffer| -> Result<Vec<u8>, String> {
+            let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("strokes readback"),
+                size: buffer.size(),
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+            gpu.queue.submit([encoder.finish()]);
+            gpu.map_buffer(&staging)
+        };
+        let count = u32::from_le_bytes(read(&self.counter)?[..4].try_into().unwrap_or_default())
+            .min(self.max_strokes) as usize;
+        let headers: Vec<u32> = bytemuck::pod_collect_to_vec(&read(&self.headers)?);
+        let points: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&read(&self.points)?);
+        let slots = self.slots as usize;
+        Ok((0..count)
+            // A seed on a silhouette or a fold can stop at once: no segment, nothing drawn.
+            .filter(|&s| headers[4 * s + 2] > headers[4 * s + 1])
+            .map(|s| {
+                let h = &headers[4 * s..4 * s + 4];
+                let (first, last) = (h[1] as usize, h[2] as usize);
+                StrokeLine {
+                    seed: h[0],
+                    cross: h[3] == 1,
+                    points: points[s * slots + first..=s * slots + last]
+                        .iter()
+                        .map(|&p| Vec2::from(p))
+                        .collect(),
+                }
+            })
+            .collect())
+    }
+}
+
+/// The compute and render pipelines of shaders/hatch_strokes.wgsl.
+struct HatchPipelines {
+    trace: wgpu::ComputePipeline,
+    finish: wgpu::ComputePipeline,
+    draw: wgpu::RenderPipeline,
+}
+
+impl HatchPipelines {
+    fn new(gpu: &GpuContext) -> Result<Self, GpuError> {
+        let source = crate::shaders::source("hatch_strokes").expect("registered program");
+        let module = gpu.shader("hatch_strokes", &source)?;
+        let compute = |entry: &str| {
+            gpu.checked(&format!("pipeline hatch_strokes/{entry}"), |device| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    cache: None,
+                })
+            })
+        };
+        let max = wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Max,
+        };
+        let draw = gpu.checked("pipeline hatch_strokes/draw", |device| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("hatch strokes"),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_stroke"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs_stroke"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: DRAW_FORMAT,
+                        blend: Some(wgpu::BlendState {
+                            color: max,
+                            alpha: max,
+                        }),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        Ok(Self {
+            trace: compute("trace")?,
+            finish: compute("finish")?,
+            draw,
+        })
+    }
+}
+
+pub struct HatchStrokesNode;
+
+impl Node<Value, Ctx> for HatchStrokesNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "HatchStrokes",
+            category: "Volume",
+            doc: "Hatching strokes along principal curvature directions (Nagy et al. 2002; Yuan \
+                  & Chen 2005 §4.4). Seeds are the vertices of `seeds`, a mesh of the same \
+                  surface (MarchingCubes of the volume at the iso value): a seed draws when it \
+                  is visible in the G-buffer and its random number (a hash of its index, so \
+                  strokes stay on the surface as the view moves) is below `density` × its \
+                  darkness (1 − `tone`, or 1 − the headlight Lambert term of the G-buffer \
+                  normal without a tone). Each stroke is integrated both ways from the seed \
+                  with RK4 in image space through Curvature's direction field (the larger-|κ| \
+                  principal direction, or the smaller), stopping where the surface ends, the \
+                  depth jumps or the field turns; where the darkness exceeds `cross_hatching` \
+                  a second stroke follows the other direction. Drawn anti-aliased with tapered \
+                  ends into `mask`; `strokes` carries the polylines for SaveSvg.",
+            inputs: vec![
+                PortSpec::input("curvature", PortType::Image, "Curvature's output"),
+                PortSpec::input(
+                    "gbuffer",
+                    PortType::GBuffer,
+                    "the surface (the G-buffer Curvature read)",
+                ),
+                PortSpec::input(
+                    "seeds",
+                    PortType::Mesh,
+                    "candidate seeds: a mesh of the same surface (its vertices)",
+                ),
+                PortSpec::optional(
+                    "tone",
+                    PortType::Mask,
+                    "brightness in [0, 1] (e.g. DiffuseIntensity); darker = more strokes",
+                ),
+            ],
+            outputs: vec![
+                PortSpec::output("mask", PortType::Mask, "stroke coverage"),
+                PortSpec::output("strokes", PortType::Strokes, "the strokes as polylines"),
+            ],
+            params: vec![
+                ParamSpec::float(
+                    "density",
+                    0.05,
+                    0.0,
+                    1.0,
+                    "chance that a seed at full darkness draws a stroke",
+                ),
+                ParamSpec::float("length", 24.0, 2.0, 256.0, "stroke length, pixels"),
+                ParamSpec::float(
+                    "width",
+                    1.2,
+                    0.25,
+                    8.0,
+                    "stroke width in the middle, pixels",
+                ),
+                ParamSpec::float(
+                    "taper",
+                    0.3,
+                    0.0,
+                    0.5,
+                    "fraction of the length over which each end thins to nothing",
+                ),
+                ParamSpec::float("step", 1.0, 0.25, 4.0, "RK4 step, pixels"),
+                ParamSpec::choice(
+                    "direction",
+                    "max_curvature",
+                    &["max_curvature", "min_curvature"],
+                    "the principal direction of the larger or of the smaller |κ|",
+                ),
+                ParamSpec::float(
+                    "cross_hatching",
+                    0.6,
+                    0.0,
+                    1.0,
+                    "darkness above which a second stroke crosses the first (1 = never)",
+                ),
+                ParamSpec::float(
+                    "depth_tolerance",
+                    0.01,
+                    0.0,
+                    1.0,
+                    "visibility and fold test: depth difference allowed, as a fraction of \
+                     the seed mesh's bounding-box diagonal",
+                ),
+                ParamSpec::int("max_strokes", 20000, 1, 1_000_000, "most strokes drawn"),
+                ParamSpec::int("seed", 0, 0, 1 << 20, "varies the random numbers"),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let curvature = inputs.require("curvature")?.image("curvature")?.clone();
+        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        let seeds = inputs.require("seeds")?.mesh("seeds")?.clone();
+        let tone = match inputs.get("tone") {
+            Some(t) => Some(t.mask("tone")?.clone()),
+            None => None,
+        };
+        let camera = &gbuffer.camera;
+        let (width, height) = (camera.width, camera.height);
+        if (curvature.texture.width(), curvature.texture.height()) != (width, height) {
+            return Err(NodeError::at_port(
+                "curvature",
+                format!(
+                    "is {}×{}, the G-buffer {width}×{height}: connect the Curvature of this \
+                     G-buffer",
+                    curvature.texture.width(),
+                    curvature.texture.height()
+                ),
+            ));
+        }
+        if let Some(t) = &tone
+            && (t.texture.width(), t.texture.height()) != (width, height)
+        {
+            return Err(NodeError::at_port(
+                "tone",
+                format!(
+                    "is {}×{}, the G-buffer {width}×{height}",
+                    t.texture.width(),
+                    t.texture.height()
+                ),
+            ));
+        }
+        let err = |e: GpuError| NodeError::new(e.to_string());
+        let pipelines = ctx
+            .cached("hatch_strokes.pipelines", HatchPipelines::new)
+            .map_err(err)?;
+
+        let vertex_count = seeds.data.positions.len() as u32;
+        let diagonal = seeds
+            .data
+            .bounds()
+            .map_or(1.0, |(lo, hi)| (hi - lo).length().max(1e-6));
+        let step = p.f32("step");
+        let steps = ((0.5 * p.f32("length") / step).ceil() as u32).clamp(1, MAX_STEPS);
+        let slots = 2 * steps + 1;
+        let max_strokes = (p.int("max_strokes").max(1) as u32).min(
+            (ctx.gpu.device.limits().max_storage_buffer_binding_size / (8 * slots as u64)).max(1)
+                as u32,
+        );
+        let uniforms = HatchUniforms {
+            view_proj: camera.view_proj().to_cols_array_2d(),
+            view: camera.view.to_cols_array_2d(),
+            inv_proj: camera.proj.inverse().to_cols_array_2d(),
+            frame: [width as f32, height as f32, step, steps as f32],
+            options: [
+                p.f32("density"),
+                if p.f32("cross_hatching") >= 1.0 {
+                    2.0
+                } else {
+                    p.f32("cross_hatching")
+                },
+                p.f32("depth_tolerance") * diagonal,
+                (p.int("seed") as u32).wrapping_mul(0x9E37_79B9) as f32,
+            ],
+            shape: [
+                p.f32("width"),
+                p.f32("taper"),
+                if p.choice("direction") == "min_curvature" {
+                    1.0
+                } else {
+                    0.0
+                },
+                max_strokes as f32,
+            ],
+            counts: [
+                vertex_count as f32,
+                if tone.is_some() { 1.0 } else { 0.0 },
+                0.0,
+                0.0,
+            ],
+        };
+        let blank = ctx.blank_texture();
+        let gpu = &ctx.gpu;
+        let storage = |label, size: u64, extra: wgpu::BufferUsages| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(16),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | extra,
+                mapped_at_creation: false,
+            })
+        };
+        let uniform = gpu.buffer_init(
+            "hatch uniforms",
+            bytemuck::bytes_of(&uniforms),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let counter = gpu.buffer_init(
+            "hatch counter",
+            &[0u8; 16],
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        );
+        let headers = storage(
+            "hatch strokes",
+            16 * max_strokes as u64,
+            wgpu::BufferUsages::empty(),
+        );
+        let points = storage(
+            "hatch points",
+            8 * (max_strokes as u64) * slots as u64,
+            wgpu::BufferUsages::empty(),
+        );
+        let indirect = storage("hatch indirect", 16, wgpu::BufferUsages::INDIRECT);
+        let mesh = seeds.buffers(gpu);
+
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let curvature_view = view(&curvature.texture);
+        let depth_view = gbuffer.depth.create_view(&wgpu::TextureViewDescriptor {
+            aspect: wgpu::TextureAspect::DepthOnly,
+            ..Default::default()
+        });
+        let normal_view = view(&gbuffer.normal);
+        let tone_view = view(tone.as_ref().map_or(&blank, |t| &t.texture));
+        let group = |layout: &wgpu::BindGroupLayout, entries: &[(u32, wgpu::BindingResource)]| {
+            let entries: Vec<wgpu::BindGroupEntry> = entries
+                .iter()
+                .map(|(binding, resource)| wgpu::BindGroupEntry {
+                    binding: *binding,
+                    resource: resource.clone(),
+                })
+                .collect();
+            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("hatch strokes"),
+                layout,
+                entries: &entries,
+            })
+        };
+        use wgpu::BindingResource::TextureView as Tex;
+        let trace_group = group(
+            &pipelines.trace.get_bind_group_layout(0),
+            &[
+                (0, uniform.as_entire_binding()),
+                (1, Tex(&curvature_view)),
+                (2, Tex(&depth_view)),
+                (3, Tex(&normal_view)),
+                (4, Tex(&tone_view)),
+                (5, mesh.vertices.as_entire_binding()),
+                (6, headers.as_entire_binding()),
+                (7, points.as_entire_binding()),
+                (8, counter.as_entire_binding()),
+            ],
+        );
+        let finish_group = group(
+            &pipelines.finish.get_bind_group_layout(0),
+            &[
+                (0, uniform.as_entire_binding()),
+                (8, counter.as_entire_binding()),
+                (9, indirect.as_entire_binding()),
+            ],
+        );
+        let draw_group = group(
+            &pipelines.draw.get_bind_group_layout(0),
+            &[
+                (0, uniform.as_entire_binding()),
+                (10, headers.as_entire_binding()),
+                (11, points.as_entire_binding()),
+            ],
+        );
+        let target = gpu.render_target("hatch strokes", width, height, DRAW_FORMAT);
+        let target_view = view(&target);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("hatch trace"),
+                timestamp_writes: None,
+            });
+            let groups = vertex_count.div_ceil(64);
+            if groups > 0 {
+                pass.set_pipeline(&pipelines.trace);
+                pass.set_bind_group(0, &trace_group, &[]);
+                pass.dispatch_workgroups(groups.min(65535), groups.div_ceil(65535), 1);
+            }
+            pass.set_pipeline(&pipelines.finish);
+            pass.set_bind_group(0, &finish_group, &[]);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("hatch draw"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &target_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&pipelines.draw);
+            pass.set_bind_group(0, &draw_group, &[]);
+            pass.draw_indirect(&indirect, 0);
+        }
+        ctx.submit(encoder.finish());
+        let mask = crate::screen_pass::render(
+            ctx,
+            "mask_copy",
+            MASK_FORMAT,
+            (width, height),
+            &[&target],
+            None,
+        )
+        .map_err(err)?;
+        let strokes = Strokes {
+            counter,
+            headers,
+            points,
+            slots,
+            max_strokes,
+            width: p.f32("width"),
+            frame: (width, height),
+            lines: OnceLock::new(),
+        };
+        Ok(vec![
+            Value::Mask(Arc::new(Mask { texture: mask })),
+            Value::Strokes(Arc::new(strokes)),
+        ])
+    }
+}
