@@ -89,55 +89,10 @@ fn surface_z(t: vec2<i32>) -> f32 {
     return v.z / v.w;
 }
 
-// Screen angle of the hatching direction at a curvature texel (`other`: the other principal
-// direction), or −10 off the surface.
-fn angle_at(c: vec4<f32>, other: bool) -> f32 {
-    if c.z < -5.0 {
-        return -10.0;
-    }
-    // θ1 belongs to κ1, θ2 to κ2: pick the larger |κ| (or the smaller) ...
-    var first = abs(c.x) >= abs(c.y);
-    if hatch.shape.z > 0.5 {
-        first = !first;
-    }
-    // ... and cross-hatching takes the other one.
-    if other {
-        first = !first;
-    }
-    return select(c.w, c.z, first);
-}
-
-// The direction field at pixel position p (centres at .5): the doubled-angle vectors of the
-// four texels around p, bilinearly weighted (a direction is an axis, θ ≡ θ + π), as a unit
-// vector; zero where less than half the weight lies on the surface.
+// The hatching direction field at pixel position p: the larger-|κ| principal direction (or the
+// smaller with direction = min), the other one for cross-hatching.
 fn field(p: vec2<f32>, other: bool) -> vec2<f32> {
-    let q = p - 0.5;
-    let base = vec2<i32>(floor(q));
-    let f = q - floor(q);
-    let size = vec2<i32>(textureDimensions(curvature));
-    var sum = vec2<f32>(0.0);
-    var weight = 0.0;
-    for (var c = 0; c < 4; c++) {
-        let o = vec2<i32>(c & 1, c >> 1u);
-        let t = clamp(base + o, vec2<i32>(0), size - 1);
-        let theta = angle_at(textureLoad(curvature, t, 0), other);
-        if theta < -5.0 {
-            continue;
-        }
-        let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
-        sum += w * vec2<f32>(cos(2.0 * theta), sin(2.0 * theta));
-        weight += w;
-    }
-    if weight < 0.5 || dot(sum, sum) < 1e-12 {
-        return vec2<f32>(0.0);
-    }
-    let theta = 0.5 * atan2(sum.y, sum.x);
-    return vec2<f32>(cos(theta), sin(theta));
-}
-
-// `v` turned to point along `reference` (an axis has two senses).
-fn align(v: vec2<f32>, reference: vec2<f32>) -> vec2<f32> {
-    return select(v, -v, dot(v, reference) < 0.0);
+    return direction_field(curvature, p, (hatch.shape.z > 0.5) != other);
 }
 
 // Integrates one half of a stroke from p along ±`heading`, writing points at slot

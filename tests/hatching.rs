@@ -409,3 +409,57 @@ fn save_svg_writes_one_polyline_per_stroke() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// CurvatureFlow on the cylinder: (mean |∂x|, mean |∂y|, standard deviation) of the flow over
+/// the middle of the cylinder's face.
+fn flow_gradients(direction: &str) -> (f32, f32, f32) {
+    let mut session = session();
+    let volume = cylinder();
+    let surface = surface(&mut session, &volume, camera(0.0, true));
+    let out = common::run_node(
+        &mut session,
+        "CurvatureFlow",
+        vec![
+            ("curvature", surface.curvature.clone()),
+            ("gbuffer", surface.gbuffer.clone()),
+        ],
+        &[
+            ("grain", ParamValue::Float(0.02)),
+            ("direction", ParamValue::Choice(direction.into())),
+        ],
+    );
+    let errors = session.ctx.gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:?}");
+    let v = export::to_array(&out[0], &session.ctx.gpu).unwrap().data;
+    let at = |x: u32, y: u32| v[(y * SIZE + x) as usize];
+    // The middle: |x| < R/2 and |y| < 0.8 (world), away from the silhouette and the ends.
+    let px = |w: f32| (w / 1.1 * SIZE as f32 / 2.0) as u32;
+    let (c, hx, hy) = (SIZE / 2, px(R / 2.0), px(0.8));
+    let (mut dx, mut dy, mut n) = (0.0f32, 0.0f32, 0.0f32);
+    let mut values = Vec::new();
+    for y in c - hy..c + hy {
+        for x in c - hx..c + hx {
+            dx += (at(x + 1, y) - at(x, y)).abs();
+            dy += (at(x, y + 1) - at(x, y)).abs();
+            n += 1.0;
+            values.push(at(x, y));
+        }
+    }
+    let mean = values.iter().sum::<f32>() / n;
+    let sd = (values.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / n).sqrt();
+    (dx / n, dy / n, sd)
+}
+
+#[test]
+fn curvature_flow_streaks_follow_the_principal_direction() {
+    // Around the cylinder (larger |κ|): streaks along x, so the flow varies little along x.
+    let (dx, dy, sd) = flow_gradients("max_curvature");
+    eprintln!("flow around: mean |∂x| {dx:.4}, |∂y| {dy:.4}, sd {sd:.3}");
+    assert!(sd > 0.05, "the flow is flat (sd {sd})");
+    assert!(dx < 0.4 * dy, "not streaked along x: |∂x| {dx}, |∂y| {dy}");
+    // Along the axis (smaller |κ|): streaks along y.
+    let (dx, dy, sd) = flow_gradients("min_curvature");
+    eprintln!("flow along the axis: mean |∂x| {dx:.4}, |∂y| {dy:.4}, sd {sd:.3}");
+    assert!(sd > 0.05, "the flow is flat (sd {sd})");
+    assert!(dy < 0.4 * dx, "not streaked along y: |∂x| {dx}, |∂y| {dy}");
+}

@@ -42,7 +42,9 @@ pub const DEPTH_FROM_TEXTURE: &str = shader_file!("depth_from_texture.wgsl");
 pub const OVER: &str = shader_file!("over.wgsl");
 pub const DISPLAY: &str = shader_file!("display.wgsl");
 pub const OVERLAY: &str = shader_file!("overlay.wgsl");
+pub const CURVATURE_FIELD: &str = shader_file!("curvature_field.wgsl");
 pub const HATCH_STROKES: &str = shader_file!("hatch_strokes.wgsl");
+pub const CURVATURE_FLOW: &str = shader_file!("curvature_flow.wgsl");
 pub const MASK_COPY: &str = shader_file!("mask_copy.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
@@ -125,7 +127,21 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         // Instanced quads with their own vertex stage (crate::overlay).
         ("overlay", vec![("overlay.wgsl", OVERLAY)]),
         // Compute tracing plus instanced segments (crate::hatch_strokes).
-        ("hatch_strokes", vec![("hatch_strokes.wgsl", HATCH_STROKES)]),
+        (
+            "hatch_strokes",
+            vec![
+                ("curvature_field.wgsl", CURVATURE_FIELD),
+                ("hatch_strokes.wgsl", HATCH_STROKES),
+            ],
+        ),
+        (
+            "curvature_flow",
+            vec![
+                ("fullscreen.wgsl", FULLSCREEN),
+                ("curvature_field.wgsl", CURVATURE_FIELD),
+                ("curvature_flow.wgsl", CURVATURE_FLOW),
+            ],
+        ),
         ("mask_copy", screen("mask_copy.wgsl", MASK_COPY)),
     ]
 }

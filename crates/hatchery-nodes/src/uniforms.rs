@@ -76,6 +76,7 @@ pub fn all() -> Vec<UniformLayout> {
         curvature_color::CurvatureColorUniforms::layout(),
         ridge_valley::RidgeValleyUniforms::layout(),
         hatch_strokes::HatchUniforms::layout(),
+        curvature_flow::FlowUniforms::layout(),
         UniformLayout {
             program: "curvature",
             ..raycast::RayUniforms::layout()

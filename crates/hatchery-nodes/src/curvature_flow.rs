@@ -1,0 +1,132 @@
+//! `CurvatureFlow`: noise advected along principal curvature directions (the tutorial's §1,
+//! Fig. 11/14; see shaders/curvature_flow.wgsl for the line integral convolution).
+
+use crate::screen_pass::{self, MASK_FORMAT};
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+crate::uniform_block! {
+    /// `Flow` of shaders/curvature_flow.wgsl: inverse view-projection; (width, height, steps
+    /// per half streamline, step px); (grain in world units, 1 = smaller |κ|, contrast, mean).
+    pub struct FlowUniforms in "curvature_flow" as "Flow" {
+        pub inv_view_proj: [[f32; 4]; 4],
+        pub frame: [f32; 4],
+        pub options: [f32; 4],
+    }
+}
+
+pub struct CurvatureFlowNode;
+
+impl Node<Value, Ctx> for CurvatureFlowNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "CurvatureFlow",
+            category: "Volume",
+            doc: "Flow along curvature directions (the tutorial's §1, Fig. 11/14): a line \
+                  integral convolution of 3-D value noise along Curvature's principal-direction \
+                  field in image space — each surface pixel averages the noise at the surface \
+                  points along its streamline (`length` pixels, RK2 steps of `step`), so the \
+                  streaks follow the larger-|κ| direction (or the smaller) and stay on the \
+                  surface as the view moves. A mask in [0, 1] (`mean` on average), 0 off the surface; \
+                  mix it with MixByMask or multiply a shaded image by it.",
+            inputs: vec![
+                PortSpec::input("curvature", PortType::Image, "Curvature's output"),
+                PortSpec::input(
+                    "gbuffer",
+                    PortType::GBuffer,
+                    "the surface (the G-buffer Curvature read)",
+                ),
+            ],
+            outputs: vec![PortSpec::output(
+                "flow",
+                PortType::Mask,
+                "streaks along the principal direction",
+            )],
+            params: vec![
+                ParamSpec::float("length", 20.0, 2.0, 200.0, "streamline length, pixels"),
+                ParamSpec::float("step", 1.0, 0.25, 4.0, "integration step, pixels"),
+                ParamSpec::choice(
+                    "direction",
+                    "max_curvature",
+                    &["max_curvature", "min_curvature"],
+                    "the principal direction of the larger or of the smaller |κ|",
+                ),
+                ParamSpec::float(
+                    "grain",
+                    1.0,
+                    1e-6,
+                    1e6,
+                    "noise cell size on the surface, world units (about a pixel's footprint)",
+                ),
+                ParamSpec::float("contrast", 1.0, 0.0, 4.0, "streak contrast"),
+                ParamSpec::float(
+                    "mean",
+                    0.5,
+                    0.0,
+                    1.0,
+                    "average output (e.g. 0.8 to multiply a colour image by the streaks)",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let curvature = inputs.require("curvature")?.image("curvature")?.clone();
+        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        let camera = &gbuffer.camera;
+        let size = (camera.width, camera.height);
+        if (curvature.texture.width(), curvature.texture.height()) != size {
+            return Err(NodeError::at_port(
+                "curvature",
+                format!(
+                    "is {}×{}, the G-buffer {}×{}: connect the Curvature of this G-buffer",
+                    curvature.texture.width(),
+                    curvature.texture.height(),
+                    size.0,
+                    size.1
+                ),
+            ));
+        }
+        let step = p.f32("step");
+        let uniforms = FlowUniforms {
+            inv_view_proj: camera.view_proj().inverse().to_cols_array_2d(),
+            frame: [
+                size.0 as f32,
+                size.1 as f32,
+                (0.5 * p.f32("length") / step).ceil().clamp(1.0, 256.0),
+                step,
+            ],
+            options: [
+                p.f32("grain"),
+                if p.choice("direction") == "min_curvature" {
+                    1.0
+                } else {
+                    0.0
+                },
+                p.f32("contrast"),
+                p.f32("mean"),
+            ],
+        };
+        let flow = screen_pass::render(
+            ctx,
+            "curvature_flow",
+            MASK_FORMAT,
+            size,
+            &[&curvature.texture, &gbuffer.depth],
+            Some(bytemuck::bytes_of(&uniforms)),
+        )
+        .map_err(|e| NodeError::new(e.to_string()))?;
+        Ok(vec![Value::Mask(Arc::new(Mask { texture: flow }))])
+    }
+}
