@@ -353,3 +353,94 @@ fn constant_curvature_draws_no_ridge_or_valley() {
         assert!(on * 100 <= m.data.len(), "{name}: {on} pixels on a sphere");
     }
 }
+
+#[test]
+fn curvature_color_maps_both_curvatures_through_a_2d_transfer_function() {
+    use hatchery_nodes::curvature_color::{SHAPE_MAP_SIZE, map_lookup, shape_map};
+    // The torus: κ1 = 1/r everywhere, κ2 from −0.66 to 1.2 (saddle outside, cap inside).
+    let (mut session, k, _, _) = run(field(|p| {
+        let rho = (p.x * p.x + p.y * p.y).sqrt();
+        0.28 - ((rho - 0.55).powi(2) + p.z * p.z).sqrt()
+    }));
+    let curv = export::to_array(&k, &session.ctx.gpu).unwrap();
+    // A 5×3 PNG map with distinct colours, and the built-in shape-class map.
+    let dir = std::env::temp_dir().join(format!("hatchery-map2d-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("map.png");
+    let picture = image::RgbaImage::from_fn(5, 3, |x, y| {
+        image::Rgba([(x * 60) as u8, (y * 120) as u8, (255 - x * 50) as u8, 255])
+    });
+    picture.save(&png).unwrap();
+    let png_texels: Vec<[f32; 4]> = picture
+        .pixels()
+        .map(|p| p.0.map(|v| v as f32 / 255.0))
+        .collect();
+    let range = 6.0;
+    for (map_param, texels, (w, h)) in [
+        (String::new(), shape_map(), (SHAPE_MAP_SIZE, SHAPE_MAP_SIZE)),
+        (png.to_string_lossy().into_owned(), png_texels, (5, 3)),
+    ] {
+        let out = common::run_node(
+            &mut session,
+            "CurvatureColor",
+            vec![("curvature", k.clone())],
+            &[
+                ("measure", ParamValue::Choice("k1_k2".into())),
+                ("map", ParamValue::Path(map_param.clone())),
+                ("range", ParamValue::Float(range)),
+            ],
+        );
+        let colour = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+        let (mut valid, mut distinct) = (0, std::collections::BTreeSet::new());
+        for i in 0..(SIZE * SIZE) as usize {
+            let c = &curv.data[i * 4..i * 4 + 4];
+            let got = &colour.data[i * 4..i * 4 + 4];
+            if c[2] < -5.0 {
+                assert!(got.iter().all(|&v| v == 0.0), "colour without a surface");
+                continue;
+            }
+            valid += 1;
+            let e = map_lookup(&texels, w, h, range as f32, [c[0], c[1]]);
+            let want = [e[0] * e[3], e[1] * e[3], e[2] * e[3], e[3]];
+            for ch in 0..4 {
+                assert!(
+                    (got[ch] - want[ch]).abs() <= 2.0 / 255.0,
+                    "map {map_param:?} at pixel {i} (κ {:?}): {got:?} vs {want:?}",
+                    &c[..2]
+                );
+            }
+            distinct.insert(
+                got[..3]
+                    .iter()
+                    .map(|v| (v * 255.0) as i32)
+                    .collect::<Vec<_>>(),
+            );
+        }
+        assert!(valid > 300, "{valid} surface pixels");
+        assert!(
+            distinct.len() > 20,
+            "only {} colours over the torus",
+            distinct.len()
+        );
+    }
+    // Without `tf`, the 1-D measures say what is missing.
+    let node = session.registry.node("CurvatureColor").unwrap();
+    let schema = node.schema();
+    let names: Vec<&'static str> = schema.inputs.iter().map(|p| p.name).collect();
+    let mut params: std::collections::BTreeMap<String, ParamValue> = schema
+        .params
+        .iter()
+        .map(|p| (p.name.to_owned(), p.default.clone()))
+        .collect();
+    params.insert("measure".into(), ParamValue::Choice("mean".into()));
+    let err = node
+        .execute(
+            &mut session.ctx,
+            &hatchery_graph::NodeInputs::new(names, vec![Some(k.clone()), None]),
+            &hatchery_graph::Params::new(params, None),
+        )
+        .err()
+        .expect("a 1-D measure without a transfer function");
+    assert_eq!(err.port.as_deref(), Some("tf"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
