@@ -444,3 +444,55 @@ fn curvature_color_maps_both_curvatures_through_a_2d_transfer_function() {
     assert_eq!(err.port.as_deref(), Some("tf"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn curvature_controlled_contours_keep_their_thickness_on_spheres_of_any_radius() {
+    // Kindlmann's test marks the points whose screen distance to a sphere's outline is at most
+    // T: a band `thickness` pixels wide at the outline, for a small and a large sphere alike.
+    let thickness = 3.0f32;
+    for r in [0.3f32, 0.8] {
+        let data = field(|p| r - p.length());
+        let (mut session, _, gbuffer, _) = run(data.clone());
+        let volume = Value::Volume(Arc::new(Volume::new(data)));
+        let out = common::run_node(
+            &mut session,
+            "CurvatureContours",
+            vec![("gbuffer", gbuffer.clone()), ("volume", volume)],
+            &[("thickness", ParamValue::Float(thickness as f64))],
+        );
+        let mask = export::to_array(&out[0], &session.ctx.gpu).unwrap().data;
+        let depth = export::to_array(&gbuffer, &session.ctx.gpu).unwrap().data;
+        let radius_px = r / 1.1 * SIZE as f32 / 2.0;
+        let centre = SIZE as f32 / 2.0;
+        // Band widths at both ends of the rows through the centre.
+        let mut widths = Vec::new();
+        for y in SIZE / 2 - 2..SIZE / 2 + 2 {
+            let row = |x: u32| (y * SIZE + x) as usize;
+            let surface: Vec<u32> = (0..SIZE).filter(|&x| depth[row(x) * 4] < 1.0).collect();
+            let (first, last) = (surface[0], *surface.last().unwrap());
+            let left = (first..SIZE).take_while(|&x| mask[row(x)] > 0.5).count();
+            let right = (0..=last).rev().take_while(|&x| mask[row(x)] > 0.5).count();
+            widths.extend([left as f32, right as f32]);
+        }
+        // Nothing well inside the band.
+        let mut inner = 0;
+        for (i, &m) in mask.iter().enumerate() {
+            let d = Vec2::new(
+                (i as u32 % SIZE) as f32 + 0.5 - centre,
+                (i as u32 / SIZE) as f32 + 0.5 - centre,
+            )
+            .length();
+            if d < radius_px - thickness - 1.5 && m > 0.5 {
+                inner += 1;
+            }
+        }
+        eprintln!("sphere r = {r} ({radius_px:.1} px): contour widths {widths:?}, {inner} inner");
+        for w in &widths {
+            assert!(
+                (w - thickness).abs() <= 1.0,
+                "r = {r}: contour {w} px wide, want {thickness} ± 1"
+            );
+        }
+        assert_eq!(inner, 0, "r = {r}: contour pixels inside the band");
+    }
+}

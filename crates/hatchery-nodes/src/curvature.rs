@@ -77,61 +77,94 @@ impl Node<Value, Ctx> for CurvatureNode {
     ) -> Result<Vec<Value>, NodeError> {
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let volume = inputs.require("volume")?.volume("volume")?.clone();
-        let camera = &gbuffer.camera;
-        let err = |e: GpuError| NodeError::new(e.to_string());
-        let pipeline = ctx
-            .cached("curvature.pipeline", |gpu| {
-                screen_pass::pipeline(gpu, "curvature", CURVATURE_FORMAT)
-            })
-            .map_err(err)?;
-        let sampler = linear_clamp_sampler(ctx).map_err(err)?;
-        let gpu = &ctx.gpu;
-        let v = &volume.data;
-        let texture = volume.texture(gpu).map_err(err)?;
-        let options = RayOptions::plain(1.0, false, 1.0, glam::Vec3::Z, Kernel::Fragment);
-        let info = TableInfo::plain();
-        let ray = RayUniforms::new(camera, v, &options, &info, 1.0, texture.texel_range);
-        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
-        let params = CurvatureUniforms {
-            step: [p.f32("step") * min_spacing, 0.0, 0.0, 0.0],
-        };
-        let uniform =
-            |label, bytes: &[u8]| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM);
-        let ray_buffer = uniform("curvature ray", bytemuck::bytes_of(&ray));
-        let params_buffer = uniform("curvature params", bytemuck::bytes_of(&params));
-        let volume_view = texture.texture.create_view(&Default::default());
-        let depth_view = gbuffer.depth.create_view(&wgpu::TextureViewDescriptor {
-            aspect: wgpu::TextureAspect::DepthOnly,
-            ..Default::default()
-        });
-        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("curvature"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: ray_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&volume_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::Sampler(&sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 20,
-                    resource: wgpu::BindingResource::TextureView(&depth_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 22,
-                    resource: params_buffer.as_entire_binding(),
-                },
-            ],
-        });
-        let size = (camera.width, camera.height);
-        let output = screen_pass::draw(ctx, "curvature", &pipeline, &group, CURVATURE_FORMAT, size);
+        let output = surface_pass(
+            ctx,
+            "curvature",
+            CURVATURE_FORMAT,
+            &gbuffer,
+            &volume,
+            p.f32("step"),
+            None,
+        )?;
         Ok(vec![Value::Image(Arc::new(Image { texture: output }))])
     }
+}
+
+/// Runs a fragment program of the curvature family (shaders/curvature_common.wgsl prepended)
+/// over the G-buffer's frame: the ray uniforms of `gbuffer`'s camera over `volume` (binding 0),
+/// the volume (1) and its sampler (2), the G-buffer depth (20), the finite-difference step
+/// `step_voxels` × the smallest spacing (22) and, if given, `extra` as the uniform at 23.
+pub fn surface_pass(
+    ctx: &mut Ctx,
+    program: &'static str,
+    format: wgpu::TextureFormat,
+    gbuffer: &crate::value::GBuffer,
+    volume: &crate::value::Volume,
+    step_voxels: f32,
+    extra: Option<&[u8]>,
+) -> Result<wgpu::Texture, NodeError> {
+    let camera = &gbuffer.camera;
+    let err = |e: GpuError| NodeError::new(e.to_string());
+    let pipeline = ctx
+        .cached(&format!("{program}.pipeline"), |gpu| {
+            screen_pass::pipeline(gpu, program, format)
+        })
+        .map_err(err)?;
+    let sampler = linear_clamp_sampler(ctx).map_err(err)?;
+    let gpu = &ctx.gpu;
+    let v = &volume.data;
+    let texture = volume.texture(gpu).map_err(err)?;
+    let options = RayOptions::plain(1.0, false, 1.0, glam::Vec3::Z, Kernel::Fragment);
+    let info = TableInfo::plain();
+    let ray = RayUniforms::new(camera, v, &options, &info, 1.0, texture.texel_range);
+    let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+    let params = CurvatureUniforms {
+        step: [step_voxels * min_spacing, 0.0, 0.0, 0.0],
+    };
+    let uniform = |label, bytes: &[u8]| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM);
+    let ray_buffer = uniform("curvature ray", bytemuck::bytes_of(&ray));
+    let params_buffer = uniform("curvature params", bytemuck::bytes_of(&params));
+    let extra_buffer = extra.map(|bytes| uniform("curvature extra", bytes));
+    let volume_view = texture.texture.create_view(&Default::default());
+    let depth_view = gbuffer.depth.create_view(&wgpu::TextureViewDescriptor {
+        aspect: wgpu::TextureAspect::DepthOnly,
+        ..Default::default()
+    });
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: ray_buffer.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 1,
+            resource: wgpu::BindingResource::TextureView(&volume_view),
+        },
+        wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::Sampler(&sampler),
+        },
+        wgpu::BindGroupEntry {
+            binding: 20,
+            resource: wgpu::BindingResource::TextureView(&depth_view),
+        },
+        wgpu::BindGroupEntry {
+            binding: 22,
+            resource: params_buffer.as_entire_binding(),
+        },
+    ];
+    if let Some(buffer) = &extra_buffer {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 23,
+            resource: buffer.as_entire_binding(),
+        });
+    }
+    let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(program),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    });
+    let size = (camera.width, camera.height);
+    Ok(screen_pass::draw(
+        ctx, program, &pipeline, &group, format, size,
+    ))
 }

@@ -6,6 +6,7 @@ pub mod camera;
 pub mod context;
 pub mod curvature;
 pub mod curvature_color;
+pub mod curvature_contours;
 pub mod curvature_flow;
 pub mod depth_peel;
 pub mod depth_test_mask;
@@ -109,6 +110,7 @@ pub fn registry() -> Registry {
     r.register(ridge_valley::RidgeValleyNode);
     r.register(hatch_strokes::HatchStrokesNode);
     r.register(curvature_flow::CurvatureFlowNode);
+    r.register(curvature_contours::CurvatureContoursNode);
     r.register(overlay::AnnotationOverlayNode);
     r.register(visual_conventions::ArrowNode);
     r.register(visual_conventions::FanNode);

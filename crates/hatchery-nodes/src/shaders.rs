@@ -33,7 +33,9 @@ pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
 pub const RAY_OBJECTS: &str = shader_file!("ray_objects.wgsl");
 pub const IMPORTANCE: &str = shader_file!("importance.wgsl");
 pub const SELECTION_RENDER: &str = shader_file!("selection_render.wgsl");
+pub const CURVATURE_COMMON: &str = shader_file!("curvature_common.wgsl");
 pub const CURVATURE: &str = shader_file!("curvature.wgsl");
+pub const CURVATURE_CONTOURS: &str = shader_file!("curvature_contours.wgsl");
 pub const CURVATURE_COLOR: &str = shader_file!("curvature_color.wgsl");
 pub const RIDGE_VALLEY: &str = shader_file!("ridge_valley.wgsl");
 pub const RAYCAST: &str = shader_file!("raycast.wgsl");
@@ -105,7 +107,17 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             vec![
                 ("fullscreen.wgsl", FULLSCREEN),
                 ("ray_common.wgsl", RAY_COMMON),
+                ("curvature_common.wgsl", CURVATURE_COMMON),
                 ("curvature.wgsl", CURVATURE),
+            ],
+        ),
+        (
+            "curvature_contours",
+            vec![
+                ("fullscreen.wgsl", FULLSCREEN),
+                ("ray_common.wgsl", RAY_COMMON),
+                ("curvature_common.wgsl", CURVATURE_COMMON),
+                ("curvature_contours.wgsl", CURVATURE_CONTOURS),
             ],
         ),
         ("importance", {

@@ -82,6 +82,15 @@ pub fn all() -> Vec<UniformLayout> {
             ..raycast::RayUniforms::layout()
         },
         UniformLayout {
+            program: "curvature_contours",
+            ..raycast::RayUniforms::layout()
+        },
+        UniformLayout {
+            program: "curvature_contours",
+            ..curvature::CurvatureUniforms::layout()
+        },
+        curvature_contours::ContourUniforms::layout(),
+        UniformLayout {
             program: "selection_render",
             ..raycast::RayUniforms::layout()
         },

@@ -1,0 +1,87 @@
+//! `CurvatureContours`: contours of constant image-space thickness from the normal curvature
+//! along the view direction (Kindlmann et al. 2003 §5, the tutorial's §1; see
+//! shaders/curvature_contours.wgsl for the test).
+
+use crate::curvature::surface_pass;
+use crate::screen_pass::MASK_FORMAT;
+use crate::value::Mask;
+use crate::{Ctx, Value};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+};
+use std::sync::Arc;
+
+crate::uniform_block! {
+    /// `ContourParams` of shaders/curvature_contours.wgsl: (thickness px, 0, 0, 0).
+    pub struct ContourUniforms in "curvature_contours" as "ContourParams" {
+        pub options: [f32; 4],
+    }
+}
+
+pub struct CurvatureContoursNode;
+
+impl Node<Value, Ctx> for CurvatureContoursNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "CurvatureContours",
+            category: "Volume",
+            doc: "Curvature-controlled contours (Kindlmann et al. 2003 §5, the tutorial's §1): \
+                  a pixel of the iso-surface is on the contour where |n·v| ≤ √(T κv (2 − T κv)), \
+                  κv the normal curvature along the view direction projected into the tangent \
+                  plane (from the volume's Hessian, as Curvature computes it) and T \
+                  `thickness` pixels at the point's depth, so the band is about `thickness` \
+                  pixels wide on screen whatever the curvature (a plain |n·v| threshold is thin \
+                  on sharp bends and thick on flat ones). No contour where the surface is \
+                  concave along the view. Connect the G-buffer of IsoSurfaceRaycast and its \
+                  volume.",
+            inputs: vec![
+                PortSpec::input("gbuffer", PortType::GBuffer, "the iso-surface's depth"),
+                PortSpec::input(
+                    "volume",
+                    PortType::Volume,
+                    "the scalar field it is a level of",
+                ),
+            ],
+            outputs: vec![PortSpec::output(
+                "mask",
+                PortType::Mask,
+                "1 on the contours",
+            )],
+            params: vec![
+                ParamSpec::float("thickness", 2.0, 0.25, 32.0, "contour width, pixels"),
+                ParamSpec::float(
+                    "step",
+                    1.0,
+                    0.25,
+                    8.0,
+                    "finite-difference step of the Hessian, voxels (as Curvature's)",
+                ),
+            ],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        p: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        let volume = inputs.require("volume")?.volume("volume")?.clone();
+        let uniforms = ContourUniforms {
+            options: [p.f32("thickness"), 0.0, 0.0, 0.0],
+        };
+        let mask = surface_pass(
+            ctx,
+            "curvature_contours",
+            MASK_FORMAT,
+            &gbuffer,
+            &volume,
+            p.f32("step"),
+            Some(bytemuck::bytes_of(&uniforms)),
+        )?;
+        Ok(vec![Value::Mask(Arc::new(Mask { texture: mask }))])
+    }
+}

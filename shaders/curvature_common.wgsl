@@ -1,0 +1,57 @@
+// Shared by Curvature and CurvatureContours (prepended after fullscreen and ray_common): the
+// G-buffer depth, the finite-difference step, the volume's world gradient and Hessian at a
+// surface point (central differences of the gradient along the world axes at ±h, symmetrised),
+// and the screen angle of a world direction.
+
+@group(0) @binding(20) var gbuffer_depth: texture_depth_2d;
+
+// θ of a pixel without a surface (outside [−π/2, π/2)).
+const NONE: f32 = -10.0;
+
+// The screen angle of world direction d, wrapped into [−π/2, π/2) (a direction, not an
+// orientation).
+fn screen_angle(d: vec3<f32>) -> f32 {
+    let dv = (ray.view * vec4<f32>(d, 0.0)).xyz;
+    var theta = atan2(-dv.y, dv.x);
+    if theta >= 1.5707964 {
+        theta -= 3.1415927;
+    } else if theta < -1.5707964 {
+        theta += 3.1415927;
+    }
+    return theta;
+}
+
+struct CurvatureParams {
+    // x = finite-difference step h (world units).
+    step: vec4<f32>,
+};
+@group(0) @binding(22) var<uniform> curvature_params: CurvatureParams;
+
+fn world_gradient(p: vec3<f32>) -> vec3<f32> {
+    return gradient_at((ray.to_voxel * vec4<f32>(p, 1.0)).xyz);
+}
+
+// The surface point under the fragment (world), w = 0 where the G-buffer holds no surface.
+fn surface_point(position: vec4<f32>) -> vec4<f32> {
+    let z = textureLoad(gbuffer_depth, pixel_of(position), 0);
+    if z >= 1.0 {
+        return vec4<f32>(0.0);
+    }
+    let ndc = vec2<f32>(position.x / ray.frame.x * 2.0 - 1.0, 1.0 - position.y / ray.frame.y * 2.0);
+    let h4 = ray.inv_view_proj * vec4<f32>(ndc, z, 1.0);
+    return vec4<f32>(h4.xyz / h4.w, 1.0);
+}
+
+// The symmetrised Hessian of the volume at world point p (central differences of the gradient
+// at ±h along the world axes).
+fn hessian_at(p: vec3<f32>) -> mat3x3<f32> {
+    let h = curvature_params.step.x;
+    var columns: array<vec3<f32>, 3>;
+    for (var axis = 0; axis < 3; axis++) {
+        var e = vec3<f32>(0.0);
+        e[axis] = h;
+        columns[axis] = (world_gradient(p + e) - world_gradient(p - e)) / (2.0 * h);
+    }
+    let hessian = mat3x3<f32>(columns[0], columns[1], columns[2]);
+    return 0.5 * (hessian + transpose(hessian));
+}
