@@ -44,5 +44,5 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
         v = vec2<f32>(0.0, 1.0);
     }
     let d = normalize(v.x * t1 + v.y * t2);
-    return vec4<f32>(k1, k2, screen_angle(d), screen_angle(cross(n, d)));
+    return vec4<f32>(k1, k2, screen_angle(p, d), screen_angle(p, cross(n, d)));
 }

@@ -8,11 +8,16 @@
 // θ of a pixel without a surface (outside [−π/2, π/2)).
 const NONE: f32 = -10.0;
 
-// The screen angle of world direction d, wrapped into [−π/2, π/2) (a direction, not an
-// orientation).
-fn screen_angle(d: vec3<f32>) -> f32 {
-    let dv = (ray.view * vec4<f32>(d, 0.0)).xyz;
-    var theta = atan2(-dv.y, dv.x);
+// The screen angle of world direction d at world point p, wrapped into [−π/2, π/2) (a
+// direction, not an orientation): p and p + ε·d (ε = the finite-difference step) projected to
+// the screen (x right, y down), so perspective foreshortening off the view axis is included.
+fn screen_angle(p: vec3<f32>, d: vec3<f32>) -> f32 {
+    // One finite-difference step: far enough for f32 precision, near enough to be linear.
+    let eps = max(curvature_params.step.x, 1e-6);
+    let a = ray.view_proj * vec4<f32>(p, 1.0);
+    let b = ray.view_proj * vec4<f32>(p + eps * d, 1.0);
+    let s = b.xy / b.w - a.xy / a.w;
+    var theta = atan2(-s.y * ray.frame.y, s.x * ray.frame.x);
     if theta >= 1.5707964 {
         theta -= 3.1415927;
     } else if theta < -1.5707964 {

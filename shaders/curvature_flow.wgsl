@@ -2,7 +2,7 @@
 // tutorial's §1, Hadwiger's Fig. 11/14 "flow along curvature directions"), as a line integral
 // convolution: each surface pixel averages a 3-D value noise, evaluated at the world positions
 // of the points along its streamline through Curvature's direction field (RK2 steps of `step`
-// pixels, `length`/2 each way), so the streaks follow the chosen principal direction and stay
+// pixels, `length`/2 each way, ending at depth jumps), so the streaks follow the chosen principal direction and stay
 // attached to the surface as the view moves (the noise lives in world space, not on the screen).
 // Output: a mask in [0, 1] (`mean` on average, contrast restored by √n), 0 off the surface.
 
@@ -63,6 +63,12 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     if here.w == 0.0 || textureLoad(curvature, pixel_of(position), 0).z < -5.0 {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
+    // The largest world distance one step may cover on a continuous surface: eight times a
+    // pixel's footprint at this depth (grazing surfaces stretch a pixel by 1/|n·v|).
+    let ndc = vec2<f32>(p.x / flow.frame.x * 2.0 - 1.0, 1.0 - p.y / flow.frame.y * 2.0);
+    let z = textureLoad(depth, pixel_of(position), 0);
+    let side4 = flow.inv_view_proj * vec4<f32>(ndc + vec2<f32>(2.0 / flow.frame.x, 0.0), z, 1.0);
+    let jump = 8.0 * flow.frame.w * distance(side4.xyz / side4.w, here.xyz);
     var sum = noise(here.xyz);
     var n = 1.0;
     let start = direction_field(curvature, p, smaller);
@@ -70,6 +76,7 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         for (var sense = -1.0; sense <= 1.0; sense += 2.0) {
             var q = p;
             var d = sense * start;
+            var previous = here.xyz;
             for (var i = 0u; i < u32(flow.frame.z); i++) {
                 let k1 = align(direction_field(curvature, q, smaller), d);
                 let k2 = align(direction_field(curvature, q + 0.5 * flow.frame.w * k1, smaller), k1);
@@ -81,6 +88,12 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
                 if s.w == 0.0 || any(next < vec2<f32>(0.0)) || any(next >= flow.frame.xy) {
                     break;
                 }
+                // A jump in depth (a silhouette or fold): the streamline ends there rather than
+                // carrying noise across onto the surface behind.
+                if distance(s.xyz, previous) > jump {
+                    break;
+                }
+                previous = s.xyz;
                 sum += noise(s.xyz);
                 n += 1.0;
                 q = next;

@@ -9,7 +9,8 @@
 // stroke is integrated both ways with RK4 in image space through the direction field of
 // Curvature's image (the larger-|κ| principal direction, or the smaller), each half `steps`
 // steps of `step` pixels, stopping where the surface ends, the depth jumps (a fold or a
-// silhouette), the field turns by more than 45° in one step, or at the frame's edge. Where the
+// silhouette), the field turns by more than 45° in one step, or at the frame's edge; strokes
+// shorter than two steps are dropped (they would taper to nothing). Where the
 // darkness exceeds `cross`, a second stroke follows the other principal direction
 // (cross-hatching). `finish` writes the indirect draw of the strokes' segments.
 //
@@ -23,14 +24,14 @@ struct Hatch {
     // x, y = frame width and height (px); z = RK4 step (px); w = steps per half stroke.
     frame: vec4<f32>,
     // x = density; y = cross-hatching darkness threshold (≥ 1: none); z = depth tolerance
-    // (world units); w = seed salt.
+    // (world units); w unused.
     options: vec4<f32>,
     // x = stroke width (px); y = taper (fraction of the length); z = 0 follow the larger |κ|,
     // 1 the smaller; w = most strokes.
     shape: vec4<f32>,
     // x = candidate seeds; y = 1 when a tone mask is bound (else headlight Lambert from the
-    // G-buffer normal); z, w unused.
-    counts: vec4<f32>,
+    // G-buffer normal); z = seed salt; w unused.
+    counts: vec4<u32>,
 };
 
 struct Stroke {
@@ -151,16 +152,21 @@ fn trace_stroke(seed: u32, p: vec2<f32>, other: bool) {
         back = trace_half(base, p, -heading, -1, other);
         ahead = trace_half(base, p, heading, 1, other);
     }
+    if back + ahead < 2u {
+        // Shorter than two steps (a seed at a silhouette or fold): it would taper to nothing.
+        back = 0u;
+        ahead = 0u;
+    }
     strokes[slot] = Stroke(seed, steps() - back, steps() + ahead, select(0u, 1u, other));
 }
 
 @compute @workgroup_size(64)
 fn trace(@builtin(global_invocation_id) gid: vec3<u32>) {
     let id = gid.x + gid.y * 65535u * 64u;
-    if id >= u32(hatch.counts.x) {
+    if id >= hatch.counts.x {
         return;
     }
-    let u = random(id ^ u32(hatch.options.w));
+    let u = random(id ^ hatch.counts.z);
     let density = hatch.options.x;
     if u >= density {
         return;
@@ -195,7 +201,7 @@ fn trace(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     var brightness: f32;
-    if hatch.counts.y > 0.5 {
+    if hatch.counts.y == 1u {
         brightness = textureLoad(tone, t, 0).r;
     } else {
         brightness = max(textureLoad(normals, t, 0).z, 0.0);
@@ -230,8 +236,11 @@ struct StrokeOut {
 
 // Half width at point index k of a stroke with valid points first..=last.
 fn half_width(k: u32, first: u32, last: u32) -> f32 {
+    let taper = hatch.shape.y;
+    if taper <= 0.0 {
+        return 0.5 * hatch.shape.x;
+    }
     let t = f32(k - first) / max(f32(last - first), 1.0);
-    let taper = max(hatch.shape.y, 1e-3);
     return 0.5 * hatch.shape.x * clamp(min(t, 1.0 - t) / taper, 0.0, 1.0);
 }
 

@@ -357,7 +357,8 @@ fn constant_curvature_draws_no_ridge_or_valley() {
 #[test]
 fn curvature_color_maps_both_curvatures_through_a_2d_transfer_function() {
     use hatchery_nodes::curvature_color::{SHAPE_MAP_SIZE, map_lookup, shape_map};
-    // The torus: κ1 = 1/r everywhere, κ2 from −0.66 to 1.2 (saddle outside, cap inside).
+    // The torus: κ1 = 1/r everywhere, κ2 from −0.66 (the inner side: saddle) to 1.2 (the outer
+    // side: cap).
     let (mut session, k, _, _) = run(field(|p| {
         let rho = (p.x * p.x + p.y * p.y).sqrt();
         0.28 - ((rho - 0.55).powi(2) + p.z * p.z).sqrt()
@@ -423,6 +424,54 @@ fn curvature_color_maps_both_curvatures_through_a_2d_transfer_function() {
             distinct.len()
         );
     }
+    // Orientation, by hand: a 2×2 map (top-left red, top-right green, bottom-left blue,
+    // bottom-right white) with a tiny range clamps every pixel to a corner: κ1 > 0 is the right
+    // column, κ2 > 0 the top row — caps (outer side) green, saddles (inner side) white.
+    let corners = image::RgbaImage::from_fn(2, 2, |x, y| match (x, y) {
+        (0, 0) => image::Rgba([255, 0, 0, 255]),
+        (1, 0) => image::Rgba([0, 255, 0, 255]),
+        (0, 1) => image::Rgba([0, 0, 255, 255]),
+        _ => image::Rgba([255, 255, 255, 255]),
+    });
+    let corner_png = dir.join("corners.png");
+    corners.save(&corner_png).unwrap();
+    let out = common::run_node(
+        &mut session,
+        "CurvatureColor",
+        vec![("curvature", k.clone())],
+        &[
+            ("measure", ParamValue::Choice("k1_k2".into())),
+            (
+                "map",
+                ParamValue::Path(corner_png.to_string_lossy().into_owned()),
+            ),
+            ("range", ParamValue::Float(1e-3)),
+        ],
+    );
+    let colour = export::to_array(&out[0], &session.ctx.gpu).unwrap();
+    let (mut caps, mut saddles) = (0, 0);
+    for i in 0..(SIZE * SIZE) as usize {
+        let c = &curv.data[i * 4..i * 4 + 4];
+        if c[2] < -5.0 || c[1].abs() < 0.1 {
+            continue;
+        }
+        let got = &colour.data[i * 4..i * 4 + 3];
+        let want: [f32; 3] = if c[1] > 0.0 {
+            caps += 1;
+            [0.0, 1.0, 0.0]
+        } else {
+            saddles += 1;
+            [1.0, 1.0, 1.0]
+        };
+        for ch in 0..3 {
+            assert!(
+                (got[ch] - want[ch]).abs() <= 2.0 / 255.0,
+                "pixel {i} (κ {:?}): {got:?}, want {want:?}",
+                &c[..2]
+            );
+        }
+    }
+    assert!(caps > 50 && saddles > 20, "{caps} caps, {saddles} saddles");
     // Without `tf`, the 1-D measures say what is missing.
     let node = session.registry.node("CurvatureColor").unwrap();
     let schema = node.schema();

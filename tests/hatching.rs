@@ -367,6 +367,8 @@ fn save_svg_writes_one_polyline_per_stroke() {
         panic!("no strokes")
     };
     let lines = strokes.lines(&session.ctx.gpu).unwrap().to_vec();
+    let errors = session.ctx.gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:?}");
     let dir = std::env::temp_dir().join(format!("hatchery-hatching-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("strokes.svg");
@@ -385,14 +387,10 @@ fn save_svg_writes_one_polyline_per_stroke() {
         .descendants()
         .filter(|n| n.has_tag_name("path"))
         .collect();
-    let with_points = lines.iter().filter(|l| l.points.len() >= 2).count();
-    assert!(with_points > 10);
-    assert!(
-        paths.len() >= with_points && paths.len() <= lines.len(),
-        "{} paths for {} strokes ({with_points} with a segment)",
-        paths.len(),
-        lines.len()
-    );
+    // `lines` holds the strokes with at least one segment: one path each.
+    assert!(lines.len() > 10);
+    assert!(lines.iter().all(|l| l.points.len() >= 2));
+    assert_eq!(paths.len(), lines.len(), "one path per stroke");
     // The first stroke's first point is where the SVG's first path starts.
     let first = lines.iter().find(|l| l.points.len() >= 2).unwrap();
     let d = paths[0].attribute("d").unwrap();
@@ -462,4 +460,83 @@ fn curvature_flow_streaks_follow_the_principal_direction() {
     eprintln!("flow along the axis: mean |∂x| {dx:.4}, |∂y| {dy:.4}, sd {sd:.3}");
     assert!(sd > 0.05, "the flow is flat (sd {sd})");
     assert!(dy < 0.4 * dx, "not streaked along y: |∂x| {dx}, |∂y| {dy}");
+}
+
+#[test]
+fn strokes_follow_the_projected_circumferential_direction_in_perspective() {
+    // Seen in perspective the circles around the cylinder project to curves (ellipse arcs above
+    // and below the eye level): the expected screen direction at a stroke point is the
+    // projection of the circumferential tangent at its surface point.
+    let mut session = session();
+    let volume = cylinder();
+    let camera_value = camera(20.0, false);
+    let Value::Camera(cam) = &camera_value else {
+        unreachable!()
+    };
+    let cam = cam.as_ref().clone();
+    let surface = surface(&mut session, &volume, camera_value);
+    let dark = tone(&session, 0.0);
+    let (_, strokes) = hatch(
+        &mut session,
+        &surface,
+        Some(dark),
+        &[
+            ("density", ParamValue::Float(0.3)),
+            ("cross_hatching", ParamValue::Float(1.0)),
+        ],
+    );
+    let depth = export::to_array(&surface.gbuffer, &session.ctx.gpu)
+        .unwrap()
+        .data;
+    let view_proj = cam.view_proj();
+    let inverse = view_proj.inverse();
+    let to_screen = |p: Vec3| {
+        let n = view_proj.project_point3(p);
+        Vec2::new(
+            (n.x + 1.0) * 0.5 * SIZE as f32,
+            (1.0 - n.y) * 0.5 * SIZE as f32,
+        )
+    };
+    let (mut total, mut within, mut tilted) = (0.0f32, 0.0f32, 0.0f32);
+    for line in &strokes {
+        for pair in line.points.windows(2) {
+            let mid = 0.5 * (pair[0] + pair[1]);
+            let (x, y) = (mid.x as u32, mid.y as u32);
+            let d = depth[((y * SIZE + x) * 4) as usize];
+            if d >= 1.0 {
+                continue;
+            }
+            let ndc = Vec2::new(
+                mid.x / SIZE as f32 * 2.0 - 1.0,
+                1.0 - mid.y / SIZE as f32 * 2.0,
+            );
+            let p = inverse.project_point3(ndc.extend(d));
+            let t = Vec3::new(-p.z, 0.0, p.x).normalize();
+            let expected = (to_screen(p + 0.01 * t) - to_screen(p)).normalize();
+            let got = pair[1] - pair[0];
+            let length = got.length();
+            let sin = (expected.perp_dot(got) / length.max(1e-9)).abs().min(1.0);
+            total += length;
+            if sin.asin().to_degrees() <= 5.0 {
+                within += length;
+            }
+            // How far from horizontal the expected direction is (perspective at work).
+            tilted = tilted.max(expected.y.abs().asin().to_degrees());
+        }
+    }
+    eprintln!(
+        "perspective: {} strokes, {:.1} % of their length within 5° of the projected \
+         circumferential direction (which tilts up to {tilted:.1}° from horizontal)",
+        strokes.len(),
+        100.0 * within / total
+    );
+    assert!(
+        tilted > 3.0,
+        "the view shows no perspective tilt ({tilted:.1}°)"
+    );
+    assert!(
+        within >= 0.95 * total,
+        "{:.1} % within 5°",
+        100.0 * within / total
+    );
 }

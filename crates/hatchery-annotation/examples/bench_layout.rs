@@ -6,8 +6,8 @@
 //! `cargo run --release -p hatchery-annotation --example bench_layout`
 //!
 //! Measured on the 2-core development machine (shared, so ±40 % between runs): from scratch
-//! median 0.39–0.53 ms (90 % 0.78–0.93 ms; 69 iterations, all 30 labels shown), from the previous
-//! frame median 0.14–0.20 ms. Before step 3 moved by the overlap depth from scratch
+//! median 0.36–0.37 ms (90 % 0.63–0.64 ms; 85 iterations, all 30 labels shown), from the previous
+//! frame median 0.12 ms. Before step 3 moved by the overlap depth from scratch
 //! (`LayoutParams::overlap_shift`), from scratch took 1.3–2.0 ms (311 iterations, 28.9 shown).
 
 use glam::camera::rh::{proj::directx, view::look_at_mat4};

@@ -563,8 +563,9 @@ impl<'a> Solver<'a> {
                     self.t[i] = (self.t[i] + step * push[i].signum() as f32).rem_euclid(1.0);
                     self.update(i);
                     push[i] = 0;
-                    reach[i] = 0.0;
                 }
+                // Also where the pushes cancelled: the depth is this iteration's only.
+                reach[i] = 0.0;
             }
             self.iterations += 1;
             if !changed {

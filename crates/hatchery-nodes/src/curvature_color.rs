@@ -1,5 +1,6 @@
 //! `CurvatureColor`: curvature colour mapping (Hadwiger, the tutorial's §1 Fig. 10) — a measure
-//! of the principal curvatures through a 1-D transfer function (shaders/curvature_color.wgsl).
+//! of the principal curvatures through a 1-D transfer function, or both through a 2-D (κ1, κ2)
+//! map (shaders/curvature_color.wgsl).
 
 use crate::screen_pass::{self, IMAGE_FORMAT};
 use crate::value::{Image, TransferFunction};

@@ -25,7 +25,7 @@ crate::uniform_block! {
         pub frame: [f32; 4],
         pub options: [f32; 4],
         pub shape: [f32; 4],
-        pub counts: [f32; 4],
+        pub counts: [u32; 4],
     }
 }
 
@@ -63,7 +63,7 @@ pub struct Strokes {
 }
 
 impl Strokes {
-    /// The strokes as polylines of at least two points (read back from the GPU once).
+    /// The strokes as polylines of at least three points (read back from the GPU once).
     pub fn lines(&self, gpu: &GpuContext) -> Result<&[StrokeLine], String> {
         self.lines
             .get_or_init(|| self.read_back(gpu))
@@ -72,29 +72,45 @@ impl Strokes {
     }
 
     fn read_back(&self, gpu: &GpuContext) -> Result<Vec<StrokeLine>, String> {
-        let read = |buffer: &wgpu::Buffer| -> Result<Vec<u8>, String> {
+        // Copies the first `bytes` of `buffer` (rounded up to the copy alignment) and maps them.
+        let read = |buffer: &wgpu::Buffer, bytes: u64| -> Result<Vec<u8>, String> {
+            let size = bytes.div_ceil(4).max(1) * 4;
+            let size = size.min(buffer.size());
             let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("strokes readback"),
-                size: buffer.size(),
+                size,
                 usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+            encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
             gpu.queue.submit([encoder.finish()]);
             gpu.map_buffer(&staging)
         };
-        let count = u32::from_le_bytes(read(&self.counter)?[..4].try_into().unwrap_or_default())
+        let counter = read(&self.counter, 4)?;
+        let count = counter
+            .get(..4)
+            .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .min(self.max_strokes) as usize;
-        let headers: Vec<u32> = bytemuck::pod_collect_to_vec(&read(&self.headers)?);
-        let points: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&read(&self.points)?);
+        if count == 0 {
+            return Ok(Vec::new());
+        }
         let slots = self.slots as usize;
+        let headers: Vec<u32> =
+            bytemuck::pod_collect_to_vec(&read(&self.headers, 16 * count as u64)?);
+        let points: Vec<[f32; 2]> =
+            bytemuck::pod_collect_to_vec(&read(&self.points, 8 * (count * slots) as u64)?);
+        if headers.len() < 4 * count || points.len() < count * slots {
+            return Err("the strokes read back from the GPU are incomplete".into());
+        }
         Ok((0..count)
-            // A seed on a silhouette or a fold can stop at once: no segment, nothing drawn.
+            // A seed on a silhouette or a fold stops at once: the shader leaves such strokes
+            // (under two steps) empty, and nothing is drawn for them.
             .filter(|&s| headers[4 * s + 2] > headers[4 * s + 1])
             .map(|s| {
                 let h = &headers[4 * s..4 * s + 4];
-                let (first, last) = (h[1] as usize, h[2] as usize);
+                let last = (h[2] as usize).min(slots - 1);
+                let first = (h[1] as usize).min(last);
                 StrokeLine {
                     seed: h[0],
                     cross: h[3] == 1,
@@ -223,7 +239,13 @@ impl Node<Value, Ctx> for HatchStrokesNode {
                     1.0,
                     "chance that a seed at full darkness draws a stroke",
                 ),
-                ParamSpec::float("length", 24.0, 2.0, 256.0, "stroke length, pixels"),
+                ParamSpec::float(
+                    "length",
+                    24.0,
+                    2.0,
+                    256.0,
+                    "stroke length, pixels (at most 256 RK4 steps)",
+                ),
                 ParamSpec::float(
                     "width",
                     1.2,
@@ -312,6 +334,19 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             .map_err(err)?;
 
         let vertex_count = seeds.data.positions.len() as u32;
+        // The seeds are read as one storage binding (24 bytes per vertex).
+        let limit = ctx.gpu.device.limits().max_storage_buffer_binding_size;
+        if 24 * vertex_count as u64 > limit {
+            return Err(NodeError::at_port(
+                "seeds",
+                format!(
+                    "{vertex_count} vertices ({} bytes) exceed the adapter's storage binding \
+                     limit of {limit} bytes (max_storage_buffer_binding_size); decimate the \
+                     mesh",
+                    24 * vertex_count as u64
+                ),
+            ));
+        }
         let diagonal = seeds
             .data
             .bounds()
@@ -336,7 +371,7 @@ impl Node<Value, Ctx> for HatchStrokesNode {
                     p.f32("cross_hatching")
                 },
                 p.f32("depth_tolerance") * diagonal,
-                (p.int("seed") as u32).wrapping_mul(0x9E37_79B9) as f32,
+                0.0,
             ],
             shape: [
                 p.f32("width"),
@@ -349,10 +384,10 @@ impl Node<Value, Ctx> for HatchStrokesNode {
                 max_strokes as f32,
             ],
             counts: [
-                vertex_count as f32,
-                if tone.is_some() { 1.0 } else { 0.0 },
-                0.0,
-                0.0,
+                vertex_count,
+                u32::from(tone.is_some()),
+                (p.int("seed") as u32).wrapping_mul(0x9E37_79B9),
+                0,
             ],
         };
         let blank = ctx.blank_texture();

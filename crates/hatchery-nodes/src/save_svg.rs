@@ -229,6 +229,15 @@ impl Node<Value, Ctx> for SaveSvgNode {
         }
         if let Some(s) = inputs.get("strokes") {
             let s = s.strokes("strokes")?;
+            if s.frame != (width, height) {
+                return Err(NodeError::at_port(
+                    "strokes",
+                    format!(
+                        "traced in a {}×{} frame, the figure is {width}×{height}",
+                        s.frame.0, s.frame.1
+                    ),
+                ));
+            }
             let stroke = Stroke::new(color(p.color("strokes_color")), s.width);
             for line in s
                 .lines(&ctx.gpu)
