@@ -34,6 +34,11 @@ fn style_sample(layer: i32, nxy: vec2<f32>, lod: f32) -> vec4<f32> {
     return textureSampleLevel(styles, linear_clamp, uv, layer, lod);
 }
 
+// Schlick's rational approximation of x^n for x in [0, 1], n ≥ 0 (1 for n = 0 and x > 0).
+fn schlick_pow(x: f32, n: f32) -> f32 {
+    return x / max(n - n * x + x, 1e-30);
+}
+
 // Eq. 5: the opacity `a` of a sample at world position p with Phong term s, gradient magnitude
 // g_norm ∈ [0, 1], after the accumulated opacity `alpha_before` (eye position from the uniforms;
 // the near plane for orthographic cameras, p0 on the ray).
@@ -44,6 +49,20 @@ fn context_preserving(a: f32, s: f32, g_norm: f32, p: vec3<f32>, p0: vec3<f32>, 
     }
     let dist = clamp((length(p - eye) - ray.context.z) / max(ray.context.w - ray.context.z, 1e-20), 0.0, 1.0);
     let base = ray.context.x * s * (1.0 - dist) * (1.0 - alpha_before);
+    if ray.eye.w > 0.5 {
+        // The paper's §6: Schlick's x^n ≈ x / (n − n·x + x) for both exponentiations (eq. 6–7),
+        // on [0, 1]; a base above 1 keeps pow for the inner one.
+        if base <= 0.0 {
+            return a;
+        }
+        var e: f32;
+        if base <= 1.0 {
+            e = schlick_pow(base, ray.context.y);
+        } else {
+            e = pow(base, ray.context.y);
+        }
+        return a * schlick_pow(clamp(g_norm, 0.0, 1.0), e);
+    }
     var exponent = 0.0;
     if base > 0.0 {
         exponent = pow(base, ray.context.y);

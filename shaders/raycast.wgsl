@@ -206,6 +206,8 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
 
         var c = vec3<f32>(0.0);
         var a = 0.0;
+        // Eq. 3's Phong term, computed once for the colour and eq. 5.
+        var phong = 1.0;
         if shading == 4 {
             // κv: angle between successive normals over the step (§3.3).
             var kappa_v = 0.0;
@@ -220,7 +222,8 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             c = entry.rgb;
             a = entry.a;
             if shading == 1 || shading == 3 {
-                c = clamp(c * phong_term(n, l, hv), vec3<f32>(0.0), vec3<f32>(1.0));
+                phong = phong_term(n, l, hv);
+                c = clamp(c * phong, vec3<f32>(0.0), vec3<f32>(1.0));
             }
         }
         // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
@@ -234,7 +237,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         }
         if shading == 3 {
             // Context-preserving opacity, eq. 5 (applied to the corrected opacity).
-            a = context_preserving(a, phong_term(n, l, hv), g_norm, p, p0, alpha);
+            a = context_preserving(a, phong, g_norm, p, p0, alpha);
         }
         color += (1.0 - alpha) * a * c;
         alpha += (1.0 - alpha) * a;

@@ -228,6 +228,26 @@ fn gpu_ray_caster_matches_the_cpu_reference_on_procedural_volumes() {
             false,
             Mode::Dvr,
             Shading::ContextPreserving {
+                fast_exponent: false,
+                kappa_t: 2.0,
+                kappa_s: 0.5,
+                ambient: 0.15,
+                diffuse: 0.85,
+                specular: 0.4,
+                exponent: 32.0,
+            },
+            "context_preserving",
+            0.5,
+        ),
+        (
+            // The paper's fast exponentiation (§6), against the CPU model with the same
+            // approximation: the same tolerance as the exact model.
+            "sphere_context_preserving_fast_persp",
+            &sphere,
+            false,
+            Mode::Dvr,
+            Shading::ContextPreserving {
+                fast_exponent: true,
                 kappa_t: 2.0,
                 kappa_s: 0.5,
                 ambient: 0.15,
@@ -265,11 +285,19 @@ fn gpu_ray_caster_matches_the_cpu_reference_on_procedural_volumes() {
             Mode::Mip => ("mip", 0.0),
             Mode::Iso(v) => ("iso", v),
         };
+        let fast = matches!(
+            shading,
+            Shading::ContextPreserving {
+                fast_exponent: true,
+                ..
+            }
+        );
         let extra = [
             ("iso", ParamValue::Float(iso as f64)),
             ("kappa_t", ParamValue::Float(2.0)),
             ("kappa_s", ParamValue::Float(0.5)),
             ("lighting_model", ParamValue::Choice("phong_contour".into())),
+            ("fast_exponent", ParamValue::Bool(fast)),
         ];
         let params = node_params(mode_name, shading_name, step, &extra);
         let gpu_value = raycast(

@@ -389,6 +389,7 @@ fn shading_variants_are_consistent() {
         exponent: 16.0,
     };
     let context = |kappa_t: f32| Shading::ContextPreserving {
+        fast_exponent: false,
         kappa_t,
         kappa_s: 0.5,
         ambient: 0.2,
@@ -485,6 +486,7 @@ fn perspective_images_are_mirror_symmetric() {
     // Context-preserving with a perspective eye: finite and within [0, 1], and at most as
     // opaque as the same render without it.
     let cp = Shading::ContextPreserving {
+        fast_exponent: false,
         kappa_t: 2.0,
         kappa_s: 0.5,
         ambient: 0.2,

@@ -73,6 +73,8 @@ pub enum Shading {
     ContextPreserving {
         kappa_t: f32,
         kappa_s: f32,
+        /// Schlick's approximation of the exponentiations (`fast_exponent`).
+        fast_exponent: bool,
         ambient: f32,
         diffuse: f32,
         specular: f32,
@@ -479,6 +481,7 @@ impl<'a> Caster<'a> {
                 Shading::ContextPreserving {
                     kappa_t,
                     kappa_s,
+                    fast_exponent,
                     ambient,
                     diffuse,
                     specular,
@@ -496,7 +499,12 @@ impl<'a> Caster<'a> {
                         *exponent,
                     );
                     c = (c * s).clamp(Vec3::ZERO, Vec3::ONE);
-                    alpha = context_preserving_alpha(
+                    let eq5 = if *fast_exponent {
+                        hatchery_data::lighting::context_preserving_alpha_fast
+                    } else {
+                        context_preserving_alpha
+                    };
+                    alpha = eq5(
                         alpha,
                         self.gradient_norm(grad),
                         *kappa_t,

@@ -169,6 +169,36 @@ pub fn context_preserving_alpha(
     }
 }
 
+/// [`context_preserving_alpha`] with the paper's fast exponentiation (§6, eq. 6–7): Schlick's
+/// x^n ≈ x / (n − n·x + x) for both powers — the inner (κt·s·(1 − d)·(1 − α))^κs where its base
+/// is in [0, 1] (a base above 1 keeps `powf`), and the outer g^e. A different curve than the
+/// exact one with the same ends (g = 0 → 0, g = 1 → 1, e = 0 → the TF's opacity), monotone in g
+/// and in e; the ray caster uses it with `fast_exponent`.
+pub fn context_preserving_alpha_fast(
+    alpha_tf: f32,
+    gradient_norm: f32,
+    kappa_t: f32,
+    kappa_s: f32,
+    shading: f32,
+    distance_norm: f32,
+    alpha_prev: f32,
+) -> f32 {
+    let schlick = |x: f32, n: f32| x / (n - n * x + x).max(1e-30);
+    let base = kappa_t
+        * shading
+        * (1.0 - distance_norm.clamp(0.0, 1.0))
+        * (1.0 - alpha_prev.clamp(0.0, 1.0));
+    if base <= 0.0 {
+        return alpha_tf;
+    }
+    let exponent = if base <= 1.0 {
+        schlick(base, kappa_s)
+    } else {
+        base.powf(kappa_s)
+    };
+    alpha_tf * schlick(gradient_norm.clamp(0.0, 1.0), exponent)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -369,5 +399,37 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn fast_context_preserving_alpha_keeps_the_ends_and_the_order() {
+        // Schlick's curve differs from pow in the middle, not at the ends, and keeps eq. 5's
+        // monotonicity: more gradient → more opacity, more exponent → less.
+        let (kt, ks, d, prev) = (1.5, 0.5, 0.2, 0.1);
+        let mut largest = 0.0f32;
+        for s in [0.2f32, 0.6, 1.0] {
+            let at = |g: f32| context_preserving_alpha_fast(0.8, g, kt, ks, s, d, prev);
+            assert_eq!(at(0.0), 0.0);
+            assert!((at(1.0) - 0.8).abs() < 1e-6);
+            let mut last = 0.0;
+            for k in 1..=100 {
+                let g = k as f32 / 100.0;
+                let v = at(g);
+                assert!(v >= last, "not monotone in g at {g}");
+                last = v;
+                largest =
+                    largest.max((v - context_preserving_alpha(0.8, g, kt, ks, s, d, prev)).abs());
+            }
+        }
+        // κt = 0: plain DVR.
+        assert_eq!(
+            context_preserving_alpha_fast(0.7, 0.3, 0.0, ks, 1.0, d, prev),
+            0.7
+        );
+        // An approximation, not the same function.
+        assert!(
+            largest > 0.01 && largest < 0.3,
+            "largest difference {largest}"
+        );
     }
 }

@@ -49,6 +49,8 @@ pub struct RayOptions<'a> {
     pub rho: f32,
     /// Whether strokes are embedded (`cast`'s `strokes`).
     pub embed: bool,
+    /// Context-preserving: Schlick's approximation of eq. 5's exponentiations (§6, eq. 6–7).
+    pub fast_exponent: bool,
 }
 
 impl RayOptions<'static> {
@@ -82,6 +84,7 @@ impl RayOptions<'static> {
             kernel,
             rho: 1.0,
             embed: false,
+            fast_exponent: false,
         }
     }
 }
@@ -243,6 +246,12 @@ impl Node<Value, Ctx> for RaycastNode {
                     100.0,
                     "κs of eq. 5: sharpness of the cut",
                 ),
+                ParamSpec::bool(
+                    "fast_exponent",
+                    false,
+                    "context_preserving: Schlick's rational approximation of eq. 5's two \
+                     exponentiations (the paper's §6, eq. 6–7) instead of pow",
+                ),
                 ParamSpec::bool("contours", true, "style contours (§3.3)"),
                 ParamSpec::float(
                     "thickness",
@@ -344,6 +353,7 @@ impl Node<Value, Ctx> for RaycastNode {
             light_view: light_direction(inputs, &camera)?,
             rho: p.f32("rho"),
             embed: false,
+            fast_exponent: p.bool("fast_exponent"),
         };
         let labels = inputs
             .get("labels")
@@ -445,6 +455,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             kernel: Kernel::choose("auto", &ctx.gpu),
             rho: 1.0,
             embed: false,
+            fast_exponent: false,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])

@@ -175,7 +175,7 @@ impl RayUniforms {
                 o.mip_bias,
                 t.map_size,
             ],
-            eye: [eye.x, eye.y, eye.z, 0.0],
+            eye: [eye.x, eye.y, eye.z, bool_f(o.fast_exponent)],
             labels: [
                 bool_f(t.use_labels),
                 t.label_range[0],
