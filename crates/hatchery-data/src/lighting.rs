@@ -157,16 +157,18 @@ pub fn context_preserving_alpha(
     alpha_prev: f32,
 ) -> f32 {
     let g = gradient_norm.clamp(0.0, 1.0);
-    let base = kappa_t
-        * shading
-        * (1.0 - distance_norm.clamp(0.0, 1.0))
-        * (1.0 - alpha_prev.clamp(0.0, 1.0));
+    let base = eq5_base(kappa_t, shading, distance_norm, alpha_prev);
     let exponent = if base > 0.0 { base.powf(kappa_s) } else { 0.0 };
     if exponent == 0.0 {
         alpha_tf
     } else {
         alpha_tf * g.powf(exponent)
     }
+}
+
+/// The base of eq. 5's inner exponent: κt · s · (1 − ‖P − E‖) · (1 − α_{i−1}).
+fn eq5_base(kappa_t: f32, shading: f32, distance_norm: f32, alpha_prev: f32) -> f32 {
+    kappa_t * shading * (1.0 - distance_norm.clamp(0.0, 1.0)) * (1.0 - alpha_prev.clamp(0.0, 1.0))
 }
 
 /// [`context_preserving_alpha`] with the paper's fast exponentiation (§6, eq. 6–7): Schlick's
@@ -184,10 +186,7 @@ pub fn context_preserving_alpha_fast(
     alpha_prev: f32,
 ) -> f32 {
     let schlick = |x: f32, n: f32| x / (n - n * x + x).max(1e-30);
-    let base = kappa_t
-        * shading
-        * (1.0 - distance_norm.clamp(0.0, 1.0))
-        * (1.0 - alpha_prev.clamp(0.0, 1.0));
+    let base = eq5_base(kappa_t, shading, distance_norm, alpha_prev);
     if base <= 0.0 {
         return alpha_tf;
     }
