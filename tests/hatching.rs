@@ -383,7 +383,11 @@ fn save_svg_writes_one_polyline_per_stroke() {
     );
     let text = std::fs::read_to_string(&path).unwrap();
     let doc = roxmltree::Document::parse(&text).unwrap();
-    let paths: Vec<_> = doc
+    let layer = doc
+        .descendants()
+        .find(|n| n.has_tag_name("g") && n.attribute("id") == Some("strokes"))
+        .expect("a strokes layer");
+    let paths: Vec<_> = layer
         .descendants()
         .filter(|n| n.has_tag_name("path"))
         .collect();

@@ -73,14 +73,14 @@ fn render_to_svg_writes_layers_whose_lines_match_the_mask_and_whose_labels_are_t
     };
     let placed = annotations.placed("annotations").unwrap();
 
-    // The document: five Inkscape layers; the lines layer holds paths; labels are <text>.
+    // The document: six Inkscape layers; the lines layer holds paths; labels are <text>.
     let doc = roxmltree::Document::parse(&text).unwrap();
     let layer = |id: &str| {
         doc.descendants()
             .find(|n| n.tag_name().name() == "g" && n.attribute("id") == Some(id))
             .unwrap_or_else(|| panic!("no layer {id}"))
     };
-    for id in ["picture", "lines", "leaders", "arrows", "labels"] {
+    for id in ["picture", "strokes", "lines", "leaders", "arrows", "labels"] {
         let g = layer(id);
         assert_eq!(
             g.attribute(("http://www.inkscape.org/namespaces/inkscape", "groupmode")),

@@ -22,7 +22,10 @@ use std::io::{self, Write};
 pub enum Layer {
     /// The raster picture (`id="picture"`).
     Picture,
-    /// Traced lines: silhouettes, contours, hatching (`id="lines"`).
+    /// Hatching strokes, one open path each (`id="strokes"`): a layer of their own, so that an
+    /// illustrator can hide or restyle the hatching apart from the outlines.
+    Strokes,
+    /// Traced lines: silhouettes, contours, ridges (`id="lines"`).
     Lines,
     /// Leader (connecting) lines from anchors to labels (`id="leaders"`).
     Leaders,
@@ -34,8 +37,9 @@ pub enum Layer {
 
 impl Layer {
     /// All layers in drawing order.
-    pub const ALL: [Layer; 5] = [
+    pub const ALL: [Layer; 6] = [
         Layer::Picture,
+        Layer::Strokes,
         Layer::Lines,
         Layer::Leaders,
         Layer::Arrows,
@@ -46,6 +50,7 @@ impl Layer {
     pub fn id(self) -> &'static str {
         match self {
             Layer::Picture => "picture",
+            Layer::Strokes => "strokes",
             Layer::Lines => "lines",
             Layer::Leaders => "leaders",
             Layer::Arrows => "arrows",
@@ -57,6 +62,7 @@ impl Layer {
     pub fn label(self) -> &'static str {
         match self {
             Layer::Picture => "Picture",
+            Layer::Strokes => "Hatching",
             Layer::Lines => "Lines",
             Layer::Leaders => "Leader lines",
             Layer::Arrows => "Arrows",
@@ -270,7 +276,7 @@ pub struct SvgDocument {
     width: f32,
     height: f32,
     picture: Option<Vec<u8>>,
-    items: [Vec<Item>; 5],
+    items: [Vec<Item>; Layer::ALL.len()],
 }
 
 impl SvgDocument {

@@ -95,7 +95,7 @@ fn document_structure_texts_and_positions() {
     let shown: Vec<_> = result.shown().collect();
     assert!(shown.len() >= 5);
 
-    // XML structure: five layers in order, texts and positions as laid out.
+    // XML structure: six layers in order, texts and positions as laid out.
     let xml = roxmltree::Document::parse(&svg).expect("well-formed XML");
     let inkscape = "http://www.inkscape.org/namespaces/inkscape";
     let layers: Vec<_> = xml
@@ -104,7 +104,10 @@ fn document_structure_texts_and_positions() {
         .filter(|n| n.is_element())
         .collect();
     let ids: Vec<&str> = layers.iter().map(|g| g.attribute("id").unwrap()).collect();
-    assert_eq!(ids, ["picture", "lines", "leaders", "arrows", "labels"]);
+    assert_eq!(
+        ids,
+        ["picture", "strokes", "lines", "leaders", "arrows", "labels"]
+    );
     for g in &layers {
         assert_eq!(g.tag_name().name(), "g");
         assert_eq!(g.attribute((inkscape, "groupmode")), Some("layer"));
@@ -120,7 +123,7 @@ fn document_structure_texts_and_positions() {
             .unwrap()
             .starts_with("data:image/png;base64,iVBORw0KGgo")
     );
-    let text_nodes: Vec<_> = layers[4]
+    let text_nodes: Vec<_> = layers[5]
         .children()
         .filter(|n| n.has_tag_name("text"))
         .collect();
@@ -136,7 +139,7 @@ fn document_structure_texts_and_positions() {
         );
         assert_eq!(node.attribute("paint-order"), Some("stroke"));
     }
-    let leaders: Vec<_> = layers[2]
+    let leaders: Vec<_> = layers[3]
         .children()
         .filter(|n| n.has_tag_name("path"))
         .collect();

@@ -125,7 +125,7 @@ impl Node<Value, Ctx> for SaveSvgNode {
                   embedded PNG), lines (each `lines` mask's region above 0.5, traced by \
                   marching squares and simplified, as a filled path in its own colour, or its \
                   outlines as strokes), hatching `strokes` as \
-                  open polylines, leader lines, arrows, and labels as <text> (from laid-out `annotations`). Open it in \
+                  open polylines in a layer of their own, leader lines, arrows, and labels as <text> (from laid-out `annotations`). Open it in \
                   Inkscape or Illustrator to edit lines and text. `hatchery render -o x.svg` \
                   replaces the path. Relative paths are relative to the graph file's folder.",
             inputs: vec![
@@ -247,7 +247,14 @@ impl Node<Value, Ctx> for SaveSvgNode {
                     points: line.points.clone(),
                     closed: false,
                 };
-                doc.polyline(&line, stroke);
+                doc.path(
+                    Layer::Strokes,
+                    (&line).into(),
+                    PathStyle {
+                        fill: None,
+                        stroke: Some(stroke),
+                    },
+                );
             }
         }
         if let Some(a) = inputs.get("annotations") {
