@@ -75,6 +75,12 @@ pub fn parse_anchor_list(text: &str) -> Result<Vec<Anchor>, String> {
                     object: 0,
                     priority: (n - i) as f32,
                 }),
+                Ok(v) if v.len() == 3 => Err(format!(
+                    "row {} `{row}`: `{}` has a number too large for 32-bit floats (x y z, \
+                     world units, below about 3.4e38)",
+                    i + 1,
+                    position.trim()
+                )),
                 _ => Err(format!(
                     "row {} `{row}`: `{}` is not three numbers (x y z, world units)",
                     i + 1,
@@ -331,6 +337,8 @@ mod tests {
         assert!(a[0].priority > a[1].priority && a[1].priority > a[2].priority);
         let e = parse_anchor_list("1 2 3: ok; 1 2: short").unwrap_err();
         assert!(e.contains("row 2") && e.contains("three numbers"), "{e}");
+        let e = parse_anchor_list("0 0 0: a; 1e40 0 0: b").unwrap_err();
+        assert!(e.contains("row 2") && e.contains("too large"), "{e}");
         assert!(parse_anchor_list("no colon").unwrap_err().contains("row 1"));
     }
 }

@@ -273,9 +273,20 @@ impl Canvas {
             }
             let size = hi - lo;
             if size.x > max_side as f32 || size.y > max_side as f32 {
+                // Name the text by its start: the offending one may be very long.
+                let shown: String = t.text.chars().take(40).collect();
+                let more = if t.text.chars().count() > 40 {
+                    "…"
+                } else {
+                    ""
+                };
                 return Err(format!(
-                    "the text `{}` at {} px is {}×{} px, more than the GPU's {max_side} px",
-                    t.text, t.size, size.x, size.y
+                    "the text `{shown}{more}` ({} characters) at {} px is {}×{} px, more than \
+                     the GPU's {max_side} px",
+                    t.text.chars().count(),
+                    t.size,
+                    size.x,
+                    size.y
                 ));
             }
             cells.push((
@@ -626,5 +637,20 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
             );
         }
         Ok(vec![canvas.draw_over(ctx, &image, "image")?])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_oversized_label_is_named_by_its_start_only() {
+        let mut canvas = Canvas::new(64, 64);
+        let long = "structure ".repeat(50);
+        canvas.text(&long, 200.0, Vec2::new(1.0, 40.0), [0.0; 4], [0.0; 4], 0.0);
+        let e = canvas.atlas(1024).expect_err("wider than the atlas limit");
+        assert!(e.contains("500 characters") && e.contains('…'), "{e}");
+        assert!(e.len() < 200, "the whole label is in the message: {e}");
     }
 }
