@@ -226,15 +226,16 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
                 c = clamp(c * phong, vec3<f32>(0.0), vec3<f32>(1.0));
             }
         }
-        // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
-        // (TF opacities are per voxel).
-        a = 1.0 - pow(1.0 - clamp(a * ray.texel.w, 0.0, 1.0), step_voxels);
         if shading == 2 {
-            // VolumeShop lighting transfer function, eq. 8 (on the corrected opacity).
+            // VolumeShop lighting transfer function, eq. 8: it enhances the TF's opacity α_u,
+            // before the step correction below (the two differ when the step is not 1 voxel).
             let lt = lighting_lookup(dot(n, l), dot(n, hv));
             c = clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
             a = min(1.0, a / max(1e-6, min(1.0, lt.w + (1.0 - g_norm))));
         }
+        // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
+        // (TF opacities are per voxel).
+        a = 1.0 - pow(1.0 - clamp(a * ray.texel.w, 0.0, 1.0), step_voxels);
         if shading == 3 {
             // Context-preserving opacity, eq. 5 (applied to the corrected opacity).
             a = context_preserving(a, phong, g_norm, p, p0, alpha);

@@ -473,10 +473,11 @@ impl<'a> Caster<'a> {
                     let grad = self.gradient(pos);
                     let (n, l, h) = self.frame(pos, grad);
                     let s = table.lookup(n.dot(l), n.dot(h));
-                    let (shaded, a) =
-                        apply_lighting_tf(s, c.to_array(), alpha, self.gradient_norm(grad));
+                    // Eq. 8 enhances the TF's α_u, then the step correction applies.
+                    let (shaded, a_u) =
+                        apply_lighting_tf(s, c.to_array(), a, self.gradient_norm(grad));
                     c = Vec3::from_array(shaded).clamp(Vec3::ZERO, Vec3::ONE);
-                    alpha = a;
+                    alpha = 1.0 - (1.0 - a_u).powf(self.p.step_voxels);
                 }
                 Shading::ContextPreserving {
                     kappa_t,
