@@ -171,12 +171,13 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
             continue;
         }
         var c = (sel.color * sel.mu + ghost.color * ghost.mu + back.color * back.mu) / weights;
-        // Opacity correction for the step (TF opacities are per voxel).
-        a_sample = 1.0 - pow(1.0 - clamp(a_sample, 0.0, 1.0), step_voxels);
         if shaded {
+            // Eq. 8 enhances the per-voxel opacity, before the step correction (as Raycast).
             c = clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
             a_sample = min(1.0, a_sample / max(1e-6, keep));
         }
+        // Opacity correction for the step (TF opacities are per voxel).
+        a_sample = 1.0 - pow(1.0 - clamp(a_sample, 0.0, 1.0), step_voxels);
         color += (1.0 - alpha) * a_sample * c;
         alpha += (1.0 - alpha) * a_sample;
         if hit_t < 0.0 && alpha >= ray.mode.w {
