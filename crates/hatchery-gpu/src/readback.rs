@@ -1,4 +1,5 @@
-//! Reading textures back to the CPU: for tests, `--dump`, and saving images.
+//! Reading textures and buffers back to the CPU (for tests, `--dump`, saving images and vector
+//! output), and bind groups from binding lists.
 
 use crate::context::{GpuContext, GpuError};
 
@@ -98,6 +99,43 @@ impl GpuContext {
             height,
             channels,
             data,
+        })
+    }
+
+    /// The first `bytes` of a COPY_SRC buffer (rounded up to the 4-byte copy alignment, at most
+    /// the whole buffer), copied into a staging buffer and read back, waiting for the GPU.
+    pub fn read_buffer(&self, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+        let size = (bytes.div_ceil(4).max(1) * 4).min(buffer.size());
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        self.queue.submit([encoder.finish()]);
+        self.map_buffer(&staging)
+    }
+
+    /// A bind group of `layout` from (binding number, resource) pairs.
+    pub fn bind_group(
+        &self,
+        label: &str,
+        layout: &wgpu::BindGroupLayout,
+        bindings: &[(u32, wgpu::BindingResource)],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = bindings
+            .iter()
+            .map(|(binding, resource)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: resource.clone(),
+            })
+            .collect();
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &entries,
         })
     }
 

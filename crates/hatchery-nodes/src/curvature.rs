@@ -130,41 +130,42 @@ pub fn surface_pass(
         aspect: wgpu::TextureAspect::DepthOnly,
         ..Default::default()
     });
-    let mut entries = vec![
-        wgpu::BindGroupEntry {
-            binding: 0,
-            resource: ray_buffer.as_entire_binding(),
-        },
-        wgpu::BindGroupEntry {
-            binding: 1,
-            resource: wgpu::BindingResource::TextureView(&volume_view),
-        },
-        wgpu::BindGroupEntry {
-            binding: 2,
-            resource: wgpu::BindingResource::Sampler(&sampler),
-        },
-        wgpu::BindGroupEntry {
-            binding: 20,
-            resource: wgpu::BindingResource::TextureView(&depth_view),
-        },
-        wgpu::BindGroupEntry {
-            binding: 22,
-            resource: params_buffer.as_entire_binding(),
-        },
+    use wgpu::BindingResource::{Sampler, TextureView};
+    let mut bindings = vec![
+        (0, ray_buffer.as_entire_binding()),
+        (1, TextureView(&volume_view)),
+        (2, Sampler(&sampler)),
+        (20, TextureView(&depth_view)),
+        (22, params_buffer.as_entire_binding()),
     ];
     if let Some(buffer) = &extra_buffer {
-        entries.push(wgpu::BindGroupEntry {
-            binding: 23,
-            resource: buffer.as_entire_binding(),
-        });
+        bindings.push((23, buffer.as_entire_binding()));
     }
-    let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(program),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    });
+    let group = gpu.bind_group(program, &pipeline.get_bind_group_layout(0), &bindings);
     let size = (camera.width, camera.height);
     Ok(screen_pass::draw(
         ctx, program, &pipeline, &group, format, size,
+    ))
+}
+
+/// An error at `port` unless `texture` has the G-buffer's frame size ("is A×B, the G-buffer
+/// W×H" followed by `hint`).
+pub fn gbuffer_sized(
+    port: &str,
+    texture: &wgpu::Texture,
+    gbuffer: &crate::value::GBuffer,
+    hint: &str,
+) -> Result<(), NodeError> {
+    let (width, height) = (gbuffer.camera.width, gbuffer.camera.height);
+    if (texture.width(), texture.height()) == (width, height) {
+        return Ok(());
+    }
+    Err(NodeError::at_port(
+        port,
+        format!(
+            "is {}×{}, the G-buffer {width}×{height}{hint}",
+            texture.width(),
+            texture.height()
+        ),
     ))
 }

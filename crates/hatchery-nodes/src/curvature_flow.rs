@@ -1,6 +1,7 @@
 //! `CurvatureFlow`: noise advected along principal curvature directions (the tutorial's §1,
 //! Fig. 11/14; see shaders/curvature_flow.wgsl for the line integral convolution).
 
+use crate::curvature::gbuffer_sized;
 use crate::screen_pass::{self, MASK_FORMAT};
 use crate::value::Mask;
 use crate::{Ctx, Value};
@@ -84,20 +85,14 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
     ) -> Result<Vec<Value>, NodeError> {
         let curvature = inputs.require("curvature")?.image("curvature")?.clone();
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        gbuffer_sized(
+            "curvature",
+            &curvature.texture,
+            &gbuffer,
+            ": connect the Curvature of this G-buffer",
+        )?;
         let camera = &gbuffer.camera;
         let size = (camera.width, camera.height);
-        if (curvature.texture.width(), curvature.texture.height()) != size {
-            return Err(NodeError::at_port(
-                "curvature",
-                format!(
-                    "is {}×{}, the G-buffer {}×{}: connect the Curvature of this G-buffer",
-                    curvature.texture.width(),
-                    curvature.texture.height(),
-                    size.0,
-                    size.1
-                ),
-            ));
-        }
         let step = p.f32("step");
         let uniforms = FlowUniforms {
             inv_view_proj: camera.view_proj().inverse().to_cols_array_2d(),

@@ -6,6 +6,7 @@
 //! iso value): surface points, not pixels, so an orbiting view keeps its strokes (Yuan–Chen's
 //! "subset of the surface points"); each seed's random number is a hash of its index.
 
+use crate::curvature::gbuffer_sized;
 use crate::screen_pass::MASK_FORMAT;
 use crate::value::Mask;
 use crate::{Ctx, Value};
@@ -72,21 +73,7 @@ impl Strokes {
     }
 
     fn read_back(&self, gpu: &GpuContext) -> Result<Vec<StrokeLine>, String> {
-        // Copies the first `bytes` of `buffer` (rounded up to the copy alignment) and maps them.
-        let read = |buffer: &wgpu::Buffer, bytes: u64| -> Result<Vec<u8>, String> {
-            let size = bytes.div_ceil(4).max(1) * 4;
-            let size = size.min(buffer.size());
-            let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("strokes readback"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
-            gpu.queue.submit([encoder.finish()]);
-            gpu.map_buffer(&staging)
-        };
+        let read = |buffer: &wgpu::Buffer, bytes: u64| gpu.read_buffer(buffer, bytes);
         let counter = read(&self.counter, 4)?;
         let count = counter
             .get(..4)
@@ -305,28 +292,14 @@ impl Node<Value, Ctx> for HatchStrokesNode {
         };
         let camera = &gbuffer.camera;
         let (width, height) = (camera.width, camera.height);
-        if (curvature.texture.width(), curvature.texture.height()) != (width, height) {
-            return Err(NodeError::at_port(
-                "curvature",
-                format!(
-                    "is {}×{}, the G-buffer {width}×{height}: connect the Curvature of this \
-                     G-buffer",
-                    curvature.texture.width(),
-                    curvature.texture.height()
-                ),
-            ));
-        }
-        if let Some(t) = &tone
-            && (t.texture.width(), t.texture.height()) != (width, height)
-        {
-            return Err(NodeError::at_port(
-                "tone",
-                format!(
-                    "is {}×{}, the G-buffer {width}×{height}",
-                    t.texture.width(),
-                    t.texture.height()
-                ),
-            ));
+        gbuffer_sized(
+            "curvature",
+            &curvature.texture,
+            &gbuffer,
+            ": connect the Curvature of this G-buffer",
+        )?;
+        if let Some(t) = &tone {
+            gbuffer_sized("tone", &t.texture, &gbuffer, "")?;
         }
         let err = |e: GpuError| NodeError::new(e.to_string());
         let pipelines = ctx
@@ -431,22 +404,9 @@ impl Node<Value, Ctx> for HatchStrokesNode {
         });
         let normal_view = view(&gbuffer.normal);
         let tone_view = view(tone.as_ref().map_or(&blank, |t| &t.texture));
-        let group = |layout: &wgpu::BindGroupLayout, entries: &[(u32, wgpu::BindingResource)]| {
-            let entries: Vec<wgpu::BindGroupEntry> = entries
-                .iter()
-                .map(|(binding, resource)| wgpu::BindGroupEntry {
-                    binding: *binding,
-                    resource: resource.clone(),
-                })
-                .collect();
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("hatch strokes"),
-                layout,
-                entries: &entries,
-            })
-        };
         use wgpu::BindingResource::TextureView as Tex;
-        let trace_group = group(
+        let trace_group = gpu.bind_group(
+            "hatch trace",
             &pipelines.trace.get_bind_group_layout(0),
             &[
                 (0, uniform.as_entire_binding()),
@@ -460,7 +420,8 @@ impl Node<Value, Ctx> for HatchStrokesNode {
                 (8, counter.as_entire_binding()),
             ],
         );
-        let finish_group = group(
+        let finish_group = gpu.bind_group(
+            "hatch finish",
             &pipelines.finish.get_bind_group_layout(0),
             &[
                 (0, uniform.as_entire_binding()),
@@ -468,7 +429,8 @@ impl Node<Value, Ctx> for HatchStrokesNode {
                 (9, indirect.as_entire_binding()),
             ],
         );
-        let draw_group = group(
+        let draw_group = gpu.bind_group(
+            "hatch draw",
             &pipelines.draw.get_bind_group_layout(0),
             &[
                 (0, uniform.as_entire_binding()),

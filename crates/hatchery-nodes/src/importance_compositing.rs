@@ -95,18 +95,7 @@ impl ImportancePipelines {
         groups: (u32, u32),
     ) {
         let pipeline = self.get(entry);
-        let entries: Vec<wgpu::BindGroupEntry> = bindings
-            .iter()
-            .map(|(binding, resource)| wgpu::BindGroupEntry {
-                binding: *binding,
-                resource: resource.clone(),
-            })
-            .collect();
-        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(entry),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        });
+        let group = gpu.bind_group(entry, &pipeline.get_bind_group_layout(0), bindings);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(entry),
             timestamp_writes: None,
