@@ -280,7 +280,7 @@ fn resolve_cli_path(session: &Session, node: &str, param: &str, value: &str) -> 
     let is_path = session
         .graph
         .node(node)
-        .and_then(|n| session.registry.schema(&n.kind))
+        .and_then(|n| n.schema(&session.registry))
         .and_then(|s| s.param(param))
         .is_some_and(|p| p.kind == ParamKind::Path);
     match std::path::absolute(value) {
@@ -349,12 +349,12 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
     for dump in dumps {
         let (node, port, path) = split_assignment(dump, "NODE.PORT")?;
         // Check the port exists before running anything.
-        let kind = &session
+        let instance = session
             .graph
             .node(node)
-            .with_context(|| format!("--dump {dump}: no node `{node}` in the graph"))?
-            .kind;
-        let schema = session.registry.schema(kind).expect("validated kind");
+            .with_context(|| format!("--dump {dump}: no node `{node}` in the graph"))?;
+        let kind = &instance.kind;
+        let schema = instance.schema(&session.registry).expect("validated kind");
         if schema.output_index(port).is_none() {
             bail!(
                 "--dump {dump}: node `{node}` ({kind}) has no output port `{port}` (its outputs are: {})",

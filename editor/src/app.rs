@@ -304,6 +304,12 @@ impl EditorApp {
     pub fn ui(&mut self, ui: &mut Ui) {
         self.guard_close(ui);
         self.shortcuts(ui);
+        // Custom shaders are re-read when their files change: look again a few times a second.
+        self.state.poll_watched_files();
+        if self.state.watches_files() {
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(250));
+        }
         if self.synced_revision != Some(self.state.revision()) {
             self.rebuild_snarl();
         }
@@ -337,7 +343,7 @@ impl EditorApp {
         }
         self.confirm_discard(ui);
         crate::frames::rename_window(ui.ctx(), &mut self.state);
-        if self.export.show(ui.ctx(), self.state.doc()) {
+        if self.export.show(ui.ctx(), self.state.doc(), &self.state.registry) {
             let graph = self.state.validate();
             let base = self.state.base_dir();
             self.export.start(graph, base.as_deref());
@@ -733,7 +739,10 @@ impl EditorApp {
         if let Some(e) = self.state.node_error(&id) {
             ui.colored_label(Color32::LIGHT_RED, e);
         }
-        let Some(schema) = self.state.registry.schema(&node.kind).cloned() else {
+        let doc = self.state.doc();
+        let Some(schema) = hatchery_graph::node_schema(&self.state.registry, doc, &node)
+            .map(|s| (*s).clone())
+        else {
             ui.label("unknown kind: no parameters to show");
             return;
         };
@@ -1341,8 +1350,9 @@ struct Viewer<'a> {
 
 impl Viewer<'_> {
     fn schema(&self, id: &str) -> Option<hatchery_graph::NodeSchema> {
-        let n = self.state.doc().nodes.iter().find(|n| n.id == id)?;
-        self.state.registry.schema(&n.kind).cloned()
+        let doc = self.state.doc();
+        let n = doc.nodes.iter().find(|n| n.id == id)?;
+        hatchery_graph::node_schema(&self.state.registry, doc, n).map(|s| (*s).clone())
     }
 
     /// The ports shown on canvas node `id` (a group's are its members' exposed ports).
@@ -1915,7 +1925,8 @@ fn node_param(
     node: &hatchery_graph::NodeDoc,
     name: &str,
 ) -> Option<ParamValue> {
-    let spec = state.registry.schema(&node.kind)?.param(name)?;
+    let schema = hatchery_graph::node_schema(&state.registry, state.doc(), node)?;
+    let spec = schema.param(name)?;
     match node.params.get(name) {
         Some(raw) => spec.convert(raw).ok(),
         None => Some(spec.default.clone()),

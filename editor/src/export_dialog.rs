@@ -3,7 +3,7 @@
 //! `hatchery render --dump node.port=file.png`, so the file equals the command line's for the
 //! same graph and size (for an Image port, also what `hatchery render -o` writes).
 
-use hatchery_graph::{Graph, GraphDocument, PortType, SchemaLookup};
+use hatchery_graph::{Graph, GraphDocument, PortType};
 use hatchery_nodes::Session;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, channel};
@@ -99,16 +99,20 @@ impl ExportDialog {
 
     /// The dialog window, listing the picture ports of `doc`. Returns true when *Export* was
     /// clicked (the caller then calls [`Self::start`] with the validated graph).
-    pub fn show(&mut self, ctx: &egui::Context, doc: &GraphDocument) -> bool {
+    pub fn show(
+        &mut self,
+        ctx: &egui::Context,
+        doc: &GraphDocument,
+        schemas: &dyn hatchery_graph::SchemaLookup,
+    ) -> bool {
         let mut requested = false;
         if !self.open {
             return false;
         }
-        let registry = hatchery_nodes::registry();
         let ports: Vec<(String, String)> = doc
             .nodes
             .iter()
-            .filter_map(|n| Some((n, registry.schema(&n.kind)?)))
+            .filter_map(|n| Some((n, hatchery_graph::node_schema(schemas, doc, n)?)))
             .flat_map(|(n, schema)| {
                 schema
                     .outputs

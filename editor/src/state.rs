@@ -37,6 +37,8 @@ pub struct EditorState {
     revision: u64,
     /// The group whose inside the canvas shows (`None`: the top level); see `crate::groups`.
     pub(crate) level: Option<String>,
+    /// Files custom shader nodes read, with their modification stamps at the last look.
+    watched: BTreeMap<PathBuf, Option<(std::time::SystemTime, u64)>>,
 }
 
 impl Default for EditorState {
@@ -68,6 +70,7 @@ impl EditorState {
             last_autosave: Instant::now(),
             revision: 0,
             level: None,
+            watched: BTreeMap::new(),
         };
         s.validate();
         s
@@ -138,13 +141,58 @@ impl EditorState {
 
     /// The folder relative paths in the graph resolve against.
     pub fn base_dir(&self) -> Option<PathBuf> {
-        self.path.as_ref().and_then(|p| p.parent()).map(|p| {
-            if p.as_os_str().is_empty() {
-                PathBuf::from(".")
-            } else {
-                p.to_path_buf()
-            }
-        })
+        self.path.as_deref().map(hatchery_graph::document::folder_of)
+    }
+
+    /// Files the graph's nodes read their ports from (custom shaders), resolved.
+    fn watched_files(&self) -> Vec<PathBuf> {
+        let base = self.base_dir();
+        self.doc
+            .nodes
+            .iter()
+            .filter(|n| n.kind == "CustomShader")
+            .filter_map(|n| match n.params.get("shader") {
+                Some(ron::Value::String(s)) if !s.is_empty() => Some(PathBuf::from(s)),
+                _ => None,
+            })
+            .map(|p| match &base {
+                Some(base) if p.is_relative() => base.join(p),
+                _ => p,
+            })
+            .collect()
+    }
+
+    /// Looks at the files the graph's custom shaders come from; when one changed on disk since
+    /// the last look, the views rebuild (ports may have changed), the graph is validated again
+    /// and the picture re-rendered — a shader error then shows on its node while the last good
+    /// picture stays. Returns whether anything changed. Cheap (one `stat` per file).
+    pub fn poll_watched_files(&mut self) -> bool {
+        let stamps: BTreeMap<PathBuf, Option<(std::time::SystemTime, u64)>> = self
+            .watched_files()
+            .into_iter()
+            .map(|p| {
+                let stamp = std::fs::metadata(&p).ok().map(|m| {
+                    (m.modified().unwrap_or(std::time::SystemTime::UNIX_EPOCH), m.len())
+                });
+                (p, stamp)
+            })
+            .collect();
+        // Only files seen before count as changed: a newly added node is validated anyway.
+        let changed = stamps
+            .iter()
+            .any(|(p, stamp)| self.watched.get(p).is_some_and(|old| old != stamp));
+        self.watched = stamps;
+        if changed {
+            self.revision += 1;
+            self.validate();
+            self.status = "a shader file changed: read it again".into();
+        }
+        changed
+    }
+
+    /// Whether some node reads a file the editor watches.
+    pub fn watches_files(&self) -> bool {
+        !self.watched.is_empty()
     }
 
     /// Validates the document; on success returns the runtime graph.
@@ -450,6 +498,7 @@ impl EditorState {
             .map_err(|e| format!("cannot save {}: {e}", path.display()))?;
         let _ = std::fs::remove_file(old_recovery);
         self.path = Some(path.to_path_buf());
+        self.doc.base_dir = self.base_dir();
         let _ = std::fs::remove_file(self.recovery_path());
         self.dirty = false;
         self.status = format!("saved {}", path.display());
@@ -498,7 +547,9 @@ impl EditorState {
     /// Replaces the document with the recovery file's (as an undoable, unsaved edit).
     pub fn restore_recovery(&mut self) -> Result<(), String> {
         let path = self.recovery_path();
-        let (doc, _) = GraphDocument::load(&path).map_err(|e| e.to_string())?;
+        let (mut doc, _) = GraphDocument::load(&path).map_err(|e| e.to_string())?;
+        // Its paths are the graph's (the recovery file lives elsewhere).
+        doc.base_dir = self.base_dir();
         self.apply(None, |d, _| {
             *d = doc;
             Ok(())

@@ -31,6 +31,10 @@ pub struct GraphDocument {
     /// Labelled boxes drawn behind the nodes in the editor (version 2). Ignored by rendering.
     #[serde(default)]
     pub frames: Vec<FrameDoc>,
+    /// The folder relative paths in the document resolve against (the graph file's folder);
+    /// not stored in the file. Needed to read a node's own schema from a file it names.
+    #[serde(skip)]
+    pub base_dir: Option<PathBuf>,
 }
 
 /// One node: a stable human-readable id, its kind, the parameters that differ from or restate
@@ -129,6 +133,14 @@ fn unique_params<'de, D: Deserializer<'de>>(
     d.deserialize_map(UniqueMap)
 }
 
+/// The folder of a file, `.` for a bare file name: where its relative paths resolve.
+pub fn folder_of(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// Where a document came from: needed to point errors at file:line:col.
 #[derive(Clone, Debug, Default)]
 pub struct Source {
@@ -197,7 +209,9 @@ impl GraphDocument {
             },
             group: None,
         })?;
-        Self::parse(&text, Some(path))
+        let (mut doc, source) = Self::parse(&text, Some(path))?;
+        doc.base_dir = Some(folder_of(path));
+        Ok((doc, source))
     }
 
     /// The canonical RON text of this document.

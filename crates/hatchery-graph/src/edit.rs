@@ -9,7 +9,7 @@ use crate::graph::check_node_id;
 use crate::param::ParamValue;
 use crate::port::PortType;
 use crate::reroute;
-use crate::schema::{NodeSchema, SchemaLookup};
+use crate::schema::{SchemaLookup, SchemaRef, node_schema};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// `ShadedSurface` → `shaded_surface`, `TransferFunction1D` → `transfer_function1_d`.
@@ -48,10 +48,9 @@ fn schema_of<'a>(
     doc: &GraphDocument,
     schemas: &'a dyn SchemaLookup,
     id: &str,
-) -> Result<&'a NodeSchema, String> {
+) -> Result<SchemaRef<'a>, String> {
     let n = node(doc, id)?;
-    schemas
-        .schema(&n.kind)
+    node_schema(schemas, doc, n)
         .ok_or_else(|| format!("node `{id}` has the unknown kind `{}`", n.kind))
 }
 

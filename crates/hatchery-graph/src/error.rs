@@ -38,7 +38,8 @@ impl GraphError {
             | UnknownParam { node, .. }
             | BadParam { node, .. }
             | BadNodeId { node, .. }
-            | UnknownGroup { node, .. } => Some(node),
+            | UnknownGroup { node, .. }
+            | NodeDefinition { node, .. } => Some(node),
             UnknownNode { edge_to, .. } => Some(&edge_to.0),
             TypeMismatch { to, .. } => Some(&to.0),
             Cycle { nodes } => nodes.first().map(String::as_str),
@@ -117,6 +118,12 @@ pub enum ErrorKind {
     UnknownGroup {
         node: String,
         group: String,
+    },
+    /// A node whose ports come from a file (a custom shader) cannot read or use it; the
+    /// message names the file, line and column.
+    NodeDefinition {
+        node: String,
+        message: String,
     },
 }
 
@@ -223,6 +230,7 @@ impl fmt::Display for ErrorKind {
                 f,
                 "node `{node}`: no group with id `{group}` (declare it in `groups`)"
             ),
+            NodeDefinition { node, message } => write!(f, "node `{node}`: {message}"),
         }
     }
 }

@@ -3,8 +3,10 @@
 
 use crate::graph::Graph;
 use crate::param::Params;
-use crate::schema::{NodeError, NodeSchema, SchemaLookup};
+use crate::schema::{NodeError, NodeSchema, OwnSchema, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::path::Path;
+use std::sync::Arc;
 use std::fmt;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::time::{Duration, Instant};
@@ -20,6 +22,16 @@ pub trait Node<V, C>: Send + Sync {
         inputs: &NodeInputs<V>,
         params: &Params,
     ) -> Result<Vec<V>, NodeError>;
+    /// Whether each node of this kind reads its ports and parameters from a file
+    /// ([`Node::own_schema`]); `schema` then gives only what every such node has.
+    fn has_own_schema(&self) -> bool {
+        false
+    }
+    /// The node's own schema, from the kind's parameters (`params` holds only those of
+    /// `schema`, as written or defaulted, with the folder paths resolve against).
+    fn own_schema(&self, _params: &Params) -> Option<OwnSchema> {
+        None
+    }
 }
 
 /// Hooks the executor calls around each node; the GPU context uses them for timestamps.
@@ -42,12 +54,15 @@ type Entry<V, C> = (NodeSchema, Box<dyn Node<V, C>>);
 /// All node kinds, by name.
 pub struct Registry<V, C> {
     kinds: BTreeMap<&'static str, Entry<V, C>>,
+    /// Kinds whose nodes have schemas of their own (read from a file).
+    own: BTreeSet<&'static str>,
 }
 
 impl<V, C> Default for Registry<V, C> {
     fn default() -> Self {
         Self {
             kinds: BTreeMap::new(),
+            own: BTreeSet::new(),
         }
     }
 }
@@ -55,6 +70,9 @@ impl<V, C> Default for Registry<V, C> {
 impl<V, C> Registry<V, C> {
     pub fn register(&mut self, node: impl Node<V, C> + 'static) {
         let schema = node.schema();
+        if node.has_own_schema() {
+            self.own.insert(schema.kind);
+        }
         self.kinds.insert(schema.kind, (schema, Box::new(node)));
     }
     pub fn node(&self, kind: &str) -> Option<&dyn Node<V, C>> {
@@ -71,6 +89,27 @@ impl<V, C> SchemaLookup for Registry<V, C> {
     }
     fn kinds(&self) -> Vec<&'static str> {
         self.kinds.keys().copied().collect()
+    }
+    fn own_schema(
+        &self,
+        kind: &str,
+        raw: &BTreeMap<String, ron::Value>,
+        base_dir: Option<&Path>,
+    ) -> Option<OwnSchema> {
+        if !self.own.contains(kind) {
+            return None;
+        }
+        let (schema, node) = self.kinds.get(kind)?;
+        // The kind's parameters (the file's name among them); the file's own are not known yet.
+        let values = schema
+            .params
+            .iter()
+            .map(|p| {
+                let value = raw.get(p.name).and_then(|r| p.convert(r).ok());
+                (p.name.to_owned(), value.unwrap_or_else(|| p.default.clone()))
+            })
+            .collect();
+        node.own_schema(&Params::new(values, base_dir.map(Arc::from)))
     }
 }
 
@@ -187,10 +226,11 @@ impl<V: Clone> Executor<V> {
                 continue;
             }
             let node = graph.node(id).expect("id from the graph");
-            let (schema, behaviour) = registry
+            let (kind_schema, behaviour) = registry
                 .kinds
                 .get(node.kind.as_str())
                 .expect("validated kind");
+            let schema = node.own_schema.as_deref().unwrap_or(kind_schema);
             let fail = |port: Option<String>, message: String| ExecError {
                 node: id.to_owned(),
                 kind: node.kind.clone(),
@@ -201,6 +241,7 @@ impl<V: Clone> Executor<V> {
             let mut hasher = DefaultHasher::new();
             node.kind.hash(&mut hasher);
             node.params.values().hash(&mut hasher);
+            node.fingerprint.hash(&mut hasher);
             if schema.frame_dependent {
                 ctx.frame_key().hash(&mut hasher);
             }

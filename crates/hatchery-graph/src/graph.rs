@@ -6,7 +6,7 @@ use crate::document::{
 };
 use crate::error::{ErrorKind, GraphError, GraphErrors};
 use crate::param::{ParamValue, Params};
-use crate::schema::SchemaLookup;
+use crate::schema::{NodeSchema, SchemaLookup};
 use petgraph::Direction;
 use petgraph::stable_graph::{NodeIndex, StableDiGraph};
 use petgraph::visit::{EdgeRef, IntoEdgeReferences};
@@ -26,6 +26,17 @@ pub struct NodeInstance {
     pub editor: Option<EditorPos>,
     /// The group the node belongs to (editor organisation only).
     pub group: Option<String>,
+    /// The node's own schema where its kind reads one from a file (`CustomShader`).
+    pub own_schema: Option<Arc<NodeSchema>>,
+    /// What that file said when the graph was validated (the executor's cache key includes it).
+    pub fingerprint: u64,
+}
+
+impl NodeInstance {
+    /// The schema this node uses: its own, else its kind's.
+    pub fn schema<'a>(&'a self, schemas: &'a dyn SchemaLookup) -> Option<&'a NodeSchema> {
+        self.own_schema.as_deref().or_else(|| schemas.schema(&self.kind))
+    }
 }
 
 /// An edge between port indices (the file stores names; see [`Graph::to_document`]).
@@ -133,7 +144,7 @@ impl Graph {
                 ));
                 continue;
             }
-            let Some(schema) = schemas.schema(&node.kind) else {
+            let Some(kind_schema) = schemas.schema(&node.kind) else {
                 errors.push(source.error(
                     at,
                     ErrorKind::UnknownKind {
@@ -145,6 +156,19 @@ impl Graph {
                 unusable.insert(node.id.clone());
                 continue;
             };
+            // A kind that reads its ports from a file: the file's problems are the node's.
+            let own = schemas.own_schema(&node.kind, &node.params, base_dir.as_deref());
+            if let Some(message) = own.as_ref().and_then(|o| o.error.clone()) {
+                errors.push(source.error(
+                    at,
+                    ErrorKind::NodeDefinition {
+                        node: node.id.clone(),
+                        message,
+                    },
+                ));
+            }
+            let own_schema = own.as_ref().and_then(|o| o.schema.clone());
+            let schema = own_schema.as_deref().unwrap_or(kind_schema);
             let mut values: BTreeMap<String, ParamValue> = schema
                 .params
                 .iter()
@@ -184,6 +208,8 @@ impl Graph {
                 explicit: node.params.keys().cloned().collect(),
                 editor: node.editor,
                 group: node.group.clone(),
+                own_schema,
+                fingerprint: own.map_or(0, |o| o.fingerprint),
             };
             let index = graph.graph.add_node(instance);
             graph.ids.insert(node.id.clone(), index);
@@ -213,7 +239,9 @@ impl Graph {
                     continue;
                 };
                 let kind = graph.graph[index].kind.clone();
-                let schema = schemas.schema(&kind).expect("kind checked above");
+                let schema = graph.graph[index]
+                    .schema(schemas)
+                    .expect("kind checked above");
                 let output = side == "from";
                 let ports = if output {
                     &schema.outputs
@@ -275,7 +303,7 @@ impl Graph {
         // Required inputs.
         for index in graph.graph.node_indices() {
             let node = &graph.graph[index];
-            let schema = schemas.schema(&node.kind).expect("kind checked above");
+            let schema = node.schema(schemas).expect("kind checked above");
             let connected: BTreeSet<usize> = graph
                 .graph
                 .edges_directed(index, Direction::Incoming)
@@ -346,11 +374,9 @@ impl Graph {
             .edge_references()
             .map(|e| {
                 let (from, to) = (&self.graph[e.source()], &self.graph[e.target()]);
-                let from_port = schemas.schema(&from.kind).expect("validated").outputs
-                    [e.weight().from_port]
-                    .name;
-                let to_port =
-                    schemas.schema(&to.kind).expect("validated").inputs[e.weight().to_port].name;
+                let from_port =
+                    from.schema(schemas).expect("validated").outputs[e.weight().from_port].name;
+                let to_port = to.schema(schemas).expect("validated").inputs[e.weight().to_port].name;
                 EdgeDoc {
                     from: (from.id.clone(), from_port.into()),
                     to: (to.id.clone(), to_port.into()),
@@ -364,6 +390,7 @@ impl Graph {
             edges,
             groups: self.groups.clone(),
             frames: self.frames.clone(),
+            base_dir: self.base_dir.as_deref().map(Path::to_path_buf),
         }
     }
 
@@ -398,7 +425,24 @@ impl Graph {
             })
         })?;
         let instance = &mut self.graph[index];
-        let schema = schemas.schema(&instance.kind).expect("validated");
+        // The kind's own parameters of a node with a schema of its own name the file its ports
+        // come from: changing one needs the whole graph validated again.
+        let kind_param = schemas
+            .schema(&instance.kind)
+            .is_some_and(|k| k.param(param).is_some());
+        if instance.own_schema.is_some() && kind_param {
+            return Err(GraphError::new(ErrorKind::BadParam {
+                node: node.into(),
+                param: param.into(),
+                message: "it decides the node's ports; change it in the graph file or the editor"
+                    .into(),
+            }));
+        }
+        let own = instance.own_schema.clone();
+        let schema = match &own {
+            Some(own) => own.as_ref(),
+            None => schemas.schema(&instance.kind).expect("validated"),
+        };
         let spec = schema.param(param).ok_or_else(|| {
             GraphError::new(ErrorKind::UnknownParam {
                 node: node.into(),

@@ -31,4 +31,6 @@ pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Regi
 pub use graph::{Graph, NodeInstance};
 pub use param::{ParamKind, ParamSpec, ParamValue, Params};
 pub use port::PortType;
-pub use schema::{NodeError, NodeSchema, PortSpec, SchemaLookup};
+pub use schema::{
+    NodeError, NodeSchema, OwnSchema, PortSpec, SchemaLookup, SchemaRef, intern, node_schema,
+};

@@ -45,7 +45,7 @@ pub fn node_ports(
             doc: "a waypoint: passes on what it is given".into(),
         }];
     }
-    let Some(schema) = schemas.schema(&node.kind) else {
+    let Some(schema) = crate::schema::node_schema(schemas, doc, node) else {
         return vec![];
     };
     let ports = if output {

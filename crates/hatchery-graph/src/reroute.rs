@@ -46,7 +46,7 @@ fn plain_type(
     (node, port): (&str, &str),
     output: bool,
 ) -> Option<PortType> {
-    let schema = schemas.schema(&doc.node(node)?.kind)?;
+    let schema = crate::schema::node_schema(schemas, doc, doc.node(node)?)?;
     let ports = if output {
         &schema.outputs
     } else {

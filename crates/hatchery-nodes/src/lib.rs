@@ -8,6 +8,7 @@ pub mod curvature;
 pub mod curvature_color;
 pub mod curvature_contours;
 pub mod curvature_flow;
+pub mod custom_shader;
 pub mod depth_peel;
 pub mod depth_test_mask;
 pub mod diffuse_intensity;
@@ -116,5 +117,6 @@ pub fn registry() -> Registry {
     r.register(visual_conventions::FanNode);
     r.register(visual_conventions::BoundingBoxNode);
     r.register(save_image::SaveImageNode);
+    r.register(custom_shader::CustomShaderNode::default());
     r
 }

@@ -3,7 +3,7 @@
 use crate::{Ctx, Registry, RenderContext, Value, registry};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::executor::PassReport;
-use hatchery_graph::{ExecError, Executor, Graph, GraphErrors, ParamValue, SchemaLookup};
+use hatchery_graph::{ExecError, Executor, Graph, GraphErrors, ParamValue};
 use std::path::Path;
 
 #[derive(Debug, thiserror::Error)]
@@ -91,10 +91,7 @@ impl Session {
             .graph
             .node(node)
             .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
-        let schema = self
-            .registry
-            .schema(&instance.kind)
-            .expect("validated kind");
+        let schema = instance.schema(&self.registry).expect("validated kind");
         let spec = schema.param(param).ok_or_else(|| {
             let names: Vec<_> = schema.params.iter().map(|p| p.name).collect();
             SessionError::Other(format!(
@@ -113,10 +110,7 @@ impl Session {
             .graph
             .node(node)
             .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
-        let schema = self
-            .registry
-            .schema(&instance.kind)
-            .expect("validated kind");
+        let schema = instance.schema(&self.registry).expect("validated kind");
         let index = schema.output_index(port).ok_or_else(|| {
             SessionError::Other(format!(
                 "node `{node}` ({}) has no output port `{port}` (its outputs are: {})",

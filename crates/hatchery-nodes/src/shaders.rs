@@ -48,6 +48,7 @@ pub const CURVATURE_FIELD: &str = shader_file!("curvature_field.wgsl");
 pub const HATCH_STROKES: &str = shader_file!("hatch_strokes.wgsl");
 pub const CURVATURE_FLOW: &str = shader_file!("curvature_flow.wgsl");
 pub const MASK_COPY: &str = shader_file!("mask_copy.wgsl");
+pub const CUSTOM_SHADER_VERTEX: &str = shader_file!("custom_shader_vertex.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
@@ -136,6 +137,11 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
         ),
         ("ridge_valley", screen("ridge_valley.wgsl", RIDGE_VALLEY)),
         ("display", screen("display.wgsl", DISPLAY)),
+        // The vertex stage of every CustomShader (the fragment stage is the user's file).
+        (
+            "custom_shader_vertex",
+            vec![("custom_shader_vertex.wgsl", CUSTOM_SHADER_VERTEX)],
+        ),
         // Instanced quads with their own vertex stage (crate::overlay).
         ("overlay", vec![("overlay.wgsl", OVERLAY)]),
         // Compute tracing plus instanced segments (crate::hatch_strokes).

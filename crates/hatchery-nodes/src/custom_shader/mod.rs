@@ -1,0 +1,297 @@
+//! `CustomShader`: a researcher's own image-space pass, written as a WGSL fragment shader in a
+//! file. Its inputs, parameters and output are read from the shader's declarations (see
+//! [`reflect`] and docs/custom_shader.md), so each node has a schema of its own; the file is
+//! re-read whenever it changes on disk (the editor watches it), and a broken file is an error on
+//! the node naming file:line:col while the last good version's ports stay.
+
+pub mod reflect;
+
+use crate::screen_pass::{IMAGE_FORMAT, MASK_FORMAT};
+use crate::value::{Image, Mask};
+use crate::{Ctx, Value};
+use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::{
+    NodeError, NodeInputs, NodeSchema, OwnSchema, ParamSpec, ParamValue, Params, PortType,
+    executor::Node,
+};
+use reflect::{MemberType, Reflection, Resource};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use std::time::SystemTime;
+
+/// What a shader file said the last time it was read.
+struct Cached {
+    /// Modification time and length when read: the file is re-read when they change.
+    stamp: Option<(SystemTime, u64)>,
+    /// The current version, if it is valid.
+    current: Result<Arc<Reflection>, String>,
+    /// The last valid version (its ports stay on the node while the file is broken).
+    last_good: Option<Arc<Reflection>>,
+}
+
+#[derive(Default)]
+pub struct CustomShaderNode {
+    files: Mutex<HashMap<PathBuf, Cached>>,
+}
+
+const DOC: &str = "A fragment shader of your own (WGSL file): its texture bindings become \
+    input ports (Image, Mask, GBuffer), its uniform struct's members parameters, its result the \
+    output (vec4 → image, f32 → mask). Re-read when the file changes. See docs/custom_shader.md.";
+
+impl CustomShaderNode {
+    /// The shader at `path`, re-read if it changed since the last call.
+    fn read(&self, path: &Path) -> (Result<Arc<Reflection>, String>, Option<Arc<Reflection>>) {
+        let mut files = self.files.lock().unwrap_or_else(|p| p.into_inner());
+        let stamp = std::fs::metadata(path)
+            .ok()
+            .map(|m| (m.modified().unwrap_or(SystemTime::UNIX_EPOCH), m.len()));
+        let entry = files.entry(path.to_path_buf()).or_insert(Cached {
+            stamp: None,
+            current: Err(String::new()),
+            last_good: None,
+        });
+        let fresh = stamp.is_some() && entry.stamp == stamp;
+        if !fresh {
+            entry.stamp = stamp;
+            entry.current = std::fs::read_to_string(path)
+                .map_err(|e| format!("{}: cannot read the shader: {e}", path.display()))
+                .and_then(|source| reflect::reflect(path, &source, &self.schema()))
+                .map(Arc::new);
+            if let Ok(good) = &entry.current {
+                entry.last_good = Some(good.clone());
+            }
+        }
+        (entry.current.clone(), entry.last_good.clone())
+    }
+
+    fn shader_path(params: &Params) -> Result<PathBuf, String> {
+        let path = params.path("shader");
+        if path.as_os_str().is_empty() {
+            return Err("no shader file: set `shader` to a .wgsl file".into());
+        }
+        Ok(path)
+    }
+}
+
+impl Node<Value, Ctx> for CustomShaderNode {
+    fn schema(&self) -> NodeSchema {
+        NodeSchema {
+            kind: "CustomShader",
+            category: "Compositing",
+            doc: DOC,
+            inputs: vec![],
+            outputs: vec![],
+            params: vec![ParamSpec::path(
+                "shader",
+                "",
+                "the WGSL file (relative to the graph file's folder); ports and parameters follow its declarations",
+            )],
+            frame_dependent: true,
+            sink: false,
+        }
+    }
+
+    fn has_own_schema(&self) -> bool {
+        true
+    }
+
+    fn own_schema(&self, params: &Params) -> Option<OwnSchema> {
+        let path = match Self::shader_path(params) {
+            Ok(path) => path,
+            Err(message) => {
+                return Some(OwnSchema {
+                    error: Some(message),
+                    ..Default::default()
+                });
+            }
+        };
+        let (current, last_good) = self.read(&path);
+        Some(match current {
+            Ok(r) => OwnSchema {
+                schema: Some(r.schema.clone()),
+                error: None,
+                fingerprint: r.fingerprint,
+            },
+            Err(message) => OwnSchema {
+                schema: last_good.map(|r| r.schema.clone()),
+                error: Some(message),
+                fingerprint: 0,
+            },
+        })
+    }
+
+    fn execute(
+        &self,
+        ctx: &mut Ctx,
+        inputs: &NodeInputs<Value>,
+        params: &Params,
+    ) -> Result<Vec<Value>, NodeError> {
+        let path = Self::shader_path(params).map_err(NodeError::new)?;
+        let shader = self.read(&path).0.map_err(NodeError::new)?;
+        let (width, height) = ctx.size();
+        // Every input texture has the frame's size (the shader addresses pixels by position).
+        let mut views = Vec::new();
+        for (binding, resource) in &shader.bindings {
+            let (port, texture) = match resource {
+                Resource::Texture { port } => match inputs.require(port)? {
+                    Value::Image(i) => (*port, i.texture.clone()),
+                    Value::Mask(m) => (*port, m.texture.clone()),
+                    other => {
+                        return Err(NodeError::at_port(
+                            port,
+                            format!("expected an image or a mask, got {}", other.port_type()),
+                        ));
+                    }
+                },
+                Resource::Depth { port } => {
+                    (*port, inputs.require(port)?.gbuffer(port)?.depth.clone())
+                }
+                Resource::Normal { port } => {
+                    (*port, inputs.require(port)?.gbuffer(port)?.normal.clone())
+                }
+                Resource::Sampler | Resource::Uniform => continue,
+            };
+            if (texture.width(), texture.height()) != (width, height) {
+                return Err(NodeError::at_port(
+                    port,
+                    format!(
+                        "input is {}×{}, the frame is {width}×{height}",
+                        texture.width(),
+                        texture.height()
+                    ),
+                ));
+            }
+            views.push((*binding, texture.create_view(&Default::default())));
+        }
+        let format = match shader.output {
+            PortType::Mask => MASK_FORMAT,
+            _ => IMAGE_FORMAT,
+        };
+        let key = format!("custom_shader:{:016x}:{format:?}", shader.fingerprint);
+        let pipeline = ctx
+            .cached(&key, |gpu| pipeline(gpu, &path, &shader, format))
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let sampler = ctx
+            .cached("custom_shader:sampler", |gpu| {
+                Ok(gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("custom shader sampler"),
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    ..Default::default()
+                }))
+            })
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let uniform = shader.uniform.as_ref().map(|u| {
+            ctx.gpu.buffer_init(
+                "custom shader parameters",
+                &uniform_bytes(u, params),
+                wgpu::BufferUsages::UNIFORM,
+            )
+        });
+        let mut entries = Vec::new();
+        for (binding, resource) in &shader.bindings {
+            let resource = match resource {
+                Resource::Sampler => wgpu::BindingResource::Sampler(&sampler),
+                Resource::Uniform => uniform.as_ref().expect("made above").as_entire_binding(),
+                _ => {
+                    let view = &views.iter().find(|(b, _)| b == binding).expect("made above").1;
+                    wgpu::BindingResource::TextureView(view)
+                }
+            };
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource,
+            });
+        }
+        let label = format!("custom shader {}", path.display());
+        let bind_group = ctx
+            .gpu
+            .checked(&label, |device| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&label),
+                    layout: &pipeline.get_bind_group_layout(0),
+                    entries: &entries,
+                })
+            })
+            .map_err(|e| NodeError::new(e.to_string()))?;
+        let texture = crate::screen_pass::draw(
+            ctx,
+            &label,
+            &pipeline,
+            &bind_group,
+            format,
+            (width, height),
+        );
+        Ok(vec![match shader.output {
+            PortType::Mask => Value::Mask(Arc::new(Mask { texture })),
+            _ => Value::Image(Arc::new(Image { texture })),
+        }])
+    }
+}
+
+/// The render pipeline: our full-frame vertex stage, the file's fragment stage.
+fn pipeline(
+    gpu: &GpuContext,
+    path: &Path,
+    shader: &Reflection,
+    format: wgpu::TextureFormat,
+) -> Result<wgpu::RenderPipeline, GpuError> {
+    let vertex = gpu.shader("custom_shader_vertex", crate::shaders::CUSTOM_SHADER_VERTEX)?;
+    let name = path.display().to_string();
+    let fragment = gpu.shader(&name, &shader.source)?;
+    gpu.checked(&format!("pipeline of {name}"), |device| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&name),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &vertex,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &fragment,
+                entry_point: Some(&shader.entry_point),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })
+}
+
+/// The uniform struct's bytes: each member's parameter at its offset (naga's layout).
+fn uniform_bytes(uniform: &reflect::Uniform, params: &Params) -> Vec<u8> {
+    let mut bytes = vec![0u8; uniform.size as usize];
+    for m in &uniform.members {
+        // Matched on the stored value, not read with the typed getters: the file may have
+        // changed a member's type since the graph was validated.
+        let scalar = match params.get(m.name) {
+            Some(ParamValue::Float(x)) => Some(*x),
+            Some(ParamValue::Int(i)) => Some(*i as f64),
+            _ => None,
+        };
+        let words: Vec<[u8; 4]> = match (m.ty, scalar, params.get(m.name)) {
+            (MemberType::F32, Some(x), _) => vec![(x as f32).to_le_bytes()],
+            (MemberType::I32, Some(x), _) => vec![(x.round() as i32).to_le_bytes()],
+            (MemberType::U32, Some(x), _) => vec![(x.round().max(0.0) as u32).to_le_bytes()],
+            (MemberType::Vec3, _, Some(ParamValue::Vec3(v))) => {
+                v.iter().map(|x| (*x as f32).to_le_bytes()).collect()
+            }
+            (MemberType::Vec4, _, Some(ParamValue::Color(c))) => {
+                c.iter().map(|x| (*x as f32).to_le_bytes()).collect()
+            }
+            _ => continue,
+        };
+        for (i, word) in words.iter().enumerate() {
+            let at = m.offset as usize + 4 * i;
+            bytes[at..at + 4].copy_from_slice(word);
+        }
+    }
+    bytes
+}

@@ -1,0 +1,480 @@
+//! What a custom shader declares, read with naga: its bindings become typed input ports, the
+//! members of its uniform struct become parameters, its fragment result the output port.
+//!
+//! The rules (docs/custom_shader.md):
+//! - `var NAME: texture_2d<f32>` → input `NAME`: an `Image`, or a `Mask` when NAME is `mask` or
+//!   ends in `_mask`.
+//! - `var NAME: texture_depth_2d` → input `NAME`: a `GBuffer`, bound as its depth;
+//!   `var NAME_normal: texture_2d<f32>` then gets the same G-buffer's normals (xyz, coverage w).
+//! - `var NAME: sampler` → a linear, clamp-to-edge sampler.
+//! - `var<uniform> NAME: S` (one at most) → a parameter per member of struct `S`: `f32` a float,
+//!   `i32`/`u32` an integer, `vec3<f32>` a vector, `vec4<f32>` a colour. A trailing comment on
+//!   the member's line may give `default = …`, `range = min..max` and a description.
+//! - The one `@fragment` entry point returns `vec4<f32>` (output `image`, premultiplied RGBA) or
+//!   `f32` (output `mask`); it may take `@builtin(position)` and `@location(0) uv: vec2<f32>`.
+//!
+//! Every problem is reported as `file:line:col: message`.
+
+use hatchery_graph::{
+    NodeSchema, ParamKind, ParamSpec, ParamValue, PortSpec, PortType, intern,
+};
+use naga::{AddressSpace, ImageClass, ScalarKind, TypeInner, VectorSize};
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::path::Path;
+use std::sync::Arc;
+
+/// What one binding (all in group 0) is bound to.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Resource {
+    /// An `Image` or `Mask` input's texture.
+    Texture { port: &'static str },
+    /// A `GBuffer` input's depth (Depth32Float).
+    Depth { port: &'static str },
+    /// A `GBuffer` input's normals (Rgba16Float).
+    Normal { port: &'static str },
+    Sampler,
+    /// The parameters' uniform buffer.
+    Uniform,
+}
+
+/// How a uniform member is written.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MemberType {
+    F32,
+    I32,
+    U32,
+    Vec3,
+    Vec4,
+}
+
+/// One uniform member: the parameter of the same name, written at `offset` bytes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Member {
+    pub name: &'static str,
+    pub offset: u32,
+    pub ty: MemberType,
+}
+
+/// The uniform struct: `size` bytes, its members.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Uniform {
+    pub size: u32,
+    pub members: Vec<Member>,
+}
+
+/// A readable, valid custom shader and what it declares.
+#[derive(Debug)]
+pub struct Reflection {
+    pub source: Arc<str>,
+    /// Hash of the path and the source: changes when the file's content does.
+    pub fingerprint: u64,
+    pub entry_point: String,
+    pub bindings: Vec<(u32, Resource)>,
+    pub uniform: Option<Uniform>,
+    /// The output port's type: `Image` (vec4 result) or `Mask` (f32 result).
+    pub output: PortType,
+    pub schema: Arc<NodeSchema>,
+}
+
+/// Reads `source` (the text of `path`) with naga. `base` is the kind's schema (its `shader`
+/// parameter comes first in every instance). Errors are `path:line:col: message`.
+pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflection, String> {
+    let shown = path.display().to_string();
+    let at = |offset: Option<naga::SourceLocation>, message: &str| match offset {
+        Some(l) => format!("{shown}:{}:{}: {message}", l.line_number, l.line_position),
+        None => format!("{shown}: {message}"),
+    };
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| at(e.location(source), &parse_message(&e)))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|e| at(e.location(source), &validation_message(&e)))?;
+
+    let span_at = |span: naga::Span| span.is_defined().then(|| span.location(source));
+    let offset_at = |offset: usize| Some(naga::Span::new(offset as u32, offset as u32 + 1).location(source));
+
+    // The fragment entry point and its output.
+    let fragments: Vec<&naga::EntryPoint> = module
+        .entry_points
+        .iter()
+        .filter(|e| e.stage == naga::ShaderStage::Fragment)
+        .collect();
+    let [entry] = fragments[..] else {
+        return Err(at(
+            None,
+            &format!(
+                "a custom shader has exactly one @fragment entry point; this file has {}",
+                fragments.len()
+            ),
+        ));
+    };
+    let entry_at = |message: &str| {
+        let offset = source.find(&format!("fn {}", entry.name));
+        at(offset.and_then(offset_at), message)
+    };
+    let output = match entry.function.result.as_ref().map(|r| &module.types[r.ty].inner) {
+        Some(TypeInner::Vector {
+            size: VectorSize::Quad,
+            scalar,
+        }) if scalar.kind == ScalarKind::Float && scalar.width == 4 => PortType::Image,
+        Some(TypeInner::Scalar(scalar)) if scalar.kind == ScalarKind::Float && scalar.width == 4 => {
+            PortType::Mask
+        }
+        _ => {
+            return Err(entry_at(&format!(
+                "fragment entry point `{}` must return @location(0) vec4<f32> (an image) or f32 (a mask)",
+                entry.name
+            )));
+        }
+    };
+    check_fragment_inputs(&module, entry).map_err(|m| entry_at(&m))?;
+
+    // Bindings: textures → ports, samplers, the uniform → parameters.
+    let mut bindings = Vec::new();
+    let mut inputs = Vec::new();
+    let mut uniform = None;
+    let mut params = base.params.clone();
+    let depth_names: Vec<&str> = module
+        .global_variables
+        .iter()
+        .filter(|(_, g)| {
+            matches!(
+                module.types[g.ty].inner,
+                TypeInner::Image {
+                    class: ImageClass::Depth { multi: false },
+                    ..
+                }
+            )
+        })
+        .filter_map(|(_, g)| g.name.as_deref())
+        .collect();
+    for (handle, global) in module.global_variables.iter() {
+        let Some(binding) = &global.binding else {
+            continue;
+        };
+        let name = global.name.clone().unwrap_or_default();
+        let here = |message: String| at(span_at(module.global_variables.get_span(handle)), &message);
+        if binding.group != 0 {
+            return Err(here(format!(
+                "`{name}` is in @group({}); a custom shader binds everything in @group(0)",
+                binding.group
+            )));
+        }
+        let inner = &module.types[global.ty].inner;
+        let resource = match (global.space, inner) {
+            (
+                AddressSpace::Handle,
+                TypeInner::Image {
+                    dim: naga::ImageDimension::D2,
+                    arrayed: false,
+                    class: ImageClass::Sampled {
+                        kind: ScalarKind::Float,
+                        multi: false,
+                    },
+                },
+            ) => {
+                let gbuffer = name
+                    .strip_suffix("_normal")
+                    .filter(|base| depth_names.contains(base));
+                match gbuffer {
+                    Some(base) => Resource::Normal { port: intern(base) },
+                    None => {
+                        let mask = name == "mask" || name.ends_with("_mask");
+                        let ty = if mask { PortType::Mask } else { PortType::Image };
+                        let doc = if mask {
+                            "a mask (one channel, `.r`)"
+                        } else {
+                            "an image (premultiplied RGBA)"
+                        };
+                        inputs.push(PortSpec::input(intern(&name), ty, doc));
+                        Resource::Texture { port: intern(&name) }
+                    }
+                }
+            }
+            (
+                AddressSpace::Handle,
+                TypeInner::Image {
+                    dim: naga::ImageDimension::D2,
+                    arrayed: false,
+                    class: ImageClass::Depth { multi: false },
+                },
+            ) => {
+                inputs.push(PortSpec::input(
+                    intern(&name),
+                    PortType::GBuffer,
+                    "a G-buffer: its depth here (window-space, 1 where empty); its normals in `<name>_normal` if declared",
+                ));
+                Resource::Depth { port: intern(&name) }
+            }
+            (AddressSpace::Handle, TypeInner::Sampler { comparison: false }) => Resource::Sampler,
+            (AddressSpace::Uniform, TypeInner::Struct { members, span }) => {
+                if uniform.is_some() {
+                    return Err(here("a custom shader has at most one var<uniform>".into()));
+                }
+                let struct_span = module.types.get_span(global.ty);
+                let mut layout = Uniform {
+                    size: *span,
+                    members: Vec::new(),
+                };
+                for m in members {
+                    let member = m.name.clone().unwrap_or_default();
+                    let line = member_line(source, struct_span, &member);
+                    let member_at = |message: String| at(line.and_then(offset_at), &message);
+                    if params.iter().any(|p| p.name == member) {
+                        return Err(member_at(format!(
+                            "uniform member `{member}` has the name of the node's own parameter; rename it"
+                        )));
+                    }
+                    let ty = member_type(&module.types[m.ty].inner).ok_or_else(|| {
+                        member_at(format!(
+                            "uniform member `{member}`: use f32, i32, u32, vec3<f32> or vec4<f32>"
+                        ))
+                    })?;
+                    let comment = line.map_or("", |o| trailing_comment(&source[o..]));
+                    params.push(param_spec(&member, ty, comment).map_err(member_at)?);
+                    layout.members.push(Member {
+                        name: intern(&member),
+                        offset: m.offset,
+                        ty,
+                    });
+                }
+                uniform = Some(layout);
+                Resource::Uniform
+            }
+            _ => {
+                return Err(here(format!(
+                    "`{name}`: a custom shader binds texture_2d<f32>, texture_depth_2d, sampler and one var<uniform> struct"
+                )));
+            }
+        };
+        bindings.push((binding.binding, resource));
+    }
+    bindings.sort_by_key(|(b, _)| *b);
+    if let Some(w) = bindings.windows(2).find(|w| w[0].0 == w[1].0) {
+        return Err(at(None, &format!("@binding({}) is used twice", w[0].0)));
+    }
+
+    let mut hasher = DefaultHasher::new();
+    path.hash(&mut hasher);
+    source.hash(&mut hasher);
+    let output_port = match output {
+        PortType::Mask => PortSpec::output("mask", PortType::Mask, "the shader's result"),
+        _ => PortSpec::output("image", PortType::Image, "the shader's result"),
+    };
+    let schema = NodeSchema {
+        inputs,
+        outputs: vec![output_port],
+        params,
+        doc: header_doc(source).map_or(base.doc, |d| intern(&d)),
+        ..base.clone()
+    };
+    Ok(Reflection {
+        source: Arc::from(source),
+        fingerprint: hasher.finish(),
+        entry_point: entry.name.clone(),
+        bindings,
+        uniform,
+        output,
+        schema: Arc::new(schema),
+    })
+}
+
+fn parse_message(e: &naga::front::wgsl::ParseError) -> String {
+    // The first label usually says what was expected where; the message says what went wrong.
+    match e.labels().next() {
+        Some((_, label)) if !label.is_empty() && !e.message().contains(label) => {
+            format!("{} ({label})", e.message())
+        }
+        _ => e.message().to_owned(),
+    }
+}
+
+fn validation_message(e: &naga::WithSpan<naga::valid::ValidationError>) -> String {
+    use std::error::Error;
+    // naga nests the cause: "Function [1] 'fs_main' is invalid" → "... : the actual reason".
+    let mut message = e.as_inner().to_string();
+    let mut cause = e.as_inner().source();
+    while let Some(c) = cause {
+        message.push_str(": ");
+        message.push_str(&c.to_string());
+        cause = c.source();
+    }
+    message
+}
+
+/// The fragment stage gets only what the vertex stage makes (shaders/custom_shader_vertex.wgsl).
+fn check_fragment_inputs(module: &naga::Module, entry: &naga::EntryPoint) -> Result<(), String> {
+    let mut bindings = Vec::new();
+    for arg in &entry.function.arguments {
+        match (&arg.binding, &module.types[arg.ty].inner) {
+            (Some(b), inner) => bindings.push((b.clone(), inner.clone())),
+            (None, TypeInner::Struct { members, .. }) => {
+                for m in members {
+                    if let Some(b) = &m.binding {
+                        bindings.push((b.clone(), module.types[m.ty].inner.clone()));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for (binding, inner) in bindings {
+        let ok = match binding {
+            naga::Binding::BuiltIn(naga::BuiltIn::Position { .. }) => true,
+            naga::Binding::BuiltIn(_) => true,
+            naga::Binding::Location { location: 0, .. } => matches!(
+                inner,
+                TypeInner::Vector {
+                    size: VectorSize::Bi,
+                    scalar
+                } if scalar.kind == ScalarKind::Float && scalar.width == 4
+            ),
+            naga::Binding::Location { .. } => false,
+        };
+        if !ok {
+            return Err(
+                "the fragment stage gets @builtin(position) and @location(0) uv: vec2<f32> only"
+                    .into(),
+            );
+        }
+    }
+    Ok(())
+}
+
+fn member_type(inner: &TypeInner) -> Option<MemberType> {
+    let f32_ = |s: &naga::Scalar| s.kind == ScalarKind::Float && s.width == 4;
+    Some(match inner {
+        TypeInner::Scalar(s) if f32_(s) => MemberType::F32,
+        TypeInner::Scalar(s) if s.kind == ScalarKind::Sint && s.width == 4 => MemberType::I32,
+        TypeInner::Scalar(s) if s.kind == ScalarKind::Uint && s.width == 4 => MemberType::U32,
+        TypeInner::Vector {
+            size: VectorSize::Tri,
+            scalar,
+        } if f32_(scalar) => MemberType::Vec3,
+        TypeInner::Vector {
+            size: VectorSize::Quad,
+            scalar,
+        } if f32_(scalar) => MemberType::Vec4,
+        _ => return None,
+    })
+}
+
+/// Byte offset of the line declaring `member` inside the struct's span.
+fn member_line(source: &str, span: naga::Span, member: &str) -> Option<usize> {
+    let range = span.to_range()?;
+    let text = source.get(range.clone())?;
+    let mut offset = range.start;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        if let Some(rest) = trimmed.strip_prefix(member)
+            && rest.trim_start().starts_with(':')
+        {
+            return Some(offset + (line.len() - trimmed.len()));
+        }
+        offset += line.len();
+    }
+    None
+}
+
+/// The `// …` comment at the end of the line starting at the text's beginning.
+fn trailing_comment(text: &str) -> &str {
+    let line = text.lines().next().unwrap_or("");
+    line.find("//").map_or("", |i| line[i + 2..].trim())
+}
+
+/// The parameter for a uniform member, from its type and its comment:
+/// `default = 0.5, range = 0..1, what it does`.
+fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, String> {
+    let mut default: Option<ron::Value> = None;
+    let mut range: Option<(f64, f64)> = None;
+    let mut doc = Vec::new();
+    for part in split_top_level(comment) {
+        let part = part.trim();
+        if let Some(v) = part.strip_prefix("default").map(str::trim_start)
+            && let Some(v) = v.strip_prefix('=')
+        {
+            default = Some(ron::from_str(v.trim()).map_err(|_| {
+                format!("uniform member `{name}`: `default = {}` is not a number or a list of numbers", v.trim())
+            })?);
+        } else if let Some(v) = part.strip_prefix("range").map(str::trim_start)
+            && let Some(v) = v.strip_prefix('=')
+        {
+            let bad = || format!("uniform member `{name}`: write the range as `range = min..max`");
+            let (lo, hi) = v.trim().split_once("..").ok_or_else(bad)?;
+            let (lo, hi) = (lo.trim().parse::<f64>(), hi.trim().parse::<f64>());
+            match (lo, hi) {
+                (Ok(lo), Ok(hi)) if lo < hi => range = Some((lo, hi)),
+                _ => return Err(bad()),
+            }
+        } else if !part.is_empty() {
+            doc.push(part);
+        }
+    }
+    let doc = intern(&doc.join(", "));
+    let name = intern(name);
+    let spec = match ty {
+        MemberType::F32 => {
+            let (min, max) = range.unwrap_or((0.0, 1.0));
+            ParamSpec::float(name, min, min, max, doc)
+        }
+        MemberType::I32 | MemberType::U32 => {
+            let floor: f64 = if ty == MemberType::U32 { 0.0 } else { -1e9 };
+            let (min, max) = range.unwrap_or((floor.max(0.0), 100.0));
+            if min < floor {
+                return Err(format!("uniform member `{name}`: a u32 cannot go below 0"));
+            }
+            ParamSpec::int(name, min as i64, min as i64, max as i64, doc)
+        }
+        MemberType::Vec3 => ParamSpec {
+            name,
+            kind: ParamKind::Vec3,
+            default: ParamValue::Vec3([0.0; 3]),
+            doc,
+        },
+        MemberType::Vec4 => ParamSpec::color(name, [0.0, 0.0, 0.0, 1.0], doc),
+    };
+    let Some(raw) = default else {
+        return Ok(spec);
+    };
+    let value = spec
+        .convert(&raw)
+        .map_err(|m| format!("uniform member `{name}`: default: {m}"))?;
+    Ok(ParamSpec {
+        default: value,
+        ..spec
+    })
+}
+
+/// Splits at commas outside brackets (`default = [1, 0, 0, 1], the colour`).
+fn split_top_level(text: &str) -> Vec<&str> {
+    let mut parts = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '[' | '(' => depth += 1,
+            ']' | ')' => depth -= 1,
+            ',' if depth == 0 => {
+                parts.push(&text[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&text[start..]);
+    parts
+}
+
+/// The file's leading `//` comment block, as one paragraph (the node's description).
+fn header_doc(source: &str) -> Option<String> {
+    let lines: Vec<&str> = source
+        .lines()
+        .map(str::trim)
+        .take_while(|l| l.starts_with("//"))
+        .map(|l| l.trim_start_matches('/').trim())
+        .collect();
+    let doc = lines.join(" ").trim().to_owned();
+    (!doc.is_empty()).then_some(doc)
+}

@@ -1,0 +1,413 @@
+//! CustomShader: ports and parameters from the shader's declarations, pictures equal to CPU
+//! computations of the same formulas, errors naming file:line:col, live re-reading. Every case
+//! writes a shader and a graph file into a temporary folder and loads them as the CLI does.
+
+mod common;
+
+use hatchery_graph::{Graph, ParamKind, ParamValue, PortType, SchemaLookup};
+use hatchery_nodes::{Session, Value};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+const W: u32 = 64;
+const H: u32 = 48;
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A graph of `nodes` (RON node entries) and `edges`.
+fn graph_text(nodes: &str, edges: &str) -> String {
+    format!("(version: 2, nodes: [{nodes}], edges: [{edges}])")
+}
+
+fn open(dir: &Path, graph: &str) -> Session {
+    let path = write(dir, "graph.ron", graph);
+    Session::open(&path, W, H).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn pixels(session: &mut Session, node: &str, port: &str) -> hatchery_gpu::TextureData {
+    session.run(&[node]).unwrap_or_else(|e| panic!("{e}"));
+    let texture = match session.output(node, port).unwrap() {
+        Value::Image(i) => i.texture.clone(),
+        Value::Mask(m) => m.texture.clone(),
+        other => panic!("{node}.{port} is {}", other.port_type()),
+    };
+    session.ctx.gpu.read_texture(&texture).unwrap()
+}
+
+const GRADIENT: &str = "// A test gradient: red along x, green along y.
+@fragment
+fn fs_main(@location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(uv.x, uv.y, 0.25, 1.0);
+}
+";
+
+const CHECKER: &str = "
+@fragment
+fn fs_main(@builtin(position) p: vec4<f32>) -> @location(0) f32 {
+    let c = vec2<i32>(floor(p.xy)) / 8;
+    return f32((c.x + c.y) % 2);
+}
+";
+
+const MIX: &str = "// Tints the picture where the mask is set.
+@group(0) @binding(0) var picture: texture_2d<f32>;
+@group(0) @binding(1) var where_mask: texture_2d<f32>;
+struct Params {
+    amount: f32, // default = 0.25, range = 0..2, how much tint
+    tint: vec4<f32>, // default = [0.0, 0.0, 1.0, 1.0], the tint colour
+    steps: i32, // range = 1..16, posterisation levels
+    offset: vec3<f32>, // added to the colour
+}
+@group(0) @binding(2) var<uniform> params: Params;
+
+@fragment
+fn fs_main(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let q = vec2<i32>(floor(p.xy));
+    let c = textureLoad(picture, q, 0);
+    let m = textureLoad(where_mask, q, 0).r;
+    let levels = f32(params.steps);
+    let t = floor(params.amount * m * levels) / levels;
+    return vec4<f32>(mix(c.rgb, params.tint.rgb, t) + params.offset, 1.0);
+}
+";
+
+fn custom(id: &str, shader: &str, params: &str) -> String {
+    format!(
+        "(id: \"{id}\", kind: \"CustomShader\", params: {{\"shader\": \"{shader}\", {params}}}),"
+    )
+}
+
+#[test]
+fn ports_and_parameters_come_from_the_declarations() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "mix.wgsl", MIX);
+    let registry = hatchery_nodes::registry();
+    let raw = BTreeMap::from([("shader".to_owned(), ron::Value::String("mix.wgsl".into()))]);
+    let own = registry
+        .own_schema("CustomShader", &raw, Some(dir.path()))
+        .expect("CustomShader has an own schema");
+    assert_eq!(own.error, None);
+    let schema = own.schema.expect("readable shader");
+    let inputs: Vec<(&str, PortType)> = schema.inputs.iter().map(|p| (p.name, p.ty)).collect();
+    assert_eq!(
+        inputs,
+        [("picture", PortType::Image), ("where_mask", PortType::Mask)]
+    );
+    let outputs: Vec<(&str, PortType)> = schema.outputs.iter().map(|p| (p.name, p.ty)).collect();
+    assert_eq!(outputs, [("image", PortType::Image)]);
+    let names: Vec<&str> = schema.params.iter().map(|p| p.name).collect();
+    assert_eq!(names, ["shader", "amount", "tint", "steps", "offset"]);
+    let amount = schema.param("amount").unwrap();
+    assert_eq!(amount.kind, ParamKind::Float { min: 0.0, max: 2.0 });
+    assert_eq!(amount.default, ParamValue::Float(0.25));
+    assert_eq!(amount.doc, "how much tint");
+    assert_eq!(
+        schema.param("tint").unwrap().default,
+        ParamValue::Color([0.0, 0.0, 1.0, 1.0])
+    );
+    assert_eq!(
+        schema.param("steps").unwrap().kind,
+        ParamKind::Int { min: 1, max: 16 }
+    );
+    assert_eq!(schema.param("offset").unwrap().kind, ParamKind::Vec3);
+    // The file's header comment describes the node.
+    assert_eq!(schema.doc, "Tints the picture where the mask is set.");
+    assert_ne!(own.fingerprint, 0);
+    drop(path);
+
+    // A G-buffer: a depth binding makes the port, `<name>_normal` joins it; f32 → a mask.
+    write(
+        dir.path(),
+        "g.wgsl",
+        "@group(0) @binding(0) var g: texture_depth_2d;
+@group(0) @binding(1) var g_normal: texture_2d<f32>;
+@group(0) @binding(2) var s: sampler;
+@fragment fn main(@builtin(position) p: vec4<f32>) -> @location(0) f32 {
+    return textureLoad(g, vec2<i32>(p.xy), 0) + textureLoad(g_normal, vec2<i32>(p.xy), 0).w;
+}",
+    );
+    let raw = BTreeMap::from([("shader".to_owned(), ron::Value::String("g.wgsl".into()))]);
+    let own = registry
+        .own_schema("CustomShader", &raw, Some(dir.path()))
+        .unwrap();
+    let schema = own.schema.unwrap_or_else(|| panic!("{:?}", own.error));
+    let inputs: Vec<(&str, PortType)> = schema.inputs.iter().map(|p| (p.name, p.ty)).collect();
+    assert_eq!(inputs, [("g", PortType::GBuffer)]);
+    assert_eq!(schema.outputs[0].name, "mask");
+    assert_eq!(schema.outputs[0].ty, PortType::Mask);
+}
+
+#[test]
+fn uv_and_position_address_pixels_from_the_top_left() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "uv.wgsl",
+        "@fragment
+fn fs_main(@builtin(position) p: vec4<f32>, @location(0) uv: vec2<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(uv, p.x / 64.0, p.y / 64.0);
+}",
+    );
+    let mut session = open(
+        dir.path(),
+        &graph_text(&custom("uv", "uv.wgsl", ""), ""),
+    );
+    let data = pixels(&mut session, "uv", "image");
+    let mut samples = Vec::new();
+    for (x, y) in [(0, 0), (W - 1, 0), (0, H - 1), (W - 1, H - 1), (17, 29)] {
+        let t = data.texel(x, y);
+        let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+        let expected = [cx / W as f32, cy / H as f32, cx / 64.0, cy / 64.0];
+        let error = (0..4).map(|c| (t[c] - expected[c]).abs()).fold(0.0, f32::max);
+        samples.push(common::Sample {
+            x,
+            y,
+            what: format!("{t:?} vs {expected:?}"),
+            error: error as f64,
+        });
+    }
+    // Rgba16Float keeps 11 significant bits: 1/2048 relative.
+    common::assert_samples("custom shader uv", &samples, 1e-3, None);
+}
+
+#[test]
+fn chained_shaders_equal_the_cpu_formula() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "gradient.wgsl", GRADIENT);
+    write(dir.path(), "checker.wgsl", CHECKER);
+    write(dir.path(), "mix.wgsl", MIX);
+    let nodes = [
+        custom("gradient", "gradient.wgsl", ""),
+        custom("checker", "checker.wgsl", ""),
+        custom(
+            "mix",
+            "mix.wgsl",
+            "\"amount\": 0.8, \"steps\": 4, \"tint\": [1.0, 0.5, 0.0, 1.0], \"offset\": [0.0, 0.0, 0.125]",
+        ),
+    ]
+    .join("\n");
+    let edges = "(from: (\"gradient\", \"image\"), to: (\"mix\", \"picture\")),
+                 (from: (\"checker\", \"mask\"), to: (\"mix\", \"where_mask\")),";
+    let mut session = open(dir.path(), &graph_text(&nodes, edges));
+    let picture = pixels(&mut session, "gradient", "image");
+    let mask = pixels(&mut session, "checker", "mask");
+    let out = pixels(&mut session, "mix", "image");
+    let mut samples = Vec::new();
+    let mut masked = 0;
+    for y in 0..H {
+        for x in 0..W {
+            let (c, m) = (picture.texel(x, y), mask.texel(x, y)[0]);
+            let expected_mask = (((x / 8) + (y / 8)) % 2) as f32;
+            assert_eq!(m, expected_mask, "checker at ({x}, {y})");
+            masked += m as u32;
+            let t = (0.8f32 * m * 4.0).floor() / 4.0;
+            let tint = [1.0, 0.5, 0.0];
+            let offset = [0.0, 0.0, 0.125];
+            let expected: Vec<f32> = (0..3)
+                .map(|i| c[i] + (tint[i] - c[i]) * t + offset[i])
+                .chain([1.0])
+                .collect();
+            let got = out.texel(x, y);
+            let error = (0..4).map(|i| (got[i] - expected[i]).abs()).fold(0.0, f32::max);
+            samples.push(common::Sample {
+                x,
+                y,
+                what: format!("{got:?} vs {expected:?}"),
+                error: error as f64,
+            });
+        }
+    }
+    assert!(masked > 0 && masked < W * H, "the checker masks part of the frame");
+    common::assert_samples("custom shader mix", &samples, 2e-3, None);
+
+    // A parameter set the way the CLI's --set does re-runs the node with the new value.
+    session.set_param_text("mix", "amount", "0").unwrap();
+    let plain = pixels(&mut session, "mix", "image");
+    let (c, got) = (picture.texel(8, 0), plain.texel(8, 0));
+    assert!((got[0] - c[0]).abs() < 2e-3 && (got[2] - (c[2] + 0.125)).abs() < 2e-3);
+}
+
+#[test]
+fn a_gbuffer_port_binds_depth_and_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "g.wgsl",
+        "@group(0) @binding(0) var g: texture_depth_2d;
+@group(0) @binding(1) var g_normal: texture_2d<f32>;
+@fragment fn fs_main(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let q = vec2<i32>(floor(p.xy));
+    let n = textureLoad(g_normal, q, 0);
+    return vec4<f32>(n.xyz * 0.5 + 0.5, textureLoad(g, q, 0));
+}",
+    );
+    let nodes = format!(
+        "(id: \"shells\", kind: \"ProceduralVolume\", params: {{\"resolution\": 48, \"shape\": \"shells\"}}),
+         (id: \"surface\", kind: \"MarchingCubes\", params: {{\"iso\": 0.0}}),
+         (id: \"camera\", kind: \"Camera\", params: {{\"distance\": 3.5}}),
+         (id: \"gbuffer\", kind: \"GBuffer\", params: {{}}),
+         {}",
+        custom("show", "g.wgsl", "")
+    );
+    let edges = "(from: (\"shells\", \"volume\"), to: (\"surface\", \"volume\")),
+        (from: (\"surface\", \"mesh\"), to: (\"gbuffer\", \"mesh\")),
+        (from: (\"camera\", \"camera\"), to: (\"gbuffer\", \"camera\")),
+        (from: (\"gbuffer\", \"gbuffer\"), to: (\"show\", \"g\")),";
+    let mut session = open(dir.path(), &graph_text(&nodes, edges));
+    let out = pixels(&mut session, "show", "image");
+    let Value::GBuffer(g) = session.output("gbuffer", "gbuffer").unwrap().clone() else {
+        panic!("not a G-buffer");
+    };
+    let depth = session.ctx.gpu.read_texture(&g.depth).unwrap();
+    let normal = session.ctx.gpu.read_texture(&g.normal).unwrap();
+    let mut samples = Vec::new();
+    let mut covered = 0;
+    for y in 0..H {
+        for x in 0..W {
+            let (n, d) = (normal.texel(x, y), depth.texel(x, y)[0]);
+            covered += (d < 1.0) as u32;
+            let expected = [n[0] * 0.5 + 0.5, n[1] * 0.5 + 0.5, n[2] * 0.5 + 0.5, d];
+            let got = out.texel(x, y);
+            let error = (0..4).map(|i| (got[i] - expected[i]).abs()).fold(0.0, f32::max);
+            samples.push(common::Sample {
+                x,
+                y,
+                what: format!("{got:?} vs {expected:?}"),
+                error: error as f64,
+            });
+        }
+    }
+    assert!(covered > 100, "the surface covers the frame ({covered} pixels)");
+    common::assert_samples("custom shader gbuffer", &samples, 1e-3, None);
+}
+
+/// The first error of loading `graph` (its text) from `dir`.
+fn load_error(dir: &Path, graph: &str) -> String {
+    let path = write(dir, "graph.ron", graph);
+    let registry = hatchery_nodes::registry();
+    match Graph::load_file(&path, &registry) {
+        Ok(_) => panic!("the graph loaded"),
+        Err(e) => e.0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"),
+    }
+}
+
+#[test]
+fn shader_errors_name_the_node_the_file_the_line_and_the_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let one = |shader: &str| graph_text(&custom("mine", shader, ""), "");
+    // Syntax: the missing `;` at the end of line 3 is reported where the parser stops.
+    write(
+        dir.path(),
+        "syntax.wgsl",
+        "@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    let a = 1.0\n    return vec4<f32>(a);\n}\n",
+    );
+    let e = load_error(dir.path(), &one("syntax.wgsl"));
+    assert!(e.contains("node `mine`"), "{e}");
+    assert!(e.contains("syntax.wgsl:4:5: "), "{e}");
+    assert!(e.contains("expected"), "{e}");
+    // Types (naga's validation): the line of the offending statement.
+    write(
+        dir.path(),
+        "types.wgsl",
+        "@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    let a: f32 = vec2<f32>(1.0);\n    return vec4<f32>(a);\n}\n",
+    );
+    let e = load_error(dir.path(), &one("types.wgsl"));
+    assert!(e.contains("types.wgsl:3:"), "{e}");
+    // A binding the node cannot feed, on its own line.
+    write(
+        dir.path(),
+        "storage.wgsl",
+        "// header\n@group(0) @binding(0) var<storage, read> data: array<f32>;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(data[0]);\n}\n",
+    );
+    let e = load_error(dir.path(), &one("storage.wgsl"));
+    assert!(e.contains("storage.wgsl:2:"), "{e}");
+    assert!(e.contains("`data`"), "{e}");
+    // A uniform member of a type without a widget.
+    write(
+        dir.path(),
+        "member.wgsl",
+        "struct P {\n    a: f32,\n    b: mat2x2<f32>,\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a + p.b[0][0]);\n}\n",
+    );
+    let e = load_error(dir.path(), &one("member.wgsl"));
+    assert!(e.contains("member.wgsl:3:5: uniform member `b`"), "{e}");
+    // Bad defaults and ranges in the comment.
+    write(
+        dir.path(),
+        "comment.wgsl",
+        "struct P {\n    a: f32, // range = 1..0\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a);\n}\n",
+    );
+    let e = load_error(dir.path(), &one("comment.wgsl"));
+    assert!(e.contains("comment.wgsl:2:5:") && e.contains("range = min..max"), "{e}");
+    // No fragment stage, a missing file, no file at all.
+    write(
+        dir.path(),
+        "none.wgsl",
+        "@vertex fn vs() -> @builtin(position) vec4<f32> { return vec4<f32>(0.0); }",
+    );
+    let e = load_error(dir.path(), &one("none.wgsl"));
+    assert!(e.contains("exactly one @fragment entry point"), "{e}");
+    let e = load_error(dir.path(), &one("missing.wgsl"));
+    assert!(e.contains("missing.wgsl: cannot read the shader"), "{e}");
+    let e = load_error(dir.path(), &graph_text("(id: \"mine\", kind: \"CustomShader\", params: {}),", ""));
+    assert!(e.contains("no shader file"), "{e}");
+}
+
+#[test]
+fn an_edit_of_the_file_is_seen_and_a_broken_file_keeps_the_last_good_ports() {
+    let dir = tempfile::tempdir().unwrap();
+    let shader = write(dir.path(), "mix.wgsl", MIX);
+    let registry = hatchery_nodes::registry();
+    let raw = BTreeMap::from([("shader".to_owned(), ron::Value::String("mix.wgsl".into()))]);
+    let read = || {
+        registry
+            .own_schema("CustomShader", &raw, Some(dir.path()))
+            .unwrap()
+    };
+    let first = read();
+    assert_eq!(first.error, None);
+    // A live edit: a new member appears as a parameter, the fingerprint changes.
+    std::fs::write(
+        &shader,
+        MIX.replace(
+            "    steps: i32,",
+            "    gamma: f32, // default = 2.2, range = 1..3\n    steps: i32,",
+        ),
+    )
+    .unwrap();
+    let second = read();
+    assert_eq!(second.error, None);
+    assert_ne!(second.fingerprint, first.fingerprint);
+    let gamma = second.schema.as_ref().unwrap().param("gamma").unwrap();
+    assert_eq!(gamma.default, ParamValue::Float(2.2));
+    // A deliberate syntax error: the error is reported, the last good ports stay.
+    std::fs::write(&shader, MIX.replace("let m =", "let m = = ")).unwrap();
+    let broken = read();
+    let message = broken.error.expect("broken file");
+    assert!(message.contains("mix.wgsl:"), "{message}");
+    let kept = broken.schema.expect("last good schema");
+    assert_eq!(kept.input_names(), ["picture", "where_mask"]);
+    assert!(kept.param("gamma").is_some());
+}
+
+#[test]
+fn the_executor_reruns_a_custom_shader_when_its_file_changes() {
+    let dir = tempfile::tempdir().unwrap();
+    let shader = write(dir.path(), "solid.wgsl", GRADIENT);
+    let graph = write(dir.path(), "graph.ron", &graph_text(&custom("g", "solid.wgsl", ""), ""));
+    let registry = hatchery_nodes::registry();
+    let mut session = Session::open(&graph, W, H).unwrap();
+    assert!((pixels(&mut session, "g", "image").texel(3, 3)[2] - 0.25).abs() < 1e-3);
+    std::fs::write(&shader, GRADIENT.replace("0.25, 1.0", "0.75, 1.0")).unwrap();
+    // What the editor does on a file change: validate again, run with the kept cache.
+    session.graph = Graph::load_file(&graph, &registry).unwrap();
+    let report = session.run(&["g"]).unwrap();
+    assert_eq!(report.executed, ["g"]);
+    assert!((pixels(&mut session, "g", "image").texel(3, 3)[2] - 0.75).abs() < 1e-3);
+    // Unchanged: cached.
+    session.graph = Graph::load_file(&graph, &registry).unwrap();
+    assert_eq!(session.run(&["g"]).unwrap().cached, ["g"]);
+}
