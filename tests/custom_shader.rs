@@ -28,6 +28,19 @@ fn open(dir: &Path, graph: &str) -> Session {
     Session::open(&path, W, H).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// One pixel's RGBA against the expected, the error its largest channel difference.
+fn rgba_sample(x: u32, y: u32, got: &[f32], expected: &[f32]) -> common::Sample {
+    let error = (0..4)
+        .map(|i| (got[i] - expected[i]).abs())
+        .fold(0.0, f32::max);
+    common::Sample {
+        x,
+        y,
+        what: format!("{got:?} vs {expected:?}"),
+        error: error as f64,
+    }
+}
+
 fn pixels(session: &mut Session, node: &str, port: &str) -> hatchery_gpu::TextureData {
     session.run(&[node]).unwrap_or_else(|e| panic!("{e}"));
     let texture = match session.output(node, port).unwrap() {
@@ -152,23 +165,13 @@ fn fs_main(@builtin(position) p: vec4<f32>, @location(0) uv: vec2<f32>) -> @loca
     return vec4<f32>(uv, p.x / 64.0, p.y / 64.0);
 }",
     );
-    let mut session = open(
-        dir.path(),
-        &graph_text(&custom("uv", "uv.wgsl", ""), ""),
-    );
+    let mut session = open(dir.path(), &graph_text(&custom("uv", "uv.wgsl", ""), ""));
     let data = pixels(&mut session, "uv", "image");
     let mut samples = Vec::new();
     for (x, y) in [(0, 0), (W - 1, 0), (0, H - 1), (W - 1, H - 1), (17, 29)] {
-        let t = data.texel(x, y);
         let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
         let expected = [cx / W as f32, cy / H as f32, cx / 64.0, cy / 64.0];
-        let error = (0..4).map(|c| (t[c] - expected[c]).abs()).fold(0.0, f32::max);
-        samples.push(common::Sample {
-            x,
-            y,
-            what: format!("{t:?} vs {expected:?}"),
-            error: error as f64,
-        });
+        samples.push(rgba_sample(x, y, data.texel(x, y), &expected));
     }
     // Rgba16Float keeps 11 significant bits: 1/2048 relative.
     common::assert_samples("custom shader uv", &samples, 1e-3, None);
@@ -211,17 +214,13 @@ fn chained_shaders_equal_the_cpu_formula() {
                 .map(|i| c[i] + (tint[i] - c[i]) * t + offset[i])
                 .chain([1.0])
                 .collect();
-            let got = out.texel(x, y);
-            let error = (0..4).map(|i| (got[i] - expected[i]).abs()).fold(0.0, f32::max);
-            samples.push(common::Sample {
-                x,
-                y,
-                what: format!("{got:?} vs {expected:?}"),
-                error: error as f64,
-            });
+            samples.push(rgba_sample(x, y, out.texel(x, y), &expected));
         }
     }
-    assert!(masked > 0 && masked < W * H, "the checker masks part of the frame");
+    assert!(
+        masked > 0 && masked < W * H,
+        "the checker masks part of the frame"
+    );
     common::assert_samples("custom shader mix", &samples, 2e-3, None);
 
     // A parameter set the way the CLI's --set does re-runs the node with the new value.
@@ -271,17 +270,13 @@ fn a_gbuffer_port_binds_depth_and_normals() {
             let (n, d) = (normal.texel(x, y), depth.texel(x, y)[0]);
             covered += (d < 1.0) as u32;
             let expected = [n[0] * 0.5 + 0.5, n[1] * 0.5 + 0.5, n[2] * 0.5 + 0.5, d];
-            let got = out.texel(x, y);
-            let error = (0..4).map(|i| (got[i] - expected[i]).abs()).fold(0.0, f32::max);
-            samples.push(common::Sample {
-                x,
-                y,
-                what: format!("{got:?} vs {expected:?}"),
-                error: error as f64,
-            });
+            samples.push(rgba_sample(x, y, out.texel(x, y), &expected));
         }
     }
-    assert!(covered > 100, "the surface covers the frame ({covered} pixels)");
+    assert!(
+        covered > 100,
+        "the surface covers the frame ({covered} pixels)"
+    );
     common::assert_samples("custom shader gbuffer", &samples, 1e-3, None);
 }
 
@@ -291,7 +286,12 @@ fn load_error(dir: &Path, graph: &str) -> String {
     let registry = hatchery_nodes::registry();
     match Graph::load_file(&path, &registry) {
         Ok(_) => panic!("the graph loaded"),
-        Err(e) => e.0.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n"),
+        Err(e) => {
+            e.0.iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("\n")
+        }
     }
 }
 
@@ -299,49 +299,46 @@ fn load_error(dir: &Path, graph: &str) -> String {
 fn shader_errors_name_the_node_the_file_the_line_and_the_column() {
     let dir = tempfile::tempdir().unwrap();
     let one = |shader: &str| graph_text(&custom("mine", shader, ""), "");
-    // Syntax: the missing `;` at the end of line 3 is reported where the parser stops.
-    write(
-        dir.path(),
-        "syntax.wgsl",
-        "@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    let a = 1.0\n    return vec4<f32>(a);\n}\n",
-    );
-    let e = load_error(dir.path(), &one("syntax.wgsl"));
-    assert!(e.contains("node `mine`"), "{e}");
-    assert!(e.contains("syntax.wgsl:4:5: "), "{e}");
-    assert!(e.contains("expected"), "{e}");
-    // Types (naga's validation): the line of the offending statement.
-    write(
-        dir.path(),
-        "types.wgsl",
-        "@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    let a: f32 = vec2<f32>(1.0);\n    return vec4<f32>(a);\n}\n",
-    );
-    let e = load_error(dir.path(), &one("types.wgsl"));
-    assert!(e.contains("types.wgsl:3:"), "{e}");
-    // A binding the node cannot feed, on its own line.
-    write(
-        dir.path(),
-        "storage.wgsl",
-        "// header\n@group(0) @binding(0) var<storage, read> data: array<f32>;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(data[0]);\n}\n",
-    );
-    let e = load_error(dir.path(), &one("storage.wgsl"));
-    assert!(e.contains("storage.wgsl:2:"), "{e}");
-    assert!(e.contains("`data`"), "{e}");
-    // A uniform member of a type without a widget.
-    write(
-        dir.path(),
-        "member.wgsl",
-        "struct P {\n    a: f32,\n    b: mat2x2<f32>,\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a + p.b[0][0]);\n}\n",
-    );
-    let e = load_error(dir.path(), &one("member.wgsl"));
-    assert!(e.contains("member.wgsl:3:5: uniform member `b`"), "{e}");
-    // Bad defaults and ranges in the comment.
-    write(
-        dir.path(),
-        "comment.wgsl",
-        "struct P {\n    a: f32, // range = 1..0\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a);\n}\n",
-    );
-    let e = load_error(dir.path(), &one("comment.wgsl"));
-    assert!(e.contains("comment.wgsl:2:5:") && e.contains("range = min..max"), "{e}");
+    // (file, text, what the message holds): each kind of mistake, located.
+    let cases: [(&str, &str, &[&str]); 5] = [
+        // Syntax: the missing `;` at the end of line 3 is reported where the parser stops.
+        (
+            "syntax.wgsl",
+            "@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    let a = 1.0\n    return vec4<f32>(a);\n}\n",
+            &["node `mine`", "syntax.wgsl:4:5: ", "expected"],
+        ),
+        // Types (naga's validation): the line of the offending statement.
+        (
+            "types.wgsl",
+            "@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    let a: f32 = vec2<f32>(1.0);\n    return vec4<f32>(a);\n}\n",
+            &["types.wgsl:3:"],
+        ),
+        // A binding the node cannot feed, on its own line.
+        (
+            "storage.wgsl",
+            "// header\n@group(0) @binding(0) var<storage, read> data: array<f32>;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(data[0]);\n}\n",
+            &["storage.wgsl:2:", "`data`"],
+        ),
+        // A uniform member of a type without a widget.
+        (
+            "member.wgsl",
+            "struct P {\n    a: f32,\n    b: mat2x2<f32>,\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a + p.b[0][0]);\n}\n",
+            &["member.wgsl:3:5: uniform member `b`"],
+        ),
+        // A bad range in the comment.
+        (
+            "comment.wgsl",
+            "struct P {\n    a: f32, // range = 1..0\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a);\n}\n",
+            &["comment.wgsl:2:5:", "range = min..max"],
+        ),
+    ];
+    for (file, text, needles) in cases {
+        write(dir.path(), file, text);
+        let e = load_error(dir.path(), &one(file));
+        for needle in needles {
+            assert!(e.contains(needle), "{file}: `{needle}` not in: {e}");
+        }
+    }
     // No fragment stage, a missing file, no file at all.
     write(
         dir.path(),
@@ -352,7 +349,10 @@ fn shader_errors_name_the_node_the_file_the_line_and_the_column() {
     assert!(e.contains("exactly one @fragment entry point"), "{e}");
     let e = load_error(dir.path(), &one("missing.wgsl"));
     assert!(e.contains("missing.wgsl: cannot read the shader"), "{e}");
-    let e = load_error(dir.path(), &graph_text("(id: \"mine\", kind: \"CustomShader\", params: {}),", ""));
+    let e = load_error(
+        dir.path(),
+        &graph_text("(id: \"mine\", kind: \"CustomShader\", params: {}),", ""),
+    );
     assert!(e.contains("no shader file"), "{e}");
 }
 
@@ -397,7 +397,11 @@ fn an_edit_of_the_file_is_seen_and_a_broken_file_keeps_the_last_good_ports() {
 fn the_executor_reruns_a_custom_shader_when_its_file_changes() {
     let dir = tempfile::tempdir().unwrap();
     let shader = write(dir.path(), "solid.wgsl", GRADIENT);
-    let graph = write(dir.path(), "graph.ron", &graph_text(&custom("g", "solid.wgsl", ""), ""));
+    let graph = write(
+        dir.path(),
+        "graph.ron",
+        &graph_text(&custom("g", "solid.wgsl", ""), ""),
+    );
     let registry = hatchery_nodes::registry();
     let mut session = Session::open(&graph, W, H).unwrap();
     assert!((pixels(&mut session, "g", "image").texel(3, 3)[2] - 0.25).abs() < 1e-3);

@@ -229,6 +229,15 @@ const BAD: &[(&str, usize, usize, &[&str])] = &[
         0,
         &["node `hop` (Reroute) has no input port `input`", "in"],
     ),
+    (
+        "custom_shader_error.ron",
+        5,
+        17,
+        &[
+            "node `mine`",
+            "custom_shader_error.wgsl:6:5: expected `;`, found \"return\"",
+        ],
+    ),
 ];
 
 #[test]

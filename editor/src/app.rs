@@ -77,6 +77,8 @@ pub struct EditorApp {
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
     pub frame_all: bool,
+    /// Wakes the UI when a custom shader's file changes.
+    file_watch: Option<crate::file_watch::FileWatch>,
     /// Frame once more when every node has been drawn (their sizes are known then).
     frame_all_again: bool,
     /// The canvas's graph → screen transform of the last frame.
@@ -157,6 +159,7 @@ impl EditorApp {
             pending: None,
             quitting: false,
             frame_all: true,
+            file_watch: None,
             frame_all_again: false,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
         }
@@ -304,12 +307,12 @@ impl EditorApp {
     pub fn ui(&mut self, ui: &mut Ui) {
         self.guard_close(ui);
         self.shortcuts(ui);
-        // Custom shaders are re-read when their files change: look again a few times a second.
+        // Custom shaders are re-read when their files change (a thread wakes us then).
         self.state.poll_watched_files();
-        if self.state.watches_files() {
-            ui.ctx()
-                .request_repaint_after(std::time::Duration::from_millis(250));
-        }
+        let watch = self
+            .file_watch
+            .get_or_insert_with(|| crate::file_watch::FileWatch::spawn(ui.ctx().clone()));
+        watch.set(self.state.watched_files());
         if self.synced_revision != Some(self.state.revision()) {
             self.rebuild_snarl();
         }
@@ -343,7 +346,10 @@ impl EditorApp {
         }
         self.confirm_discard(ui);
         crate::frames::rename_window(ui.ctx(), &mut self.state);
-        if self.export.show(ui.ctx(), self.state.doc(), &self.state.registry) {
+        if self
+            .export
+            .show(ui.ctx(), self.state.doc(), &self.state.registry)
+        {
             let graph = self.state.validate();
             let base = self.state.base_dir();
             self.export.start(graph, base.as_deref());
@@ -740,8 +746,8 @@ impl EditorApp {
             ui.colored_label(Color32::LIGHT_RED, e);
         }
         let doc = self.state.doc();
-        let Some(schema) = hatchery_graph::node_schema(&self.state.registry, doc, &node)
-            .map(|s| (*s).clone())
+        let Some(schema) =
+            hatchery_graph::node_schema(&self.state.registry, doc, &node).map(|s| (*s).clone())
         else {
             ui.label("unknown kind: no parameters to show");
             return;
@@ -804,6 +810,7 @@ impl EditorApp {
         let kind = match node.kind.as_str() {
             "VolumeFile" => Some(FileKind::Volume),
             "MeshFile" => Some(FileKind::Mesh),
+            "CustomShader" => Some(FileKind::Shader),
             _ => None,
         };
         let purpose = Purpose::Param {
@@ -860,12 +867,12 @@ impl EditorApp {
         for (n, file) in dropped.iter().enumerate() {
             let path = file.path().to_path_buf();
             let kind = FileKind::of(&path);
-            match kind.and_then(FileKind::node_kind) {
-                Some(node_kind) => {
+            match kind.and_then(|k| Some((k.node_kind()?, k.path_param()))) {
+                Some((node_kind, param)) => {
                     let place = graph_at + egui::vec2(0.0, 140.0 * n as f32);
                     let stored =
                         crate::files::path_for_graph(self.state.base_dir().as_deref(), &path);
-                    let params = [("path", ParamValue::Path(stored))];
+                    let params = [(param, ParamValue::Path(stored))];
                     if let Ok(id) = self.state.add_node_with(node_kind, pos(place), &params) {
                         self.state.status = format!("added {id} reading {}", path.display());
                     }
@@ -875,8 +882,8 @@ impl EditorApp {
                 }
                 None => {
                     self.state.status = format!(
-                        "{}: not a graph, volume or mesh file (.ron; .nii, .nii.gz, .vti; .obj, \
-                         .ply, .stl)",
+                        "{}: not a graph, volume, mesh or shader file (.ron; .nii, .nii.gz, .vti, \
+                         …; .obj, .ply, .stl; .wgsl)",
                         path.display()
                     );
                 }

@@ -19,6 +19,8 @@ pub enum FileKind {
     Graph,
     Volume,
     Mesh,
+    /// A WGSL fragment shader (read by a CustomShader node).
+    Shader,
 }
 
 impl FileKind {
@@ -34,6 +36,8 @@ impl FileKind {
             Some(FileKind::Volume)
         } else if MESH_EXTENSIONS.contains(&ext) {
             Some(FileKind::Mesh)
+        } else if ext == "wgsl" {
+            Some(FileKind::Shader)
         } else {
             None
         }
@@ -45,6 +49,15 @@ impl FileKind {
             FileKind::Graph => None,
             FileKind::Volume => Some("VolumeFile"),
             FileKind::Mesh => Some("MeshFile"),
+            FileKind::Shader => Some("CustomShader"),
+        }
+    }
+
+    /// The parameter of that node kind that names the file.
+    pub fn path_param(self) -> &'static str {
+        match self {
+            FileKind::Shader => "shader",
+            _ => "path",
         }
     }
 }
@@ -106,6 +119,7 @@ impl FilePicker {
                 VOLUME_EXTENSIONS.to_vec(),
             )),
             Some(FileKind::Mesh) => Some(("Meshes (.obj, .ply, .stl)", MESH_EXTENSIONS.to_vec())),
+            Some(FileKind::Shader) => Some(("WGSL shaders (.wgsl)", vec!["wgsl"])),
             None => None,
         };
         if let Some((name, extensions)) = filter {

@@ -11,6 +11,7 @@ pub mod app;
 pub mod arrange;
 pub mod curve_editor;
 pub mod export_dialog;
+pub mod file_watch;
 pub mod files;
 pub mod frames;
 pub mod groups;

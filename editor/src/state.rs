@@ -141,11 +141,13 @@ impl EditorState {
 
     /// The folder relative paths in the graph resolve against.
     pub fn base_dir(&self) -> Option<PathBuf> {
-        self.path.as_deref().map(hatchery_graph::document::folder_of)
+        self.path
+            .as_deref()
+            .map(hatchery_graph::document::folder_of)
     }
 
     /// Files the graph's nodes read their ports from (custom shaders), resolved.
-    fn watched_files(&self) -> Vec<PathBuf> {
+    pub fn watched_files(&self) -> Vec<PathBuf> {
         let base = self.base_dir();
         self.doc
             .nodes
@@ -171,9 +173,7 @@ impl EditorState {
             .watched_files()
             .into_iter()
             .map(|p| {
-                let stamp = std::fs::metadata(&p).ok().map(|m| {
-                    (m.modified().unwrap_or(std::time::SystemTime::UNIX_EPOCH), m.len())
-                });
+                let stamp = crate::file_watch::stamp(&p);
                 (p, stamp)
             })
             .collect();
@@ -188,11 +188,6 @@ impl EditorState {
             self.status = "a shader file changed: read it again".into();
         }
         changed
-    }
-
-    /// Whether some node reads a file the editor watches.
-    pub fn watches_files(&self) -> bool {
-        !self.watched.is_empty()
     }
 
     /// Validates the document; on success returns the runtime graph.

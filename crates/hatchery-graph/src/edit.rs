@@ -383,7 +383,7 @@ pub fn paste_nodes(
 mod tests {
     use super::*;
     use crate::param::ParamSpec;
-    use crate::schema::PortSpec;
+    use crate::schema::{NodeSchema, PortSpec};
 
     struct Fake(Vec<NodeSchema>);
 

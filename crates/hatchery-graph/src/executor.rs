@@ -5,10 +5,10 @@ use crate::graph::Graph;
 use crate::param::Params;
 use crate::schema::{NodeError, NodeSchema, OwnSchema, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
-use std::path::Path;
-use std::sync::Arc;
 use std::fmt;
 use std::hash::{DefaultHasher, Hash, Hasher};
+use std::path::Path;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// A node kind's behaviour. `V` is the value type flowing along edges, `C` the context
@@ -106,7 +106,10 @@ impl<V, C> SchemaLookup for Registry<V, C> {
             .iter()
             .map(|p| {
                 let value = raw.get(p.name).and_then(|r| p.convert(r).ok());
-                (p.name.to_owned(), value.unwrap_or_else(|| p.default.clone()))
+                (
+                    p.name.to_owned(),
+                    value.unwrap_or_else(|| p.default.clone()),
+                )
             })
             .collect();
         node.own_schema(&Params::new(values, base_dir.map(Arc::from)))

@@ -35,7 +35,9 @@ pub struct NodeInstance {
 impl NodeInstance {
     /// The schema this node uses: its own, else its kind's.
     pub fn schema<'a>(&'a self, schemas: &'a dyn SchemaLookup) -> Option<&'a NodeSchema> {
-        self.own_schema.as_deref().or_else(|| schemas.schema(&self.kind))
+        self.own_schema
+            .as_deref()
+            .or_else(|| schemas.schema(&self.kind))
     }
 }
 
@@ -376,7 +378,8 @@ impl Graph {
                 let (from, to) = (&self.graph[e.source()], &self.graph[e.target()]);
                 let from_port =
                     from.schema(schemas).expect("validated").outputs[e.weight().from_port].name;
-                let to_port = to.schema(schemas).expect("validated").inputs[e.weight().to_port].name;
+                let to_port =
+                    to.schema(schemas).expect("validated").inputs[e.weight().to_port].name;
                 EdgeDoc {
                     from: (from.id.clone(), from_port.into()),
                     to: (to.id.clone(), to_port.into()),

@@ -24,28 +24,58 @@ pub fn pipeline(
     })?;
     let module = gpu.shader(program, &source)?;
     gpu.checked(&format!("pipeline {program}"), |device| {
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(program),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
+        fullscreen_pipeline(device, program, None, &module, &module, "fs_main", format)
     })
+}
+
+/// A pipeline drawing one full-frame triangle (no vertex buffers, no depth): `vertex`'s
+/// `vs_main`, `fragment`'s `entry` into one `format` target; `layout` `None` derives it.
+pub fn fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: Option<&wgpu::PipelineLayout>,
+    vertex: &wgpu::ShaderModule,
+    fragment: &wgpu::ShaderModule,
+    entry: &str,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout,
+        vertex: wgpu::VertexState {
+            module: vertex,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: fragment,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            targets: &[Some(format.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// An error naming `port` unless `texture` has the frame's size.
+pub fn frame_sized(ctx: &Ctx, port: &str, texture: &wgpu::Texture) -> Result<(), NodeError> {
+    let (width, height) = ctx.size();
+    if (texture.width(), texture.height()) == (width, height) {
+        return Ok(());
+    }
+    Err(NodeError::at_port(
+        port,
+        format!(
+            "input is {}×{}, the frame is {width}×{height}",
+            texture.width(),
+            texture.height()
+        ),
+    ))
 }
 
 /// Runs `program` over the frame: the frame-sized `textures` are bound at bindings 0, 1, … in
@@ -61,16 +91,7 @@ pub fn run(
 ) -> Result<wgpu::Texture, NodeError> {
     let (width, height) = ctx.size();
     for (port, texture) in textures {
-        if (texture.width(), texture.height()) != (width, height) {
-            return Err(NodeError::at_port(
-                port,
-                format!(
-                    "input is {}×{}, the frame is {width}×{height}",
-                    texture.width(),
-                    texture.height()
-                ),
-            ));
-        }
+        frame_sized(ctx, port, texture)?;
     }
     let bound: Vec<&wgpu::Texture> = textures
         .iter()

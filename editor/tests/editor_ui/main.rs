@@ -10,6 +10,7 @@ use hatchery_editor::{EditorApp, EditorState};
 use hatchery_graph::{EditorPos, GraphDocument, ParamValue, SchemaLookup};
 use std::path::{Path, PathBuf};
 
+mod custom_shader;
 mod export;
 mod layout;
 mod objects;
@@ -1200,6 +1201,32 @@ fn dropped_files_open_graphs_and_add_source_nodes_where_they_land() {
     h.state_mut().state.undo();
     assert_eq!(h.state().state.doc().nodes.len(), nodes);
 
+    // A WGSL shader: a CustomShader node reading it, with the ports its declarations give.
+    let shader = data.join("invert.wgsl");
+    std::fs::write(
+        &shader,
+        "@group(0) @binding(0) var picture: texture_2d<f32>;\n@fragment fn fs_main(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {\n    let c = textureLoad(picture, vec2<i32>(p.xy), 0);\n    return vec4<f32>(c.a - c.rgb, c.a);\n}\n",
+    )
+    .unwrap();
+    drop_file(&mut h, &shader, at);
+    let doc = h.state().state.doc().clone();
+    let added = doc
+        .nodes
+        .iter()
+        .find(|n| n.kind == "CustomShader")
+        .expect("a CustomShader node");
+    assert_eq!(
+        added.params.get("shader"),
+        Some(&ron::Value::String("data/invert.wgsl".into()))
+    );
+    h.run();
+    // Its input pin `picture` is drawn on the canvas (a required input, not yet connected).
+    h.get_by_label("picture");
+    let error = h.state().state.node_error(&added.id).unwrap_or_default();
+    assert!(error.contains("required input `picture`"), "{error}");
+    h.state_mut().state.undo();
+    assert_eq!(h.state().state.doc().nodes.len(), nodes);
+
     // Files hatchery does not read are refused with a message.
     let notes = dir.path().join("notes.txt");
     std::fs::write(&notes, "hello").unwrap();
@@ -1209,7 +1236,7 @@ fn dropped_files_open_graphs_and_add_source_nodes_where_they_land() {
         h.state()
             .state
             .status
-            .contains("not a graph, volume or mesh"),
+            .contains("not a graph, volume, mesh or shader"),
         "{}",
         h.state().state.status
     );

@@ -152,16 +152,7 @@ impl Node<Value, Ctx> for CustomShaderNode {
                 }
                 Resource::Sampler | Resource::Uniform => continue,
             };
-            if (texture.width(), texture.height()) != (width, height) {
-                return Err(NodeError::at_port(
-                    port,
-                    format!(
-                        "input is {}×{}, the frame is {width}×{height}",
-                        texture.width(),
-                        texture.height()
-                    ),
-                ));
-            }
+            crate::screen_pass::frame_sized(ctx, port, &texture)?;
             views.push((*binding, texture.create_view(&Default::default())));
         }
         let format = match shader.output {
@@ -195,7 +186,11 @@ impl Node<Value, Ctx> for CustomShaderNode {
                 Resource::Sampler => wgpu::BindingResource::Sampler(&sampler),
                 Resource::Uniform => uniform.as_ref().expect("made above").as_entire_binding(),
                 _ => {
-                    let view = &views.iter().find(|(b, _)| b == binding).expect("made above").1;
+                    let view = &views
+                        .iter()
+                        .find(|(b, _)| b == binding)
+                        .expect("made above")
+                        .1;
                     wgpu::BindingResource::TextureView(view)
                 }
             };
@@ -210,7 +205,7 @@ impl Node<Value, Ctx> for CustomShaderNode {
             .checked(&label, |device| {
                 device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(&label),
-                    layout: &pipeline.get_bind_group_layout(0),
+                    layout: &pipeline.1,
                     entries: &entries,
                 })
             })
@@ -218,7 +213,7 @@ impl Node<Value, Ctx> for CustomShaderNode {
         let texture = crate::screen_pass::draw(
             ctx,
             &label,
-            &pipeline,
+            &pipeline.0,
             &bind_group,
             format,
             (width, height),
@@ -236,32 +231,69 @@ fn pipeline(
     path: &Path,
     shader: &Reflection,
     format: wgpu::TextureFormat,
-) -> Result<wgpu::RenderPipeline, GpuError> {
+) -> Result<(wgpu::RenderPipeline, wgpu::BindGroupLayout), GpuError> {
     let vertex = gpu.shader("custom_shader_vertex", crate::shaders::CUSTOM_SHADER_VERTEX)?;
     let name = path.display().to_string();
     let fragment = gpu.shader(&name, &shader.source)?;
-    gpu.checked(&format!("pipeline of {name}"), |device| {
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&name),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &vertex,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
+    // The layout lists every declared binding, used or not (a layout derived from the shader
+    // would drop unused ones, and the bind group would no longer fit it). Masks are R32Float,
+    // which not every adapter can filter: read them with textureLoad.
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = shader
+        .bindings
+        .iter()
+        .map(|(binding, resource)| wgpu::BindGroupLayoutEntry {
+            binding: *binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: match resource {
+                Resource::Texture { port } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float {
+                        filterable: shader.mask_ports.iter().all(|m| m != port),
+                    },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                Resource::Normal { .. } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                Resource::Depth { .. } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Depth,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                Resource::Sampler => {
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
+                }
+                Resource::Uniform => wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
             },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &fragment,
-                entry_point: Some(&shader.entry_point),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
+            count: None,
         })
+        .collect();
+    gpu.checked(&format!("pipeline of {name}"), |device| {
+        let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&name),
+            entries: &entries,
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&name),
+            bind_group_layouts: &[Some(&group)],
+            immediate_size: 0,
+        });
+        let pipeline = crate::screen_pass::fullscreen_pipeline(
+            device,
+            &name,
+            Some(&layout),
+            &vertex,
+            &fragment,
+            &shader.entry_point,
+            format,
+        );
+        (pipeline, group)
     })
 }
 

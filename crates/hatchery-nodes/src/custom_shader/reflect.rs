@@ -15,9 +15,7 @@
 //!
 //! Every problem is reported as `file:line:col: message`.
 
-use hatchery_graph::{
-    NodeSchema, ParamKind, ParamSpec, ParamValue, PortSpec, PortType, intern,
-};
+use hatchery_graph::{NodeSchema, ParamKind, ParamSpec, ParamValue, PortSpec, PortType, intern};
 use naga::{AddressSpace, ImageClass, ScalarKind, TypeInner, VectorSize};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
@@ -27,11 +25,17 @@ use std::sync::Arc;
 #[derive(Clone, Debug, PartialEq)]
 pub enum Resource {
     /// An `Image` or `Mask` input's texture.
-    Texture { port: &'static str },
+    Texture {
+        port: &'static str,
+    },
     /// A `GBuffer` input's depth (Depth32Float).
-    Depth { port: &'static str },
+    Depth {
+        port: &'static str,
+    },
     /// A `GBuffer` input's normals (Rgba16Float).
-    Normal { port: &'static str },
+    Normal {
+        port: &'static str,
+    },
     Sampler,
     /// The parameters' uniform buffer.
     Uniform,
@@ -73,6 +77,8 @@ pub struct Reflection {
     pub uniform: Option<Uniform>,
     /// The output port's type: `Image` (vec4 result) or `Mask` (f32 result).
     pub output: PortType,
+    /// The input ports that are masks (R32Float: bound unfilterable).
+    pub mask_ports: Vec<&'static str>,
     pub schema: Arc<NodeSchema>,
 }
 
@@ -94,7 +100,8 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
     .map_err(|e| at(e.location(source), &validation_message(&e)))?;
 
     let span_at = |span: naga::Span| span.is_defined().then(|| span.location(source));
-    let offset_at = |offset: usize| Some(naga::Span::new(offset as u32, offset as u32 + 1).location(source));
+    let offset_at =
+        |offset: usize| Some(naga::Span::new(offset as u32, offset as u32 + 1).location(source));
 
     // The fragment entry point and its output.
     let fragments: Vec<&naga::EntryPoint> = module
@@ -115,12 +122,19 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
         let offset = source.find(&format!("fn {}", entry.name));
         at(offset.and_then(offset_at), message)
     };
-    let output = match entry.function.result.as_ref().map(|r| &module.types[r.ty].inner) {
+    let output = match entry
+        .function
+        .result
+        .as_ref()
+        .map(|r| &module.types[r.ty].inner)
+    {
         Some(TypeInner::Vector {
             size: VectorSize::Quad,
             scalar,
         }) if scalar.kind == ScalarKind::Float && scalar.width == 4 => PortType::Image,
-        Some(TypeInner::Scalar(scalar)) if scalar.kind == ScalarKind::Float && scalar.width == 4 => {
+        Some(TypeInner::Scalar(scalar))
+            if scalar.kind == ScalarKind::Float && scalar.width == 4 =>
+        {
             PortType::Mask
         }
         _ => {
@@ -156,7 +170,8 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
             continue;
         };
         let name = global.name.clone().unwrap_or_default();
-        let here = |message: String| at(span_at(module.global_variables.get_span(handle)), &message);
+        let here =
+            |message: String| at(span_at(module.global_variables.get_span(handle)), &message);
         if binding.group != 0 {
             return Err(here(format!(
                 "`{name}` is in @group({}); a custom shader binds everything in @group(0)",
@@ -170,10 +185,11 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
                 TypeInner::Image {
                     dim: naga::ImageDimension::D2,
                     arrayed: false,
-                    class: ImageClass::Sampled {
-                        kind: ScalarKind::Float,
-                        multi: false,
-                    },
+                    class:
+                        ImageClass::Sampled {
+                            kind: ScalarKind::Float,
+                            multi: false,
+                        },
                 },
             ) => {
                 let gbuffer = name
@@ -183,14 +199,20 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
                     Some(base) => Resource::Normal { port: intern(base) },
                     None => {
                         let mask = name == "mask" || name.ends_with("_mask");
-                        let ty = if mask { PortType::Mask } else { PortType::Image };
+                        let ty = if mask {
+                            PortType::Mask
+                        } else {
+                            PortType::Image
+                        };
                         let doc = if mask {
                             "a mask (one channel, `.r`)"
                         } else {
                             "an image (premultiplied RGBA)"
                         };
                         inputs.push(PortSpec::input(intern(&name), ty, doc));
-                        Resource::Texture { port: intern(&name) }
+                        Resource::Texture {
+                            port: intern(&name),
+                        }
                     }
                 }
             }
@@ -207,7 +229,9 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
                     PortType::GBuffer,
                     "a G-buffer: its depth here (window-space, 1 where empty); its normals in `<name>_normal` if declared",
                 ));
-                Resource::Depth { port: intern(&name) }
+                Resource::Depth {
+                    port: intern(&name),
+                }
             }
             (AddressSpace::Handle, TypeInner::Sampler { comparison: false }) => Resource::Sampler,
             (AddressSpace::Uniform, TypeInner::Struct { members, span }) => {
@@ -278,6 +302,12 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
         bindings,
         uniform,
         output,
+        mask_ports: schema
+            .inputs
+            .iter()
+            .filter(|p| p.ty == PortType::Mask)
+            .map(|p| p.name)
+            .collect(),
         schema: Arc::new(schema),
     })
 }
@@ -397,7 +427,10 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
             && let Some(v) = v.strip_prefix('=')
         {
             default = Some(ron::from_str(v.trim()).map_err(|_| {
-                format!("uniform member `{name}`: `default = {}` is not a number or a list of numbers", v.trim())
+                format!(
+                    "uniform member `{name}`: `default = {}` is not a number or a list of numbers",
+                    v.trim()
+                )
             })?);
         } else if let Some(v) = part.strip_prefix("range").map(str::trim_start)
             && let Some(v) = v.strip_prefix('=')
