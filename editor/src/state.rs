@@ -185,7 +185,22 @@ impl EditorState {
         if changed {
             self.revision += 1;
             self.validate();
-            self.status = "a shader file changed: read it again".into();
+            // Say what is wrong here too: the node may be off the visible canvas.
+            let broken = self
+                .doc
+                .nodes
+                .iter()
+                .filter(|n| n.kind == "CustomShader")
+                .find_map(|n| Some((n.id.clone(), self.errors.get(&n.id)?.clone())));
+            self.status = match broken {
+                Some((id, error)) => {
+                    let line = first_line(&error);
+                    let prefix = format!("node `{id}`: ");
+                    let message = line.strip_prefix(&prefix).unwrap_or(line);
+                    format!("shader of `{id}`: {message}")
+                }
+                None => "a shader file changed: read it again".into(),
+            };
         }
         changed
     }
@@ -557,6 +572,10 @@ impl EditorState {
     pub fn discard_recovery(&mut self) {
         let _ = std::fs::remove_file(self.recovery_path());
     }
+}
+
+fn first_line(text: &str) -> &str {
+    text.lines().next().unwrap_or("")
 }
 
 /// Puts new nodes into the group shown (they were added on its inside).

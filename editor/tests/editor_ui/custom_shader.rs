@@ -164,8 +164,9 @@ fn a_custom_shader_follows_its_file_live_and_keeps_the_last_picture_on_an_error(
     h.run_steps(3);
     let error = h.state().state.node_error("tint").unwrap().to_owned();
     assert!(error.contains("tint.wgsl:9:"), "{error}");
-    // On the canvas node and in the Inspector.
-    assert_eq!(h.get_all_by_label_contains("tint.wgsl:9:").count(), 2);
+    // On the canvas node, in the Inspector and in the status line (the node may be off screen).
+    assert_eq!(h.get_all_by_label_contains("tint.wgsl:9:").count(), 3);
+    assert!(h.state().state.status.starts_with("shader of `tint`: "));
     assert!(h.state().preview.viewport.is_some());
     let [r, _, b] = viewport_colour(&mut h);
     assert!(
