@@ -300,7 +300,7 @@ fn shader_errors_name_the_node_the_file_the_line_and_the_column() {
     let dir = tempfile::tempdir().unwrap();
     let one = |shader: &str| graph_text(&custom("mine", shader, ""), "");
     // (file, text, what the message holds): each kind of mistake, located.
-    let cases: [(&str, &str, &[&str]); 5] = [
+    let cases: [(&str, &str, &[&str]); 14] = [
         // Syntax: the missing `;` at the end of line 3 is reported where the parser stops.
         (
             "syntax.wgsl",
@@ -331,6 +331,58 @@ fn shader_errors_name_the_node_the_file_the_line_and_the_column() {
             "struct P {\n    a: f32, // range = 1..0\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return vec4<f32>(p.a);\n}\n",
             &["comment.wgsl:2:5:", "range = min..max"],
         ),
+        // What would otherwise only fail when the pipeline is made (found by a review).
+        (
+            "sampled_mask.wgsl",
+            "@group(0) @binding(0) var edge_mask: texture_2d<f32>;\n@group(0) @binding(1) var s: sampler;\n@fragment\nfn fs_main(@location(0) uv: vec2<f32>) -> @location(0) f32 {\n    return textureSample(edge_mask, s, uv).r;\n}\n",
+            &[
+                "sampled_mask.wgsl:1:",
+                "`edge_mask` is read with a sampler",
+                "textureLoad",
+            ],
+        ),
+        (
+            "flat.wgsl",
+            "@fragment\nfn fs_main(@location(0) @interpolate(flat) uv: vec2<f32>) -> @location(0) f32 {\n    return uv.x;\n}\n",
+            &["flat.wgsl:2:", "no @interpolate"],
+        ),
+        (
+            "override.wgsl",
+            "override k: f32;\n@fragment\nfn fs_main() -> @location(0) f32 {\n    return k;\n}\n",
+            &["override.wgsl:1:", "override `k` needs a value"],
+        ),
+        // Comments that cannot be told apart or make no sense.
+        (
+            "one_line.wgsl",
+            "struct P { a: f32, b: f32, // default = 0.5\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) f32 {\n    return p.a + p.b;\n}\n",
+            &["one_line.wgsl:1:1:", "put each member on a line of its own"],
+        ),
+        (
+            "twice.wgsl",
+            "struct P {\n    a: f32, // default = 0.5, default = 0.7\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) f32 {\n    return p.a;\n}\n",
+            &["twice.wgsl:2:", "`default` is given twice"],
+        ),
+        (
+            "ints.wgsl",
+            "struct P {\n    a: i32, // range = -5000000000..0\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) f32 {\n    return f32(p.a);\n}\n",
+            &["ints.wgsl:2:", "an i32 holds -2147483648 to 2147483647"],
+        ),
+        (
+            "vec_range.wgsl",
+            "struct P {\n    c: vec4<f32>, // range = 0..1\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) f32 {\n    return p.c.x;\n}\n",
+            &["vec_range.wgsl:2:", "`range` applies to numbers"],
+        ),
+        (
+            "infinite.wgsl",
+            "struct P {\n    a: f32, // range = 0..inf\n}\n@group(0) @binding(0) var<uniform> p: P;\n@fragment\nfn fs_main() -> @location(0) f32 {\n    return p.a;\n}\n",
+            &["infinite.wgsl:2:", "finite"],
+        ),
+        // The entry point's line, not a comment that mentions it; columns in characters.
+        (
+            "entry.wgsl",
+            "// fn fs_main( is described here\n// λ\n@fragment\nfn fs_main() -> @location(0) vec3<f32> {\n    return vec3<f32>(1.0);\n}\n",
+            &["entry.wgsl:4:1: ", "must return"],
+        ),
     ];
     for (file, text, needles) in cases {
         write(dir.path(), file, text);
@@ -349,6 +401,20 @@ fn shader_errors_name_the_node_the_file_the_line_and_the_column() {
     assert!(e.contains("exactly one @fragment entry point"), "{e}");
     let e = load_error(dir.path(), &one("missing.wgsl"));
     assert!(e.contains("missing.wgsl: cannot read the shader"), "{e}");
+    // Not a regular file: a folder, a device that never ends.
+    std::fs::create_dir(dir.path().join("folder.wgsl")).unwrap();
+    let e = load_error(dir.path(), &one("folder.wgsl"));
+    assert!(e.contains("not a regular file"), "{e}");
+    let e = load_error(dir.path(), &one("/dev/zero"));
+    assert!(e.contains("not a regular file"), "{e}");
+    // A column after a non-ASCII character counts characters.
+    write(
+        dir.path(),
+        "lambda.wgsl",
+        "@fragment\nfn fs_main() -> @location(0) f32 {\n    let λ = 1.0; let b: f32 = vec2<f32>(λ);\n    return b;\n}\n",
+    );
+    let e = load_error(dir.path(), &one("lambda.wgsl"));
+    assert!(e.contains("lambda.wgsl:3:22:"), "{e}");
     let e = load_error(
         dir.path(),
         &graph_text("(id: \"mine\", kind: \"CustomShader\", params: {}),", ""),
@@ -405,7 +471,7 @@ fn the_executor_reruns_a_custom_shader_when_its_file_changes() {
     let registry = hatchery_nodes::registry();
     let mut session = Session::open(&graph, W, H).unwrap();
     assert!((pixels(&mut session, "g", "image").texel(3, 3)[2] - 0.25).abs() < 1e-3);
-    std::fs::write(&shader, GRADIENT.replace("0.25, 1.0", "0.75, 1.0")).unwrap();
+    std::fs::write(&shader, GRADIENT.replace("0.25, 1.0", "0.750, 1.0")).unwrap();
     // What the editor does on a file change: validate again, run with the kept cache.
     session.graph = Graph::load_file(&graph, &registry).unwrap();
     let report = session.run(&["g"]).unwrap();
@@ -414,4 +480,74 @@ fn the_executor_reruns_a_custom_shader_when_its_file_changes() {
     // Unchanged: cached.
     session.graph = Graph::load_file(&graph, &registry).unwrap();
     assert_eq!(session.run(&["g"]).unwrap().cached, ["g"]);
+}
+
+#[test]
+fn tolerant_of_what_editors_and_generators_write() {
+    let dir = tempfile::tempdir().unwrap();
+    // A byte-order mark (Windows editors), CRLF line ends, an attribute before a member.
+    write(
+        dir.path(),
+        "bom.wgsl",
+        "\u{feff}struct P {\r\n    @align(16) level: f32, // default = 0.5, range = 0..1\r\n}\r\n@group(0) @binding(0) var<uniform> p: P;\r\n@fragment\r\nfn fs_main() -> @location(0) vec4<f32> {\r\n    return vec4<f32>(p.level, 0.0, 0.0, 1.0);\r\n}\r\n",
+    );
+    // A machine-written shader with a 30,000-term expression (deeper than a normal stack).
+    let long = vec!["1.0"; 30_000].join(" + ");
+    write(
+        dir.path(),
+        "long.wgsl",
+        &format!(
+            "@fragment\nfn fs_main() -> @location(0) f32 {{\n    return ({long}) / 30000.0;\n}}\n"
+        ),
+    );
+    let nodes = [
+        custom("bom", "bom.wgsl", ""),
+        custom("long", "long.wgsl", ""),
+    ]
+    .join("\n");
+    let mut session = open(dir.path(), &graph_text(&nodes, ""));
+    let red = pixels(&mut session, "bom", "image").texel(1, 1)[0];
+    assert!(
+        (red - 0.5).abs() < 1e-3,
+        "the default from the comment: {red}"
+    );
+    let one = pixels(&mut session, "long", "mask").texel(1, 1)[0];
+    assert!((one - 1.0).abs() < 1e-3, "{one}");
+}
+
+#[test]
+fn a_value_for_a_uniform_the_shader_no_longer_declares_is_kept_but_unused() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "mix.wgsl", MIX);
+    write(dir.path(), "gradient.wgsl", GRADIENT);
+    write(dir.path(), "checker.wgsl", CHECKER);
+    // `old_amount` was renamed in the shader: the graph still validates and renders.
+    let nodes = [
+        custom("gradient", "gradient.wgsl", ""),
+        custom("checker", "checker.wgsl", ""),
+        custom("mix", "mix.wgsl", "\"old_amount\": 0.5, \"amount\": 0.0"),
+    ]
+    .join("\n");
+    let edges = "(from: (\"gradient\", \"image\"), to: (\"mix\", \"picture\")),
+                 (from: (\"checker\", \"mask\"), to: (\"mix\", \"where_mask\")),";
+    let path = write(dir.path(), "graph.ron", &graph_text(&nodes, edges));
+    let registry = hatchery_nodes::registry();
+    let graph = Graph::load_file(&path, &registry).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        graph
+            .node("mix")
+            .unwrap()
+            .params
+            .get("old_amount")
+            .is_none()
+    );
+    // The document keeps it (nothing the user wrote is lost).
+    let (doc, _) = hatchery_graph::GraphDocument::load(&path).unwrap();
+    assert!(doc.node("mix").unwrap().params.contains_key("old_amount"));
+    // Ordinary nodes still refuse unknown parameters.
+    let bad = graph_text(
+        "(id: \"camera\", kind: \"Camera\", params: {\"zoom\": 2.0}),",
+        "",
+    );
+    assert!(load_error(dir.path(), &bad).contains("has no parameter `zoom`"));
 }

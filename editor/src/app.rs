@@ -789,6 +789,32 @@ impl EditorApp {
                 ui.end_row();
             }
         });
+        // Values of parameters the node's file no longer declares (a renamed shader uniform):
+        // kept, unused, until removed here.
+        let stale: Vec<String> = node
+            .params
+            .keys()
+            .filter(|k| schema.param(k).is_none())
+            .cloned()
+            .collect();
+        if !stale.is_empty() {
+            ui.separator();
+            ui.label("Not declared by the shader any more (kept, unused):");
+            for name in stale {
+                ui.horizontal(|ui| {
+                    ui.label(&name);
+                    if ui.button("✕ Remove").clicked() {
+                        let node_id = id.clone();
+                        let _ = self.state.apply(None, |d, _| {
+                            if let Some(n) = d.nodes.iter_mut().find(|n| n.id == node_id) {
+                                n.params.remove(&name);
+                            }
+                            Ok(())
+                        });
+                    }
+                });
+            }
+        }
     }
 
     /// Opens the file dialog for a path parameter, in the folder of its current file.

@@ -8,17 +8,16 @@
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, Weak};
-use std::time::{Duration, SystemTime};
+use std::time::Duration;
 
 /// How often the thread looks.
 const INTERVAL: Duration = Duration::from_millis(250);
 
-type Stamp = Option<(SystemTime, u64)>;
+type Stamp = Option<hatchery_nodes::custom_shader::Stamp>;
 
+/// What identifies a version of the file (the same stamp the node's cache uses).
 pub fn stamp(path: &std::path::Path) -> Stamp {
-    std::fs::metadata(path)
-        .ok()
-        .map(|m| (m.modified().unwrap_or(SystemTime::UNIX_EPOCH), m.len()))
+    hatchery_nodes::custom_shader::stamp(path)
 }
 
 /// The watching thread's handle; the thread ends when this is dropped.
@@ -36,11 +35,11 @@ impl FileWatch {
             .spawn(move || {
                 let mut seen: Vec<(PathBuf, Stamp)> = Vec::new();
                 while let Some(files) = weak.upgrade() {
-                    let now: Vec<(PathBuf, Stamp)> = files
-                        .lock()
-                        .map(|f| f.iter().map(|p| (p.clone(), stamp(p))).collect())
-                        .unwrap_or_default();
+                    // Copied out first: a slow file system must not hold the UI's lock.
+                    let paths: Vec<PathBuf> = files.lock().map(|f| f.clone()).unwrap_or_default();
                     drop(files);
+                    let now: Vec<(PathBuf, Stamp)> =
+                        paths.into_iter().map(|p| (p.clone(), stamp(&p))).collect();
                     if now != seen {
                         seen = now;
                         ctx.request_repaint();

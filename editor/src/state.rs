@@ -37,8 +37,8 @@ pub struct EditorState {
     revision: u64,
     /// The group whose inside the canvas shows (`None`: the top level); see `crate::groups`.
     pub(crate) level: Option<String>,
-    /// Files custom shader nodes read, with their modification stamps at the last look.
-    watched: BTreeMap<PathBuf, Option<(std::time::SystemTime, u64)>>,
+    /// Files custom shader nodes read, with their stamps at the last look.
+    watched: BTreeMap<PathBuf, Option<hatchery_nodes::custom_shader::Stamp>>,
 }
 
 impl Default for EditorState {
@@ -148,18 +148,25 @@ impl EditorState {
 
     /// Files the graph's nodes read their ports from (custom shaders), resolved.
     pub fn watched_files(&self) -> Vec<PathBuf> {
+        self.shader_files().into_iter().map(|(_, p)| p).collect()
+    }
+
+    /// (node id, resolved shader file) of every custom shader node.
+    fn shader_files(&self) -> Vec<(String, PathBuf)> {
         let base = self.base_dir();
         self.doc
             .nodes
             .iter()
             .filter(|n| n.kind == "CustomShader")
             .filter_map(|n| match n.params.get("shader") {
-                Some(ron::Value::String(s)) if !s.is_empty() => Some(PathBuf::from(s)),
+                Some(ron::Value::String(s)) if !s.is_empty() => {
+                    Some((n.id.clone(), PathBuf::from(s)))
+                }
                 _ => None,
             })
-            .map(|p| match &base {
-                Some(base) if p.is_relative() => base.join(p),
-                _ => p,
+            .map(|(id, p)| match &base {
+                Some(base) if p.is_relative() => (id, base.join(p)),
+                _ => (id, p),
             })
             .collect()
     }
@@ -169,7 +176,7 @@ impl EditorState {
     /// and the picture re-rendered — a shader error then shows on its node while the last good
     /// picture stays. Returns whether anything changed. Cheap (one `stat` per file).
     pub fn poll_watched_files(&mut self) -> bool {
-        let stamps: BTreeMap<PathBuf, Option<(std::time::SystemTime, u64)>> = self
+        let stamps: BTreeMap<PathBuf, Option<hatchery_nodes::custom_shader::Stamp>> = self
             .watched_files()
             .into_iter()
             .map(|p| {
@@ -178,20 +185,26 @@ impl EditorState {
             })
             .collect();
         // Only files seen before count as changed: a newly added node is validated anyway.
-        let changed = stamps
+        let changed: Vec<&PathBuf> = stamps
             .iter()
-            .any(|(p, stamp)| self.watched.get(p).is_some_and(|old| old != stamp));
+            .filter(|(p, stamp)| self.watched.get(*p).is_some_and(|old| old != *stamp))
+            .map(|(p, _)| p)
+            .collect();
+        let changed_nodes: Vec<String> = self
+            .shader_files()
+            .into_iter()
+            .filter(|(_, p)| changed.contains(&p))
+            .map(|(id, _)| id)
+            .collect();
+        let any = !changed.is_empty();
         self.watched = stamps;
-        if changed {
+        if any {
             self.revision += 1;
             self.validate();
             // Say what is wrong here too: the node may be off the visible canvas.
-            let broken = self
-                .doc
-                .nodes
+            let broken = changed_nodes
                 .iter()
-                .filter(|n| n.kind == "CustomShader")
-                .find_map(|n| Some((n.id.clone(), self.errors.get(&n.id)?.clone())));
+                .find_map(|id| Some((id.clone(), self.errors.get(id)?.clone())));
             self.status = match broken {
                 Some((id, error)) => {
                     let line = first_line(&error);
@@ -202,7 +215,7 @@ impl EditorState {
                 None => "a shader file changed: read it again".into(),
             };
         }
-        changed
+        any
     }
 
     /// Validates the document; on success returns the runtime graph.
@@ -293,6 +306,8 @@ impl EditorState {
     }
 
     fn after_history_step(&mut self) {
+        // A document from before a Save as resolves paths against the file's folder now.
+        self.doc.base_dir = self.base_dir();
         self.open_group = None;
         self.dirty = true;
         self.revision += 1;

@@ -179,6 +179,10 @@ impl Graph {
             for (name, raw) in &node.params {
                 let at = source.param_offset(&node.id, name);
                 match schema.param(name) {
+                    // A value for a parameter the node's file no longer declares (a renamed
+                    // shader uniform): kept in the document, not used — not an error, or an
+                    // edit of the shader would break the graph.
+                    None if own_schema.is_some() => {}
                     None => errors.push(source.error(
                         at,
                         ErrorKind::UnknownParam {

@@ -192,4 +192,23 @@ fn a_custom_shader_follows_its_file_live_and_keeps_the_last_picture_on_an_error(
         g > 40.0 && r < 30.0 && b < 30.0,
         "green at level 0.3: {r} {g} {b}"
     );
+
+    // The uniform renamed in the file: the graph stays valid, the stored `level` is kept but
+    // unused, listed in the Inspector with a button that removes it.
+    h.state_mut().state.status.clear();
+    std::fs::write(&shader, RED.replace("level", "strength")).unwrap();
+    step_until(&mut h, "the rename to be read", |h| {
+        h.state().state.status.contains("read it again")
+    });
+    h.run_steps(3);
+    assert!(h.state().state.node_error("tint").is_none());
+    h.get_by_label_contains("Not declared by the shader any more");
+    let stored = |h: &Harness<EditorApp>| {
+        let doc = h.state().state.doc();
+        doc.node("tint").unwrap().params.contains_key("level")
+    };
+    assert!(stored(&h));
+    let at = h.get_by_label("✕ Remove").rect().center();
+    selection::click_mod(&mut h, at, Modifiers::NONE);
+    assert!(!stored(&h), "removed from the document");
 }

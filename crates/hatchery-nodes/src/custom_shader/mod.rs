@@ -20,10 +20,33 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::SystemTime;
 
+/// What identifies a version of a file without reading it: modification and status-change
+/// times, length, inode. The status-change time moves on every write, also when a tool
+/// restores the modification time (`cp -p`, `rsync -t`).
+pub type Stamp = (SystemTime, i64, i64, u64, u64);
+
+/// The file's stamp; `None` if it cannot be looked at.
+pub fn stamp(path: &Path) -> Option<Stamp> {
+    let m = std::fs::metadata(path).ok()?;
+    let modified = m.modified().unwrap_or(SystemTime::UNIX_EPOCH);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        Some((modified, m.ctime(), m.ctime_nsec(), m.len(), m.ino()))
+    }
+    #[cfg(not(unix))]
+    {
+        Some((modified, 0, 0, m.len(), 0))
+    }
+}
+
+/// Shader files larger than this are refused (a device file or a log picked by mistake).
+const MAX_SOURCE_BYTES: u64 = 1 << 20;
+
 /// What a shader file said the last time it was read.
 struct Cached {
-    /// Modification time and length when read: the file is re-read when they change.
-    stamp: Option<(SystemTime, u64)>,
+    /// The file's stamp when read: it is read again when the stamp changes.
+    stamp: Option<Stamp>,
     /// The current version, if it is valid.
     current: Result<Arc<Reflection>, String>,
     /// The last valid version (its ports stay on the node while the file is broken).
@@ -43,9 +66,7 @@ impl CustomShaderNode {
     /// The shader at `path`, re-read if it changed since the last call.
     fn read(&self, path: &Path) -> (Result<Arc<Reflection>, String>, Option<Arc<Reflection>>) {
         let mut files = self.files.lock().unwrap_or_else(|p| p.into_inner());
-        let stamp = std::fs::metadata(path)
-            .ok()
-            .map(|m| (m.modified().unwrap_or(SystemTime::UNIX_EPOCH), m.len()));
+        let stamp = stamp(path);
         let entry = files.entry(path.to_path_buf()).or_insert(Cached {
             stamp: None,
             current: Err(String::new()),
@@ -54,9 +75,8 @@ impl CustomShaderNode {
         let fresh = stamp.is_some() && entry.stamp == stamp;
         if !fresh {
             entry.stamp = stamp;
-            entry.current = std::fs::read_to_string(path)
-                .map_err(|e| format!("{}: cannot read the shader: {e}", path.display()))
-                .and_then(|source| reflect::reflect(path, &source, &self.schema()))
+            entry.current = read_source(path)
+                .and_then(|source| reflect_deep(path, source, self.schema()))
                 .map(Arc::new);
             if let Ok(good) = &entry.current {
                 entry.last_good = Some(good.clone());
@@ -161,7 +181,14 @@ impl Node<Value, Ctx> for CustomShaderNode {
         };
         let key = format!("custom_shader:{:016x}:{format:?}", shader.fingerprint);
         let pipeline = ctx
-            .cached(&key, |gpu| pipeline(gpu, &path, &shader, format))
+            .cached(&key, |gpu| {
+                on_big_stack(|| pipeline(gpu, &path, &shader, format)).unwrap_or_else(|| {
+                    Err(GpuError::Validation {
+                        what: format!("shader {}", path.display()),
+                        message: "the shader compiler failed on this file".into(),
+                    })
+                })
+            })
             .map_err(|e| NodeError::new(e.to_string()))?;
         let sampler = ctx
             .cached("custom_shader:sampler", |gpu| {
@@ -223,6 +250,49 @@ impl Node<Value, Ctx> for CustomShaderNode {
             _ => Value::Image(Arc::new(Image { texture })),
         }])
     }
+}
+
+/// The text of a shader file: a regular file of at most [`MAX_SOURCE_BYTES`], UTF-8.
+fn read_source(path: &Path) -> Result<String, String> {
+    let fail = |why: String| format!("{}: cannot read the shader: {why}", path.display());
+    let meta = std::fs::metadata(path).map_err(|e| fail(e.to_string()))?;
+    if !meta.is_file() {
+        return Err(fail("not a regular file".into()));
+    }
+    if meta.len() > MAX_SOURCE_BYTES {
+        return Err(fail(format!(
+            "{} bytes; a shader file has at most {MAX_SOURCE_BYTES}",
+            meta.len()
+        )));
+    }
+    std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))
+}
+
+/// Runs `f` on a thread with a large stack. naga's parser recurses on nested expressions: a
+/// machine-written shader with a very long expression (30,000 terms) overflows a normal
+/// thread's stack and aborts the process. With the size cap above, 256 MiB is room for any file
+/// accepted (the memory is only reserved, not used, unless the recursion goes deep). Used for
+/// our reading of the file and for wgpu's (which parses the text again). `None` if the thread
+/// could not start or `f` panicked.
+fn on_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> Option<T> {
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .name("hatchery-shader".into())
+            .stack_size(256 << 20)
+            .spawn_scoped(scope, f)
+            .ok()?
+            .join()
+            .ok()
+    })
+}
+
+fn reflect_deep(path: &Path, source: String, base: NodeSchema) -> Result<Reflection, String> {
+    on_big_stack(|| reflect::reflect(path, &source, &base)).unwrap_or_else(|| {
+        Err(format!(
+            "{}: the shader compiler failed on this file",
+            path.display()
+        ))
+    })
 }
 
 /// The render pipeline: our full-frame vertex stage, the file's fragment stage.

@@ -85,14 +85,19 @@ pub struct Reflection {
 /// Reads `source` (the text of `path`) with naga. `base` is the kind's schema (its `shader`
 /// parameter comes first in every instance). Errors are `path:line:col: message`.
 pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflection, String> {
+    // Editors on Windows start files with a byte-order mark; WGSL does not allow one.
+    let source = source.strip_prefix('\u{feff}').unwrap_or(source);
     let shown = path.display().to_string();
     let at = |offset: Option<naga::SourceLocation>, message: &str| match offset {
-        Some(l) => format!("{shown}:{}:{}: {message}", l.line_number, l.line_position),
+        Some(l) => {
+            let (line, column) = line_column(source, l.offset as usize);
+            format!("{shown}:{line}:{column}: {message}")
+        }
         None => format!("{shown}: {message}"),
     };
     let module = naga::front::wgsl::parse_str(source)
         .map_err(|e| at(e.location(source), &parse_message(&e)))?;
-    naga::valid::Validator::new(
+    let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
     )
@@ -118,10 +123,7 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
             ),
         ));
     };
-    let entry_at = |message: &str| {
-        let offset = source.find(&format!("fn {}", entry.name));
-        at(offset.and_then(offset_at), message)
-    };
+    let entry_at = |message: &str| at(find_fn(source, &entry.name).and_then(offset_at), message);
     let output = match entry
         .function
         .result
@@ -245,7 +247,20 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
                 };
                 for m in members {
                     let member = m.name.clone().unwrap_or_default();
-                    let line = member_line(source, struct_span, &member);
+                    let found = member_line(source, struct_span, &member);
+                    let line = found.map(|(_, at)| at);
+                    let comment = found.map_or("", |(o, _)| trailing_comment(&source[o..]));
+                    let names: Vec<&str> =
+                        members.iter().filter_map(|m| m.name.as_deref()).collect();
+                    let on_line = found.map_or(0, |(o, _)| members_on_line(&source[o..], &names));
+                    if on_line > 1 && !comment.is_empty() {
+                        return Err(at(
+                            found.and_then(|(o, _)| offset_at(o)),
+                            &format!(
+                                "uniform member `{member}` shares its line and comment with another member: put each member on a line of its own"
+                            ),
+                        ));
+                    }
                     let member_at = |message: String| at(line.and_then(offset_at), &message);
                     if params.iter().any(|p| p.name == member) {
                         return Err(member_at(format!(
@@ -257,7 +272,6 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
                             "uniform member `{member}`: use f32, i32, u32, vec3<f32> or vec4<f32>"
                         ))
                     })?;
-                    let comment = line.map_or("", |o| trailing_comment(&source[o..]));
                     params.push(param_spec(&member, ty, comment).map_err(member_at)?);
                     layout.members.push(Member {
                         name: intern(&member),
@@ -279,6 +293,37 @@ pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflectio
     bindings.sort_by_key(|(b, _)| *b);
     if let Some(w) = bindings.windows(2).find(|w| w[0].0 == w[1].0) {
         return Err(at(None, &format!("@binding({}) is used twice", w[0].0)));
+    }
+
+    // What would only fail when the pipeline is made: caught here, with a place.
+    for (handle, o) in module.overrides.iter() {
+        if o.init.is_none() {
+            let name = o.name.clone().unwrap_or_default();
+            return Err(at(
+                span_at(module.overrides.get_span(handle)),
+                &format!("override `{name}` needs a value (`override {name}: f32 = 1.0;`)"),
+            ));
+        }
+    }
+    let entry_index = module
+        .entry_points
+        .iter()
+        .position(|e| std::ptr::eq(e, entry))
+        .unwrap_or(0);
+    for key in &info.get_entry_point(entry_index).sampling_set {
+        let image = &module.global_variables[key.image];
+        let name = image.name.clone().unwrap_or_default();
+        let not_filterable = inputs
+            .iter()
+            .any(|p| p.name == name && matches!(p.ty, PortType::Mask | PortType::GBuffer));
+        if not_filterable {
+            return Err(at(
+                span_at(module.global_variables.get_span(key.image)),
+                &format!(
+                    "`{name}` is read with a sampler: masks (R32Float) and depth are not filterable on every adapter; read it with textureLoad"
+                ),
+            ));
+        }
     }
 
     let mut hasher = DefaultHasher::new();
@@ -355,18 +400,30 @@ fn check_fragment_inputs(module: &naga::Module, entry: &naga::EntryPoint) -> Res
         let ok = match binding {
             naga::Binding::BuiltIn(naga::BuiltIn::Position { .. }) => true,
             naga::Binding::BuiltIn(_) => true,
-            naga::Binding::Location { location: 0, .. } => matches!(
-                inner,
-                TypeInner::Vector {
-                    size: VectorSize::Bi,
-                    scalar
-                } if scalar.kind == ScalarKind::Float && scalar.width == 4
-            ),
+            naga::Binding::Location {
+                location: 0,
+                interpolation,
+                sampling,
+                ..
+            } => {
+                // The vertex stage writes uv perspective-correct, sampled at pixel centres.
+                let default_interpolation =
+                    matches!(interpolation, None | Some(naga::Interpolation::Perspective))
+                        && matches!(sampling, None | Some(naga::Sampling::Center));
+                default_interpolation
+                    && matches!(
+                        inner,
+                        TypeInner::Vector {
+                            size: VectorSize::Bi,
+                            scalar
+                        } if scalar.kind == ScalarKind::Float && scalar.width == 4
+                    )
+            }
             naga::Binding::Location { .. } => false,
         };
         if !ok {
             return Err(
-                "the fragment stage gets @builtin(position) and @location(0) uv: vec2<f32> only"
+                "the fragment stage gets @builtin(position) and @location(0) uv: vec2<f32> (no @interpolate) only"
                     .into(),
             );
         }
@@ -392,21 +449,75 @@ fn member_type(inner: &TypeInner) -> Option<MemberType> {
     })
 }
 
-/// Byte offset of the line declaring `member` inside the struct's span.
-fn member_line(source: &str, span: naga::Span, member: &str) -> Option<usize> {
+/// Byte offsets of the line declaring `member` inside the struct's span and of the member's
+/// name in it.
+fn member_line(source: &str, span: naga::Span, member: &str) -> Option<(usize, usize)> {
     let range = span.to_range()?;
     let text = source.get(range.clone())?;
     let mut offset = range.start;
     for line in text.split_inclusive('\n') {
-        let trimmed = line.trim_start();
-        if let Some(rest) = trimmed.strip_prefix(member)
-            && rest.trim_start().starts_with(':')
-        {
-            return Some(offset + (line.len() - trimmed.len()));
+        if let Some(at) = declares(line, member) {
+            return Some((offset, offset + at));
         }
         offset += line.len();
     }
     None
+}
+
+/// Where the code part of `line` declares `name:` (as a whole word; attributes such as
+/// `@align(16)` may come before it).
+fn declares(line: &str, name: &str) -> Option<usize> {
+    let code = line.split("//").next().unwrap_or("");
+    let mut from = 0;
+    while let Some(i) = code[from..].find(name).map(|i| i + from) {
+        let before = code[..i].chars().next_back();
+        let after = code[i + name.len()..].trim_start();
+        let word_start = before.is_none_or(|c| !(c.is_alphanumeric() || c == '_'));
+        if word_start && after.starts_with(':') {
+            return Some(i);
+        }
+        from = i + name.len();
+    }
+    None
+}
+
+/// How many of `names` the line starting at the text's beginning declares.
+fn members_on_line(text: &str, names: &[&str]) -> usize {
+    let line = text.lines().next().unwrap_or("");
+    names.iter().filter(|n| declares(line, n).is_some()).count()
+}
+
+/// The byte offset of `fn NAME(` (a declaration, not in a comment).
+fn find_fn(source: &str, name: &str) -> Option<usize> {
+    let mut offset = 0;
+    for line in source.split_inclusive('\n') {
+        let code = line.split("//").next().unwrap_or("");
+        let mut from = 0;
+        while let Some(i) = code[from..].find("fn").map(|i| i + from) {
+            let rest = code[i + 2..].trim_start();
+            let boundary = code[..i]
+                .chars()
+                .next_back()
+                .is_none_or(|c| !(c.is_alphanumeric() || c == '_'));
+            if boundary
+                && let Some(after) = rest.strip_prefix(name)
+                && after.trim_start().starts_with('(')
+            {
+                return Some(offset + i);
+            }
+            from = i + 2;
+        }
+        offset += line.len();
+    }
+    None
+}
+
+/// 1-based line and column (in characters) of byte `offset`.
+fn line_column(source: &str, offset: usize) -> (usize, usize) {
+    let before = &source[..offset.min(source.len())];
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
 }
 
 /// The `// …` comment at the end of the line starting at the text's beginning.
@@ -418,6 +529,7 @@ fn trailing_comment(text: &str) -> &str {
 /// The parameter for a uniform member, from its type and its comment:
 /// `default = 0.5, range = 0..1, what it does`.
 fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, String> {
+    let fail = |message: String| format!("uniform member `{name}`: {message}");
     let mut default: Option<ron::Value> = None;
     let mut range: Option<(f64, f64)> = None;
     let mut doc = Vec::new();
@@ -426,20 +538,28 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
         if let Some(v) = part.strip_prefix("default").map(str::trim_start)
             && let Some(v) = v.strip_prefix('=')
         {
+            if default.is_some() {
+                return Err(fail("`default` is given twice".into()));
+            }
             default = Some(ron::from_str(v.trim()).map_err(|_| {
-                format!(
-                    "uniform member `{name}`: `default = {}` is not a number or a list of numbers",
+                fail(format!(
+                    "`default = {}` is not a number or a list of numbers",
                     v.trim()
-                )
+                ))
             })?);
         } else if let Some(v) = part.strip_prefix("range").map(str::trim_start)
             && let Some(v) = v.strip_prefix('=')
         {
-            let bad = || format!("uniform member `{name}`: write the range as `range = min..max`");
+            if range.is_some() {
+                return Err(fail("`range` is given twice".into()));
+            }
+            let bad = || fail("write the range as `range = min..max` (finite, min < max)".into());
             let (lo, hi) = v.trim().split_once("..").ok_or_else(bad)?;
             let (lo, hi) = (lo.trim().parse::<f64>(), hi.trim().parse::<f64>());
             match (lo, hi) {
-                (Ok(lo), Ok(hi)) if lo < hi => range = Some((lo, hi)),
+                (Ok(lo), Ok(hi)) if lo < hi && lo.is_finite() && hi.is_finite() => {
+                    range = Some((lo, hi))
+                }
                 _ => return Err(bad()),
             }
         } else if !part.is_empty() {
@@ -454,12 +574,29 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
             ParamSpec::float(name, min, min, max, doc)
         }
         MemberType::I32 | MemberType::U32 => {
-            let floor: f64 = if ty == MemberType::U32 { 0.0 } else { -1e9 };
-            let (min, max) = range.unwrap_or((floor.max(0.0), 100.0));
-            if min < floor {
-                return Err(format!("uniform member `{name}`: a u32 cannot go below 0"));
+            let (floor, ceiling, what) = match ty {
+                MemberType::U32 => (0.0, u32::MAX as f64, "a u32 holds 0 to 4294967295"),
+                _ => (
+                    i32::MIN as f64,
+                    i32::MAX as f64,
+                    "an i32 holds -2147483648 to 2147483647",
+                ),
+            };
+            let (min, max) = range.unwrap_or((0.0, 100.0));
+            if min < floor || max > ceiling {
+                return Err(fail(format!("range {min}..{max}: {what}")));
+            }
+            if min.fract() != 0.0 || max.fract() != 0.0 {
+                return Err(fail(format!(
+                    "range {min}..{max}: use whole numbers for an integer"
+                )));
             }
             ParamSpec::int(name, min as i64, min as i64, max as i64, doc)
+        }
+        MemberType::Vec3 | MemberType::Vec4 if range.is_some() => {
+            return Err(fail(
+                "`range` applies to numbers, not to vectors and colours".into(),
+            ));
         }
         MemberType::Vec3 => ParamSpec {
             name,
@@ -474,7 +611,7 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
     };
     let value = spec
         .convert(&raw)
-        .map_err(|m| format!("uniform member `{name}`: default: {m}"))?;
+        .map_err(|m| fail(format!("default: {m}")))?;
     Ok(ParamSpec {
         default: value,
         ..spec
@@ -488,7 +625,8 @@ fn split_top_level(text: &str) -> Vec<&str> {
     for (i, c) in text.char_indices() {
         match c {
             '[' | '(' => depth += 1,
-            ']' | ')' => depth -= 1,
+            // A stray `)` in a description (a smiley) does not open a bracket.
+            ']' | ')' => depth = (depth - 1).max(0),
             ',' if depth == 0 => {
                 parts.push(&text[start..i]);
                 start = i + 1;
