@@ -40,9 +40,11 @@ run hidden_structures_1080p \
     --set "2:block.resolution=$res" --set "2:pistons.resolution=$pres" \
     --scenario orbit:camera --size "$hd" --size "$xga"
 
-# 2. The MRI surface (300k triangles): Blinn–Phong, two hidden layers, + secondary structures.
+# 2. The MRI surface (300k triangles): Blinn–Phong, two hidden layers (GBuffer + DepthPeel, and
+# both layers from one k-buffer pass, DepthLayers), + secondary structures.
 run hidden_layers_brain \
-    graphs/brain_surface.ron graphs/hidden_layers_brain.ron graphs/hidden_structures_brain.ron \
+    graphs/brain_surface.ron graphs/hidden_layers_brain.ron \
+    benches/graphs/hidden_layers_brain_kbuffer.ron graphs/hidden_structures_brain.ron \
     --scenario orbit:camera --size "$hd" --size "$xga"
 
 # 3. Ray casting the MRI at 1024²: MIP at 1-voxel steps, shaded DVR at 0.5, context-preserving

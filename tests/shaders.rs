@@ -13,7 +13,11 @@ fn validate(name: &str, source: &str) {
     });
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
+        // 64-bit integers and their atomics: DepthLayers' k-buffer, which runs only where the
+        // adapter has them (and falls back to depth peeling elsewhere).
+        naga::valid::Capabilities::default()
+            | naga::valid::Capabilities::SHADER_INT64
+            | naga::valid::Capabilities::SHADER_INT64_ATOMIC_ALL_OPS,
     )
     .validate(&module)
     .unwrap_or_else(|e| {

@@ -90,7 +90,11 @@ impl GpuContext {
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
             | wgpu::Features::FLOAT32_FILTERABLE
             // 16-bit volumes uploaded as they are (R16Unorm), not narrowed to R16Float.
-            | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM;
+            | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM
+            // Two depth layers in one geometry pass (DepthLayers: a k-buffer of packed depth and
+            // normal updated with 64-bit atomics); without them DepthLayers peels twice.
+            | wgpu::Features::SHADER_INT64
+            | wgpu::Features::SHADER_INT64_ATOMIC_ALL_OPS;
         let required_features = adapter.features() & wanted;
         let adapter_limits = adapter.limits();
         let required_limits = wgpu::Limits {

@@ -9,6 +9,7 @@ pub mod curvature_color;
 pub mod curvature_contours;
 pub mod curvature_flow;
 pub mod custom_shader;
+pub mod depth_layers;
 pub mod depth_peel;
 pub mod depth_test_mask;
 pub mod diffuse_intensity;
@@ -79,6 +80,7 @@ pub fn registry() -> Registry {
     r.register(gbuffer::GBufferNode);
     r.register(shaded_surface::ShadedSurfaceNode);
     r.register(depth_peel::DepthPeelNode);
+    r.register(depth_layers::DepthLayersNode);
     r.register(diffuse_intensity::DiffuseIntensityNode);
     r.register(secondary_geometry::SecondaryGeometryNode);
     r.register(silhouette::SilhouetteNode);

@@ -36,6 +36,21 @@ pub fn mesh_pipeline(
     color_format: wgpu::TextureFormat,
     blend: Option<wgpu::BlendState>,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
+    let target = wgpu::ColorTargetState {
+        format: color_format,
+        blend,
+        write_mask: wgpu::ColorWrites::ALL,
+    };
+    mesh_pipeline_with(gpu, program, &[Some(target)], depth_state())
+}
+
+/// [`mesh_pipeline`] with any colour targets (none, several) and depth state.
+pub fn mesh_pipeline_with(
+    gpu: &GpuContext,
+    program: &str,
+    targets: &[Option<wgpu::ColorTargetState>],
+    depth: wgpu::DepthStencilState,
+) -> Result<wgpu::RenderPipeline, GpuError> {
     let source = crate::shaders::source(program).ok_or_else(|| GpuError::Validation {
         what: format!("shader {program}"),
         message: "no such shader program".into(),
@@ -56,17 +71,13 @@ pub fn mesh_pipeline(
                 cull_mode: None,
                 ..Default::default()
             },
-            depth_stencil: Some(depth_state()),
+            depth_stencil: Some(depth),
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: color_format,
-                    blend,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
+                targets,
             }),
             multiview_mask: None,
             cache: None,

@@ -24,20 +24,29 @@ pub fn pipeline(
     })?;
     let module = gpu.shader(program, &source)?;
     gpu.checked(&format!("pipeline {program}"), |device| {
-        fullscreen_pipeline(device, program, None, &module, &module, "fs_main", format)
+        fullscreen_pipeline(
+            device,
+            program,
+            None,
+            (&module, &module),
+            "fs_main",
+            format,
+            None,
+        )
     })
 }
 
-/// A pipeline drawing one full-frame triangle (no vertex buffers, no depth): `vertex`'s
-/// `vs_main`, `fragment`'s `entry` into one `format` target; `layout` `None` derives it.
+/// A pipeline drawing one full-frame triangle (no vertex buffers): the vertex module's
+/// `vs_main`, the fragment module's `entry` into one `format` target, with `depth` if the pass
+/// has a depth attachment; `layout` `None` derives it.
 pub fn fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: Option<&wgpu::PipelineLayout>,
-    vertex: &wgpu::ShaderModule,
-    fragment: &wgpu::ShaderModule,
+    (vertex, fragment): (&wgpu::ShaderModule, &wgpu::ShaderModule),
     entry: &str,
     format: wgpu::TextureFormat,
+    depth: Option<wgpu::DepthStencilState>,
 ) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
@@ -49,7 +58,7 @@ pub fn fullscreen_pipeline(
             buffers: &[],
         },
         primitive: Default::default(),
-        depth_stencil: None,
+        depth_stencil: depth,
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: fragment,

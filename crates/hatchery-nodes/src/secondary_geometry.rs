@@ -24,34 +24,12 @@ pub struct SecondaryGeometryNode;
 fn pipeline(
     gpu: &hatchery_gpu::GpuContext,
 ) -> Result<wgpu::RenderPipeline, hatchery_gpu::GpuError> {
-    let source = crate::shaders::source("secondary_geometry").expect("registered program");
-    let module = gpu.shader("secondary_geometry", &source)?;
-    gpu.checked("pipeline secondary_geometry", |device| {
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("secondary geometry"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(mesh_pass::vertex_layout())],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(mesh_pass::depth_state()),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(MASK_FORMAT.into()), Some(NORMAL_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
-    })
+    mesh_pass::mesh_pipeline_with(
+        gpu,
+        "secondary_geometry",
+        &[Some(MASK_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+        mesh_pass::depth_state(),
+    )
 }
 
 impl Node<Value, Ctx> for SecondaryGeometryNode {

@@ -49,6 +49,8 @@ pub const HATCH_STROKES: &str = shader_file!("hatch_strokes.wgsl");
 pub const CURVATURE_FLOW: &str = shader_file!("curvature_flow.wgsl");
 pub const MASK_COPY: &str = shader_file!("mask_copy.wgsl");
 pub const CUSTOM_SHADER_VERTEX: &str = shader_file!("custom_shader_vertex.wgsl");
+pub const DEPTH_LAYERS: &str = shader_file!("depth_layers.wgsl");
+pub const DEPTH_LAYERS_RESOLVE: &str = shader_file!("depth_layers_resolve.wgsl");
 
 /// Compilable shader programs: (name, parts). The name is used in error messages.
 pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
@@ -72,6 +74,11 @@ pub fn programs() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
             mesh("shaded_surface.wgsl", SHADED_SURFACE),
         ),
         ("depth_peel", mesh("depth_peel.wgsl", DEPTH_PEEL)),
+        ("depth_layers", mesh("depth_layers.wgsl", DEPTH_LAYERS)),
+        (
+            "depth_layers_resolve",
+            screen("depth_layers_resolve.wgsl", DEPTH_LAYERS_RESOLVE),
+        ),
         (
             "secondary_geometry",
             mesh("secondary_geometry.wgsl", SECONDARY_GEOMETRY),

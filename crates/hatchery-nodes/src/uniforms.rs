@@ -106,12 +106,19 @@ pub fn all() -> Vec<UniformLayout> {
         multiply_by_mask::MultiplyUniforms::layout(),
         silhouette::SilhouetteUniforms::layout(),
         overlay::OverlayUniforms::layout(),
+        depth_layers::LayersUniform::layout(),
+        UniformLayout {
+            program: "depth_layers",
+            wgsl_struct: "LayersFrame",
+            ..depth_layers::LayersUniform::layout()
+        },
     ];
     // The camera block is shared by every mesh shader (shaders/mesh_common.wgsl).
     for program in [
         "gbuffer",
         "shaded_surface",
         "depth_peel",
+        "depth_layers",
         "secondary_geometry",
     ] {
         all.push(UniformLayout {

@@ -358,10 +358,10 @@ fn pipeline(
             device,
             &name,
             Some(&layout),
-            &vertex,
-            &fragment,
+            (&vertex, &fragment),
             &shader.entry_point,
             format,
+            None,
         );
         (pipeline, group)
     })

@@ -1,0 +1,35 @@
+// DepthLayers: the first two depth layers of a mesh in one geometry pass — a k-buffer with k = 2
+// (Bavoil et al. 2007) in place of the two passes of depth peeling (Fischer et al. 2005, §3.1).
+// Every fragment is a 64-bit key: window depth in the high word (positive floats order like their
+// bits), its octahedron-encoded view-space normal in the low word. Per pixel two slots keep the
+// two smallest keys with atomics only: a fragment's key goes into slot 0 by atomic minimum, and
+// whichever of it and the slot's previous key is larger goes into slot 1 — every key but the
+// overall smallest reaches slot 1 once, so slot 1 ends with the second smallest. Keys are stored
+// bit-inverted (with atomic maximum) so that a buffer cleared to zero means "empty".
+
+struct LayersFrame {
+    // x = frame width in pixels.
+    size: vec4<u32>,
+};
+
+@group(0) @binding(1) var<storage, read_write> layers: array<atomic<u64>>;
+@group(0) @binding(2) var<uniform> frame: LayersFrame;
+
+// Octahedral encoding of a unit vector, two 16-bit signed normalised halves.
+fn oct_encode(n: vec3<f32>) -> u32 {
+    var p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if n.z < 0.0 {
+        p = (1.0 - abs(p.yx)) * select(vec2<f32>(-1.0), vec2<f32>(1.0), p >= vec2<f32>(0.0));
+    }
+    return pack2x16snorm(p);
+}
+
+@fragment
+fn fs_main(in: VertexOut) {
+    let pixel = vec2<u32>(floor(in.clip.xy));
+    let slot = (pixel.y * frame.size.x + pixel.x) * 2u;
+    let key = (u64(bitcast<u32>(in.clip.z)) << 32u) | u64(oct_encode(normalize(in.view_normal)));
+    let inverted = ~key;
+    let previous = atomicMax(&layers[slot], inverted);
+    atomicMax(&layers[slot + 1u], min(previous, inverted));
+}

@@ -1,0 +1,118 @@
+//! DepthLayers: the k-buffer's two layers equal GBuffer + DepthPeel's — depth bit for bit,
+//! normals within their 16-bit octahedral encoding — on nested spheres (several layers per
+//! pixel), in perspective and orthographic views; and its `peel` method is those two passes.
+
+mod common;
+
+use hatchery_nodes::{Session, Value};
+
+const W: u32 = 96;
+const H: u32 = 72;
+
+fn session(projection: &str) -> Session {
+    let text = format!(
+        r#"(version: 2, nodes: [
+            (id: "shells", kind: "ProceduralVolume", params: {{"resolution": 64, "shape": "shells"}}),
+            (id: "surface", kind: "MarchingCubes", params: {{"iso": 0.0}}),
+            (id: "camera", kind: "Camera", params: {{"distance": 3.2, "azimuth": 25.0, "elevation": 15.0, "projection": "{projection}"}}),
+            (id: "first", kind: "GBuffer", params: {{}}),
+            (id: "second", kind: "DepthPeel", params: {{}}),
+            (id: "layers", kind: "DepthLayers", params: {{}}),
+            (id: "peeled", kind: "DepthLayers", params: {{"method": "peel"}}),
+        ], edges: [
+            (from: ("shells", "volume"), to: ("surface", "volume")),
+            (from: ("surface", "mesh"), to: ("first", "mesh")),
+            (from: ("camera", "camera"), to: ("first", "camera")),
+            (from: ("surface", "mesh"), to: ("second", "mesh")),
+            (from: ("camera", "camera"), to: ("second", "camera")),
+            (from: ("first", "gbuffer"), to: ("second", "previous")),
+            (from: ("surface", "mesh"), to: ("layers", "mesh")),
+            (from: ("camera", "camera"), to: ("layers", "camera")),
+            (from: ("surface", "mesh"), to: ("peeled", "mesh")),
+            (from: ("camera", "camera"), to: ("peeled", "camera")),
+        ])"#
+    );
+    let mut session = common::session_from_text(&text, W, H);
+    session
+        .run(&["second", "layers", "peeled"])
+        .unwrap_or_else(|e| panic!("{e}"));
+    session
+}
+
+/// (depth, normal xyzw) per pixel of a G-buffer output.
+fn layer(session: &Session, node: &str, port: &str) -> Vec<(f32, [f32; 4])> {
+    let Value::GBuffer(g) = session.output(node, port).unwrap() else {
+        panic!("{node}.{port} is not a G-buffer");
+    };
+    let depth = session.ctx.gpu.read_texture(&g.depth).unwrap();
+    let normal = session.ctx.gpu.read_texture(&g.normal).unwrap();
+    let mut out = Vec::new();
+    for y in 0..H {
+        for x in 0..W {
+            let n = normal.texel(x, y);
+            out.push((depth.texel(x, y)[0], [n[0], n[1], n[2], n[3]]));
+        }
+    }
+    out
+}
+
+/// Depth must agree exactly; normals within `tolerance` per component.
+fn assert_same(name: &str, got: &[(f32, [f32; 4])], want: &[(f32, [f32; 4])], tolerance: f32) {
+    let mut samples = Vec::new();
+    for (i, ((gd, gn), (wd, wn))) in got.iter().zip(want).enumerate() {
+        let normal = (0..4).map(|c| (gn[c] - wn[c]).abs()).fold(0.0, f32::max);
+        // A depth difference fails whatever the tolerance.
+        let error = if gd.to_bits() == wd.to_bits() {
+            normal
+        } else {
+            f32::INFINITY
+        };
+        samples.push(common::Sample {
+            x: i as u32 % W,
+            y: i as u32 / W,
+            what: format!("depth {gd} vs {wd}, normal {gn:?} vs {wn:?}"),
+            error: error as f64,
+        });
+    }
+    common::assert_samples(name, &samples, tolerance as f64, None);
+}
+
+#[test]
+fn the_k_buffer_layers_equal_gbuffer_and_depth_peel() {
+    for projection in ["perspective", "orthographic"] {
+        let session = session(projection);
+        let first = layer(&session, "first", "gbuffer");
+        let second = layer(&session, "second", "gbuffer");
+        // Both layers cover part of the frame (nested spheres: the second is the inner side).
+        let covered = |l: &[(f32, [f32; 4])]| l.iter().filter(|(d, _)| *d < 1.0).count();
+        assert!(covered(&first) > 1000, "{projection}: {}", covered(&first));
+        assert!(covered(&second) > 500, "{projection}: {}", covered(&second));
+        // 16-bit octahedral normals, then Rgba16Float: within a few f16 steps near 1.
+        let tolerance = 2e-3;
+        assert_same(
+            &format!("{projection} layer 1"),
+            &layer(&session, "layers", "layer1"),
+            &first,
+            tolerance,
+        );
+        assert_same(
+            &format!("{projection} layer 2"),
+            &layer(&session, "layers", "layer2"),
+            &second,
+            tolerance,
+        );
+        // `peel` is exactly the two passes.
+        assert_same(
+            &format!("{projection} peel 1"),
+            &layer(&session, "peeled", "layer1"),
+            &first,
+            0.0,
+        );
+        assert_same(
+            &format!("{projection} peel 2"),
+            &layer(&session, "peeled", "layer2"),
+            &second,
+            0.0,
+        );
+    }
+}
