@@ -63,6 +63,16 @@ fn stroke_at(position: vec2<f32>, p0: vec3<f32>, dir: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(m, dot(h4.xyz / h4.w - p0, dir));
 }
 
+// The mode (0 DVR, 1 MIP, 2 iso) and the shading as pipeline constants: Raycast makes one
+// pipeline per combination, the compiler folds the constants and drops the other modes' code
+// from the loop. −1 (the default, for other programs) reads them from the uniform instead.
+override RAY_MODE: i32 = -1;
+override RAY_SHADING: i32 = -1;
+
+fn ray_mode() -> i32 {
+    return select(i32(ray.mode.x + 0.5), RAY_MODE, RAY_MODE >= 0);
+}
+
 fn cast_ray(position: vec2<f32>) -> RayResult {
     var out: RayResult;
     out.color = vec4<f32>(0.0);
@@ -72,7 +82,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     let r = primary_ray(position);
     let stroke = stroke_at(position, r.p0, r.dir);
     let stroke_alpha = stroke.x * strokes.color.a;
-    let dvr = i32(ray.mode.x + 0.5) == 0;
+    let dvr = ray_mode() == 0;
     if !r.hits {
         if dvr {
             out.color = vec4<f32>(strokes.color.rgb * stroke_alpha, stroke_alpha);
@@ -93,8 +103,8 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     if ray.frame.z > 0.5 {
         start += h * hash(position);
     }
-    let mode = i32(ray.mode.x + 0.5);
-    let shading = i32(ray.mode.z + 0.5);
+    let mode = ray_mode();
+    let shading = select(i32(ray.mode.z + 0.5), RAY_SHADING, RAY_SHADING >= 0);
     let l = ray.light.xyz;
 
     if mode == 1 {

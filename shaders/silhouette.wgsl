@@ -5,12 +5,18 @@
 // (x + s·P(x, y), y + t·P(x, y)).
 
 struct Silhouette {
-    // x = depth threshold, y = normal threshold, z = use depth, w = use normals.
+    // x = depth threshold, y = normal threshold (z, w: the switches below, kept for the record).
     thresholds: vec4<f32>,
-    // x = mode (0 none, 1 constant, 2 texture, 3 noise, 4 dots), y = amount, z = pattern scale in
-    // pixels, w = seed.
+    // y = amount, z = pattern scale in pixels, w = seed (x: the mode below).
     pip: vec4<f32>,
 };
+
+// The mode and the switches are pipeline constants, one pipeline per combination: folded by
+// the compiler, they cost nothing per pixel (as uniforms, every mode's code stayed in the pass:
+// 2.2× the time on lavapipe). PIP_MODE: 0 none, 1 constant, 2 texture, 3 noise, 4 dots.
+override PIP_MODE: u32 = 0u;
+override USE_DEPTH: bool = true;
+override USE_NORMALS: bool = true;
 
 @group(0) @binding(0) var layer_depth: texture_depth_2d;
 @group(0) @binding(1) var layer_normal: texture_2d<f32>;
@@ -55,7 +61,7 @@ fn value_noise(x: vec2<f32>, scale: f32, seed: f32) -> f32 {
 
 // The perturbation P(x, y) in pixels.
 fn perturbation(p: vec2<i32>) -> f32 {
-    let mode = i32(silhouette.pip.x + 0.5);
+    let mode = i32(PIP_MODE);
     let amount = silhouette.pip.y;
     let scale = max(silhouette.pip.z, 1.0);
     let x = vec2<f32>(p) + 0.5;
@@ -91,7 +97,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let s = perturbation(p);
     var response = 0.0;
 
-    if silhouette.thresholds.z > 0.5 {
+    if USE_DEPTH {
         // Sobel on the depth image (eq. 3).
         let d_mm = depth_at(c + vec2<f32>(-s, -s));
         let d_0m = depth_at(c + vec2<f32>(0.0, -s));
@@ -109,7 +115,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     }
 
     let centre = load_clamped(layer_normal, p);
-    if silhouette.thresholds.w > 0.5 && centre.w > 0.5 {
+    if USE_NORMALS && centre.w > 0.5 {
         // Normal similarity with the four neighbours (eq. 4–5); only where there is a surface.
         let n = centre.xyz;
         let similarity = dot(n, normal_at(c + vec2<f32>(s, 0.0))) + dot(n, normal_at(c + vec2<f32>(-s, 0.0)))

@@ -189,12 +189,17 @@ fn resolve_pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, hatchery_g
         ..mesh_pass::depth_state()
     };
     gpu.checked("pipeline depth_layers_resolve", |device| {
+        let stages = crate::screen_pass::Stages {
+            vertex: &module,
+            fragment: &module,
+            entry: "fs_main",
+            constants: &[],
+        };
         crate::screen_pass::fullscreen_pipeline(
             device,
             "depth_layers_resolve",
             None,
-            (&module, &module),
-            "fs_main",
+            stages,
             NORMAL_FORMAT,
             Some(depth),
         )

@@ -2,10 +2,12 @@
 //! optional procedurally perturbed sampling (PIP, Yuan & Chen 2005, §6, eq. 2).
 
 use crate::screen_pass;
+use crate::value::Mask;
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
+use std::sync::Arc;
 
 crate::uniform_block! {
     /// `Silhouette` of shaders/silhouette.wgsl: (depth threshold, normal threshold, use depth,
@@ -126,12 +128,20 @@ impl Node<Value, Ctx> for SilhouetteNode {
                 p.int("pip_seed") as f32,
             ],
         };
-        Ok(vec![screen_pass::mask(
+        // The mode and switches as pipeline constants (shaders/silhouette.wgsl says why).
+        let constants = [
+            ("PIP_MODE", mode as f64),
+            ("USE_DEPTH", bool_f(p.bool("use_depth")) as f64),
+            ("USE_NORMALS", bool_f(p.bool("use_normals")) as f64),
+        ];
+        let texture = screen_pass::run_specialised(
             ctx,
-            "silhouette",
+            ("silhouette", &constants),
+            screen_pass::MASK_FORMAT,
             &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
             &[&pattern],
             Some(bytemuck::bytes_of(&uniforms)),
-        )?])
+        )?;
+        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
     }
 }

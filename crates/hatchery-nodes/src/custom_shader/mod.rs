@@ -354,12 +354,17 @@ fn pipeline(
             bind_group_layouts: &[Some(&group)],
             immediate_size: 0,
         });
+        let stages = crate::screen_pass::Stages {
+            vertex: &vertex,
+            fragment: &fragment,
+            entry: &shader.entry_point,
+            constants: &[],
+        };
         let pipeline = crate::screen_pass::fullscreen_pipeline(
             device,
             &name,
             Some(&layout),
-            (&vertex, &fragment),
-            &shader.entry_point,
+            stages,
             format,
             None,
         );

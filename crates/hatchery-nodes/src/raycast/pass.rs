@@ -29,7 +29,6 @@ crate::uniform_block! {
 
 /// The static GPU objects of the ray caster.
 pub struct Statics {
-    pipelines: RayPipelines,
     pub sampler: wgpu::Sampler,
     /// Stand-ins for the tables a mode does not use.
     pub blank_table: wgpu::Texture,
@@ -58,6 +57,7 @@ fn full_screen_pipeline(
     name: &str,
     module: &wgpu::ShaderModule,
     targets: &[Option<wgpu::ColorTargetState>],
+    constants: &[(&str, f64)],
 ) -> Result<wgpu::RenderPipeline, GpuError> {
     gpu.checked(&format!("pipeline {name}"), |device| {
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -81,7 +81,10 @@ fn full_screen_pipeline(
             fragment: Some(wgpu::FragmentState {
                 module,
                 entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants,
+                    ..Default::default()
+                },
                 targets,
             }),
             multiview_mask: None,
@@ -94,6 +97,16 @@ impl RayPipelines {
     /// The pipelines of ray-casting program `program` (entry points `vs_main`/`fs_main` and
     /// `cs_main`, outputs as in shaders/raycast.wgsl).
     pub fn new(gpu: &GpuContext, program: &str) -> Result<Self, GpuError> {
+        Self::specialised(gpu, program, &[])
+    }
+
+    /// [`Self::new`] with values for the program's `override` constants (raycast.wgsl's
+    /// RAY_MODE and RAY_SHADING: one pipeline per mode and shading, see there).
+    pub fn specialised(
+        gpu: &GpuContext,
+        program: &str,
+        constants: &[(&str, f64)],
+    ) -> Result<Self, GpuError> {
         let source = crate::shaders::source(program).expect("registered program");
         let module = gpu.shader(program, &source)?;
         let render = full_screen_pipeline(
@@ -101,6 +114,7 @@ impl RayPipelines {
             program,
             &module,
             &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
+            constants,
         )?;
         let compute = gpu.checked(&format!("pipeline {program} (compute)"), |device| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -108,13 +122,16 @@ impl RayPipelines {
                 layout: None,
                 module: &module,
                 entry_point: Some("cs_main"),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants,
+                    ..Default::default()
+                },
                 cache: None,
             })
         })?;
         let copy_source = crate::shaders::source("depth_from_texture").expect("registered program");
         let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
-        let depth_copy = full_screen_pipeline(gpu, "depth_from_texture", &copy_module, &[])?;
+        let depth_copy = full_screen_pipeline(gpu, "depth_from_texture", &copy_module, &[], &[])?;
         Ok(Self {
             render,
             compute,
@@ -124,7 +141,6 @@ impl RayPipelines {
 }
 
 fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
-    let pipelines = RayPipelines::new(gpu, "raycast")?;
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("linear clamp"),
         mag_filter: wgpu::FilterMode::Linear,
@@ -176,7 +192,6 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         &[0u8; 4],
     );
     Ok(Statics {
-        pipelines,
         sampler,
         blank_table,
         blank_styles,
@@ -299,7 +314,15 @@ pub fn cast(
                 resource: wgpu::BindingResource::TextureView(view),
             }),
     );
-    st.pipelines.run(ctx, camera, &entries, o.kernel)
+    // One pipeline per mode and shading (raycast.wgsl's pipeline constants).
+    let (mode, shading) = (uniforms.mode[0], uniforms.mode[2]);
+    let pipelines = ctx
+        .cached(&format!("raycast.pipelines.{mode}.{shading}"), |gpu| {
+            let constants = [("RAY_MODE", mode as f64), ("RAY_SHADING", shading as f64)];
+            RayPipelines::specialised(gpu, "raycast", &constants)
+        })
+        .map_err(err)?;
+    pipelines.run(ctx, camera, &entries, o.kernel)
 }
 
 impl RayPipelines {
