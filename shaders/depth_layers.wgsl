@@ -6,6 +6,9 @@
 // whichever of it and the slot's previous key is larger goes into slot 1 — every key but the
 // overall smallest reaches slot 1 once, so slot 1 ends with the second smallest. Keys are stored
 // bit-inverted (with atomic maximum) so that a buffer cleared to zero means "empty".
+// One difference from depth peeling: a second fragment at exactly layer 1's depth (coincident
+// triangles) becomes layer 2 here, where peeling skips it for the next depth behind; meshes
+// from MarchingCubes have none.
 
 struct LayersFrame {
     // x = frame width in pixels.

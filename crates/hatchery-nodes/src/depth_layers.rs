@@ -3,6 +3,8 @@
 //! (shaders/depth_layers.wgsl), then written out as two G-buffers
 //! (shaders/depth_layers_resolve.wgsl). The same layers as GBuffer + DepthPeel, which need two
 //! geometry passes; where the adapter has no 64-bit atomics it runs exactly those two passes.
+//! (Coincident triangles differ: a second fragment at exactly layer 1's depth is layer 2 here,
+//! while peeling skips it.)
 
 use crate::gbuffer::{NORMAL_FORMAT, render_layer};
 use crate::mesh_pass;
