@@ -5,18 +5,25 @@
 // (x + s·P(x, y), y + t·P(x, y)).
 
 struct Silhouette {
-    // x = depth threshold, y = normal threshold (z, w: the switches below, kept for the record).
+    // x = depth threshold, y = normal threshold, z = use depth, w = use normals (z, w: unless
+    // the pipeline constants below say).
     thresholds: vec4<f32>,
-    // y = amount, z = pattern scale in pixels, w = seed (x: the mode below).
+    // x = mode (unless PIP_MODE says), y = amount, z = pattern scale in pixels, w = seed.
     pip: vec4<f32>,
 };
 
-// The mode and the switches are pipeline constants, one pipeline per combination: folded by
+// The mode and the switches as pipeline constants, one pipeline per combination: folded by
 // the compiler, they cost nothing per pixel (as uniforms, every mode's code stayed in the pass:
-// 2.2× the time on lavapipe). PIP_MODE: 0 none, 1 constant, 2 texture, 3 noise, 4 dots.
-override PIP_MODE: u32 = 0u;
-override USE_DEPTH: bool = true;
-override USE_NORMALS: bool = true;
+// about twice the time on lavapipe). PIP_MODE: 0 none, 1 constant, 2 texture, 3 noise, 4 dots;
+// switches 0 or 1. The default −1 reads the uniform's value instead (an unspecialised pipeline).
+override PIP_MODE: f32 = -1.0;
+override USE_DEPTH: f32 = -1.0;
+override USE_NORMALS: f32 = -1.0;
+
+// A pipeline constant, or the uniform's value where it is left at −1.
+fn constant_or(value: f32, uniform: f32) -> f32 {
+    return select(uniform, value, value >= 0.0);
+}
 
 @group(0) @binding(0) var layer_depth: texture_depth_2d;
 @group(0) @binding(1) var layer_normal: texture_2d<f32>;
@@ -61,7 +68,7 @@ fn value_noise(x: vec2<f32>, scale: f32, seed: f32) -> f32 {
 
 // The perturbation P(x, y) in pixels.
 fn perturbation(p: vec2<i32>) -> f32 {
-    let mode = i32(PIP_MODE);
+    let mode = i32(constant_or(PIP_MODE, silhouette.pip.x) + 0.5);
     let amount = silhouette.pip.y;
     let scale = max(silhouette.pip.z, 1.0);
     let x = vec2<f32>(p) + 0.5;
@@ -97,7 +104,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let s = perturbation(p);
     var response = 0.0;
 
-    if USE_DEPTH {
+    if constant_or(USE_DEPTH, silhouette.thresholds.z) > 0.5 {
         // Sobel on the depth image (eq. 3).
         let d_mm = depth_at(c + vec2<f32>(-s, -s));
         let d_0m = depth_at(c + vec2<f32>(0.0, -s));
@@ -115,7 +122,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     }
 
     let centre = load_clamped(layer_normal, p);
-    if USE_NORMALS && centre.w > 0.5 {
+    if constant_or(USE_NORMALS, silhouette.thresholds.w) > 0.5 && centre.w > 0.5 {
         // Normal similarity with the four neighbours (eq. 4–5); only where there is a surface.
         let n = centre.xyz;
         let similarity = dot(n, normal_at(c + vec2<f32>(s, 0.0))) + dot(n, normal_at(c + vec2<f32>(-s, 0.0)))

@@ -38,9 +38,10 @@ impl Node<Value, Ctx> for DepthLayersNode {
             doc: "The nearest surface of a mesh and the one behind it (Fischer et al. 2005, §3.1) from \
                   one geometry pass: a k-buffer of the two smallest (depth, normal) keys per pixel, \
                   kept with 64-bit atomics (Bavoil et al. 2007). The same layers as GBuffer + \
-                  DepthPeel, which draw the mesh twice; on adapters without 64-bit atomics it \
-                  draws those two passes. Normals are stored with 16 bits per octahedral \
-                  coordinate.",
+                  DepthPeel, which draw the mesh twice (normals within 2e-3: 16 bits per \
+                  octahedral coordinate; with coincident triangles the fragment kept may differ). \
+                  Without 64-bit atomics, or when the frame needs a k-buffer larger than the \
+                  adapter's storage binding limit (16 bytes per pixel), it draws those two passes.",
             inputs: vec![
                 PortSpec::input("mesh", PortType::Mesh, "the surface"),
                 PortSpec::input("camera", PortType::Camera, "the view"),
@@ -77,9 +78,7 @@ impl Node<Value, Ctx> for DepthLayersNode {
     ) -> Result<Vec<Value>, NodeError> {
         let mesh = inputs.require("mesh")?.mesh("mesh")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
-        let bytes = u64::from(camera.width) * u64::from(camera.height) * 16;
-        let fits = bytes <= ctx.gpu.device.limits().max_storage_buffer_binding_size;
-        let able = ctx.gpu.device.features().contains(single_pass_features()) && fits;
+        let able = single_pass_possible(&ctx.gpu, camera.width, camera.height);
         let (first, second) = if able && p.choice("method") == "auto" {
             single_pass(ctx, &mesh, &camera)?
         } else {
@@ -92,6 +91,14 @@ impl Node<Value, Ctx> for DepthLayersNode {
             Value::GBuffer(Arc::new(second)),
         ])
     }
+}
+
+/// Whether the one-pass k-buffer runs on this device for a `width` × `height` frame: the
+/// adapter has 64-bit atomics and the buffer (16 bytes per pixel) fits one storage binding.
+pub fn single_pass_possible(gpu: &GpuContext, width: u32, height: u32) -> bool {
+    let bytes = u64::from(width) * u64::from(height) * 16;
+    gpu.device.features().contains(single_pass_features())
+        && bytes <= gpu.device.limits().max_storage_buffer_binding_size
 }
 
 /// The k-buffer pass and the two resolves.
