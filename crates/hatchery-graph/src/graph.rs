@@ -11,7 +11,7 @@ use petgraph::Direction;
 use petgraph::stable_graph::{NodeIndex, StableDiGraph};
 use petgraph::visit::{EdgeRef, IntoEdgeReferences};
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// One node of the runtime graph.
@@ -79,14 +79,7 @@ impl Graph {
     /// Loads, parses and validates a graph file. Relative paths in it resolve against its folder.
     pub fn load_file(path: &Path, schemas: &dyn SchemaLookup) -> Result<Graph, GraphErrors> {
         let (doc, source) = GraphDocument::load(path)?;
-        let base = path.parent().map(|p| {
-            if p.as_os_str().is_empty() {
-                PathBuf::from(".")
-            } else {
-                p.to_path_buf()
-            }
-        });
-        Graph::from_document(&doc, &source, schemas, base.as_deref())
+        Graph::from_document(&doc, &source, schemas, doc.base_dir.as_deref())
     }
 
     /// Validates a document and builds the runtime graph, reporting every problem found.

@@ -156,16 +156,6 @@ pub fn gbuffer_sized(
     gbuffer: &crate::value::GBuffer,
     hint: &str,
 ) -> Result<(), NodeError> {
-    let (width, height) = (gbuffer.camera.width, gbuffer.camera.height);
-    if (texture.width(), texture.height()) == (width, height) {
-        return Ok(());
-    }
-    Err(NodeError::at_port(
-        port,
-        format!(
-            "is {}×{}, the G-buffer {width}×{height}{hint}",
-            texture.width(),
-            texture.height()
-        ),
-    ))
+    let size = (gbuffer.camera.width, gbuffer.camera.height);
+    crate::screen_pass::sized(port, texture, size, ("is ", "the G-buffer", hint))
 }

@@ -85,6 +85,18 @@ pub fn mesh_pipeline_with(
     })
 }
 
+/// `view` as a pass's depth attachment, cleared to 1 (far) and stored.
+pub fn cleared_depth(view: &wgpu::TextureView) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(1.0),
+            store: wgpu::StoreOp::Store,
+        }),
+        stencil_ops: None,
+    }
+}
+
 /// A depth target of the frame size.
 pub fn depth_target(gpu: &GpuContext, label: &str, width: u32, height: u32) -> wgpu::Texture {
     gpu.render_target(label, width, height, DEPTH_FORMAT)
@@ -155,14 +167,7 @@ fn draw(
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh pass"),
             color_attachments: &attachments,
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            depth_stencil_attachment: Some(cleared_depth(&depth_view)),
             ..Default::default()
         });
         if buffers.index_count > 0 {

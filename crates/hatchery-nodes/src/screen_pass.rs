@@ -94,14 +94,24 @@ pub fn fullscreen_pipeline(
 
 /// An error naming `port` unless `texture` has the frame's size.
 pub fn frame_sized(ctx: &Ctx, port: &str, texture: &wgpu::Texture) -> Result<(), NodeError> {
-    let (width, height) = ctx.size();
+    sized(port, texture, ctx.size(), ("input is ", "the frame is", ""))
+}
+
+/// An error naming `port` unless `texture` is `width` × `height`; the message reads
+/// "{is}A×B, {against} W×H{hint}".
+pub fn sized(
+    port: &str,
+    texture: &wgpu::Texture,
+    (width, height): (u32, u32),
+    (is, against, hint): (&str, &str, &str),
+) -> Result<(), NodeError> {
     if (texture.width(), texture.height()) == (width, height) {
         return Ok(());
     }
     Err(NodeError::at_port(
         port,
         format!(
-            "input is {}×{}, the frame is {width}×{height}",
+            "{is}{}×{}, {against} {width}×{height}{hint}",
             texture.width(),
             texture.height()
         ),

@@ -392,14 +392,7 @@ impl RayPipelines {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("raycast"),
                 color_attachments: &[clear(&image_view), clear(&normal_view)],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                depth_stencil_attachment: Some(crate::mesh_pass::cleared_depth(&depth_view)),
                 ..Default::default()
             });
             pass.set_pipeline(&self.render);
@@ -465,14 +458,7 @@ impl RayPipelines {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("depth from texture"),
                 color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                depth_stencil_attachment: Some(crate::mesh_pass::cleared_depth(&depth_view)),
                 ..Default::default()
             });
             pass.set_pipeline(&self.depth_copy);
