@@ -18,7 +18,7 @@ struct LayersFrame {
 @group(0) @binding(1) var<storage, read_write> layers: array<atomic<u64>>;
 @group(0) @binding(2) var<uniform> frame: LayersFrame;
 
-// Octahedral encoding of a unit vector, two 16-bit signed normalised halves.
+// Octahedral encoding of a direction (any length), two 16-bit signed normalised halves.
 fn oct_encode(n: vec3<f32>) -> u32 {
     var p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
     if n.z < 0.0 {
@@ -31,7 +31,8 @@ fn oct_encode(n: vec3<f32>) -> u32 {
 fn fs_main(in: VertexOut) {
     let pixel = vec2<u32>(floor(in.clip.xy));
     let slot = (pixel.y * frame.size.x + pixel.x) * 2u;
-    let key = (u64(bitcast<u32>(in.clip.z)) << 32u) | u64(oct_encode(normalize(in.view_normal)));
+    // The octahedral code divides by the L1 norm: no need to normalise first.
+    let key = (u64(bitcast<u32>(in.clip.z)) << 32u) | u64(oct_encode(in.view_normal));
     let inverted = ~key;
     let previous = atomicMax(&layers[slot], inverted);
     atomicMax(&layers[slot + 1u], min(previous, inverted));

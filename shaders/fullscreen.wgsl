@@ -29,3 +29,17 @@ fn load_depth_clamped(t: texture_depth_2d, p: vec2<i32>) -> f32 {
     let size = vec2<i32>(textureDimensions(t));
     return textureLoad(t, clamp(p, vec2<i32>(0), size - 1), 0);
 }
+
+// v as an Rgba16Float colour target stores it on lavapipe: rounded toward zero to binary16 —
+// what a fused pass does to an image it passes between stages, so that fused and unfused frames
+// agree bit for bit there. (Vulkan lets a driver round such writes to nearest or toward zero;
+// where it rounds to nearest, a fused image differs by at most one binary16 step per fused edge.
+// quantizeToF16 rounds to nearest and costs several times more on lavapipe.) For finite values
+// within binary16's range.
+fn as_rgba16float(v: vec4<f32>) -> vec4<f32> {
+    // Normal binary16 values: 10 mantissa bits kept.
+    let normal = bitcast<vec4<f32>>(bitcast<vec4<u32>>(v) & vec4<u32>(0xffffe000u));
+    // Below 2^-14 binary16 is subnormal: multiples of 2^-24.
+    let tiny = trunc(v * 16777216.0) / 16777216.0;
+    return select(normal, tiny, abs(v) < vec4<f32>(6.103515625e-5));
+}

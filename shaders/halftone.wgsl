@@ -1,35 +1,34 @@
 // Procedural halftoning (Fischer et al. 2005, §3.3.2, after Strothotte & Schlechtweg): the pixel
 // (x, y) is rotated by theta (eq. 7), mapped to dither coordinates (s, t) in a cell of n pixels,
 // and the intensity compared with the threshold tau(s, t) (eq. 8–9).
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
 
 struct Halftone {
     // x = theta in radians, y = cell size n in pixels, z = c_cross.
     params: vec4<f32>,
+    // x = cos(theta), y = sin(theta): computed once, not per pixel.
+    rotation: vec4<f32>,
 };
 
-@group(0) @binding(0) var intensity: texture_2d<f32>;
-@group(0) @binding(1) var<uniform> halftone: Halftone;
-
-fn wrap(v: f32, n: f32) -> f32 {
+fn halftone_wrap(v: f32, n: f32) -> f32 {
     return (v - n * floor(v / n)) / n;
 }
 
-@fragment
-fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
-    let p = pixel_of(in.position);
-    let theta = halftone.params.x;
-    let n = halftone.params.y;
-    let c_cross = halftone.params.z;
+// 1 (paper) where the intensity at p reaches the screen's threshold, 0 (ink) elsewhere.
+fn halftone(p: vec2<i32>, u: Halftone, intensity: vec4<f32>) -> vec4<f32> {
+    let n = u.params.y;
+    let c_cross = u.params.z;
     let x = f32(p.x);
     let y = f32(p.y);
-    let xr = cos(theta) * x - sin(theta) * y;
-    let yr = sin(theta) * x + cos(theta) * y;
-    let s = wrap(xr, n);
-    let t = wrap(yr, n);
+    let c = u.rotation.x;
+    let s_theta = u.rotation.y;
+    let xr = c * x - s_theta * y;
+    let yr = s_theta * x + c * y;
+    let s = halftone_wrap(xr, n);
+    let t = halftone_wrap(yr, n);
     var tau = (1.0 - c_cross) * s + c_cross;
     if s <= c_cross {
         tau = c_cross * t;
     }
-    let i = textureLoad(intensity, p, 0).r;
-    return vec4<f32>(select(0.0, 1.0, i >= tau), 0.0, 0.0, 1.0);
+    return vec4<f32>(select(0.0, 1.0, intensity.r >= tau), 0.0, 0.0, 1.0);
 }

@@ -1,25 +1,17 @@
 // mix(base, over, mask) per pixel: over is an image, or a colour when no image is connected.
 // The mix of the §3.3.4 pseudocode of Fischer et al. 2005.
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
 
 struct MixParams {
     // Premultiplied colour used when `over` is not connected.
     color: vec4<f32>,
-    // x = 1 when `over` is an image.
-    options: vec4<f32>,
 };
 
-@group(0) @binding(0) var base: texture_2d<f32>;
-@group(0) @binding(1) var over: texture_2d<f32>;
-@group(0) @binding(2) var mask: texture_2d<f32>;
-@group(0) @binding(3) var<uniform> mixing: MixParams;
-
-@fragment
-fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
-    let p = pixel_of(in.position);
-    var top = mixing.color;
-    if mixing.options.x > 0.5 {
-        top = textureLoad(over, p, 0);
+// `use_over` (an image is connected to `over`) is a constant of the pass.
+fn mix_by_mask(p: vec2<i32>, u: MixParams, base: vec4<f32>, mask: vec4<f32>, over: vec4<f32>, use_over: bool) -> vec4<f32> {
+    var top = u.color;
+    if use_over {
+        top = over;
     }
-    let m = clamp(textureLoad(mask, p, 0).r, 0.0, 1.0);
-    return mix(textureLoad(base, p, 0), top, m);
+    return mix(base, top, clamp(mask.r, 0.0, 1.0));
 }

@@ -1,22 +1,12 @@
 // Colour times a mask (or one minus it): the "pixelColor *= ..." lines of the §3.3.4 pseudocode
 // of Fischer et al. 2005. Alpha is kept, so the colour darkens towards black ink.
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
 
-struct MultiplyParams {
-    // x = 1 to multiply by (1 - mask).
-    options: vec4<f32>,
-};
-
-@group(0) @binding(0) var image: texture_2d<f32>;
-@group(0) @binding(1) var mask: texture_2d<f32>;
-@group(0) @binding(2) var<uniform> multiply: MultiplyParams;
-
-@fragment
-fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
-    let p = pixel_of(in.position);
-    var m = clamp(textureLoad(mask, p, 0).r, 0.0, 1.0);
-    if multiply.options.x > 0.5 {
+// `invert` (multiply by 1 − mask) is a constant of the pass.
+fn multiply_by_mask(p: vec2<i32>, image: vec4<f32>, mask: vec4<f32>, invert: bool) -> vec4<f32> {
+    var m = clamp(mask.r, 0.0, 1.0);
+    if invert {
         m = 1.0 - m;
     }
-    let c = textureLoad(image, p, 0);
-    return vec4<f32>(c.rgb * m, c.a);
+    return vec4<f32>(image.rgb * m, image.a);
 }

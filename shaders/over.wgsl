@@ -1,11 +1,6 @@
 // Porter–Duff "over" of premultiplied colours: front + (1 − front.a) · back.
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
 
-@group(0) @binding(0) var front: texture_2d<f32>;
-@group(0) @binding(1) var back: texture_2d<f32>;
-
-@fragment
-fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
-    let p = pixel_of(in.position);
-    let f = textureLoad(front, p, 0);
-    return f + (1.0 - f.a) * textureLoad(back, p, 0);
+fn over(p: vec2<i32>, front: vec4<f32>, back: vec4<f32>) -> vec4<f32> {
+    return front + (1.0 - front.a) * back;
 }

@@ -4,34 +4,20 @@
 // positions (PIP, Yuan & Chen 2005, eq. 2): every tap at offset (s, t) is read at
 // (x + s·P(x, y), y + t·P(x, y)).
 
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs): the pass calls
+// `silhouette` with this node's textures and its PIP mode and switches as constants, which the
+// compiler folds (as uniforms, every mode's code stayed in the pass: about twice the time on
+// lavapipe).
+
 struct Silhouette {
-    // x = depth threshold, y = normal threshold, z = use depth, w = use normals (z, w: unless
-    // the pipeline constants below say).
+    // x = depth threshold, y = normal threshold, z, w = unused (the switches are constants).
     thresholds: vec4<f32>,
-    // x = mode (unless PIP_MODE says), y = amount, z = pattern scale in pixels, w = seed.
+    // x = unused (the mode is a constant), y = amount, z = pattern scale in pixels, w = seed.
     pip: vec4<f32>,
 };
 
-// The mode and the switches as pipeline constants, one pipeline per combination: folded by
-// the compiler, they cost nothing per pixel (as uniforms, every mode's code stayed in the pass:
-// about twice the time on lavapipe). PIP_MODE: 0 none, 1 constant, 2 texture, 3 noise, 4 dots;
-// switches 0 or 1. The default −1 reads the uniform's value instead (an unspecialised pipeline).
-override PIP_MODE: f32 = -1.0;
-override USE_DEPTH: f32 = -1.0;
-override USE_NORMALS: f32 = -1.0;
-
-// A pipeline constant, or the uniform's value where it is left at −1.
-fn constant_or(value: f32, uniform: f32) -> f32 {
-    return select(uniform, value, value >= 0.0);
-}
-
-@group(0) @binding(0) var layer_depth: texture_depth_2d;
-@group(0) @binding(1) var layer_normal: texture_2d<f32>;
-@group(0) @binding(2) var pattern: texture_2d<f32>;
-@group(0) @binding(3) var<uniform> silhouette: Silhouette;
-
 // Bilinear read at a fractional pixel position (taps at integer positions are exact).
-fn depth_at(q: vec2<f32>) -> f32 {
+fn silhouette_depth_at(layer_depth: texture_depth_2d, q: vec2<f32>) -> f32 {
     let base = floor(q);
     let f = q - base;
     let p = vec2<i32>(base);
@@ -40,7 +26,7 @@ fn depth_at(q: vec2<f32>) -> f32 {
     return mix(top, bottom, f.y);
 }
 
-fn normal_at(q: vec2<f32>) -> vec3<f32> {
+fn silhouette_normal_at(layer_normal: texture_2d<f32>, q: vec2<f32>) -> vec3<f32> {
     let base = floor(q);
     let f = q - base;
     let p = vec2<i32>(base);
@@ -49,28 +35,27 @@ fn normal_at(q: vec2<f32>) -> vec3<f32> {
     return mix(top, bottom, f.y);
 }
 
-fn hash2(p: vec2<f32>, seed: f32) -> f32 {
+fn silhouette_hash2(p: vec2<f32>, seed: f32) -> f32 {
     return fract(sin(dot(p, vec2<f32>(127.1, 311.7)) + seed * 74.7) * 43758.5453);
 }
 
 // Smooth value noise in [0, 1] with cells of `scale` pixels.
-fn value_noise(x: vec2<f32>, scale: f32, seed: f32) -> f32 {
+fn silhouette_value_noise(x: vec2<f32>, scale: f32, seed: f32) -> f32 {
     let q = x / scale;
     let i = floor(q);
     let f = q - i;
     let u = f * f * (3.0 - 2.0 * f);
-    let a = hash2(i, seed);
-    let b = hash2(i + vec2<f32>(1.0, 0.0), seed);
-    let c = hash2(i + vec2<f32>(0.0, 1.0), seed);
-    let d = hash2(i + vec2<f32>(1.0, 1.0), seed);
+    let a = silhouette_hash2(i, seed);
+    let b = silhouette_hash2(i + vec2<f32>(1.0, 0.0), seed);
+    let c = silhouette_hash2(i + vec2<f32>(0.0, 1.0), seed);
+    let d = silhouette_hash2(i + vec2<f32>(1.0, 1.0), seed);
     return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
 }
 
-// The perturbation P(x, y) in pixels.
-fn perturbation(p: vec2<i32>) -> f32 {
-    let mode = i32(constant_or(PIP_MODE, silhouette.pip.x) + 0.5);
-    let amount = silhouette.pip.y;
-    let scale = max(silhouette.pip.z, 1.0);
+// The perturbation P(x, y) in pixels. `mode`: 0 none, 1 constant, 2 texture, 3 noise, 4 dots.
+fn silhouette_perturbation(u: Silhouette, pattern: texture_2d<f32>, mode: i32, p: vec2<i32>) -> f32 {
+    let amount = u.pip.y;
+    let scale = max(u.pip.z, 1.0);
     let x = vec2<f32>(p) + 0.5;
     switch mode {
         case 1: {
@@ -83,7 +68,7 @@ fn perturbation(p: vec2<i32>) -> f32 {
             return amount * dot(t.rgb, vec3<f32>(0.299, 0.587, 0.114));
         }
         case 3: {
-            return amount * value_noise(x, scale, silhouette.pip.w);
+            return amount * silhouette_value_noise(x, scale, u.pip.w);
         }
         case 4: {
             // A regular matrix of round dots, `scale` pixels apart, radius 0.3·scale.
@@ -97,39 +82,105 @@ fn perturbation(p: vec2<i32>) -> f32 {
     }
 }
 
-@fragment
-fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
-    let p = pixel_of(in.position);
-    let c = vec2<f32>(p);
-    let s = perturbation(p);
-    var response = 0.0;
+// Eq. 3: the Sobel magnitude of the depth around a pixel (taps named by their offsets:
+// m = −1, 0, p = +1 in x then y) reaches the threshold.
+fn silhouette_depth_edge(
+    d_mm: f32, d_0m: f32, d_pm: f32, d_m0: f32, d_p0: f32, d_mp: f32, d_0p: f32, d_pp: f32,
+    threshold: f32,
+) -> bool {
+    let gx = (d_pm + 2.0 * d_p0 + d_pp) - (d_mm + 2.0 * d_m0 + d_mp);
+    let gy = (d_mp + 2.0 * d_0p + d_pp) - (d_mm + 2.0 * d_0m + d_pm);
+    return sqrt(gx * gx + gy * gy) >= threshold;
+}
 
-    if constant_or(USE_DEPTH, silhouette.thresholds.z) > 0.5 {
-        // Sobel on the depth image (eq. 3).
-        let d_mm = depth_at(c + vec2<f32>(-s, -s));
-        let d_0m = depth_at(c + vec2<f32>(0.0, -s));
-        let d_pm = depth_at(c + vec2<f32>(s, -s));
-        let d_m0 = depth_at(c + vec2<f32>(-s, 0.0));
-        let d_p0 = depth_at(c + vec2<f32>(s, 0.0));
-        let d_mp = depth_at(c + vec2<f32>(-s, s));
-        let d_0p = depth_at(c + vec2<f32>(0.0, s));
-        let d_pp = depth_at(c + vec2<f32>(s, s));
-        let gx = (d_pm + 2.0 * d_p0 + d_pp) - (d_mm + 2.0 * d_m0 + d_mp);
-        let gy = (d_mp + 2.0 * d_0p + d_pp) - (d_mm + 2.0 * d_0m + d_pm);
-        if sqrt(gx * gx + gy * gy) >= silhouette.thresholds.x {
-            response = 1.0;
-        }
+// Eq. 4–5: the summed similarity of the centre normal with its four neighbours' falls below the
+// threshold.
+fn silhouette_crease(n: vec3<f32>, a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, d: vec3<f32>, threshold: f32) -> bool {
+    return dot(n, a) + dot(n, b) + dot(n, c) + dot(n, d) < threshold;
+}
+
+// The mask at pixel p: 1 on a silhouette, 0 elsewhere.
+fn silhouette(
+    p: vec2<i32>,
+    u: Silhouette,
+    layer_depth: texture_depth_2d,
+    layer_normal: texture_2d<f32>,
+    pattern: texture_2d<f32>,
+    mode: i32,
+    use_depth: bool,
+    use_normals: bool,
+) -> vec4<f32> {
+    if mode == 0 {
+        return silhouette_unperturbed(p, u, layer_depth, layer_normal, use_depth, use_normals);
     }
-
+    let c = vec2<f32>(p);
+    let s = silhouette_perturbation(u, pattern, mode, p);
+    var response = 0.0;
+    if use_depth && silhouette_depth_edge(
+        silhouette_depth_at(layer_depth, c + vec2<f32>(-s, -s)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(0.0, -s)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(s, -s)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(-s, 0.0)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(s, 0.0)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(-s, s)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(0.0, s)),
+        silhouette_depth_at(layer_depth, c + vec2<f32>(s, s)),
+        u.thresholds.x,
+    ) {
+        response = 1.0;
+    }
+    // Normals only where there is a surface.
     let centre = load_clamped(layer_normal, p);
-    if constant_or(USE_NORMALS, silhouette.thresholds.w) > 0.5 && centre.w > 0.5 {
-        // Normal similarity with the four neighbours (eq. 4–5); only where there is a surface.
-        let n = centre.xyz;
-        let similarity = dot(n, normal_at(c + vec2<f32>(s, 0.0))) + dot(n, normal_at(c + vec2<f32>(-s, 0.0)))
-            + dot(n, normal_at(c + vec2<f32>(0.0, s))) + dot(n, normal_at(c + vec2<f32>(0.0, -s)));
-        if similarity < silhouette.thresholds.y {
-            response = 1.0;
-        }
+    if use_normals && centre.w > 0.5 && silhouette_crease(
+        centre.xyz,
+        silhouette_normal_at(layer_normal, c + vec2<f32>(s, 0.0)),
+        silhouette_normal_at(layer_normal, c + vec2<f32>(-s, 0.0)),
+        silhouette_normal_at(layer_normal, c + vec2<f32>(0.0, s)),
+        silhouette_normal_at(layer_normal, c + vec2<f32>(0.0, -s)),
+        u.thresholds.y,
+    ) {
+        response = 1.0;
+    }
+    return vec4<f32>(response, 0.0, 0.0, 1.0);
+}
+
+// Without perturbation every tap is one pixel away: texels, not bilinear quads, at coordinates
+// clamped once per pixel (the same values as the general path).
+fn silhouette_unperturbed(
+    p: vec2<i32>,
+    u: Silhouette,
+    layer_depth: texture_depth_2d,
+    layer_normal: texture_2d<f32>,
+    use_depth: bool,
+    use_normals: bool,
+) -> vec4<f32> {
+    let size = vec2<i32>(textureDimensions(layer_depth));
+    let lo = max(p - vec2<i32>(1), vec2<i32>(0));
+    let hi = min(p + vec2<i32>(1), size - vec2<i32>(1));
+    var response = 0.0;
+    if use_depth && silhouette_depth_edge(
+        textureLoad(layer_depth, lo, 0),
+        textureLoad(layer_depth, vec2<i32>(p.x, lo.y), 0),
+        textureLoad(layer_depth, vec2<i32>(hi.x, lo.y), 0),
+        textureLoad(layer_depth, vec2<i32>(lo.x, p.y), 0),
+        textureLoad(layer_depth, vec2<i32>(hi.x, p.y), 0),
+        textureLoad(layer_depth, vec2<i32>(lo.x, hi.y), 0),
+        textureLoad(layer_depth, vec2<i32>(p.x, hi.y), 0),
+        textureLoad(layer_depth, hi, 0),
+        u.thresholds.x,
+    ) {
+        response = 1.0;
+    }
+    let centre = textureLoad(layer_normal, p, 0);
+    if use_normals && centre.w > 0.5 && silhouette_crease(
+        centre.xyz,
+        textureLoad(layer_normal, vec2<i32>(hi.x, p.y), 0).xyz,
+        textureLoad(layer_normal, vec2<i32>(lo.x, p.y), 0).xyz,
+        textureLoad(layer_normal, vec2<i32>(p.x, hi.y), 0).xyz,
+        textureLoad(layer_normal, vec2<i32>(p.x, lo.y), 0).xyz,
+        u.thresholds.y,
+    ) {
+        response = 1.0;
     }
     return vec4<f32>(response, 0.0, 0.0, 1.0);
 }

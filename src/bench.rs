@@ -253,13 +253,20 @@ pub fn run(
                 .get(id)
                 .map(|t| ms(median(t)))
                 .unwrap_or_else(|| "-".into());
+            // Fused nodes: the pass's times are on its last node.
+            let fused = &session.executor.stats()[id].fused_with;
+            let note = match fused.last() {
+                None => describe_output(session, id),
+                Some(last) if last == id => format!("one pass: {}", fused.join(", ")),
+                Some(last) => format!("fused into {last}'s pass"),
+            };
             println!(
                 "  {:<22} {:<18} {:>12} {:>12}  {}",
                 id,
                 kind,
                 ms(median(times)),
                 g,
-                describe_output(session, id)
+                note
             );
         }
         println!(
@@ -289,10 +296,15 @@ pub fn run(
         .iter()
         .map(|&(g, s)| {
             format!(
-                "{}:{} [{}]",
+                "{}:{} [{}{}]",
                 g + 1,
                 file_name(&graphs[g]),
-                scenarios[s].name()
+                scenarios[s].name(),
+                if sessions[g].executor.fusion() {
+                    ""
+                } else {
+                    ", unfused"
+                }
             )
         })
         .collect();

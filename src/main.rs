@@ -66,6 +66,10 @@ enum Command {
         /// N-th graph only: `N:node.param=value` (so one graph can be measured in two settings).
         #[arg(long, value_name = "NODE.PARAM=VALUE")]
         set: Vec<String>,
+        /// Measure the N-th graph (1-based) with every node in a pass of its own: no fused
+        /// image-space passes (repeatable; list a graph twice to compare).
+        #[arg(long, value_name = "N")]
+        unfused: Vec<usize>,
     },
     /// Describe a volume or mesh file: dims, spacing, the voxel → world affine (RAS+ mm),
     /// value range, voxel type and which header rule placed it.
@@ -199,6 +203,7 @@ fn run(cli: Cli) -> Result<()> {
             size,
             scenario,
             set,
+            unfused,
         } => {
             let scenarios = scenario
                 .iter()
@@ -233,7 +238,16 @@ fn run(cli: Cli) -> Result<()> {
                         session.set_param_text(node, param, &value)?;
                     }
                 }
+                if unfused.contains(&(sessions.len() + 1)) {
+                    session.executor.set_fusion(false);
+                }
                 sessions.push(session);
+            }
+            if let Some(n) = unfused.iter().find(|&&n| n == 0 || n > graphs.len()) {
+                bail!(
+                    "--unfused {n}: there are {} graphs (counted from 1)",
+                    graphs.len()
+                );
             }
             bench::run(&graphs, &mut sessions, &scenarios, &size, frames.max(1))
         }

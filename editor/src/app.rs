@@ -1928,10 +1928,14 @@ impl SnarlViewer<String> for Viewer<'_> {
     }
 }
 
-/// "12.3 ms cpu · 4.5 ms gpu", or "cached" when the last pass reused the node's outputs.
+/// "12.3 ms cpu · 4.5 ms gpu", "cached" when the last pass reused the node's outputs, or the
+/// node whose fused pass it ran in (that node shows the pass's time).
 fn format_time(time: &NodeTime) -> String {
     if time.cached {
         return "⏱ cached".into();
+    }
+    if let Some(carrier) = &time.fused_into {
+        return format!("⏱ in {carrier}'s pass");
     }
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     match time.gpu {

@@ -46,6 +46,8 @@ pub struct NodeTime {
     pub cpu: Duration,
     pub gpu: Option<Duration>,
     pub cached: bool,
+    /// The node whose fused pass this one ran in (that node carries the pass's times).
+    pub fused_into: Option<String>,
 }
 
 /// The answer to a [`Request`].
@@ -215,6 +217,19 @@ impl Worker {
         // Nodes that ran in this request, and nodes whose cached outputs it reused.
         let mut executed = BTreeSet::new();
         let mut reused = BTreeSet::new();
+        // Every shown port in one pass first: image-space nodes run fused, and a fused pass
+        // writes only what is asked for — one node at a time would re-run the shared part for
+        // each thumbnail. A failure here is reported port by port below.
+        let shown: Vec<&str> = request
+            .viewport
+            .iter()
+            .chain(&request.thumbnails)
+            .map(|(node, _)| node.as_str())
+            .collect();
+        if let Ok(report) = session.run(&shown) {
+            executed.extend(report.executed);
+            reused.extend(report.cached);
+        }
         let mut picture = |port: &Port, bound: (u32, u32), answer: &mut Rendered| {
             let (node, name) = port;
             let result = session
@@ -272,6 +287,11 @@ impl Worker {
                     cpu: stats.cpu_time,
                     gpu: stats.gpu_time,
                     cached: !executed.contains(node),
+                    fused_into: stats
+                        .fused_with
+                        .last()
+                        .filter(|last| *last != node)
+                        .cloned(),
                 },
             );
         }

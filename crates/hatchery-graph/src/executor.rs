@@ -1,7 +1,8 @@
 //! The caching executor: pulls from target nodes in topological order and re-runs a node only
 //! when its parameters or its inputs' versions changed.
 
-use crate::graph::Graph;
+use crate::fusion::{self, Fuser, Member, Source, Unit};
+use crate::graph::{Graph, NodeInstance};
 use crate::param::Params;
 use crate::schema::{NodeError, NodeSchema, OwnSchema, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
@@ -56,6 +57,8 @@ pub struct Registry<V, C> {
     kinds: BTreeMap<&'static str, Entry<V, C>>,
     /// Kinds whose nodes have schemas of their own (read from a file).
     own: BTreeSet<&'static str>,
+    /// What fuses image-space nodes into one pass, where the context can.
+    fuser: Option<Box<dyn Fuser<V, C>>>,
 }
 
 impl<V, C> Default for Registry<V, C> {
@@ -63,6 +66,7 @@ impl<V, C> Default for Registry<V, C> {
         Self {
             kinds: BTreeMap::new(),
             own: BTreeSet::new(),
+            fuser: None,
         }
     }
 }
@@ -74,6 +78,10 @@ impl<V, C> Registry<V, C> {
             self.own.insert(schema.kind);
         }
         self.kinds.insert(schema.kind, (schema, Box::new(node)));
+    }
+    /// Sets what fuses pointwise image-space nodes into one pass ([`crate::fusion`]).
+    pub fn set_fuser(&mut self, fuser: impl Fuser<V, C> + 'static) {
+        self.fuser = Some(Box::new(fuser));
     }
     pub fn node(&self, kind: &str) -> Option<&dyn Node<V, C>> {
         self.kinds.get(kind).map(|(_, n)| n.as_ref())
@@ -170,12 +178,16 @@ pub struct NodeStats {
     pub cpu_time: Duration,
     /// GPU time of the last execution, where the adapter has timestamp queries.
     pub gpu_time: Option<Duration>,
+    /// The nodes of the fused pass the last execution ran in, in order, this one included (empty:
+    /// a pass of its own). The pass's times are on its last node; the others show zero.
+    pub fused_with: Vec<String>,
 }
 
 struct CacheEntry<V> {
     key: u64,
     version: u64,
-    outputs: Vec<V>,
+    /// `None` where a fused pass did not write the output.
+    outputs: Vec<Option<V>>,
 }
 
 /// What one pass did.
@@ -192,6 +204,7 @@ pub struct Executor<V> {
     cache: HashMap<String, CacheEntry<V>>,
     next_version: u64,
     stats: BTreeMap<String, NodeStats>,
+    fusion: bool,
 }
 
 impl<V> Default for Executor<V> {
@@ -200,6 +213,7 @@ impl<V> Default for Executor<V> {
             cache: HashMap::new(),
             next_version: 1,
             stats: BTreeMap::new(),
+            fusion: true,
         }
     }
 }
@@ -210,7 +224,9 @@ impl<V: Clone> Executor<V> {
     }
 
     /// Runs what is needed for `targets` (node ids); with no targets, every sink node (or, if the
-    /// graph has none, every node whose outputs go nowhere).
+    /// graph has none, every node whose outputs go nowhere). Image-space nodes that read their
+    /// inputs pointwise run fused into one pass where the registry has a [`Fuser`] (see
+    /// [`crate::fusion`]) and fusion is on.
     pub fn run<C: ExecContext>(
         &mut self,
         graph: &Graph,
@@ -218,90 +234,33 @@ impl<V: Clone> Executor<V> {
         ctx: &mut C,
         targets: &[&str],
     ) -> Result<PassReport, ExecError> {
-        let wanted = self.needed_nodes(graph, registry, targets)?;
+        let (wanted, roots) = self.needed_nodes(graph, registry, targets)?;
         // Forget nodes that left the graph.
         self.cache.retain(|id, _| graph.node(id).is_some());
         self.stats.retain(|id, _| graph.node(id).is_some());
 
+        let order: Vec<&str> = graph
+            .topological_order()
+            .into_iter()
+            .filter(|id| wanted.contains(id))
+            .collect();
+        let (dirty, forced) = self.predict(graph, registry, ctx, &order, &roots);
+        let units = match (&registry.fuser, self.fusion) {
+            (Some(fuser), true) => {
+                fusion::plan(graph, registry, fuser.as_ref(), ctx, &order, &dirty, &roots)
+            }
+            _ => order.iter().map(|&id| Unit::Single(id)).collect(),
+        };
         let mut report = PassReport::default();
-        for id in graph.topological_order() {
-            if !wanted.contains(id) {
-                continue;
+        for unit in units {
+            match unit {
+                Unit::Single(id) => {
+                    self.run_single(graph, registry, ctx, id, forced.contains(id), &mut report)?
+                }
+                Unit::Group(members) => {
+                    self.run_group(graph, registry, ctx, &members, &mut report)?
+                }
             }
-            let node = graph.node(id).expect("id from the graph");
-            let (kind_schema, behaviour) = registry
-                .kinds
-                .get(node.kind.as_str())
-                .expect("validated kind");
-            let schema = node.own_schema.as_deref().unwrap_or(kind_schema);
-            let fail = |port: Option<String>, message: String| ExecError {
-                node: id.to_owned(),
-                kind: node.kind.clone(),
-                port,
-                message,
-            };
-
-            let mut hasher = DefaultHasher::new();
-            node.kind.hash(&mut hasher);
-            node.params.values().hash(&mut hasher);
-            node.fingerprint.hash(&mut hasher);
-            if schema.frame_dependent {
-                ctx.frame_key().hash(&mut hasher);
-            }
-            let sources = graph.input_sources(id);
-            let mut values = Vec::with_capacity(schema.inputs.len());
-            for port in 0..schema.inputs.len() {
-                let value = match sources.get(&port) {
-                    Some(&(source, out_port)) => {
-                        let entry = self.cache.get(source).expect("inputs run first");
-                        (port, source, entry.version, out_port).hash(&mut hasher);
-                        Some(entry.outputs[out_port].clone())
-                    }
-                    None => None,
-                };
-                values.push(value);
-            }
-            let key = hasher.finish();
-
-            let stats = self.stats.entry(id.to_owned()).or_default();
-            if !schema.sink && self.cache.get(id).is_some_and(|e| e.key == key) {
-                stats.cache_hits += 1;
-                report.cached.push(id.to_owned());
-                continue;
-            }
-
-            let inputs = NodeInputs::new(schema.inputs.iter().map(|p| p.name).collect(), values);
-            tracing::debug!(node = id, kind = node.kind, "executing");
-            ctx.begin_node(id);
-            let start = Instant::now();
-            let result = behaviour.execute(ctx, &inputs, &node.params);
-            let elapsed = start.elapsed();
-            ctx.end_node(id);
-            let outputs = result.map_err(|e| fail(e.port, e.message))?;
-            if outputs.len() != schema.outputs.len() {
-                return Err(fail(
-                    None,
-                    format!(
-                        "produced {} outputs, its schema declares {}",
-                        outputs.len(),
-                        schema.outputs.len()
-                    ),
-                ));
-            }
-            stats.executions += 1;
-            stats.cpu_time = elapsed;
-            stats.gpu_time = None;
-            let version = self.next_version;
-            self.next_version += 1;
-            self.cache.insert(
-                id.to_owned(),
-                CacheEntry {
-                    key,
-                    version,
-                    outputs,
-                },
-            );
-            report.executed.push(id.to_owned());
         }
         for (node, gpu) in ctx.finish_pass() {
             if let Some(stats) = self.stats.get_mut(&node) {
@@ -311,12 +270,310 @@ impl<V: Clone> Executor<V> {
         Ok(report)
     }
 
+    /// Turns fusion on or off (on by default; off runs every node as its own pass).
+    pub fn set_fusion(&mut self, on: bool) {
+        self.fusion = on;
+    }
+
+    pub fn fusion(&self) -> bool {
+        self.fusion
+    }
+
+    /// The node's schema and behaviour.
+    fn kind_of<'r, C>(
+        registry: &'r Registry<V, C>,
+        node: &'r NodeInstance,
+    ) -> (&'r NodeSchema, &'r dyn Node<V, C>) {
+        let (kind_schema, behaviour) = registry
+            .kinds
+            .get(node.kind.as_str())
+            .expect("validated kind");
+        (
+            node.own_schema.as_deref().unwrap_or(kind_schema),
+            behaviour.as_ref(),
+        )
+    }
+
+    /// The cache key of `node` from its parameters and its inputs' current versions, with the
+    /// input values; `None` when an input has not run.
+    fn key_and_inputs<C: ExecContext>(
+        &self,
+        graph: &Graph,
+        schema: &NodeSchema,
+        node: &NodeInstance,
+        ctx: &C,
+    ) -> Option<(u64, Vec<Option<&V>>)> {
+        let mut hasher = DefaultHasher::new();
+        node.kind.hash(&mut hasher);
+        node.params.values().hash(&mut hasher);
+        node.fingerprint.hash(&mut hasher);
+        if schema.frame_dependent {
+            ctx.frame_key().hash(&mut hasher);
+        }
+        let sources = graph.input_sources(&node.id);
+        let mut values = Vec::with_capacity(schema.inputs.len());
+        for port in 0..schema.inputs.len() {
+            let value = match sources.get(&port) {
+                Some(&(source, out_port)) => {
+                    let entry = self.cache.get(source)?;
+                    (port, source, entry.version, out_port).hash(&mut hasher);
+                    entry.outputs.get(out_port).and_then(Option::as_ref)
+                }
+                None => None,
+            };
+            values.push(value);
+        }
+        Some((hasher.finish(), values))
+    }
+
+    /// Which nodes of `order` will run in this pass (`dirty`): sinks, nodes whose parameters or
+    /// inputs changed, and (`forced`) nodes whose outputs an earlier fused pass did not write
+    /// while a node running now, or a target, reads them.
+    fn predict<'g, C: ExecContext>(
+        &self,
+        graph: &'g Graph,
+        registry: &Registry<V, C>,
+        ctx: &C,
+        order: &[&'g str],
+        roots: &BTreeSet<&'g str>,
+    ) -> (BTreeSet<&'g str>, BTreeSet<&'g str>) {
+        let mut forced: BTreeSet<&str> = BTreeSet::new();
+        loop {
+            let mut dirty: BTreeSet<&str> = BTreeSet::new();
+            for &id in order {
+                let node = graph.node(id).expect("id from the graph");
+                let (schema, _) = Self::kind_of(registry, node);
+                let stale = forced.contains(id)
+                    || schema.sink
+                    || graph
+                        .input_sources(id)
+                        .values()
+                        .any(|(s, _)| dirty.contains(s))
+                    || match (
+                        self.cache.get(id),
+                        self.key_and_inputs(graph, schema, node, ctx),
+                    ) {
+                        (Some(entry), Some((key, _))) => entry.key != key,
+                        _ => true,
+                    };
+                if stale {
+                    dirty.insert(id);
+                }
+            }
+            let unwritten = |id: &str, port: Option<usize>| {
+                self.cache.get(id).is_some_and(|e| match port {
+                    Some(port) => e.outputs.get(port).is_some_and(Option::is_none),
+                    None => e.outputs.iter().any(Option::is_none),
+                })
+            };
+            let mut more = false;
+            for &id in order {
+                if roots.contains(id) && !dirty.contains(id) && unwritten(id, None) {
+                    more |= forced.insert(id);
+                }
+                if dirty.contains(id) {
+                    for (source, port) in graph.input_sources(id).into_values() {
+                        if !dirty.contains(source) && unwritten(source, Some(port)) {
+                            more |= forced.insert(source);
+                        }
+                    }
+                }
+            }
+            if !more {
+                return (dirty, forced);
+            }
+        }
+    }
+
+    /// Runs one node unless its cached outputs are still valid.
+    fn run_single<C: ExecContext>(
+        &mut self,
+        graph: &Graph,
+        registry: &Registry<V, C>,
+        ctx: &mut C,
+        id: &str,
+        forced: bool,
+        report: &mut PassReport,
+    ) -> Result<(), ExecError> {
+        let node = graph.node(id).expect("id from the graph");
+        let (schema, behaviour) = Self::kind_of(registry, node);
+        let fail = |port: Option<String>, message: String| ExecError {
+            node: id.to_owned(),
+            kind: node.kind.clone(),
+            port,
+            message,
+        };
+        let (key, values) = self
+            .key_and_inputs(graph, schema, node, ctx)
+            .ok_or_else(|| fail(None, "an input has not run (executor order)".into()))?;
+        if !schema.sink && !forced && self.cache.get(id).is_some_and(|e| e.key == key) {
+            self.stats.entry(id.to_owned()).or_default().cache_hits += 1;
+            report.cached.push(id.to_owned());
+            return Ok(());
+        }
+        let values: Vec<Option<V>> = values.into_iter().map(|v| v.cloned()).collect();
+        let sources = graph.input_sources(id);
+        if let Some(port) =
+            (0..values.len()).find(|p| sources.contains_key(p) && values[*p].is_none())
+        {
+            return Err(fail(
+                Some(schema.inputs[port].name.to_owned()),
+                "the input's value was not kept (executor planning)".into(),
+            ));
+        }
+
+        let inputs = NodeInputs::new(schema.inputs.iter().map(|p| p.name).collect(), values);
+        tracing::debug!(node = id, kind = node.kind, "executing");
+        ctx.begin_node(id);
+        let start = Instant::now();
+        let result = behaviour.execute(ctx, &inputs, &node.params);
+        let elapsed = start.elapsed();
+        ctx.end_node(id);
+        let outputs = result.map_err(|e| fail(e.port, e.message))?;
+        if outputs.len() != schema.outputs.len() {
+            return Err(fail(
+                None,
+                format!(
+                    "produced {} outputs, its schema declares {}",
+                    outputs.len(),
+                    schema.outputs.len()
+                ),
+            ));
+        }
+        let stats = self.stats.entry(id.to_owned()).or_default();
+        stats.executions += 1;
+        stats.cpu_time = elapsed;
+        stats.gpu_time = None;
+        stats.fused_with.clear();
+        self.store(id, key, outputs.into_iter().map(Some).collect());
+        report.executed.push(id.to_owned());
+        Ok(())
+    }
+
+    fn store(&mut self, id: &str, key: u64, outputs: Vec<Option<V>>) {
+        let version = self.next_version;
+        self.next_version += 1;
+        self.cache.insert(
+            id.to_owned(),
+            CacheEntry {
+                key,
+                version,
+                outputs,
+            },
+        );
+    }
+
+    /// Runs a fused group (members in topological order with the outputs to keep) as one pass;
+    /// its times are reported on the last member.
+    fn run_group<C: ExecContext>(
+        &mut self,
+        graph: &Graph,
+        registry: &Registry<V, C>,
+        ctx: &mut C,
+        members: &[(&str, Vec<bool>)],
+        report: &mut PassReport,
+    ) -> Result<(), ExecError> {
+        let fuser = registry.fuser.as_deref().expect("groups only with a fuser");
+        let index: BTreeMap<&str, usize> = members
+            .iter()
+            .enumerate()
+            .map(|(i, (m, _))| (*m, i))
+            .collect();
+        let fail = |id: &str, port: Option<String>, message: String| ExecError {
+            node: id.to_owned(),
+            kind: graph.node(id).map(|n| n.kind.clone()).unwrap_or_default(),
+            port,
+            message,
+        };
+        let mut group = Vec::with_capacity(members.len());
+        for (id, keep) in members {
+            let node = graph.node(id).expect("id from the graph");
+            let (schema, _) = Self::kind_of(registry, node);
+            let sources = graph.input_sources(id);
+            let mut inputs = Vec::with_capacity(schema.inputs.len());
+            for port in 0..schema.inputs.len() {
+                inputs.push(match sources.get(&port) {
+                    None => Source::Absent,
+                    Some(&(source, out)) => match index.get(source) {
+                        Some(&member) => Source::Member { member, port: out },
+                        None => Source::External(self.output(source, out).cloned().ok_or_else(
+                            || {
+                                fail(
+                                    id,
+                                    Some(schema.inputs[port].name.to_owned()),
+                                    "the input's value was not kept (executor planning)".into(),
+                                )
+                            },
+                        )?),
+                    },
+                });
+            }
+            group.push(Member {
+                id,
+                kind: node.kind.as_str(),
+                params: &node.params,
+                inputs,
+                keep: keep.clone(),
+            });
+        }
+        let carrier = members.last().expect("groups have members").0;
+        for (id, _) in &members[..members.len() - 1] {
+            tracing::debug!(node = id, fused_into = carrier, "executing (fused)");
+            ctx.begin_node(id);
+            ctx.end_node(id);
+        }
+        tracing::debug!(
+            node = carrier,
+            members = members.len(),
+            "executing a fused pass"
+        );
+        ctx.begin_node(carrier);
+        let start = Instant::now();
+        let result = fuser.run(ctx, &group);
+        let elapsed = start.elapsed();
+        ctx.end_node(carrier);
+        let outputs = result
+            .map_err(|(i, e)| fail(members[i.min(members.len() - 1)].0, e.port, e.message))?;
+        if outputs.len() != members.len() {
+            return Err(fail(carrier, None, "the fused pass lost members".into()));
+        }
+        let ids: Vec<String> = members.iter().map(|(m, _)| (*m).to_owned()).collect();
+        for ((id, keep), outputs) in members.iter().zip(outputs) {
+            let node = graph.node(id).expect("id from the graph");
+            let (schema, _) = Self::kind_of(registry, node);
+            if outputs.len() != schema.outputs.len()
+                || keep.iter().zip(&outputs).any(|(k, o)| *k && o.is_none())
+            {
+                return Err(fail(
+                    id,
+                    None,
+                    "the fused pass did not write a kept output".into(),
+                ));
+            }
+            let (key, _) = self
+                .key_and_inputs(graph, schema, node, ctx)
+                .ok_or_else(|| fail(id, None, "an input has not run (executor order)".into()))?;
+            let stats = self.stats.entry((*id).to_owned()).or_default();
+            stats.executions += 1;
+            stats.cpu_time = if *id == carrier {
+                elapsed
+            } else {
+                Duration::ZERO
+            };
+            stats.gpu_time = None;
+            stats.fused_with = ids.clone();
+            self.store(id, key, outputs);
+            report.executed.push((*id).to_owned());
+        }
+        Ok(())
+    }
+
     fn needed_nodes<'g, C>(
         &self,
         graph: &'g Graph,
         registry: &Registry<V, C>,
         targets: &[&str],
-    ) -> Result<BTreeSet<&'g str>, ExecError> {
+    ) -> Result<(BTreeSet<&'g str>, BTreeSet<&'g str>), ExecError> {
         let mut stack: Vec<&str> = Vec::new();
         for &target in targets {
             let node = graph.node(target).ok_or_else(|| ExecError {
@@ -343,18 +600,24 @@ impl<V: Clone> Executor<V> {
                 sinks
             };
         }
+        let roots: BTreeSet<&str> = stack.iter().copied().collect();
         let mut needed = BTreeSet::new();
         while let Some(id) = stack.pop() {
             if needed.insert(id) {
                 stack.extend(graph.input_sources(id).values().map(|(source, _)| *source));
             }
         }
-        Ok(needed)
+        Ok((needed, roots))
     }
 
     /// A node's output from the last pass that ran it.
+    /// `None` also where a fused pass did not write it (nothing outside the pass read it): run
+    /// the node as a target to have it.
     pub fn output(&self, node: &str, port: usize) -> Option<&V> {
-        self.cache.get(node).and_then(|e| e.outputs.get(port))
+        self.cache
+            .get(node)
+            .and_then(|e| e.outputs.get(port))
+            .and_then(Option::as_ref)
     }
 
     pub fn stats(&self) -> &BTreeMap<String, NodeStats> {

@@ -14,6 +14,7 @@ pub mod document;
 pub mod edit;
 pub mod error;
 pub mod executor;
+pub mod fusion;
 pub mod graph;
 mod locate;
 pub mod migrate;

@@ -209,7 +209,7 @@ fn resolve_pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, hatchery_g
             "depth_layers_resolve",
             None,
             stages,
-            NORMAL_FORMAT,
+            &[NORMAL_FORMAT],
             Some(depth),
         )
     })

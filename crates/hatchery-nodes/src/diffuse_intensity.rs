@@ -1,6 +1,6 @@
 //! `DiffuseIntensity`: max(n · l, 0) of a G-buffer layer (Fischer et al. 2005, eq. 1 and 6).
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
@@ -8,7 +8,7 @@ use hatchery_graph::{
 
 crate::uniform_block! {
     /// `Diffuse` of shaders/diffuse_intensity.wgsl: view-space light direction, (value of empty
-    /// pixels, two-sided), the inverse projection, and (width, height, orthographic).
+    /// pixels, 0, 0, 0), the inverse projection, and (width, height, orthographic).
     pub struct DiffuseUniforms in "diffuse_intensity" as "Diffuse" {
         pub light_dir: [f32; 4],
         pub options: [f32; 4],
@@ -61,18 +61,23 @@ impl Node<Value, Ctx> for DiffuseIntensityNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
-        let light = inputs.require("light")?.light("light")?.clone();
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for DiffuseIntensityNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true, true]
+    }
+
+    fn stage(&self, ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
+        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?;
+        let light = inputs.require("light")?.light("light")?;
         let l = light.view_direction(&gbuffer.camera);
         let (w, h) = ctx.size();
         let uniforms = DiffuseUniforms {
             light_dir: [l.x, l.y, l.z, 0.0],
-            options: [
-                p.f32("empty"),
-                if p.bool("two_sided") { 1.0 } else { 0.0 },
-                0.0,
-                0.0,
-            ],
+            options: [p.f32("empty"), 0.0, 0.0, 0.0],
             inverse_proj: gbuffer.camera.proj.inverse().to_cols_array_2d(),
             frame: [
                 w as f32,
@@ -85,12 +90,20 @@ impl Node<Value, Ctx> for DiffuseIntensityNode {
                 0.0,
             ],
         };
-        Ok(vec![screen_pass::mask(
-            ctx,
-            "diffuse_intensity",
-            &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
-            &[],
-            Some(bytemuck::bytes_of(&uniforms)),
-        )?])
+        Ok(Stage {
+            library: "diffuse_intensity",
+            function: "diffuse_intensity",
+            uniform: Some(("Diffuse", bytemuck::bytes_of(&uniforms).to_vec())),
+            // The depth is read for two-sided lighting only.
+            args: vec![
+                if p.bool("two_sided") {
+                    Arg::At("gbuffer")
+                } else {
+                    Arg::NormalAt("gbuffer")
+                },
+                Arg::Constant(p.bool("two_sided").to_string()),
+            ],
+            output: PortType::Mask,
+        })
     }
 }

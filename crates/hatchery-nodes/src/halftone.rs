@@ -1,15 +1,17 @@
 //! `Halftone`: procedural screening of an intensity mask (Fischer et al. 2005, §3.3.2, eq. 7–9).
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
-    /// `Halftone` of shaders/halftone.wgsl: (θ in radians, cell size in pixels, c_cross, 0).
+    /// `Halftone` of shaders/halftone.wgsl: (θ in radians, cell size in pixels, c_cross, 0) and
+    /// (cos θ, sin θ, 0, 0).
     pub struct HalftoneUniforms in "halftone" as "Halftone" {
         pub params: [f32; 4],
+        pub rotation: [f32; 4],
     }
 }
 
@@ -62,21 +64,27 @@ impl Node<Value, Ctx> for HalftoneNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let intensity = inputs.require("intensity")?.mask("intensity")?.clone();
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for HalftoneNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true]
+    }
+
+    fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
+        let theta = p.f32("theta").to_radians();
         let uniforms = HalftoneUniforms {
-            params: [
-                p.f32("theta").to_radians(),
-                p.f32("cell"),
-                p.f32("c_cross"),
-                0.0,
-            ],
+            params: [theta, p.f32("cell"), p.f32("c_cross"), 0.0],
+            rotation: [theta.cos(), theta.sin(), 0.0, 0.0],
         };
-        Ok(vec![screen_pass::mask(
-            ctx,
-            "halftone",
-            &[("intensity", &intensity.texture)],
-            &[],
-            Some(bytemuck::bytes_of(&uniforms)),
-        )?])
+        Ok(Stage {
+            library: "halftone",
+            function: "halftone",
+            uniform: Some(("Halftone", bytemuck::bytes_of(&uniforms).to_vec())),
+            args: vec![Arg::At("intensity")],
+            output: PortType::Mask,
+        })
     }
 }

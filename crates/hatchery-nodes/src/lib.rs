@@ -16,6 +16,7 @@ pub mod diffuse_intensity;
 pub mod display;
 pub mod export;
 pub mod fill;
+pub mod fused_pass;
 pub mod gbuffer;
 pub mod halftone;
 pub mod hatch_strokes;
@@ -120,5 +121,6 @@ pub fn registry() -> Registry {
     r.register(visual_conventions::BoundingBoxNode);
     r.register(save_image::SaveImageNode);
     r.register(custom_shader::CustomShaderNode::default());
+    r.set_fuser(fused_pass::ImageFuser);
     r
 }

@@ -1,19 +1,12 @@
 //! `MaskCombine`: per-pixel logic and arithmetic of two masks.
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
 const OPERATIONS: &[&str] = &["and", "or", "min", "add", "subtract", "a_not_b"];
-
-crate::uniform_block! {
-    /// `Combine` of shaders/mask_combine.wgsl: options.x = the operation (index in OPERATIONS).
-    pub struct CombineUniforms in "mask_combine" as "Combine" {
-        pub options: [f32; 4],
-    }
-}
 
 pub struct MaskCombineNode;
 
@@ -47,20 +40,26 @@ impl Node<Value, Ctx> for MaskCombineNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let a = inputs.require("a")?.mask("a")?.clone();
-        let b = inputs.require("b")?.mask("b")?.clone();
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for MaskCombineNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true, true]
+    }
+
+    fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
         let op = OPERATIONS
             .iter()
             .position(|o| *o == p.choice("operation"))
             .unwrap_or(0);
-        Ok(vec![screen_pass::mask(
-            ctx,
-            "mask_combine",
-            &[("a", &a.texture), ("b", &b.texture)],
-            &[],
-            Some(bytemuck::bytes_of(&CombineUniforms {
-                options: [op as f32, 0.0, 0.0, 0.0],
-            })),
-        )?])
+        Ok(Stage {
+            library: "mask_combine",
+            function: "mask_combine",
+            uniform: None,
+            args: vec![Arg::At("a"), Arg::At("b"), Arg::Constant(op.to_string())],
+            output: PortType::Mask,
+        })
     }
 }

@@ -1,17 +1,16 @@
 //! `MixByMask`: mix(base, over, mask) — an image or a colour blended in where a mask is set.
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
-    /// `MixParams` of shaders/mix_by_mask.wgsl: the premultiplied colour, and options.x = 1
-    /// when an `over` image replaces the colour.
+    /// `MixParams` of shaders/mix_by_mask.wgsl: the premultiplied colour (whether an `over`
+    /// image replaces it is a constant of the pass).
     pub struct MixUniforms in "mix_by_mask" as "MixParams" {
         pub color: [f32; 4],
-        pub options: [f32; 4],
     }
 }
 
@@ -51,28 +50,31 @@ impl Node<Value, Ctx> for MixByMaskNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let base = inputs.require("base")?.image("base")?.clone();
-        let mask = inputs.require("mask")?.mask("mask")?.clone();
-        let over = inputs
-            .get("over")
-            .map(|v| v.image("over").cloned())
-            .transpose()?;
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for MixByMaskNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true, true, true]
+    }
+
+    fn stage(&self, _ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
         let c = p.color("color");
         let uniforms = MixUniforms {
             color: [c[0] * c[3], c[1] * c[3], c[2] * c[3], c[3]],
-            options: [if over.is_some() { 1.0 } else { 0.0 }, 0.0, 0.0, 0.0],
         };
-        let over_texture = over.as_ref().map_or(&base.texture, |o| &o.texture);
-        Ok(vec![screen_pass::image(
-            ctx,
-            "mix_by_mask",
-            &[
-                ("base", &base.texture),
-                ("over", over_texture),
-                ("mask", &mask.texture),
+        Ok(Stage {
+            library: "mix_by_mask",
+            function: "mix_by_mask",
+            uniform: Some(("MixParams", bytemuck::bytes_of(&uniforms).to_vec())),
+            args: vec![
+                Arg::At("base"),
+                Arg::At("mask"),
+                Arg::At("over"),
+                Arg::Constant(inputs.connected("over").to_string()),
             ],
-            &[],
-            Some(bytemuck::bytes_of(&uniforms)),
-        )?])
+            output: PortType::Image,
+        })
     }
 }

@@ -1,17 +1,10 @@
 //! `MultiplyByMask`: darkens an image by a mask (ink where the mask says so).
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-
-crate::uniform_block! {
-    /// `MultiplyParams` of shaders/multiply_by_mask.wgsl: options.x = 1 to invert the mask.
-    pub struct MultiplyUniforms in "multiply_by_mask" as "MultiplyParams" {
-        pub options: [f32; 4],
-    }
-}
 
 pub struct MultiplyByMaskNode;
 
@@ -47,17 +40,26 @@ impl Node<Value, Ctx> for MultiplyByMaskNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let image = inputs.require("image")?.image("image")?.clone();
-        let mask = inputs.require("mask")?.mask("mask")?.clone();
-        let uniforms = MultiplyUniforms {
-            options: [if p.bool("invert") { 1.0 } else { 0.0 }, 0.0, 0.0, 0.0],
-        };
-        Ok(vec![screen_pass::image(
-            ctx,
-            "multiply_by_mask",
-            &[("image", &image.texture), ("mask", &mask.texture)],
-            &[],
-            Some(bytemuck::bytes_of(&uniforms)),
-        )?])
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for MultiplyByMaskNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true, true]
+    }
+
+    fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
+        Ok(Stage {
+            library: "multiply_by_mask",
+            function: "multiply_by_mask",
+            uniform: None,
+            args: vec![
+                Arg::At("image"),
+                Arg::At("mask"),
+                Arg::Constant(p.bool("invert").to_string()),
+            ],
+            output: PortType::Image,
+        })
     }
 }

@@ -1,7 +1,7 @@
 //! `Over`: one image over another (premultiplied Porter–Duff over), e.g. a volume rendering over
 //! paper, or strokes embedded over a rendering.
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
@@ -30,16 +30,29 @@ impl Node<Value, Ctx> for OverNode {
         &self,
         ctx: &mut Ctx,
         inputs: &NodeInputs<Value>,
-        _p: &Params,
+        p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let front = inputs.require("front")?.image("front")?.clone();
-        let back = inputs.require("back")?.image("back")?.clone();
-        Ok(vec![screen_pass::image(
-            ctx,
-            "over",
-            &[("front", &front.texture), ("back", &back.texture)],
-            &[],
-            None,
-        )?])
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for OverNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true, true]
+    }
+
+    fn stage(
+        &self,
+        _ctx: &mut Ctx,
+        _inputs: &StageInputs,
+        _p: &Params,
+    ) -> Result<Stage, NodeError> {
+        Ok(Stage {
+            library: "over",
+            function: "over",
+            uniform: None,
+            args: vec![Arg::At("front"), Arg::At("back")],
+            output: PortType::Image,
+        })
     }
 }

@@ -43,7 +43,7 @@ pub fn pipeline_specialised(
             entry: "fs_main",
             constants,
         };
-        fullscreen_pipeline(device, program, None, stages, format, None)
+        fullscreen_pipeline(device, program, None, stages, &[format], None)
     })
 }
 
@@ -56,16 +56,19 @@ pub struct Stages<'a> {
     pub constants: &'a [(&'a str, f64)],
 }
 
-/// A pipeline drawing one full-frame triangle (no vertex buffers) with `stages` into one
-/// `format` target, with `depth` if the pass has a depth attachment; `layout` `None` derives it.
+/// A pipeline drawing one full-frame triangle (no vertex buffers) with `stages` into one colour
+/// target per format of `formats`, with `depth` if the pass has a depth attachment; `layout`
+/// `None` derives it.
 pub fn fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: Option<&wgpu::PipelineLayout>,
     stages: Stages,
-    format: wgpu::TextureFormat,
+    formats: &[wgpu::TextureFormat],
     depth: Option<wgpu::DepthStencilState>,
 ) -> wgpu::RenderPipeline {
+    let targets: Vec<Option<wgpu::ColorTargetState>> =
+        formats.iter().map(|&f| Some(f.into())).collect();
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout,
@@ -85,7 +88,7 @@ pub fn fullscreen_pipeline(
                 constants: stages.constants,
                 ..Default::default()
             },
-            targets: &[Some(format.into())],
+            targets: &targets,
         }),
         multiview_mask: None,
         cache: None,
@@ -188,13 +191,32 @@ pub fn render_specialised(
     let pipeline = ctx.cached(&key, |gpu| {
         pipeline_specialised(gpu, program, format, constants)
     })?;
-    let gpu = &ctx.gpu;
+    let bind_group = bind_group(&ctx.gpu, program, &pipeline, textures, uniform);
+    Ok(draw(
+        ctx,
+        program,
+        &pipeline,
+        &bind_group,
+        format,
+        (width, height),
+    ))
+}
+
+/// Group 0 of `pipeline`: `textures` at bindings 0, 1, …, then a uniform buffer holding `uniform`
+/// (if any).
+pub fn bind_group(
+    gpu: &GpuContext,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    textures: &[&wgpu::Texture],
+    uniform: Option<&[u8]>,
+) -> wgpu::BindGroup {
     let views: Vec<wgpu::TextureView> = textures
         .iter()
         .map(|t| t.create_view(&Default::default()))
         .collect();
     let uniform_buffer =
-        uniform.map(|bytes| gpu.buffer_init(program, bytes, wgpu::BufferUsages::UNIFORM));
+        uniform.map(|bytes| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM));
     let mut entries: Vec<wgpu::BindGroupEntry> = views
         .iter()
         .enumerate()
@@ -209,19 +231,11 @@ pub fn render_specialised(
             resource: buffer.as_entire_binding(),
         });
     }
-    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(program),
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
         layout: &pipeline.get_bind_group_layout(0),
         entries: &entries,
-    });
-    Ok(draw(
-        ctx,
-        program,
-        &pipeline,
-        &bind_group,
-        format,
-        (width, height),
-    ))
+    })
 }
 
 /// One full-screen triangle of `pipeline` with `bind_group` into a new `format` target of

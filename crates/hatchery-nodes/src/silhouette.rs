@@ -1,13 +1,11 @@
 //! `Silhouette`: image-space feature lines of a G-buffer layer (Fischer et al. 2005, §3.3.1), with
 //! optional procedurally perturbed sampling (PIP, Yuan & Chen 2005, §6, eq. 2).
 
-use crate::screen_pass;
-use crate::value::Mask;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
-use std::sync::Arc;
 
 crate::uniform_block! {
     /// `Silhouette` of shaders/silhouette.wgsl: (depth threshold, normal threshold, use depth,
@@ -97,7 +95,22 @@ impl Node<Value, Ctx> for SilhouetteNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for SilhouetteNode {
+    /// The G-buffer is read around the pixel.
+    fn pointwise(&self) -> &'static [bool] {
+        &[false]
+    }
+
+    fn own_textures(&self) -> u32 {
+        1
+    }
+
+    fn stage(&self, ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
+        inputs.require("gbuffer")?.gbuffer("gbuffer")?;
         let mode = PIP_MODES
             .iter()
             .position(|m| *m == p.choice("pip"))
@@ -113,35 +126,33 @@ impl Node<Value, Ctx> for SilhouetteNode {
         } else {
             ctx.blank_texture()
         };
-        let bool_f = |b: bool| if b { 1.0 } else { 0.0 };
         let uniforms = SilhouetteUniforms {
             thresholds: [
                 p.f32("depth_threshold"),
                 p.f32("normal_threshold"),
-                bool_f(p.bool("use_depth")),
-                bool_f(p.bool("use_normals")),
+                0.0,
+                0.0,
             ],
             pip: [
-                mode as f32,
+                0.0,
                 p.f32("pip_amount"),
                 p.f32("pip_scale"),
                 p.int("pip_seed") as f32,
             ],
         };
-        // The mode and switches as pipeline constants (shaders/silhouette.wgsl says why).
-        let constants = [
-            ("PIP_MODE", mode as f64),
-            ("USE_DEPTH", bool_f(p.bool("use_depth")) as f64),
-            ("USE_NORMALS", bool_f(p.bool("use_normals")) as f64),
-        ];
-        let texture = screen_pass::run_specialised(
-            ctx,
-            ("silhouette", &constants),
-            screen_pass::MASK_FORMAT,
-            &[("gbuffer", &gbuffer.depth), ("gbuffer", &gbuffer.normal)],
-            &[&pattern],
-            Some(bytemuck::bytes_of(&uniforms)),
-        )?;
-        Ok(vec![Value::Mask(Arc::new(Mask { texture }))])
+        // The mode and switches as constants (shaders/silhouette.wgsl says why).
+        Ok(Stage {
+            library: "silhouette",
+            function: "silhouette",
+            uniform: Some(("Silhouette", bytemuck::bytes_of(&uniforms).to_vec())),
+            args: vec![
+                Arg::Textures("gbuffer"),
+                Arg::Texture(pattern),
+                Arg::Constant(mode.to_string()),
+                Arg::Constant(p.bool("use_depth").to_string()),
+                Arg::Constant(p.bool("use_normals").to_string()),
+            ],
+            output: PortType::Mask,
+        })
     }
 }

@@ -365,7 +365,7 @@ fn pipeline(
             &name,
             Some(&layout),
             stages,
-            format,
+            &[format],
             None,
         );
         (pipeline, group)

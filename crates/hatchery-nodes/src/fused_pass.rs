@@ -1,0 +1,518 @@
+//! Fused image-space passes: the image-space nodes that read their inputs only at the pixel they
+//! write (diffuse intensity, halftoning, mask arithmetic, compositing — and silhouettes, which
+//! read a G-buffer around the pixel but only from outside the pass) are *stages*: a WGSL function
+//! each (shaders/<node>.wgsl). The executor groups connected stages that run in the same frame
+//! (`hatchery_graph::fusion`); this module writes one fragment shader calling the group's
+//! functions in order, each result passed on in a register instead of a render target, and draws
+//! it once with a colour target for every output something outside the group reads. A node
+//! running alone is a group of one, so fused and unfused frames run the same code.
+//!
+//! Why: each full-frame pass has a fixed cost (on lavapipe 5–11 ms at 1024×768 for one texture
+//! read), and the hidden-layers frame of Fischer et al. 2005 is seven of them after the geometry.
+//! Images passed between stages are rounded to binary16 as an Rgba16Float target stores them
+//! (`as_rgba16float` in shaders/fullscreen.wgsl), so a fused frame equals the unfused one bit
+//! for bit on lavapipe (tests/fused_pass.rs).
+
+use crate::screen_pass::{self, IMAGE_FORMAT, MASK_FORMAT};
+use crate::value::{Image, Mask};
+use crate::{Ctx, Value};
+use hatchery_graph::executor::Node;
+use hatchery_graph::fusion::{Fuser, Member, Outside, Source};
+use hatchery_graph::{NodeError, NodeInputs, NodeSchema, Params, PortType};
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::sync::Arc;
+
+/// One argument of a stage's WGSL function, after `p` (the pixel) and the node's uniform block.
+pub enum Arg {
+    /// An input port read at the pixel: its texel (`vec4<f32>`; a G-buffer port gives its depth
+    /// `f32` and its normal `vec4<f32>`), or the value an earlier stage computed for it;
+    /// `vec4<f32>(0.0)` where an optional port is not connected.
+    At(&'static str),
+    /// Both textures of a G-buffer input port (`texture_depth_2d`, `texture_2d<f32>`), read
+    /// anywhere; such a port is not pointwise, so its value always comes from outside the pass.
+    Textures(&'static str),
+    /// A G-buffer input port read at the pixel for its normal only: `1.0` for the depth, then the
+    /// normal (`vec4<f32>`) — one texture read fewer where the stage ignores the depth.
+    NormalAt(&'static str),
+    /// A texture of the node's own (a pattern), read anywhere: `texture_2d<f32>`.
+    Texture(wgpu::Texture),
+    /// A constant known when the pass is built, as WGSL text: the compiler folds it, one
+    /// pipeline per value.
+    Constant(String),
+}
+
+/// What a node contributes to a fused pass: `library` (a program of [`crate::shaders`], without
+/// entry point) defines `function(p: vec2<i32>, u: <uniform struct>, args…) -> vec4<f32>` (no
+/// `u` without a uniform); its result is the node's one output, a Mask (in `.r`) or an Image.
+pub struct Stage {
+    pub library: &'static str,
+    pub function: &'static str,
+    /// The WGSL struct's name and the bytes of the node's block (a `uniform_block!`).
+    pub uniform: Option<(&'static str, Vec<u8>)>,
+    pub args: Vec<Arg>,
+    pub output: PortType,
+}
+
+/// A node kind that runs as a stage of a fused pass; its `execute` is [`execute`].
+pub trait Fusable: Node<Value, Ctx> + Sync {
+    /// Per input port, in schema order: whether the stage reads it only at the pixel it writes.
+    fn pointwise(&self) -> &'static [bool];
+    /// Textures the stage binds besides its inputs' (its `Arg::Texture`s).
+    fn own_textures(&self) -> u32 {
+        0
+    }
+    /// The stage for `p`. `inputs` holds the values that come from outside the pass (G-buffers,
+    /// lights); those computed by earlier stages are only known to be connected.
+    fn stage(&self, ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError>;
+}
+
+/// The fusable node kinds.
+pub fn fusable(kind: &str) -> Option<&'static dyn Fusable> {
+    Some(match kind {
+        "Silhouette" => &crate::silhouette::SilhouetteNode,
+        "DiffuseIntensity" => &crate::diffuse_intensity::DiffuseIntensityNode,
+        "Halftone" => &crate::halftone::HalftoneNode,
+        "MixByMask" => &crate::mix_by_mask::MixByMaskNode,
+        "MultiplyByMask" => &crate::multiply_by_mask::MultiplyByMaskNode,
+        "MaskCombine" => &crate::mask_combine::MaskCombineNode,
+        "Over" => &crate::over::OverNode,
+        _ => return None,
+    })
+}
+
+/// A stage's inputs: values from outside the pass, and which ports are connected at all.
+pub struct StageInputs<'a> {
+    names: Vec<&'static str>,
+    sources: &'a [Source<Value>],
+}
+
+impl StageInputs<'_> {
+    fn source(&self, port: &str) -> Option<&Source<Value>> {
+        let i = self.names.iter().position(|n| *n == port)?;
+        self.sources.get(i)
+    }
+    /// Whether anything is connected to `port`.
+    pub fn connected(&self, port: &str) -> bool {
+        !matches!(self.source(port), None | Some(Source::Absent))
+    }
+    /// The value on `port`, which must come from outside the pass (not a pointwise port).
+    pub fn require(&self, port: &str) -> Result<&Value, NodeError> {
+        match self.source(port) {
+            Some(Source::External(value)) => Ok(value),
+            Some(Source::Member { .. }) => Err(NodeError::at_port(
+                port,
+                "computed inside a fused pass, where only its pixel is known",
+            )),
+            _ => Err(NodeError::at_port(port, "input is not connected")),
+        }
+    }
+}
+
+/// `Node::execute` of a fusable kind: the node as a pass of its own.
+pub fn execute(
+    node: &dyn Fusable,
+    ctx: &mut Ctx,
+    inputs: &NodeInputs<Value>,
+    params: &Params,
+) -> Result<Vec<Value>, NodeError> {
+    let schema = node.schema();
+    let sources: Vec<Source<Value>> = schema
+        .inputs
+        .iter()
+        .map(|port| match inputs.get(port.name) {
+            Some(value) => Source::External(value.clone()),
+            None => Source::Absent,
+        })
+        .collect();
+    let member = Member {
+        id: "",
+        kind: schema.kind,
+        params,
+        inputs: sources,
+        keep: vec![true; schema.outputs.len()],
+    };
+    let mut outputs = run_group(ctx, &[member]).map_err(|(_, e)| e)?;
+    Ok(outputs
+        .pop()
+        .unwrap_or_default()
+        .into_iter()
+        .flatten()
+        .collect())
+}
+
+/// The executor's fuser for [`Ctx`].
+pub struct ImageFuser;
+
+impl Fuser<Value, Ctx> for ImageFuser {
+    fn pointwise(&self, kind: &str, _params: &Params) -> Option<Vec<bool>> {
+        fusable(kind).map(|node| node.pointwise().to_vec())
+    }
+
+    fn fits(&self, ctx: &Ctx, group: &[Member<'_, Outside<'_>>]) -> bool {
+        let limits = ctx.gpu.device.limits();
+        let mut textures = 0;
+        let mut bound = std::collections::BTreeSet::new();
+        let (mut targets, mut bytes) = (0, 0);
+        for member in group {
+            let Some(node) = fusable(member.kind) else {
+                return false;
+            };
+            textures += node.own_textures();
+            for source in &member.inputs {
+                if let Source::External(outside) = source
+                    && bound.insert((outside.node, outside.port))
+                {
+                    textures += match outside.ty {
+                        PortType::GBuffer => 2,
+                        PortType::Image | PortType::Mask => 1,
+                        _ => 0,
+                    };
+                }
+            }
+            for _ in member.keep.iter().filter(|k| **k) {
+                targets += 1;
+                // The widest output (an Image) per kept port.
+                bytes += IMAGE_FORMAT.target_pixel_byte_cost().unwrap_or(8);
+            }
+        }
+        // A uniform block per member, one buffer: far below every adapter's limit for the
+        // groups this cap allows.
+        group.len() <= 32
+            && textures <= limits.max_sampled_textures_per_shader_stage
+            && targets <= limits.max_color_attachments
+            && bytes <= limits.max_color_attachment_bytes_per_sample
+    }
+
+    fn run(
+        &self,
+        ctx: &mut Ctx,
+        group: &[Member<'_, Value>],
+    ) -> Result<Vec<Vec<Option<Value>>>, (usize, NodeError)> {
+        run_group(ctx, group)
+    }
+}
+
+/// One texture bound by the pass and its WGSL type.
+struct Binding {
+    texture: wgpu::Texture,
+    wgsl: &'static str,
+}
+
+/// The fragment shader of a group, built stage by stage.
+#[derive(Default)]
+struct Shader {
+    libraries: Vec<&'static str>,
+    uniform_fields: Vec<String>,
+    uniform_bytes: Vec<u8>,
+    bindings: Vec<Binding>,
+    body: Vec<String>,
+    /// (member, format) per colour target.
+    targets: Vec<(usize, wgpu::TextureFormat)>,
+}
+
+impl Shader {
+    /// The name of `texture` bound as `wgsl` (bound once however many stages read it).
+    fn bind(&mut self, texture: &wgpu::Texture, wgsl: &'static str) -> String {
+        let index = match self
+            .bindings
+            .iter()
+            .position(|b| b.texture == *texture && b.wgsl == wgsl)
+        {
+            Some(i) => i,
+            None => {
+                self.bindings.push(Binding {
+                    texture: texture.clone(),
+                    wgsl,
+                });
+                self.bindings.len() - 1
+            }
+        };
+        format!("t{index}")
+    }
+
+    /// Appends member `i`'s call.
+    fn stage(
+        &mut self,
+        ctx: &Ctx,
+        i: usize,
+        member: &Member<'_, Value>,
+        schema: &NodeSchema,
+        stage: Stage,
+        read_later: bool,
+    ) -> Result<(), NodeError> {
+        if !self.libraries.contains(&stage.library) {
+            self.libraries.push(stage.library);
+        }
+        let mut args = vec!["p".to_owned()];
+        if let Some((wgsl_struct, bytes)) = stage.uniform {
+            // Uniform structs of struct type sit at multiples of 16 bytes.
+            self.uniform_bytes
+                .resize(self.uniform_bytes.len().next_multiple_of(16), 0);
+            self.uniform_fields.push(format!("u{i}: {wgsl_struct}"));
+            self.uniform_bytes.extend_from_slice(&bytes);
+            args.push(format!("fused.u{i}"));
+        }
+        for arg in stage.args {
+            args.push(match arg {
+                Arg::At(port) => self.at(ctx, member, schema, port, true)?,
+                Arg::NormalAt(port) => self.at(ctx, member, schema, port, false)?,
+                Arg::Textures(port) => {
+                    let index = port_index(schema, port)?;
+                    match &member.inputs[index] {
+                        Source::External(Value::GBuffer(g)) => {
+                            screen_pass::frame_sized(ctx, port, &g.depth)?;
+                            screen_pass::frame_sized(ctx, port, &g.normal)?;
+                            let depth = self.bind(&g.depth, "texture_depth_2d");
+                            let normal = self.bind(&g.normal, "texture_2d<f32>");
+                            format!("{depth}, {normal}")
+                        }
+                        Source::Absent => {
+                            return Err(NodeError::at_port(port, "input is not connected"));
+                        }
+                        _ => {
+                            return Err(NodeError::at_port(
+                                port,
+                                "a G-buffer from outside the pass is needed here",
+                            ));
+                        }
+                    }
+                }
+                Arg::Texture(texture) => self.bind(&texture, "texture_2d<f32>"),
+                Arg::Constant(text) => text,
+            });
+        }
+        let call = format!("{}({})", stage.function, args.join(", "));
+        // Images read by later stages are rounded as their Rgba16Float target would round them
+        // (a target rounds by itself).
+        let (value, format) = match stage.output {
+            PortType::Image if read_later => (format!("as_rgba16float({call})"), IMAGE_FORMAT),
+            PortType::Image => (call, IMAGE_FORMAT),
+            _ => (call, MASK_FORMAT),
+        };
+        self.body.push(format!("    let v{i} = {value};"));
+        if member.keep.first().copied().unwrap_or(false) {
+            self.targets.push((i, format));
+        }
+        Ok(())
+    }
+
+    /// The WGSL expression of input `port` at the pixel.
+    fn at(
+        &mut self,
+        ctx: &Ctx,
+        member: &Member<'_, Value>,
+        schema: &NodeSchema,
+        port: &'static str,
+        with_depth: bool,
+    ) -> Result<String, NodeError> {
+        let index = port_index(schema, port)?;
+        let spec = &schema.inputs[index];
+        Ok(match &member.inputs[index] {
+            Source::Absent if spec.required => {
+                return Err(NodeError::at_port(port, "input is not connected"));
+            }
+            Source::Absent if spec.ty == PortType::GBuffer => "1.0, vec4<f32>(0.0)".to_owned(),
+            Source::Absent => "vec4<f32>(0.0)".to_owned(),
+            Source::Member { member, .. } => format!("v{member}"),
+            Source::External(Value::GBuffer(g)) => {
+                screen_pass::frame_sized(ctx, port, &g.depth)?;
+                screen_pass::frame_sized(ctx, port, &g.normal)?;
+                let normal = self.bind(&g.normal, "texture_2d<f32>");
+                if !with_depth {
+                    return Ok(format!("1.0, textureLoad({normal}, p, 0)"));
+                }
+                let depth = self.bind(&g.depth, "texture_depth_2d");
+                format!("textureLoad({depth}, p, 0), textureLoad({normal}, p, 0)")
+            }
+            Source::External(value @ (Value::Mask(_) | Value::Image(_))) => {
+                let texture = match value {
+                    Value::Mask(mask) => &mask.texture,
+                    Value::Image(image) => &image.texture,
+                    _ => unreachable!("matched above"),
+                };
+                screen_pass::frame_sized(ctx, port, texture)?;
+                let name = self.bind(texture, "texture_2d<f32>");
+                format!("textureLoad({name}, p, 0)")
+            }
+            Source::External(other) => {
+                return Err(NodeError::at_port(
+                    port,
+                    format!("expected a picture, got a {}", other.port_type()),
+                ));
+            }
+        })
+    }
+
+    /// The whole WGSL source.
+    fn source(&self) -> Result<String, NodeError> {
+        let mut text = String::from(crate::shaders::FULLSCREEN);
+        for library in &self.libraries {
+            let parts = crate::shaders::programs()
+                .into_iter()
+                .find(|(name, _)| name == library)
+                .map(|(_, parts)| parts)
+                .ok_or_else(|| NodeError::new(format!("no shader library {library}")))?;
+            for (file, part) in parts {
+                if file != "fullscreen.wgsl" {
+                    text.push_str(part);
+                }
+            }
+        }
+        text.push_str("\n// The fused pass (crates/hatchery-nodes/src/fused_pass.rs).\n");
+        for (i, binding) in self.bindings.iter().enumerate() {
+            text.push_str(&format!(
+                "@group(0) @binding({i}) var t{i}: {};\n",
+                binding.wgsl
+            ));
+        }
+        if !self.uniform_fields.is_empty() {
+            text.push_str(&format!(
+                "struct Fused {{\n    {},\n}};\n@group(0) @binding({}) var<uniform> fused: Fused;\n",
+                self.uniform_fields.join(",\n    "),
+                self.bindings.len()
+            ));
+        }
+        let outputs: Vec<String> = (0..self.targets.len())
+            .map(|k| format!("    @location({k}) o{k}: vec4<f32>,"))
+            .collect();
+        text.push_str(&format!(
+            "struct FusedOut {{\n{}\n}};\n\n@fragment\nfn fs_main(in: ScreenOut) -> FusedOut {{\n    let p = pixel_of(in.position);\n{}\n    var out: FusedOut;\n",
+            outputs.join("\n"),
+            self.body.join("\n")
+        ));
+        for (k, (member, _)) in self.targets.iter().enumerate() {
+            text.push_str(&format!("    out.o{k} = v{member};\n"));
+        }
+        text.push_str("    return out;\n}\n");
+        Ok(text)
+    }
+}
+
+fn port_index(schema: &NodeSchema, port: &str) -> Result<usize, NodeError> {
+    schema
+        .input_index(port)
+        .ok_or_else(|| NodeError::new(format!("stage argument names no input port `{port}`")))
+}
+
+/// The WGSL source of `group` as one pass (for tests and `hatchery` diagnostics).
+pub fn source_of(ctx: &mut Ctx, group: &[Member<'_, Value>]) -> Result<String, (usize, NodeError)> {
+    build(ctx, group)?.source().map_err(|e| (0, e))
+}
+
+fn build(ctx: &mut Ctx, group: &[Member<'_, Value>]) -> Result<Shader, (usize, NodeError)> {
+    let mut shader = Shader::default();
+    for (i, member) in group.iter().enumerate() {
+        let node = fusable(member.kind)
+            .ok_or_else(|| (i, NodeError::new("this node kind has no fused stage")))?;
+        let schema = node.schema();
+        let inputs = StageInputs {
+            names: schema.inputs.iter().map(|p| p.name).collect(),
+            sources: &member.inputs,
+        };
+        let stage = node
+            .stage(ctx, &inputs, member.params)
+            .map_err(|e| (i, e))?;
+        let read_later = group[i + 1..].iter().any(|later| {
+            later
+                .inputs
+                .iter()
+                .any(|s| matches!(s, Source::Member { member, .. } if *member == i))
+        });
+        shader
+            .stage(ctx, i, member, &schema, stage, read_later)
+            .map_err(|e| (i, e))?;
+    }
+    if shader.targets.is_empty() {
+        return Err((
+            group.len().saturating_sub(1),
+            NodeError::new("a fused pass with no output"),
+        ));
+    }
+    Ok(shader)
+}
+
+/// Runs `group` (stages in order) as one full-frame pass; per member, its output where `keep`
+/// says. Errors name the member they belong to.
+pub fn run_group(
+    ctx: &mut Ctx,
+    group: &[Member<'_, Value>],
+) -> Result<Vec<Vec<Option<Value>>>, (usize, NodeError)> {
+    let last = group.len().saturating_sub(1);
+    let shader = build(ctx, group)?;
+    let source = shader.source().map_err(|e| (last, e))?;
+    let formats: Vec<wgpu::TextureFormat> = shader.targets.iter().map(|(_, f)| *f).collect();
+    let mut hasher = DefaultHasher::new();
+    (&source, &formats).hash(&mut hasher);
+    let label = match group {
+        [one] => fusable(one.kind).map_or("stage", |n| n.schema().kind),
+        _ => "fused pass",
+    };
+    let key = format!("fused:{:016x}", hasher.finish());
+    let pipeline = ctx
+        .cached(&key, |gpu| {
+            let module = gpu.shader(label, &source)?;
+            gpu.checked(&format!("pipeline {label}"), |device| {
+                let stages = screen_pass::Stages {
+                    vertex: &module,
+                    fragment: &module,
+                    entry: "fs_main",
+                    constants: &[],
+                };
+                screen_pass::fullscreen_pipeline(device, label, None, stages, &formats, None)
+            })
+        })
+        .map_err(|e| (last, NodeError::new(e.to_string())))?;
+
+    let gpu = &ctx.gpu;
+    let textures: Vec<&wgpu::Texture> = shader.bindings.iter().map(|b| &b.texture).collect();
+    let uniform = (!shader.uniform_bytes.is_empty()).then_some(shader.uniform_bytes.as_slice());
+    let bind_group = screen_pass::bind_group(gpu, label, &pipeline, &textures, uniform);
+    let (width, height) = ctx.size();
+    let targets: Vec<wgpu::Texture> = formats
+        .iter()
+        .map(|&f| gpu.render_target(label, width, height, f))
+        .collect();
+    let target_views: Vec<wgpu::TextureView> = targets
+        .iter()
+        .map(|t| t.create_view(&Default::default()))
+        .collect();
+    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = target_views
+        .iter()
+        .map(|view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &attachments,
+            ..Default::default()
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    ctx.submit(encoder.finish());
+
+    let mut outputs: Vec<Vec<Option<Value>>> = group
+        .iter()
+        .map(|m| vec![None; m.keep.len().max(1)])
+        .collect();
+    for ((member, format), texture) in shader.targets.iter().zip(targets) {
+        outputs[*member][0] = Some(if *format == IMAGE_FORMAT {
+            Value::Image(Arc::new(Image { texture }))
+        } else {
+            Value::Mask(Arc::new(Mask { texture }))
+        });
+    }
+    Ok(outputs)
+}

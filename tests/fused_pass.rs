@@ -1,0 +1,228 @@
+//! Fused image-space passes compute exactly what the nodes compute one pass each: every fusable
+//! kind and every constant it folds, in one graph; and every preset.
+
+mod common;
+
+use hatchery_nodes::{Session, export};
+
+/// Every fusable kind, every Silhouette PIP mode but `texture`, both switches, all six mask
+/// operations, MixByMask with and without an `over` image, an inverted MultiplyByMask,
+/// two-sided lighting, Over — on two depth layers of the engine block.
+const ALL_KINDS: &str = r#"(
+    version: 2,
+    nodes: [
+        (id: "block", kind: "ProceduralVolume", params: {"resolution": 48, "shape": "engine_block"}),
+        (id: "surface", kind: "MarchingCubes", params: {"iso": 0.0}),
+        (id: "camera", kind: "Camera", params: {"azimuth": 35.0, "distance": 3.4, "elevation": 25.0}),
+        (id: "light", kind: "Light", params: {"direction": [-0.3, 0.6, 1.0]}),
+        (id: "layer1", kind: "GBuffer", params: {}),
+        (id: "layer2", kind: "DepthPeel", params: {}),
+        (id: "paper", kind: "Fill", params: {"color": [1.0, 0.95, 0.9, 1.0]}),
+        (id: "sil_none", kind: "Silhouette", params: {}),
+        (id: "sil_constant", kind: "Silhouette", params: {"pip": "constant", "pip_amount": 1.7}),
+        (id: "sil_noise", kind: "Silhouette", params: {"pip": "noise", "pip_amount": 2.5, "pip_seed": 3}),
+        (id: "sil_dots", kind: "Silhouette", params: {"pip": "dots", "pip_scale": 6.0, "use_depth": false}),
+        (id: "sil_depth", kind: "Silhouette", params: {"use_normals": false, "depth_threshold": 0.002}),
+        (id: "lit", kind: "DiffuseIntensity", params: {"two_sided": true}),
+        (id: "lit2", kind: "DiffuseIntensity", params: {"empty": 0.25}),
+        (id: "screen", kind: "Halftone", params: {"theta": 33.0, "cell": 5.0, "c_cross": 0.6}),
+        (id: "c_and", kind: "MaskCombine", params: {"operation": "and"}),
+        (id: "c_or", kind: "MaskCombine", params: {"operation": "or"}),
+        (id: "c_min", kind: "MaskCombine", params: {"operation": "min"}),
+        (id: "c_add", kind: "MaskCombine", params: {"operation": "add"}),
+        (id: "c_sub", kind: "MaskCombine", params: {"operation": "subtract"}),
+        (id: "c_not", kind: "MaskCombine", params: {"operation": "a_not_b"}),
+        (id: "tint", kind: "MixByMask", params: {"color": [0.2, 0.4, 0.9, 0.7]}),
+        (id: "blend", kind: "MixByMask", params: {}),
+        (id: "ink", kind: "MultiplyByMask", params: {"invert": true}),
+        (id: "shade", kind: "MultiplyByMask", params: {}),
+        (id: "final", kind: "Over", params: {}),
+    ],
+    edges: [
+        (from: ("block", "volume"), to: ("surface", "volume")),
+        (from: ("surface", "mesh"), to: ("layer1", "mesh")),
+        (from: ("camera", "camera"), to: ("layer1", "camera")),
+        (from: ("surface", "mesh"), to: ("layer2", "mesh")),
+        (from: ("camera", "camera"), to: ("layer2", "camera")),
+        (from: ("layer1", "gbuffer"), to: ("layer2", "previous")),
+        (from: ("layer1", "gbuffer"), to: ("sil_none", "gbuffer")),
+        (from: ("layer1", "gbuffer"), to: ("sil_constant", "gbuffer")),
+        (from: ("layer2", "gbuffer"), to: ("sil_noise", "gbuffer")),
+        (from: ("layer1", "gbuffer"), to: ("sil_dots", "gbuffer")),
+        (from: ("layer2", "gbuffer"), to: ("sil_depth", "gbuffer")),
+        (from: ("layer1", "gbuffer"), to: ("lit", "gbuffer")),
+        (from: ("light", "light"), to: ("lit", "light")),
+        (from: ("layer2", "gbuffer"), to: ("lit2", "gbuffer")),
+        (from: ("light", "light"), to: ("lit2", "light")),
+        (from: ("lit", "intensity"), to: ("screen", "intensity")),
+        (from: ("sil_none", "mask"), to: ("c_and", "a")),
+        (from: ("sil_constant", "mask"), to: ("c_and", "b")),
+        (from: ("c_and", "mask"), to: ("c_or", "a")),
+        (from: ("sil_noise", "mask"), to: ("c_or", "b")),
+        (from: ("c_or", "mask"), to: ("c_min", "a")),
+        (from: ("screen", "mask"), to: ("c_min", "b")),
+        (from: ("c_min", "mask"), to: ("c_add", "a")),
+        (from: ("sil_dots", "mask"), to: ("c_add", "b")),
+        (from: ("c_add", "mask"), to: ("c_sub", "a")),
+        (from: ("sil_depth", "mask"), to: ("c_sub", "b")),
+        (from: ("c_sub", "mask"), to: ("c_not", "a")),
+        (from: ("lit2", "intensity"), to: ("c_not", "b")),
+        (from: ("paper", "image"), to: ("tint", "base")),
+        (from: ("c_not", "mask"), to: ("tint", "mask")),
+        (from: ("paper", "image"), to: ("blend", "base")),
+        (from: ("lit2", "intensity"), to: ("blend", "mask")),
+        (from: ("tint", "image"), to: ("blend", "over")),
+        (from: ("blend", "image"), to: ("ink", "image")),
+        (from: ("sil_none", "mask"), to: ("ink", "mask")),
+        (from: ("ink", "image"), to: ("shade", "image")),
+        (from: ("lit", "intensity"), to: ("shade", "mask")),
+        (from: ("shade", "image"), to: ("final", "front")),
+        (from: ("tint", "image"), to: ("final", "back")),
+    ],
+)"#;
+
+const W: u32 = 200;
+const H: u32 = 150;
+
+/// Every channel of `node.port` as f32, from a session that has run it.
+fn pixels(session: &Session, node: &str, port: &str) -> Vec<f32> {
+    let value = session
+        .output(node, port)
+        .unwrap_or_else(|e| panic!("{node}.{port}: {e}"));
+    export::to_array(value, &session.ctx.gpu).unwrap().data
+}
+
+/// Fails naming the worst channel unless `a` and `b` are bit for bit equal.
+fn assert_identical(what: &str, fused: &[f32], alone: &[f32], channels: usize) {
+    assert_eq!(fused.len(), alone.len(), "{what}: sizes differ");
+    let worst = fused
+        .iter()
+        .zip(alone)
+        .enumerate()
+        .filter(|(_, (f, a))| f.to_bits() != a.to_bits())
+        .max_by(|x, y| {
+            let dx = (x.1.0 - x.1.1).abs();
+            let dy = (y.1.0 - y.1.1).abs();
+            dx.total_cmp(&dy)
+        });
+    if let Some((i, (f, a))) = worst {
+        let pixel = i / channels;
+        panic!(
+            "{what}: fused and unfused differ, worst at pixel ({}, {}) channel {}: {f} vs {a}",
+            pixel % W as usize,
+            pixel / W as usize,
+            i % channels
+        );
+    }
+}
+
+#[test]
+fn every_fusable_kind_in_one_pass_equals_the_nodes_one_pass_each() {
+    let mut fused = common::session_from_text(ALL_KINDS, W, H);
+    let mut alone = common::session_from_text(ALL_KINDS, W, H);
+    alone.executor.set_fusion(false);
+    fused.run(&["final"]).unwrap();
+    alone.run(&["final"]).unwrap();
+
+    // The whole image-space part ran as one pass (the 19 nodes below the G-buffers).
+    let pass = &fused.executor.stats()["final"].fused_with;
+    assert_eq!(pass.len(), 19, "{pass:?}");
+    assert!(alone.executor.stats()["final"].fused_with.is_empty());
+    assert_identical(
+        "final",
+        &pixels(&fused, "final", "image"),
+        &pixels(&alone, "final", "image"),
+        4,
+    );
+    // Not blank: the test would pass on two empty pictures.
+    let final_pixels = pixels(&fused, "final", "image");
+    let distinct: std::collections::BTreeSet<u32> =
+        final_pixels.iter().map(|v| v.to_bits()).collect();
+    assert!(distinct.len() > 50, "{} distinct values", distinct.len());
+
+    // Intermediate nodes as targets: one pass writes several outputs (colour targets).
+    let targets = ["final", "c_or", "screen", "blend"];
+    fused.run(&targets).unwrap();
+    alone.run(&targets).unwrap();
+    for (node, port, channels) in [
+        ("c_or", "mask", 1),
+        ("screen", "mask", 1),
+        ("blend", "image", 4),
+        ("final", "image", 4),
+    ] {
+        assert_identical(
+            node,
+            &pixels(&fused, node, port),
+            &pixels(&alone, node, port),
+            channels,
+        );
+    }
+    assert!(
+        fused.executor.stats()["c_or"].fused_with.len() > 1,
+        "c_or ran in a fused pass"
+    );
+}
+
+#[test]
+fn every_preset_renders_the_same_fused_and_unfused() {
+    let mut presets: Vec<_> = std::fs::read_dir(common::repo_root().join("graphs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    presets.sort();
+    let mut with_fused_passes = Vec::new();
+    for path in presets {
+        let mut fused = Session::open(&path, 160, 120).unwrap();
+        let fusable = fused
+            .graph
+            .nodes()
+            .any(|n| hatchery_nodes::fused_pass::fusable(&n.kind).is_some());
+        if !fusable {
+            continue;
+        }
+        // One session (the data loads once): each saver's picture unfused, then — after a frame
+        // of another size, so every frame-sized node runs again — fused.
+        let session = &mut fused;
+        for saver in common::savers(session) {
+            let (source, port) = {
+                let sources = session.graph.input_sources(&saver);
+                let (node, port) = sources[&0];
+                (node.to_owned(), port)
+            };
+            let name = format!("{}: {source}", path.display());
+            let render = |session: &mut Session, fusion: bool| {
+                session.ctx.set_size(16, 12).unwrap();
+                session.run(&[&source]).unwrap();
+                session.ctx.set_size(160, 120).unwrap();
+                session.executor.set_fusion(fusion);
+                session.run(&[&source]).unwrap();
+                let value = session.executor.output(&source, port).unwrap();
+                export::to_array(value, &session.ctx.gpu).unwrap().data
+            };
+            let alone = render(session, false);
+            let fused = render(session, true);
+            assert_eq!(fused.len(), alone.len(), "{name}");
+            let differing = fused
+                .iter()
+                .zip(&alone)
+                .filter(|(x, y)| x.to_bits() != y.to_bits())
+                .count();
+            assert_eq!(differing, 0, "{name}: {differing} values differ");
+        }
+        if fused
+            .executor
+            .stats()
+            .values()
+            .any(|s| s.fused_with.len() > 1)
+        {
+            with_fused_passes.push(path.file_name().unwrap().to_string_lossy().into_owned());
+        }
+    }
+    for preset in ["hidden_layers_brain.ron", "hidden_structures.ron"] {
+        assert!(
+            with_fused_passes.contains(&preset.to_owned()),
+            "{preset} ran no fused pass: {with_fused_passes:?}"
+        );
+    }
+}
