@@ -3,6 +3,7 @@
 
 mod common;
 
+use hatchery_nodes::raycast::Kernel;
 use hatchery_nodes::{Session, export};
 
 /// Every fusable kind, every Silhouette PIP mode but `texture`, both switches, all six mask
@@ -161,6 +162,42 @@ fn every_fusable_kind_in_one_pass_equals_the_nodes_one_pass_each() {
         fused.executor.stats()["c_or"].fused_with.len() > 1,
         "c_or ran in a fused pass"
     );
+}
+
+/// The compute kernel (what adapters with a small graphics part use) computes what the fragment
+/// shader does: masks bit for bit; images to within one binary16 step (storage writes may round
+/// where colour targets truncate).
+#[test]
+fn the_compute_kernel_of_a_fused_pass_equals_its_fragment_shader() {
+    let mut fragment = common::session_from_text(ALL_KINDS, W, H);
+    fragment.ctx.set_image_kernel(Kernel::Fragment);
+    let mut compute = common::session_from_text(ALL_KINDS, W, H);
+    compute.ctx.set_image_kernel(Kernel::Compute);
+    let targets = ["final", "c_or", "screen", "blend"];
+    fragment.run(&targets).unwrap();
+    compute.run(&targets).unwrap();
+    assert!(compute.executor.stats()["final"].fused_with.len() > 1);
+    for (node, port) in [("c_or", "mask"), ("screen", "mask")] {
+        assert_identical(
+            node,
+            &pixels(&compute, node, port),
+            &pixels(&fragment, node, port),
+            1,
+        );
+    }
+    for (node, port) in [("blend", "image"), ("final", "image")] {
+        let (c, f) = (pixels(&compute, node, port), pixels(&fragment, node, port));
+        assert_eq!(c.len(), f.len());
+        let worst = c
+            .iter()
+            .zip(&f)
+            .map(|(a, b)| (a - b).abs() / a.abs().max(b.abs()).max(6.1e-5))
+            .fold(0.0f32, f32::max);
+        assert!(
+            worst <= 1.0 / 1024.0,
+            "{node}: compute and fragment differ by {worst} (relative)"
+        );
+    }
 }
 
 #[test]

@@ -21,20 +21,34 @@ pub struct RenderContext {
     /// The last execution's warning of each node that gave one (a constant volume, an iso value
     /// with no surface): shown on stderr and on the node in the editor.
     warnings: BTreeMap<String, String>,
+    /// Fused image-space passes as fragment shaders or compute kernels (crate::fused_pass).
+    image_kernel: crate::raycast::Kernel,
 }
 
 impl RenderContext {
     pub fn new(gpu: GpuContext, width: u32, height: u32) -> Result<Self, GpuError> {
         gpu.check_2d_size("the frame", width, height)?;
         Ok(Self {
-            gpu,
             width,
             height,
             timer: None,
             current_node: None,
             statics: HashMap::new(),
             warnings: BTreeMap::new(),
+            image_kernel: crate::raycast::Kernel::choose("auto", &gpu),
+            gpu,
         })
+    }
+
+    /// How fused image-space passes run: by default as fragment shaders, except on adapters
+    /// whose graphics pipeline is a small part of the chip (as the ray caster's `auto`).
+    pub fn image_kernel(&self) -> crate::raycast::Kernel {
+        self.image_kernel
+    }
+
+    /// Overrides [`Self::image_kernel`] (tests compare both paths on one adapter).
+    pub fn set_image_kernel(&mut self, kernel: crate::raycast::Kernel) {
+        self.image_kernel = kernel;
     }
 
     pub fn size(&self) -> (u32, u32) {

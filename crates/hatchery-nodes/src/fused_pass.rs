@@ -13,6 +13,7 @@
 //! (`as_rgba16float` in shaders/fullscreen.wgsl), so a fused frame equals the unfused one bit
 //! for bit on lavapipe (tests/fused_pass.rs).
 
+use crate::raycast::Kernel;
 use crate::screen_pass::{self, IMAGE_FORMAT, MASK_FORMAT};
 use crate::value::{Image, Mask};
 use crate::{Ctx, Value};
@@ -177,10 +178,14 @@ impl Fuser<Value, Ctx> for ImageFuser {
         }
         // A uniform block per member, one buffer: far below every adapter's limit for the
         // groups this cap allows.
-        group.len() <= 32
-            && textures <= limits.max_sampled_textures_per_shader_stage
-            && targets <= limits.max_color_attachments
-            && bytes <= limits.max_color_attachment_bytes_per_sample
+        let outputs_fit = match ctx.image_kernel() {
+            Kernel::Fragment => {
+                targets <= limits.max_color_attachments
+                    && bytes <= limits.max_color_attachment_bytes_per_sample
+            }
+            Kernel::Compute => targets <= limits.max_storage_textures_per_shader_stage,
+        };
+        group.len() <= 32 && textures <= limits.max_sampled_textures_per_shader_stage && outputs_fit
     }
 
     fn run(
@@ -343,8 +348,10 @@ impl Shader {
         })
     }
 
-    /// The whole WGSL source.
-    fn source(&self) -> Result<String, NodeError> {
+    /// The whole WGSL source, with a fragment entry point `fs_main` (one colour target per
+    /// output) or a compute entry point `cs_main` over 8×8-pixel tiles (one storage texture per
+    /// output, bound after the inputs).
+    fn source(&self, kernel: Kernel) -> Result<String, NodeError> {
         let mut text = String::from(crate::shaders::FULLSCREEN);
         for library in &self.libraries {
             let parts = crate::shaders::programs()
@@ -359,31 +366,58 @@ impl Shader {
             }
         }
         text.push_str("\n// The fused pass (crates/hatchery-nodes/src/fused_pass.rs).\n");
-        for (i, binding) in self.bindings.iter().enumerate() {
+        let mut binding = 0;
+        for (i, b) in self.bindings.iter().enumerate() {
             text.push_str(&format!(
-                "@group(0) @binding({i}) var t{i}: {};\n",
-                binding.wgsl
+                "@group(0) @binding({binding}) var t{i}: {};\n",
+                b.wgsl
             ));
+            binding += 1;
+        }
+        if kernel == Kernel::Compute {
+            for (k, (_, format)) in self.targets.iter().enumerate() {
+                let texel = if *format == IMAGE_FORMAT {
+                    "rgba16float"
+                } else {
+                    "r32float"
+                };
+                text.push_str(&format!(
+                    "@group(0) @binding({binding}) var o{k}: texture_storage_2d<{texel}, write>;\n"
+                ));
+                binding += 1;
+            }
         }
         if !self.uniform_fields.is_empty() {
             text.push_str(&format!(
-                "struct Fused {{\n    {},\n}};\n@group(0) @binding({}) var<uniform> fused: Fused;\n",
+                "struct Fused {{\n    {},\n}};\n@group(0) @binding({binding}) var<uniform> fused: Fused;\n",
                 self.uniform_fields.join(",\n    "),
-                self.bindings.len()
             ));
         }
-        let outputs: Vec<String> = (0..self.targets.len())
-            .map(|k| format!("    @location({k}) o{k}: vec4<f32>,"))
-            .collect();
-        text.push_str(&format!(
-            "struct FusedOut {{\n{}\n}};\n\n@fragment\nfn fs_main(in: ScreenOut) -> FusedOut {{\n    let p = pixel_of(in.position);\n{}\n    var out: FusedOut;\n",
-            outputs.join("\n"),
-            self.body.join("\n")
-        ));
-        for (k, (member, _)) in self.targets.iter().enumerate() {
-            text.push_str(&format!("    out.o{k} = v{member};\n"));
+        let body = self.body.join("\n");
+        match kernel {
+            Kernel::Fragment => {
+                let outputs: Vec<String> = (0..self.targets.len())
+                    .map(|k| format!("    @location({k}) o{k}: vec4<f32>,"))
+                    .collect();
+                text.push_str(&format!(
+                    "struct FusedOut {{\n{}\n}};\n\n@fragment\nfn fs_main(in: ScreenOut) -> FusedOut {{\n    let p = pixel_of(in.position);\n{body}\n    var out: FusedOut;\n",
+                    outputs.join("\n"),
+                ));
+                for (k, (member, _)) in self.targets.iter().enumerate() {
+                    text.push_str(&format!("    out.o{k} = v{member};\n"));
+                }
+                text.push_str("    return out;\n}\n");
+            }
+            Kernel::Compute => {
+                text.push_str(&format!(
+                    "\n@compute @workgroup_size(8, 8, 1)\nfn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    if any(id.xy >= textureDimensions(o0)) {{\n        return;\n    }}\n    let p = vec2<i32>(id.xy);\n{body}\n"
+                ));
+                for (k, (member, _)) in self.targets.iter().enumerate() {
+                    text.push_str(&format!("    textureStore(o{k}, p, v{member});\n"));
+                }
+                text.push_str("}\n");
+            }
         }
-        text.push_str("    return out;\n}\n");
         Ok(text)
     }
 }
@@ -392,11 +426,6 @@ fn port_index(schema: &NodeSchema, port: &str) -> Result<usize, NodeError> {
     schema
         .input_index(port)
         .ok_or_else(|| NodeError::new(format!("stage argument names no input port `{port}`")))
-}
-
-/// The WGSL source of `group` as one pass (for tests and `hatchery` diagnostics).
-pub fn source_of(ctx: &mut Ctx, group: &[Member<'_, Value>]) -> Result<String, (usize, NodeError)> {
-    build(ctx, group)?.source().map_err(|e| (0, e))
 }
 
 fn build(ctx: &mut Ctx, group: &[Member<'_, Value>]) -> Result<Shader, (usize, NodeError)> {
@@ -439,44 +468,118 @@ pub fn run_group(
 ) -> Result<Vec<Vec<Option<Value>>>, (usize, NodeError)> {
     let last = group.len().saturating_sub(1);
     let shader = build(ctx, group)?;
-    let source = shader.source().map_err(|e| (last, e))?;
+    let kernel = ctx.image_kernel();
+    let source = shader.source(kernel).map_err(|e| (last, e))?;
     let formats: Vec<wgpu::TextureFormat> = shader.targets.iter().map(|(_, f)| *f).collect();
-    let mut hasher = DefaultHasher::new();
-    (&source, &formats).hash(&mut hasher);
     let label = match group {
         [one] => fusable(one.kind).map_or("stage", |n| n.schema().kind),
         _ => "fused pass",
     };
-    let key = format!("fused:{:016x}", hasher.finish());
-    let pipeline = ctx
-        .cached(&key, |gpu| {
-            let module = gpu.shader(label, &source)?;
-            gpu.checked(&format!("pipeline {label}"), |device| {
-                let stages = screen_pass::Stages {
-                    vertex: &module,
-                    fragment: &module,
-                    entry: "fs_main",
-                    constants: &[],
-                };
-                screen_pass::fullscreen_pipeline(device, label, None, stages, &formats, None)
-            })
-        })
-        .map_err(|e| (last, NodeError::new(e.to_string())))?;
-
-    let gpu = &ctx.gpu;
+    let (width, height) = ctx.size();
     let textures: Vec<&wgpu::Texture> = shader.bindings.iter().map(|b| &b.texture).collect();
     let uniform = (!shader.uniform_bytes.is_empty()).then_some(shader.uniform_bytes.as_slice());
-    let bind_group = screen_pass::bind_group(gpu, label, &pipeline, &textures, uniform);
-    let (width, height) = ctx.size();
-    let targets: Vec<wgpu::Texture> = formats
+    let error = |e: hatchery_gpu::GpuError| (last, NodeError::new(e.to_string()));
+    let targets: Vec<wgpu::Texture> = match kernel {
+        Kernel::Fragment => {
+            let pipeline = ctx
+                .cached(&pipeline_key(&source, &formats), |gpu| {
+                    let module = gpu.shader(label, &source)?;
+                    gpu.checked(&format!("pipeline {label}"), |device| {
+                        let stages = screen_pass::Stages {
+                            vertex: &module,
+                            fragment: &module,
+                            entry: "fs_main",
+                            constants: &[],
+                        };
+                        screen_pass::fullscreen_pipeline(
+                            device, label, None, stages, &formats, None,
+                        )
+                    })
+                })
+                .map_err(error)?;
+            let gpu = &ctx.gpu;
+            let bind_group = screen_pass::bind_group(gpu, label, &pipeline, &textures, uniform);
+            let targets: Vec<wgpu::Texture> = formats
+                .iter()
+                .map(|&f| gpu.render_target(label, width, height, f))
+                .collect();
+            let work = draw(gpu, label, &pipeline, &bind_group, &targets);
+            ctx.submit(work);
+            targets
+        }
+        Kernel::Compute => {
+            let pipeline = ctx
+                .cached(&pipeline_key(&source, &formats), |gpu| {
+                    let module = gpu.shader(label, &source)?;
+                    gpu.checked(&format!("pipeline {label}"), |device| {
+                        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                            label: Some(label),
+                            layout: None,
+                            module: &module,
+                            entry_point: Some("cs_main"),
+                            compilation_options: Default::default(),
+                            cache: None,
+                        })
+                    })
+                })
+                .map_err(error)?;
+            let gpu = &ctx.gpu;
+            let targets: Vec<wgpu::Texture> = formats
+                .iter()
+                .map(|&f| gpu.storage_target(label, width, height, f))
+                .collect();
+            let bound: Vec<&wgpu::Texture> = textures.iter().copied().chain(&targets).collect();
+            let layout = pipeline.get_bind_group_layout(0);
+            let bind_group = screen_pass::bind_group_with(gpu, label, &layout, &bound, uniform);
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(label),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+            }
+            ctx.submit(encoder.finish());
+            targets
+        }
+    };
+
+    let mut outputs: Vec<Vec<Option<Value>>> = group
         .iter()
-        .map(|&f| gpu.render_target(label, width, height, f))
+        .map(|m| vec![None; m.keep.len().max(1)])
         .collect();
-    let target_views: Vec<wgpu::TextureView> = targets
+    for ((member, format), texture) in shader.targets.iter().zip(targets) {
+        outputs[*member][0] = Some(if *format == IMAGE_FORMAT {
+            Value::Image(Arc::new(Image { texture }))
+        } else {
+            Value::Mask(Arc::new(Mask { texture }))
+        });
+    }
+    Ok(outputs)
+}
+
+/// The cache key of a pass's pipeline: its source and target formats.
+fn pipeline_key(source: &str, formats: &[wgpu::TextureFormat]) -> String {
+    let mut hasher = DefaultHasher::new();
+    (source, formats).hash(&mut hasher);
+    format!("fused:{:016x}:{}", hasher.finish(), source.len())
+}
+
+/// One full-frame triangle of `pipeline` into `targets` (cleared to transparent).
+fn draw(
+    gpu: &hatchery_gpu::GpuContext,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    bind_group: &wgpu::BindGroup,
+    targets: &[wgpu::Texture],
+) -> wgpu::CommandBuffer {
+    let views: Vec<wgpu::TextureView> = targets
         .iter()
         .map(|t| t.create_view(&Default::default()))
         .collect();
-    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = target_views
+    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
         .iter()
         .map(|view| {
             Some(wgpu::RenderPassColorAttachment {
@@ -497,22 +600,9 @@ pub fn run_group(
             color_attachments: &attachments,
             ..Default::default()
         });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
-    ctx.submit(encoder.finish());
-
-    let mut outputs: Vec<Vec<Option<Value>>> = group
-        .iter()
-        .map(|m| vec![None; m.keep.len().max(1)])
-        .collect();
-    for ((member, format), texture) in shader.targets.iter().zip(targets) {
-        outputs[*member][0] = Some(if *format == IMAGE_FORMAT {
-            Value::Image(Arc::new(Image { texture }))
-        } else {
-            Value::Mask(Arc::new(Mask { texture }))
-        });
-    }
-    Ok(outputs)
+    encoder.finish()
 }

@@ -211,6 +211,24 @@ pub fn bind_group(
     textures: &[&wgpu::Texture],
     uniform: Option<&[u8]>,
 ) -> wgpu::BindGroup {
+    bind_group_with(
+        gpu,
+        label,
+        &pipeline.get_bind_group_layout(0),
+        textures,
+        uniform,
+    )
+}
+
+/// [`bind_group`] for `layout`: `textures` (sampled or storage, as the layout says) at bindings
+/// 0, 1, …, then the uniform buffer (if any).
+pub fn bind_group_with(
+    gpu: &GpuContext,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    textures: &[&wgpu::Texture],
+    uniform: Option<&[u8]>,
+) -> wgpu::BindGroup {
     let views: Vec<wgpu::TextureView> = textures
         .iter()
         .map(|t| t.create_view(&Default::default()))
@@ -233,7 +251,7 @@ pub fn bind_group(
     }
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
-        layout: &pipeline.get_bind_group_layout(0),
+        layout,
         entries: &entries,
     })
 }
