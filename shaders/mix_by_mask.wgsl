@@ -8,10 +8,10 @@ struct MixParams {
 };
 
 // `use_over` (an image is connected to `over`) is a constant of the pass.
-fn mix_by_mask(p: vec2<i32>, u: MixParams, base: vec4<f32>, mask: vec4<f32>, over: vec4<f32>, use_over: bool) -> vec4<f32> {
+fn mix_by_mask(p: vec2<i32>, u: MixParams, base: vec4<f32>, mask: vec4<f32>, over_image: vec4<f32>, use_over: bool) -> vec4<f32> {
     var top = u.color;
     if use_over {
-        top = over;
+        top = over_image;
     }
     return mix(base, top, clamp(mask.r, 0.0, 1.0));
 }

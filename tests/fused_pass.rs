@@ -141,6 +141,16 @@ fn every_fusable_kind_in_one_pass_equals_the_nodes_one_pass_each() {
         final_pixels.iter().map(|v| v.to_bits()).collect();
     assert!(distinct.len() > 50, "{} distinct values", distinct.len());
 
+    // An intermediate node's output was not written; asking for it says why and what to do.
+    let Err(error) = fused.output("c_or", "mask") else {
+        panic!("c_or's output was written although nothing outside the pass read it");
+    };
+    let message = error.to_string();
+    assert!(
+        message.contains("fused pass") && message.contains("run `c_or` as a target"),
+        "{message}"
+    );
+
     // Intermediate nodes as targets: one pass writes several outputs (colour targets).
     let targets = ["final", "c_or", "screen", "blend"];
     fused.run(&targets).unwrap();

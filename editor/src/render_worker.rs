@@ -226,7 +226,10 @@ impl Worker {
             .chain(&request.thumbnails)
             .map(|(node, _)| node.as_str())
             .collect();
-        if let Ok(report) = session.run(&shown) {
+        // (An empty list would mean "every sink": saving files.)
+        if !shown.is_empty()
+            && let Ok(report) = session.run(&shown)
+        {
             executed.extend(report.executed);
             reused.extend(report.cached);
         }

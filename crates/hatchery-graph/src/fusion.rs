@@ -5,8 +5,9 @@
 //! 5–11 ms at 1024×768).
 //!
 //! A group is formed only from nodes that run in this pass, joined along edges into *pointwise*
-//! ports; it is convex (no path leaves it and comes back), so it runs as one step after all its
-//! outside inputs. Every member's outputs go into the cache as usual where something outside the
+//! ports, and only while the graph of steps (each group contracted to one) stays acyclic — no
+//! path leaves a group and comes back, directly or through other groups — so every group runs as
+//! one step after all its outside inputs. Every member's outputs go into the cache as usual where something outside the
 //! group reads them (a consumer that runs in this pass, or a target); the others are not written
 //! (`None` in the cache), and a later pass that needs one re-runs its node.
 
@@ -21,7 +22,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 pub enum Source<T> {
     /// Nothing is connected (an optional port).
     Absent,
-    /// From outside the group: the value (when running) or its port type (when planning).
+    /// From outside the group: the value (when running), or its type and origin (when planning).
     External(T),
     /// Output `port` of the group's `member`-th node (an earlier one).
     Member { member: usize, port: usize },
@@ -108,16 +109,6 @@ pub(crate) fn plan<'g, V, C>(
                 .map(|flags| (id, flags))
         })
         .collect();
-    // Nodes reachable from each node (within the pass: its nodes are closed under inputs).
-    let mut reach: HashMap<&str, BTreeSet<&str>> = HashMap::new();
-    for &id in order.iter().rev() {
-        let mut set = BTreeSet::new();
-        for &(consumer, _, _) in consumers.get(id).into_iter().flatten() {
-            set.insert(consumer);
-            set.extend(reach.get(consumer).into_iter().flatten().copied());
-        }
-        reach.insert(id, set);
-    }
     let planner = Planner {
         graph,
         schemas,
@@ -125,7 +116,7 @@ pub(crate) fn plan<'g, V, C>(
         roots,
         consumers: &consumers,
         pointwise: &pointwise,
-        reach: &reach,
+        order,
     };
 
     // Greedy: each fusable node joins the groups of the members it reads pointwise, where the
@@ -147,7 +138,11 @@ pub(crate) fn plan<'g, V, C>(
             }
             let mut union: Vec<&str> = groups[a].iter().chain(&groups[b]).copied().collect();
             union.sort_by_key(|m| position[m]);
-            if planner.fusable(&union, fuser, ctx) {
+            let mut merged = group_of.clone();
+            for &m in &groups[b] {
+                merged.insert(m, a);
+            }
+            if planner.fusable(&union, fuser, ctx) && planner.orderable(&merged) {
                 for &m in &groups[b] {
                     group_of.insert(m, a);
                 }
@@ -158,7 +153,7 @@ pub(crate) fn plan<'g, V, C>(
     }
 
     // Steps in an order that respects every edge: repeatedly the first step whose outside inputs
-    // are done (a convex group's condensation is acyclic, so one always is).
+    // are done (`orderable` kept the groups' graph acyclic, so one always is).
     let mut pending: Vec<Vec<&str>> = Vec::new();
     let mut seen = BTreeSet::new();
     for &id in order {
@@ -175,18 +170,26 @@ pub(crate) fn plan<'g, V, C>(
     let mut done: BTreeSet<&str> = BTreeSet::new();
     let mut units = Vec::new();
     while !pending.is_empty() {
-        let ready = pending
-            .iter()
-            .position(|members| {
-                members.iter().all(|&m| {
-                    graph
-                        .input_sources(m)
-                        .values()
-                        .all(|(s, _)| done.contains(s) || members.contains(s))
-                })
+        let ready = pending.iter().position(|members| {
+            members.iter().all(|&m| {
+                graph
+                    .input_sources(m)
+                    .values()
+                    .all(|(s, _)| done.contains(s) || members.contains(s))
             })
-            // Cannot happen for convex groups; run the rest in order rather than loop forever.
-            .unwrap_or(0);
+        });
+        let Some(ready) = ready else {
+            // Cannot happen (see above); if it did, the rest runs node by node in topological
+            // order, which is always valid.
+            let rest: BTreeSet<&str> = pending.iter().flatten().copied().collect();
+            units.extend(
+                order
+                    .iter()
+                    .filter(|id| rest.contains(*id))
+                    .map(|&id| Unit::Single(id)),
+            );
+            break;
+        };
         let members = pending.remove(ready);
         done.extend(members.iter().copied());
         units.push(if members.len() == 1 {
@@ -210,7 +213,7 @@ struct Planner<'p, 'g> {
     roots: &'p BTreeSet<&'g str>,
     consumers: &'p Consumers<'g>,
     pointwise: &'p HashMap<&'g str, Vec<bool>>,
-    reach: &'p HashMap<&'g str, BTreeSet<&'g str>>,
+    order: &'p [&'g str],
 }
 
 impl<'g> Planner<'_, 'g> {
@@ -237,8 +240,8 @@ impl<'g> Planner<'_, 'g> {
             .collect()
     }
 
-    /// Whether `group` can run as one pass: every edge inside it enters a pointwise port, no path
-    /// leaves it and comes back, and the context says it fits.
+    /// Whether `group` can run as one pass: every edge inside it enters a pointwise port and the
+    /// context says it fits.
     fn fusable<V, C>(&self, group: &[&'g str], fuser: &dyn Fuser<V, C>, ctx: &C) -> bool {
         for &m in group {
             for (port, (source, _)) in self.graph.input_sources(m) {
@@ -248,20 +251,60 @@ impl<'g> Planner<'_, 'g> {
                 }
             }
         }
-        let inside: BTreeSet<&str> = group.iter().copied().collect();
-        let leaves: BTreeSet<&str> = group
-            .iter()
-            .flat_map(|m| self.reach[m].iter().copied())
-            .filter(|x| !inside.contains(x))
-            .collect();
-        if leaves
-            .iter()
-            .any(|x| self.reach[x].iter().any(|y| inside.contains(y)))
-        {
-            return false;
-        }
         let members = self.describe(group);
         members.len() == group.len() && fuser.fits(ctx, &members)
+    }
+
+    /// Whether the steps can still be ordered with the groups of `group_of` (node → group): the
+    /// graph with every group contracted to one vertex has no cycle. A cycle is a path that leaves
+    /// a group and comes back — through plain nodes, or through another group that itself needs
+    /// this one — so the group would have to run both before and after it.
+    fn orderable(&self, group_of: &HashMap<&str, usize>) -> bool {
+        // A step per group, and one per node outside every group.
+        let step = |id: &str, i: usize| group_of.get(id).copied().unwrap_or(usize::MAX - i);
+        let mut edges: BTreeSet<(usize, usize)> = BTreeSet::new();
+        let mut steps: BTreeSet<usize> = BTreeSet::new();
+        let position: HashMap<&str, usize> = self
+            .order
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| (id, i))
+            .collect();
+        for (i, &id) in self.order.iter().enumerate() {
+            let to = step(id, i);
+            steps.insert(to);
+            for (source, _) in self.graph.input_sources(id).into_values() {
+                if let Some(&j) = position.get(source) {
+                    let from = step(source, j);
+                    if from != to {
+                        edges.insert((from, to));
+                    }
+                }
+            }
+        }
+        // Kahn's algorithm: every step can be taken iff there is no cycle.
+        let mut waiting: BTreeMap<usize, usize> = steps.iter().map(|&s| (s, 0)).collect();
+        for &(_, to) in &edges {
+            *waiting.entry(to).or_default() += 1;
+        }
+        let mut ready: Vec<usize> = waiting
+            .iter()
+            .filter(|(_, n)| **n == 0)
+            .map(|(&s, _)| s)
+            .collect();
+        let mut taken = 0;
+        while let Some(s) = ready.pop() {
+            taken += 1;
+            for &(from, to) in edges.range((s, 0)..=(s, usize::MAX)) {
+                debug_assert_eq!(from, s);
+                let n = waiting.get_mut(&to).expect("every step counted");
+                *n -= 1;
+                if *n == 0 {
+                    ready.push(to);
+                }
+            }
+        }
+        taken == steps.len()
     }
 
     /// The group as the fuser sees it when planning: outside inputs by type and origin.

@@ -389,3 +389,55 @@ fn the_context_can_refuse_a_group_that_does_not_fit() {
     assert!(sizes.iter().all(|&n| n <= 2), "{:?}", c.passes);
     assert_eq!(executor.output("u", 0), Some(&16.0));
 }
+
+#[test]
+fn two_groups_that_would_need_each_other_are_not_formed() {
+    // d reads s1 and y = Opaque(s2); c reads s2 and x = Opaque(s1). {s1, d} and {s2, c} are
+    // each fine alone, but each needs the other's Opaque node, which needs the other group.
+    let registry = registry();
+    let graph = graph(
+        &registry,
+        &[
+            ("v", "Value", "\"v\": 1.0"),
+            ("s1", "Add", ""),
+            ("s2", "Add", "\"k\": 1.0"),
+            ("x", "Opaque", ""),
+            ("y", "Opaque", ""),
+            ("d", "Add", ""),
+            ("c", "Add", ""),
+        ],
+        &[
+            ("v", "s1", "a"),
+            ("v", "s1", "b"),
+            ("v", "s2", "a"),
+            ("v", "s2", "b"),
+            ("s1", "x", "a"),
+            ("s2", "y", "a"),
+            ("s1", "d", "a"),
+            ("y", "d", "b"),
+            ("s2", "c", "a"),
+            ("x", "c", "b"),
+        ],
+    );
+    let mut executor = Executor::new();
+    let mut c = ctx();
+    executor
+        .run(&graph, &registry, &mut c, &["d", "c"])
+        .unwrap();
+    // s1 = 2, s2 = 3, x = 102, y = 103, d = 2 + 103, c = 3 + 102.
+    assert_eq!(executor.output("d", 0), Some(&105.0));
+    assert_eq!(executor.output("c", 0), Some(&105.0));
+    // One of the two pairs still shares a pass (the planner refused only the second).
+    let fused: Vec<&Vec<String>> = c.passes.iter().filter(|p| p.len() > 1).collect();
+    assert_eq!(fused.len(), 1, "{:?}", c.passes);
+    // A second pass after changing s2 reads fresh values everywhere.
+    let mut graph = graph;
+    graph
+        .set_param(&registry, "s2", "k", hatchery_graph::ParamValue::Float(5.0))
+        .unwrap();
+    executor
+        .run(&graph, &registry, &mut c, &["d", "c"])
+        .unwrap();
+    assert_eq!(executor.output("d", 0), Some(&(2.0 + 107.0)));
+    assert_eq!(executor.output("c", 0), Some(&(7.0 + 102.0)));
+}

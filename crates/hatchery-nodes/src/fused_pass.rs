@@ -250,10 +250,12 @@ impl Shader {
         }
         let mut args = vec!["p".to_owned()];
         if let Some((wgsl_struct, bytes)) = stage.uniform {
-            // Uniform structs of struct type sit at multiples of 16 bytes.
+            // Each block at the next multiple of 16 bytes, on both sides (WGSL's uniform
+            // layout wants struct members there; `@align` says so rather than relying on it).
             self.uniform_bytes
                 .resize(self.uniform_bytes.len().next_multiple_of(16), 0);
-            self.uniform_fields.push(format!("u{i}: {wgsl_struct}"));
+            self.uniform_fields
+                .push(format!("@align(16) u{i}: {wgsl_struct}"));
             self.uniform_bytes.extend_from_slice(&bytes);
             args.push(format!("fused.u{i}"));
         }
@@ -475,10 +477,18 @@ pub fn run_group(
         [one] => fusable(one.kind).map_or("stage", |n| n.schema().kind),
         _ => "fused pass",
     };
+    let members: Vec<&str> = group.iter().map(|m| m.id).collect();
     let (width, height) = ctx.size();
     let textures: Vec<&wgpu::Texture> = shader.bindings.iter().map(|b| &b.texture).collect();
     let uniform = (!shader.uniform_bytes.is_empty()).then_some(shader.uniform_bytes.as_slice());
-    let error = |e: hatchery_gpu::GpuError| (last, NodeError::new(e.to_string()));
+    // A compile error of the pass: every member's stage is in it.
+    let error = |e: hatchery_gpu::GpuError| {
+        let message = match group {
+            [_] => e.to_string(),
+            _ => format!("the fused pass of {}: {e}", members.join(", ")),
+        };
+        (last, NodeError::new(message))
+    };
     let targets: Vec<wgpu::Texture> = match kernel {
         Kernel::Fragment => {
             let pipeline = ctx

@@ -66,6 +66,9 @@ impl Session {
             .run(&self.graph, &self.registry, &mut self.ctx, targets)?;
         let errors = self.ctx.gpu.take_uncaptured_errors();
         if let Some(first) = errors.first() {
+            // What the pass cached may be garbage: the next pass starts afresh (and reports the
+            // error again rather than serving those outputs).
+            self.executor.clear();
             return Err(SessionError::Other(format!(
                 "GPU error during the pass: {first}"
             )));
@@ -118,9 +121,17 @@ impl Session {
                 schema.output_names().join(", ")
             ))
         })?;
-        self.executor
-            .output(node, index)
-            .ok_or_else(|| SessionError::Other(format!("node `{node}` has not run yet")))
+        self.executor.output(node, index).ok_or_else(|| {
+            let fused = &self.executor.stats().get(node).map(|s| &s.fused_with);
+            SessionError::Other(match fused {
+                Some(pass) if !pass.is_empty() => format!(
+                    "node `{node}` ran in a fused pass ({}) that did not write `{port}`: nothing \
+                     outside the pass read it; run `{node}` as a target",
+                    pass.join(", ")
+                ),
+                _ => format!("node `{node}` has not run yet"),
+            })
+        })
     }
 
     /// Renders `node.port` and writes it as a PNG picture (what `hatchery render --dump
