@@ -338,28 +338,30 @@ impl<V: Clone> Executor<V> {
         roots: &BTreeSet<&'g str>,
     ) -> (BTreeSet<&'g str>, BTreeSet<&'g str>) {
         let mut forced: BTreeSet<&str> = BTreeSet::new();
-        loop {
-            let mut dirty: BTreeSet<&str> = BTreeSet::new();
-            for &id in order {
-                let node = graph.node(id).expect("id from the graph");
-                let (schema, _) = Self::kind_of(registry, node);
-                let stale = forced.contains(id)
-                    || schema.sink
-                    || graph
-                        .input_sources(id)
-                        .values()
-                        .any(|(s, _)| dirty.contains(s))
-                    || match (
-                        self.cache.get(id),
-                        self.key_and_inputs(graph, schema, node, ctx),
-                    ) {
-                        (Some(entry), Some((key, _))) => entry.key != key,
-                        _ => true,
-                    };
-                if stale {
-                    dirty.insert(id);
-                }
+        // Nodes whose outputs change; a forced node recomputes the same outputs (same key, same
+        // version: see `store`), so its consumers stay valid.
+        let mut changed: BTreeSet<&str> = BTreeSet::new();
+        for &id in order {
+            let node = graph.node(id).expect("id from the graph");
+            let (schema, _) = Self::kind_of(registry, node);
+            let stale = schema.sink
+                || graph
+                    .input_sources(id)
+                    .values()
+                    .any(|(s, _)| changed.contains(s))
+                || match (
+                    self.cache.get(id),
+                    self.key_and_inputs(graph, schema, node, ctx),
+                ) {
+                    (Some(entry), Some((key, _))) => entry.key != key,
+                    _ => true,
+                };
+            if stale {
+                changed.insert(id);
             }
+        }
+        loop {
+            let dirty: BTreeSet<&str> = changed.union(&forced).copied().collect();
             let unwritten = |id: &str, port: Option<usize>| {
                 self.cache.get(id).is_some_and(|e| match port {
                     Some(port) => e.outputs.get(port).is_some_and(Option::is_none),
@@ -450,9 +452,17 @@ impl<V: Clone> Executor<V> {
         Ok(())
     }
 
+    /// Caches `outputs` of `id` under `key`. The same key as before means the same parameters and
+    /// inputs, so the same outputs (a node re-run because a fused pass did not write them): the
+    /// version stays and consumers keep their cached results.
     fn store(&mut self, id: &str, key: u64, outputs: Vec<Option<V>>) {
-        let version = self.next_version;
-        self.next_version += 1;
+        let version = match self.cache.get(id) {
+            Some(entry) if entry.key == key => entry.version,
+            _ => {
+                self.next_version += 1;
+                self.next_version - 1
+            }
+        };
         self.cache.insert(
             id.to_owned(),
             CacheEntry {

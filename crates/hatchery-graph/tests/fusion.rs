@@ -311,6 +311,9 @@ fn a_node_asked_for_later_is_run_again_when_its_output_was_not_kept() {
     let report = executor.run(&graph, &registry, &mut c, &["s"]).unwrap();
     assert_eq!(report.executed, ["s"]);
     assert_eq!(executor.output("s", 0), Some(&3.0));
+    // That recomputed the same value: what reads s stays cached.
+    let again = executor.run(&graph, &registry, &mut c, &["u"]).unwrap();
+    assert!(again.executed.is_empty(), "{again:?}");
     // Both targets in one pass: both kept.
     let mut fresh = Executor::new();
     fresh.run(&graph, &registry, &mut c, &["u", "s"]).unwrap();
