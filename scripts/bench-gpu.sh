@@ -41,10 +41,12 @@ run hidden_structures_1080p \
     --scenario orbit:camera --size "$hd" --size "$xga"
 
 # 2. The MRI surface (300k triangles): Blinn–Phong, two hidden layers (GBuffer + DepthPeel, and
-# both layers from one k-buffer pass, DepthLayers), + secondary structures.
+# both layers from one k-buffer pass, DepthLayers), + secondary structures; the k-buffer graph
+# once more with every node in a pass of its own (no fused image-space pass).
 run hidden_layers_brain \
     graphs/brain_surface.ron graphs/hidden_layers_brain.ron \
     benches/graphs/hidden_layers_brain_kbuffer.ron graphs/hidden_structures_brain.ron \
+    benches/graphs/hidden_layers_brain_kbuffer.ron --unfused 5 \
     --scenario orbit:camera --size "$hd" --size "$xga"
 
 # 3. Ray casting the MRI at 1024²: MIP at 1-voxel steps, shaded DVR at 0.5, context-preserving

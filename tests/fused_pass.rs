@@ -8,7 +8,7 @@ use hatchery_nodes::{Session, export};
 
 /// Every fusable kind, every Silhouette PIP mode but `texture`, both switches, all six mask
 /// operations, MixByMask with and without an `over` image, an inverted MultiplyByMask,
-/// two-sided lighting, Over — on two depth layers of the engine block.
+/// two-sided lighting, a depth test, Over — on two depth layers of the engine block.
 const ALL_KINDS: &str = r#"(
     version: 2,
     nodes: [
@@ -33,6 +33,8 @@ const ALL_KINDS: &str = r#"(
         (id: "c_add", kind: "MaskCombine", params: {"operation": "add"}),
         (id: "c_sub", kind: "MaskCombine", params: {"operation": "subtract"}),
         (id: "c_not", kind: "MaskCombine", params: {"operation": "a_not_b"}),
+        (id: "behind", kind: "DepthTestMask", params: {"compare": "a<b"}),
+        (id: "gate", kind: "MaskCombine", params: {"operation": "or"}),
         (id: "tint", kind: "MixByMask", params: {"color": [0.2, 0.4, 0.9, 0.7]}),
         (id: "blend", kind: "MixByMask", params: {}),
         (id: "ink", kind: "MultiplyByMask", params: {"invert": true}),
@@ -69,7 +71,11 @@ const ALL_KINDS: &str = r#"(
         (from: ("c_sub", "mask"), to: ("c_not", "a")),
         (from: ("lit2", "intensity"), to: ("c_not", "b")),
         (from: ("paper", "image"), to: ("tint", "base")),
-        (from: ("c_not", "mask"), to: ("tint", "mask")),
+        (from: ("layer2", "gbuffer"), to: ("behind", "a")),
+        (from: ("layer1", "gbuffer"), to: ("behind", "b")),
+        (from: ("c_not", "mask"), to: ("gate", "a")),
+        (from: ("behind", "mask"), to: ("gate", "b")),
+        (from: ("gate", "mask"), to: ("tint", "mask")),
         (from: ("paper", "image"), to: ("blend", "base")),
         (from: ("lit2", "intensity"), to: ("blend", "mask")),
         (from: ("tint", "image"), to: ("blend", "over")),
@@ -125,9 +131,9 @@ fn every_fusable_kind_in_one_pass_equals_the_nodes_one_pass_each() {
     fused.run(&["final"]).unwrap();
     alone.run(&["final"]).unwrap();
 
-    // The whole image-space part ran as one pass (the 19 nodes below the G-buffers).
+    // The whole image-space part ran as one pass (the 21 nodes below the G-buffers).
     let pass = &fused.executor.stats()["final"].fused_with;
-    assert_eq!(pass.len(), 19, "{pass:?}");
+    assert_eq!(pass.len(), 21, "{pass:?}");
     assert!(alone.executor.stats()["final"].fused_with.is_empty());
     assert_identical(
         "final",

@@ -1,20 +1,12 @@
 //! `DepthTestMask`: where one layer lies in front of another (Fischer et al. 2005, eq. 10).
 
-use crate::screen_pass;
+use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
 
 const COMPARISONS: &[&str] = &["a<=b", "a<b", "a>=b", "a>b"];
-
-crate::uniform_block! {
-    /// `DepthTest` of shaders/depth_test_mask.wgsl: options.x = the comparison (index in
-    /// COMPARISONS).
-    pub struct DepthTestUniforms in "depth_test_mask" as "DepthTest" {
-        pub options: [f32; 4],
-    }
-}
 
 pub struct DepthTestMaskNode;
 
@@ -52,20 +44,30 @@ impl Node<Value, Ctx> for DepthTestMaskNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let a = inputs.require("a")?.gbuffer("a")?.clone();
-        let b = inputs.require("b")?.gbuffer("b")?.clone();
+        fused_pass::execute(self, ctx, inputs, p)
+    }
+}
+
+impl Fusable for DepthTestMaskNode {
+    fn pointwise(&self) -> &'static [bool] {
+        &[true, true]
+    }
+
+    fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
         let op = COMPARISONS
             .iter()
             .position(|c| *c == p.choice("compare"))
             .unwrap_or(0);
-        Ok(vec![screen_pass::mask(
-            ctx,
-            "depth_test_mask",
-            &[("a", &a.depth), ("b", &b.depth)],
-            &[],
-            Some(bytemuck::bytes_of(&DepthTestUniforms {
-                options: [op as f32, 0.0, 0.0, 0.0],
-            })),
-        )?])
+        Ok(Stage {
+            library: "depth_test_mask",
+            function: "depth_test_mask",
+            uniform: None,
+            args: vec![
+                Arg::DepthAt("a"),
+                Arg::DepthAt("b"),
+                Arg::Constant(op.to_string()),
+            ],
+            output: PortType::Mask,
+        })
     }
 }

@@ -35,6 +35,8 @@ pub enum Arg {
     /// A G-buffer input port read at the pixel for its normal only: `1.0` for the depth, then the
     /// normal (`vec4<f32>`) — one texture read fewer where the stage ignores the depth.
     NormalAt(&'static str),
+    /// A G-buffer input port's depth at the pixel only (`f32`; 1 where nothing is connected).
+    DepthAt(&'static str),
     /// A texture of the node's own (a pattern), read anywhere: `texture_2d<f32>`.
     Texture(wgpu::Texture),
     /// A constant known when the pass is built, as WGSL text: the compiler folds it, one
@@ -77,6 +79,7 @@ pub fn fusable(kind: &str) -> Option<&'static dyn Fusable> {
         "MultiplyByMask" => &crate::multiply_by_mask::MultiplyByMaskNode,
         "MaskCombine" => &crate::mask_combine::MaskCombineNode,
         "Over" => &crate::over::OverNode,
+        "DepthTestMask" => &crate::depth_test_mask::DepthTestMaskNode,
         _ => return None,
     })
 }
@@ -261,8 +264,9 @@ impl Shader {
         }
         for arg in stage.args {
             args.push(match arg {
-                Arg::At(port) => self.at(ctx, member, schema, port, true)?,
-                Arg::NormalAt(port) => self.at(ctx, member, schema, port, false)?,
+                Arg::At(port) => self.at(ctx, member, schema, port, Part::Both)?,
+                Arg::NormalAt(port) => self.at(ctx, member, schema, port, Part::Normal)?,
+                Arg::DepthAt(port) => self.at(ctx, member, schema, port, Part::Depth)?,
                 Arg::Textures(port) => {
                     let index = port_index(schema, port)?;
                     match &member.inputs[index] {
@@ -310,7 +314,7 @@ impl Shader {
         member: &Member<'_, Value>,
         schema: &NodeSchema,
         port: &'static str,
-        with_depth: bool,
+        part: Part,
     ) -> Result<String, NodeError> {
         let index = port_index(schema, port)?;
         let spec = &schema.inputs[index];
@@ -318,18 +322,30 @@ impl Shader {
             Source::Absent if spec.required => {
                 return Err(NodeError::at_port(port, "input is not connected"));
             }
-            Source::Absent if spec.ty == PortType::GBuffer => "1.0, vec4<f32>(0.0)".to_owned(),
+            Source::Absent if spec.ty == PortType::GBuffer => match part {
+                Part::Depth => "1.0".to_owned(),
+                _ => "1.0, vec4<f32>(0.0)".to_owned(),
+            },
             Source::Absent => "vec4<f32>(0.0)".to_owned(),
             Source::Member { member, .. } => format!("v{member}"),
             Source::External(Value::GBuffer(g)) => {
                 screen_pass::frame_sized(ctx, port, &g.depth)?;
                 screen_pass::frame_sized(ctx, port, &g.normal)?;
-                let normal = self.bind(&g.normal, "texture_2d<f32>");
-                if !with_depth {
-                    return Ok(format!("1.0, textureLoad({normal}, p, 0)"));
+                match part {
+                    Part::Normal => {
+                        let normal = self.bind(&g.normal, "texture_2d<f32>");
+                        format!("1.0, textureLoad({normal}, p, 0)")
+                    }
+                    Part::Depth => {
+                        let depth = self.bind(&g.depth, "texture_depth_2d");
+                        format!("textureLoad({depth}, p, 0)")
+                    }
+                    Part::Both => {
+                        let depth = self.bind(&g.depth, "texture_depth_2d");
+                        let normal = self.bind(&g.normal, "texture_2d<f32>");
+                        format!("textureLoad({depth}, p, 0), textureLoad({normal}, p, 0)")
+                    }
                 }
-                let depth = self.bind(&g.depth, "texture_depth_2d");
-                format!("textureLoad({depth}, p, 0), textureLoad({normal}, p, 0)")
             }
             Source::External(value @ (Value::Mask(_) | Value::Image(_))) => {
                 let texture = match value {
@@ -422,6 +438,14 @@ impl Shader {
         }
         Ok(text)
     }
+}
+
+/// What of a G-buffer port a stage reads at the pixel.
+#[derive(Clone, Copy, PartialEq)]
+enum Part {
+    Both,
+    Normal,
+    Depth,
 }
 
 fn port_index(schema: &NodeSchema, port: &str) -> Result<usize, NodeError> {

@@ -96,7 +96,6 @@ pub fn all() -> Vec<UniformLayout> {
         },
         shaded_surface::ShadingUniform::layout(),
         secondary_geometry::SecondaryUniforms::layout(),
-        depth_test_mask::DepthTestUniforms::layout(),
         diffuse_intensity::DiffuseUniforms::layout(),
         display::DisplayUniforms::layout(),
         fill::FillUniforms::layout(),
