@@ -279,3 +279,21 @@ fn every_preset_renders_the_same_fused_and_unfused() {
         );
     }
 }
+
+/// A stage that fails inside a fused pass is named, with its own message.
+#[test]
+fn an_error_inside_a_fused_pass_names_its_node() {
+    let mut session = common::session_from_text(ALL_KINDS, W, H);
+    session
+        .set_param_text("sil_dots", "pip", "texture")
+        .unwrap();
+    let error = session.run(&["final"]).unwrap_err();
+    let hatchery_nodes::SessionError::Exec(exec) = &error else {
+        panic!("{error}");
+    };
+    assert_eq!(exec.node, "sil_dots", "{error}");
+    assert!(exec.message.contains("pip_texture"), "{error}");
+    // Fixed, the pass runs.
+    session.set_param_text("sil_dots", "pip", "dots").unwrap();
+    session.run(&["final"]).unwrap();
+}
