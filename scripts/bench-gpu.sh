@@ -23,7 +23,7 @@ fi
 run() {
     name=$1
     shift
-    echo "== $name: hatchery bench $*" | tee "$out/$name.txt"
+    echo "== $name: ${HATCHERY_IMAGE_KERNEL:+HATCHERY_IMAGE_KERNEL=$HATCHERY_IMAGE_KERNEL }hatchery bench $*" | tee "$out/$name.txt"
     "$bin" bench "$@" --frames "$frames" 2>&1 | tee -a "$out/$name.txt"
 }
 
@@ -48,6 +48,14 @@ run hidden_layers_brain \
     benches/graphs/hidden_layers_brain_kbuffer.ron graphs/hidden_structures_brain.ron \
     benches/graphs/hidden_layers_brain_kbuffer.ron --unfused 5 \
     --scenario orbit:camera --size "$hd" --size "$xga"
+# The same with the fused image-space passes as fragment shaders (the default runs them as
+# compute kernels on H100/H200-class parts, and as fragment shaders elsewhere).
+export HATCHERY_IMAGE_KERNEL=fragment
+run hidden_layers_brain_fragment_passes \
+    graphs/brain_surface.ron graphs/hidden_layers_brain.ron \
+    benches/graphs/hidden_layers_brain_kbuffer.ron graphs/hidden_structures_brain.ron \
+    --scenario orbit:camera --size "$hd" --size "$xga"
+unset HATCHERY_IMAGE_KERNEL
 
 # 3. Ray casting the MRI at 1024²: MIP at 1-voxel steps, shaded DVR at 0.5, context-preserving
 # (same TF and camera as shaded DVR), each as fragment shader and as compute kernel.

@@ -35,13 +35,17 @@ impl RenderContext {
             current_node: None,
             statics: HashMap::new(),
             warnings: BTreeMap::new(),
-            image_kernel: crate::raycast::Kernel::choose("auto", &gpu),
+            image_kernel: crate::raycast::Kernel::choose(
+                &std::env::var("HATCHERY_IMAGE_KERNEL").unwrap_or_default(),
+                &gpu,
+            ),
             gpu,
         })
     }
 
     /// How fused image-space passes run: by default as fragment shaders, except on adapters
-    /// whose graphics pipeline is a small part of the chip (as the ray caster's `auto`).
+    /// whose graphics pipeline is a small part of the chip (as the ray caster's `auto`);
+    /// `HATCHERY_IMAGE_KERNEL=fragment|compute` chooses (for measuring both on one machine).
     pub fn image_kernel(&self) -> crate::raycast::Kernel {
         self.image_kernel
     }
