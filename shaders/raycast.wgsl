@@ -13,20 +13,25 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     out.normal = vec4<f32>(0.0);
     out.depth = 1.0;
     let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
-    var best = -1e30;
+    // The maximum of the texels themselves: texels map to data values increasingly
+    // (ray.texel.x < ray.texel.y), so the largest texel is the largest value, mapped once at the
+    // end; "no data" texels (below −0.5) never beat a start of −0.5. Same samples as value_at.
+    let top = ray.dims.xyz - 1.0;
+    var best = -0.5;
     var best_t = -1.0;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
-        let v = value_at(r.q0 + r.dq * t);
-        if !no_data(v) && v > best {
-            best = v;
+        let uv = (clamp(r.q0 + r.dq * t, vec3<f32>(0.0), top) + 0.5) / ray.dims.xyz;
+        let texel = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+        if texel > best {
+            best = texel;
             best_t = t;
         }
     }
     if best_t < 0.0 {
         return out;
     }
-    let entry = table_lookup(best);
+    let entry = table_lookup(ray.texel.x + best * (ray.texel.y - ray.texel.x));
     out.color = vec4<f32>(entry.rgb * entry.a, entry.a);
     out.depth = to_window_depth(r.p0 + r.dir * best_t);
     out.normal = vec4<f32>(0.0, 0.0, 0.0, 1.0);
