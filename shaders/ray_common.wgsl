@@ -75,6 +75,22 @@ struct Ray {
 const LUT_SIZE: f32 = 256.0;
 const LIGHTING_SIZE: f32 = 64.0;
 
+// Two per-frame switches as pipeline constants where a node specialises its pipeline (Raycast
+// does; −1, the default, reads the uniform): folded, the unused branch costs nothing per
+// sample — as a uniform branch both sides stayed in the loop on lavapipe.
+override RAY_ORTHOGRAPHIC: i32 = -1;
+override RAY_FAST_EXPONENT: i32 = -1;
+
+// Whether the camera is orthographic (ray.light.w, unless RAY_ORTHOGRAPHIC says).
+fn orthographic() -> bool {
+    return select(ray.light.w > 0.5, RAY_ORTHOGRAPHIC > 0, RAY_ORTHOGRAPHIC >= 0);
+}
+
+// Whether eq. 5 uses Schlick's approximation (ray.eye.w, unless RAY_FAST_EXPONENT says).
+fn fast_exponent() -> bool {
+    return select(ray.eye.w > 0.5, RAY_FAST_EXPONENT > 0, RAY_FAST_EXPONENT >= 0);
+}
+
 // Returned by value_at where the sample leans on a "no data" voxel (the texture holds
 // NO_DATA_TEXEL = -1000 there; NaN is not used because shader compilers may assume no NaN).
 const NO_DATA: f32 = -1.0e30;
@@ -174,7 +190,7 @@ fn primary_ray(position: vec2<f32>) -> PrimaryRay {
 
 // Unit vector from a world-space point towards the viewer, in view space.
 fn view_direction(p: vec3<f32>) -> vec3<f32> {
-    if ray.light.w > 0.5 {
+    if orthographic() {
         return vec3<f32>(0.0, 0.0, 1.0);
     }
     return -normalize((ray.view * vec4<f32>(p, 1.0)).xyz);

@@ -44,12 +44,12 @@ fn schlick_pow(x: f32, n: f32) -> f32 {
 // the near plane for orthographic cameras, p0 on the ray).
 fn context_preserving(a: f32, s: f32, g_norm: f32, p: vec3<f32>, p0: vec3<f32>, alpha_before: f32) -> f32 {
     var eye = ray.eye.xyz;
-    if ray.light.w > 0.5 {
+    if orthographic() {
         eye = p0;
     }
     let dist = clamp((length(p - eye) - ray.context.z) / max(ray.context.w - ray.context.z, 1e-20), 0.0, 1.0);
     let base = ray.context.x * s * (1.0 - dist) * (1.0 - alpha_before);
-    if ray.eye.w > 0.5 {
+    if fast_exponent() {
         // The paper's §6: Schlick's x^n ≈ x / (n − n·x + x) for both exponentiations (eq. 6–7),
         // on [0, 1]; a base above 1 keeps pow for the inner one.
         if base <= 0.0 {

@@ -314,13 +314,23 @@ pub fn cast(
                 resource: wgpu::BindingResource::TextureView(view),
             }),
     );
-    // One pipeline per mode and shading (raycast.wgsl's pipeline constants).
+    // One pipeline per mode, shading, projection and exponent (the pipeline constants of
+    // raycast.wgsl and ray_common.wgsl).
     let (mode, shading) = (uniforms.mode[0], uniforms.mode[2]);
+    let (orthographic, fast) = (uniforms.light[3], uniforms.eye[3]);
     let pipelines = ctx
-        .cached(&format!("raycast.pipelines.{mode}.{shading}"), |gpu| {
-            let constants = [("RAY_MODE", mode as f64), ("RAY_SHADING", shading as f64)];
-            RayPipelines::specialised(gpu, "raycast", &constants)
-        })
+        .cached(
+            &format!("raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}"),
+            |gpu| {
+                let constants = [
+                    ("RAY_MODE", mode as f64),
+                    ("RAY_SHADING", shading as f64),
+                    ("RAY_ORTHOGRAPHIC", orthographic as f64),
+                    ("RAY_FAST_EXPONENT", fast as f64),
+                ];
+                RayPipelines::specialised(gpu, "raycast", &constants)
+            },
+        )
         .map_err(err)?;
     pipelines.run(ctx, camera, &entries, o.kernel)
 }
