@@ -1,5 +1,5 @@
 // Diffuse intensity of a G-buffer layer (Fischer et al. 2005, eq. 1 and 6): max(n · l, 0).
-// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass/).
 
 struct Diffuse {
     // View-space unit vector towards the light.

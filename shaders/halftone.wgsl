@@ -1,7 +1,7 @@
 // Procedural halftoning (Fischer et al. 2005, §3.3.2, after Strothotte & Schlechtweg): the pixel
 // (x, y) is rotated by theta (eq. 7), mapped to dither coordinates (s, t) in a cell of n pixels,
 // and the intensity compared with the threshold tau(s, t) (eq. 8–9).
-// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass/).
 
 struct Halftone {
     // x = theta in radians, y = cell size n in pixels, z = c_cross.

@@ -1,6 +1,6 @@
 // Per-pixel arithmetic of two masks: and (a·b), or (max), min, add, subtract (both clamped to
 // [0, 1]), and a_not_b (a·(1 - b)).
-// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass/).
 
 // `operation`, a constant of the pass: 0 and, 1 or, 2 min, 3 add, 4 subtract, 5 a_not_b.
 fn mask_combine(p: vec2<i32>, mask_a: vec4<f32>, mask_b: vec4<f32>, operation: i32) -> vec4<f32> {

@@ -1,6 +1,6 @@
 // mix(base, over, mask) per pixel: over is an image, or a colour when no image is connected.
 // The mix of the §3.3.4 pseudocode of Fischer et al. 2005.
-// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs).
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass/).
 
 struct MixParams {
     // Premultiplied colour used when `over` is not connected.

@@ -4,7 +4,7 @@
 // positions (PIP, Yuan & Chen 2005, eq. 2): every tap at offset (s, t) is read at
 // (x + s·P(x, y), y + t·P(x, y)).
 
-// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass.rs): the pass calls
+// A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass/): the pass calls
 // `silhouette` with this node's textures and its PIP mode and switches as constants, which the
 // compiler folds (as uniforms, every mode's code stayed in the pass: about twice the time on
 // lavapipe).

@@ -1,7 +1,7 @@
 //! The caching executor: pulls from target nodes in topological order and re-runs a node only
 //! when its parameters or its inputs' versions changed.
 
-use crate::fusion::{self, Fuser, Member, Source, Unit};
+use crate::fusion::{self, Fuser, Unit};
 use crate::graph::{Graph, NodeInstance};
 use crate::param::Params;
 use crate::schema::{NodeError, NodeSchema, OwnSchema, SchemaLookup};
@@ -58,7 +58,7 @@ pub struct Registry<V, C> {
     /// Kinds whose nodes have schemas of their own (read from a file).
     own: BTreeSet<&'static str>,
     /// What fuses image-space nodes into one pass, where the context can.
-    fuser: Option<Box<dyn Fuser<V, C>>>,
+    pub(crate) fuser: Option<Box<dyn Fuser<V, C>>>,
 }
 
 impl<V, C> Default for Registry<V, C> {
@@ -203,7 +203,7 @@ pub struct PassReport {
 pub struct Executor<V> {
     cache: HashMap<String, CacheEntry<V>>,
     next_version: u64,
-    stats: BTreeMap<String, NodeStats>,
+    pub(crate) stats: BTreeMap<String, NodeStats>,
     fusion: bool,
 }
 
@@ -280,7 +280,7 @@ impl<V: Clone> Executor<V> {
     }
 
     /// The node's schema and behaviour.
-    fn kind_of<'r, C>(
+    pub(crate) fn kind_of<'r, C>(
         registry: &'r Registry<V, C>,
         node: &'r NodeInstance,
     ) -> (&'r NodeSchema, &'r dyn Node<V, C>) {
@@ -296,7 +296,7 @@ impl<V: Clone> Executor<V> {
 
     /// The cache key of `node` from its parameters and its inputs' current versions, with the
     /// input values; `None` when an input has not run.
-    fn key_and_inputs<C: ExecContext>(
+    pub(crate) fn key_and_inputs<C: ExecContext>(
         &self,
         graph: &Graph,
         schema: &NodeSchema,
@@ -455,7 +455,7 @@ impl<V: Clone> Executor<V> {
     /// Caches `outputs` of `id` under `key`. The same key as before means the same parameters and
     /// inputs, so the same outputs (a node re-run because a fused pass did not write them): the
     /// version stays and consumers keep their cached results.
-    fn store(&mut self, id: &str, key: u64, outputs: Vec<Option<V>>) {
+    pub(crate) fn store(&mut self, id: &str, key: u64, outputs: Vec<Option<V>>) {
         let version = match self.cache.get(id) {
             Some(entry) if entry.key == key => entry.version,
             _ => {
@@ -471,111 +471,6 @@ impl<V: Clone> Executor<V> {
                 outputs,
             },
         );
-    }
-
-    /// Runs a fused group (members in topological order with the outputs to keep) as one pass;
-    /// its times are reported on the last member.
-    fn run_group<C: ExecContext>(
-        &mut self,
-        graph: &Graph,
-        registry: &Registry<V, C>,
-        ctx: &mut C,
-        members: &[(&str, Vec<bool>)],
-        report: &mut PassReport,
-    ) -> Result<(), ExecError> {
-        let fuser = registry.fuser.as_deref().expect("groups only with a fuser");
-        let index: BTreeMap<&str, usize> = members
-            .iter()
-            .enumerate()
-            .map(|(i, (m, _))| (*m, i))
-            .collect();
-        let fail = |id: &str, port: Option<String>, message: String| ExecError {
-            node: id.to_owned(),
-            kind: graph.node(id).map(|n| n.kind.clone()).unwrap_or_default(),
-            port,
-            message,
-        };
-        let mut group = Vec::with_capacity(members.len());
-        for (id, keep) in members {
-            let node = graph.node(id).expect("id from the graph");
-            let (schema, _) = Self::kind_of(registry, node);
-            let sources = graph.input_sources(id);
-            let mut inputs = Vec::with_capacity(schema.inputs.len());
-            for port in 0..schema.inputs.len() {
-                inputs.push(match sources.get(&port) {
-                    None => Source::Absent,
-                    Some(&(source, out)) => match index.get(source) {
-                        Some(&member) => Source::Member { member, port: out },
-                        None => Source::External(self.output(source, out).cloned().ok_or_else(
-                            || {
-                                fail(
-                                    id,
-                                    Some(schema.inputs[port].name.to_owned()),
-                                    "the input's value was not kept (executor planning)".into(),
-                                )
-                            },
-                        )?),
-                    },
-                });
-            }
-            group.push(Member {
-                id,
-                kind: node.kind.as_str(),
-                params: &node.params,
-                inputs,
-                keep: keep.clone(),
-            });
-        }
-        let carrier = members.last().expect("groups have members").0;
-        for (id, _) in &members[..members.len() - 1] {
-            tracing::debug!(node = id, fused_into = carrier, "executing (fused)");
-            ctx.begin_node(id);
-            ctx.end_node(id);
-        }
-        tracing::debug!(
-            node = carrier,
-            members = members.len(),
-            "executing a fused pass"
-        );
-        ctx.begin_node(carrier);
-        let start = Instant::now();
-        let result = fuser.run(ctx, &group);
-        let elapsed = start.elapsed();
-        ctx.end_node(carrier);
-        let outputs = result
-            .map_err(|(i, e)| fail(members[i.min(members.len() - 1)].0, e.port, e.message))?;
-        if outputs.len() != members.len() {
-            return Err(fail(carrier, None, "the fused pass lost members".into()));
-        }
-        let ids: Vec<String> = members.iter().map(|(m, _)| (*m).to_owned()).collect();
-        for ((id, keep), outputs) in members.iter().zip(outputs) {
-            let node = graph.node(id).expect("id from the graph");
-            let (schema, _) = Self::kind_of(registry, node);
-            if outputs.len() != schema.outputs.len()
-                || keep.iter().zip(&outputs).any(|(k, o)| *k && o.is_none())
-            {
-                return Err(fail(
-                    id,
-                    None,
-                    "the fused pass did not write a kept output".into(),
-                ));
-            }
-            let (key, _) = self
-                .key_and_inputs(graph, schema, node, ctx)
-                .ok_or_else(|| fail(id, None, "an input has not run (executor order)".into()))?;
-            let stats = self.stats.entry((*id).to_owned()).or_default();
-            stats.executions += 1;
-            stats.cpu_time = if *id == carrier {
-                elapsed
-            } else {
-                Duration::ZERO
-            };
-            stats.gpu_time = None;
-            stats.fused_with = ids.clone();
-            self.store(id, key, outputs);
-            report.executed.push((*id).to_owned());
-        }
-        Ok(())
     }
 
     fn needed_nodes<'g, C>(
