@@ -15,9 +15,11 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
     // The maximum of the texels themselves: texels map to data values increasingly
     // (ray.texel.x < ray.texel.y), so the largest texel is the largest value, mapped once at the
-    // end; "no data" texels (below −0.5) never beat a start of −0.5. Same samples as value_at.
+    // end. Same samples as value_at; the same winner, except where two texels map to one f32
+    // value (a tie there keeps the earliest sample, here the larger texel: same colour). "No data"
+    // (texels below −0.5) never wins: the start is the float just below −0.5.
     let top = ray.dims.xyz - 1.0;
-    var best = -0.5;
+    var best = bitcast<f32>(0xbf000001u);
     var best_t = -1.0;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;

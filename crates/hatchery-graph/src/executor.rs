@@ -447,17 +447,23 @@ impl<V: Clone> Executor<V> {
         stats.cpu_time = elapsed;
         stats.gpu_time = None;
         stats.fused_with.clear();
-        self.store(id, key, outputs.into_iter().map(Some).collect());
+        self.store(
+            id,
+            key,
+            outputs.into_iter().map(Some).collect(),
+            schema.sink,
+        );
         report.executed.push(id.to_owned());
         Ok(())
     }
 
     /// Caches `outputs` of `id` under `key`. The same key as before means the same parameters and
     /// inputs, so the same outputs (a node re-run because a fused pass did not write them): the
-    /// version stays and consumers keep their cached results.
-    pub(crate) fn store(&mut self, id: &str, key: u64, outputs: Vec<Option<V>>) {
+    /// version stays and consumers keep their cached results — except for a sink, which runs
+    /// every pass for its effect, so what reads it (if anything) runs again too.
+    pub(crate) fn store(&mut self, id: &str, key: u64, outputs: Vec<Option<V>>, sink: bool) {
         let version = match self.cache.get(id) {
-            Some(entry) if entry.key == key => entry.version,
+            Some(entry) if entry.key == key && !sink => entry.version,
             _ => {
                 self.next_version += 1;
                 self.next_version - 1

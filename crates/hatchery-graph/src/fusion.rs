@@ -450,7 +450,7 @@ impl<V: Clone> Executor<V> {
             };
             stats.gpu_time = None;
             stats.fused_with = ids.clone();
-            self.store(id, key, outputs);
+            self.store(id, key, outputs, schema.sink);
             report.executed.push((*id).to_owned());
         }
         Ok(())

@@ -317,7 +317,9 @@ pub fn cast(
     // One pipeline per mode, shading, projection and exponent (the pipeline constants of
     // raycast.wgsl and ray_common.wgsl).
     let (mode, shading) = (uniforms.mode[0], uniforms.mode[2]);
-    let (orthographic, fast) = (uniforms.light[3], uniforms.eye[3]);
+    // Schlick's exponent matters to context-preserving shading (3) only: one pipeline otherwise.
+    let orthographic = uniforms.light[3];
+    let fast = if shading == 3.0 { uniforms.eye[3] } else { 0.0 };
     let pipelines = ctx
         .cached(
             &format!("raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}"),

@@ -121,6 +121,8 @@ impl RayUniforms {
         max_gradient: f32,
         texel_range: [f32; 2],
     ) -> Self {
+        // MIP compares texels, not values (raycast.wgsl `cast_mip`): the map must increase.
+        debug_assert!(texel_range[1] > texel_range[0], "{texel_range:?}");
         let min_spacing = data.spacing().iter().copied().fold(f32::INFINITY, f32::min);
         // Rays march in voxel space (through the world → voxel transform, so rotated and
         // mirrored grids work) against the box of voxel centres, widened a little so rays
