@@ -218,12 +218,7 @@ fn the_compute_kernel_of_a_fused_pass_equals_its_fragment_shader() {
 
 #[test]
 fn every_preset_renders_the_same_fused_and_unfused() {
-    let mut presets: Vec<_> = std::fs::read_dir(common::repo_root().join("graphs"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    presets.sort();
+    let presets = common::presets();
     let mut with_fused_passes = Vec::new();
     for path in presets {
         let mut fused = Session::open(&path, 160, 120).unwrap();

@@ -7,12 +7,7 @@ use hatchery_nodes::{Session, export};
 #[test]
 fn every_preset_loads_validates_and_renders() {
     let mut rendered = Vec::new();
-    let mut presets: Vec<_> = std::fs::read_dir(common::repo_root().join("graphs"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    presets.sort();
+    let presets = common::presets();
     for path in presets {
         let mut session =
             Session::open(&path, 320, 240).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

@@ -160,3 +160,14 @@ pub fn field_on_cube(n: u32, f: impl Fn(glam::Vec3) -> f32) -> hatchery_data::Vo
     }
     hatchery_data::VolumeData::with_geometry([n; 3], geometry, values).unwrap()
 }
+
+/// Every preset graph in graphs/, sorted.
+pub fn presets() -> Vec<PathBuf> {
+    let mut presets: Vec<PathBuf> = std::fs::read_dir(repo_root().join("graphs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    presets.sort();
+    presets
+}

@@ -266,31 +266,57 @@ pub fn draw(
     format: wgpu::TextureFormat,
     (width, height): (u32, u32),
 ) -> wgpu::Texture {
-    let gpu = &ctx.gpu;
-    let output = gpu.render_target(label, width, height, format);
-    let output_view = output.create_view(&Default::default());
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &output_view,
+    let output = ctx.gpu.render_target(label, width, height, format);
+    let work = draw_into(
+        &ctx.gpu,
+        label,
+        pipeline,
+        bind_group,
+        std::slice::from_ref(&output),
+    );
+    ctx.submit(work);
+    output
+}
+
+/// One full-frame triangle of `pipeline` with `bind_group` into `targets` (one colour attachment
+/// each, cleared to transparent); the work, not yet submitted.
+pub fn draw_into(
+    gpu: &GpuContext,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    bind_group: &wgpu::BindGroup,
+    targets: &[wgpu::Texture],
+) -> wgpu::CommandBuffer {
+    let views: Vec<wgpu::TextureView> = targets
+        .iter()
+        .map(|t| t.create_view(&Default::default()))
+        .collect();
+    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
+        .iter()
+        .map(|view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
                     load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
                     store: wgpu::StoreOp::Store,
                 },
-            })],
+            })
+        })
+        .collect();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &attachments,
             ..Default::default()
         });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
-    let work = encoder.finish();
-    ctx.submit(work);
-    output
+    encoder.finish()
 }
 
 /// [`run`] producing a `Mask` value.

@@ -254,7 +254,7 @@ pub fn run_group(
                 .iter()
                 .map(|&f| gpu.render_target(label, width, height, f))
                 .collect();
-            let work = draw(gpu, label, &pipeline, &bind_group, &targets);
+            let work = screen_pass::draw_into(gpu, label, &pipeline, &bind_group, &targets);
             ctx.submit(work);
             targets
         }
@@ -316,44 +316,4 @@ fn pipeline_key(source: &str, formats: &[wgpu::TextureFormat]) -> String {
     let mut hasher = DefaultHasher::new();
     (source, formats).hash(&mut hasher);
     format!("fused:{:016x}:{}", hasher.finish(), source.len())
-}
-
-/// One full-frame triangle of `pipeline` into `targets` (cleared to transparent).
-fn draw(
-    gpu: &hatchery_gpu::GpuContext,
-    label: &str,
-    pipeline: &wgpu::RenderPipeline,
-    bind_group: &wgpu::BindGroup,
-    targets: &[wgpu::Texture],
-) -> wgpu::CommandBuffer {
-    let views: Vec<wgpu::TextureView> = targets
-        .iter()
-        .map(|t| t.create_view(&Default::default()))
-        .collect();
-    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
-        .iter()
-        .map(|view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        })
-        .collect();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &attachments,
-            ..Default::default()
-        });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.draw(0..3, 0..1);
-    }
-    encoder.finish()
 }
