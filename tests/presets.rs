@@ -51,11 +51,12 @@ fn every_preset_loads_validates_and_renders() {
 /// voxel → world transform and kept their native voxel types: 256×192 renders by the binary of
 /// commit 96c2639 are in tests/fixtures/before_world_space/.
 ///
-/// Tolerance: every channel within 1/255, except at most 1 in 2000 channels and none beyond
-/// 16/255. The exceptions are single pixels where a steep transfer function or a style contour
-/// flips: uint8 volumes are now read exactly (R8Unorm, interpolated in f32) where they were
-/// rounded to f16 of v/255 before (forcing the old encoding brings the brain presets within
-/// 1/255 everywhere), and rays now march in voxel space, which moves samples by float rounding.
+/// Tolerance: every channel within 1/255. One exception, by kind: where a label volume picks the
+/// transfer function's row (§4.2 of Bruckner & Gröller 2007: the label at the *nearest* voxel),
+/// a sample that lies within float rounding of a voxel face between two labels can take the other
+/// label now that rays march in voxel space (q = q₀ + t·dq instead of (p − origin) / spacing);
+/// there at most 1 in 10,000 channels may differ by more, none beyond 16/255 (style_tf_frog: 8 of
+/// 49,152 pixels).
 #[test]
 fn shared_data_presets_render_as_before_the_world_space_change() {
     let dir = common::repo_root().join("tests/fixtures/before_world_space");
@@ -76,6 +77,9 @@ fn shared_data_presets_render_as_before_the_world_space_change() {
             .join("graphs")
             .join(format!("{name}.ron"));
         let mut session = Session::open(&graph, 256, 192).unwrap();
+        let nearest_label_rows = session.graph.nodes().any(|n| {
+            n.kind == "StyleTransferFunction" && !n.params.text("label_nodes").trim().is_empty()
+        });
         let saver = session
             .graph
             .nodes()
@@ -110,7 +114,12 @@ fn shared_data_presets_render_as_before_the_world_space_change() {
              channels differ by more than 1/255",
             worst.0, worst.1, worst.2
         );
-        if worst.0 > 16 || over_one * 2000 > channels {
+        let allowed = if nearest_label_rows {
+            channels / 10_000
+        } else {
+            0
+        };
+        if worst.0 > 16 || over_one > allowed {
             let saved = common::save_failure(&format!("before_{name}"), &picture);
             failures.push(format!(
                 "{name}: off by {}/255 at ({}, {}) ({over_one} channels over 1/255); now {:?}, \

@@ -9,14 +9,17 @@
 //! | i16 | R16Unorm of `v + 32768` | `−32768 + 65535 n` (exact) |
 //! | f32 | R32Float (`FLOAT32_FILTERABLE`) of `(v − lo) / (hi − lo)` | `lo + (hi − lo) n` |
 //!
-//! On CPU adapters (llvmpipe/lavapipe) 8-bit volumes are uploaded as R16Unorm of `257 v`
-//! (`v + 128` for i8) instead: their sampler filters 8-bit textures in 8-bit arithmetic and rounds
-//! the result to 1/255 (measured: up to 0.05 colour error against the same data in a float
-//! texture), while interpolating in the shader instead made ray casting 3–5× slower there. The
-//! second byte per voxel is spent only up to `WIDEN_8BIT_BUDGET` (64 Mi voxels, e.g. 400³): larger
-//! 8-bit volumes stay R8Unorm there too, so peak memory stays ≤ 2× the voxel bytes plus a fixed
-//! part (the widening adds at most the budget). `HATCHERY_LOW_MEMORY=1` never widens,
-//! `HATCHERY_LOW_MEMORY=0` always does.
+//! On CPU adapters (llvmpipe/lavapipe) 8-bit volumes are uploaded as R16Float of the normalised
+//! value `(v − lo) / (hi − lo)` instead: their sampler filters 8-bit textures in 8-bit arithmetic
+//! and rounds the result to 1/255 (measured: up to 0.05 colour error against the same data in a
+//! float texture), while interpolating in the shader instead made ray casting 3–5× slower there.
+//! R16Float rather than R16Unorm of `257 v`: it needs no adapter feature, its 11 significant bits
+//! keep every 8-bit level distinct (error ≤ 2⁻¹² of the range), and it is the encoding every
+//! volume had before voxel types were kept, so the presets render as they did then (R16Unorm moved
+//! single pixels at steep transfer functions by up to 5/255). The second byte per voxel is spent
+//! only up to `WIDEN_8BIT_BUDGET` (64 Mi voxels, e.g. 400³): larger 8-bit volumes stay R8Unorm
+//! there too, so peak memory stays ≤ 2× the voxel bytes plus a fixed part (the widening adds at
+//! most the budget). `HATCHERY_LOW_MEMORY=1` never widens, `HATCHERY_LOW_MEMORY=0` always does.
 //! Fallbacks where the adapter lacks the feature: 16-bit integers and f32 become R16Float of
 //! `(v − lo) / (hi − lo)` over the value range (11 significant bits: a relative precision of
 //! 2⁻¹¹ of the range). "No data" (non-finite f32) texels hold `NO_DATA_TEXEL` (−1000) in the
@@ -33,7 +36,7 @@ pub struct VolumeTexture {
     pub texel_range: [f32; 2],
 }
 
-/// Voxels up to which 8-bit volumes are widened to R16Unorm on CPU adapters (64 Mi: 64 MiB more
+/// Voxels up to which 8-bit volumes are widened to R16Float on CPU adapters (64 Mi: 64 MiB more
 /// memory at most, a fixed overhead).
 pub const WIDEN_8BIT_BUDGET: u64 = 64 << 20;
 
@@ -78,20 +81,17 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
     let half = |v: f32| half::f16::from_f32(v).to_le_bytes();
     let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
     let widen_8bit = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
-        && norm16
         && widen_8bit_wanted(voxels, std::env::var("HATCHERY_LOW_MEMORY").ok().as_deref());
     let (format, range, texture) = match &data.voxels {
         Voxels::U8(v) if widen_8bit => {
-            let fill = slabs(v, slice, |x: u8| (x as u16 * 257).to_le_bytes());
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
-            ("R16Unorm (8-bit widened)", [0.0, 255.0], t)
+            let fill = slabs(v, slice, |x: u8| half(normalise(x as f32)));
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            ("R16Float (8-bit widened, normalised)", [lo, hi], t)
         }
         Voxels::I8(v) if widen_8bit => {
-            let fill = slabs(v, slice, |x: i8| {
-                ((x as i16 + 128) as u16 * 257).to_le_bytes()
-            });
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
-            ("R16Unorm (8-bit widened, +128)", [-128.0, 127.0], t)
+            let fill = slabs(v, slice, |x: i8| half(normalise(x as f32)));
+            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            ("R16Float (8-bit widened, normalised)", [lo, hi], t)
         }
         Voxels::U8(v) => {
             let t =
