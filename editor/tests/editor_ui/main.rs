@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod custom_shader;
 mod export;
+mod fused;
 mod layout;
 mod objects;
 mod organise;
