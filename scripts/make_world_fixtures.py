@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
 """Writes tests/fixtures/world/: one small asymmetric synthetic anatomy written by independent
-writers (nibabel, SimpleITK, tifffile) in several volume formats, and truth.json with, for each
+writers (nibabel, SimpleITK, tifffile, VTK) in several volume formats, and truth.json with, for each
 file, the voxel -> world affine in RAS+ mm as an independent reader reports it and the world
 centroid of the object's voxels. The truth comes from the writer side, never from hatchery.
 
-Usage (Python 3.11):  pip install SimpleITK nibabel tifffile numpy
-                      python3 scripts/make_world_fixtures.py
+Usage (Python 3.11):  pip install SimpleITK nibabel tifffile vtk numpy
+                      python3 scripts/make_world_fixtures.py [WRITER...]
+
+With writer names (e.g. `write_vti`), only those files are written again and their records
+replaced in truth.json; each writer imports only its own library.
 
 To add a format, write one `write_<format>(out_dir) -> dict` function that writes the file(s),
 reads them back with an independent reader and returns `entry(...)`, and list it in WRITERS.
@@ -15,10 +18,7 @@ import json
 import sys
 from pathlib import Path
 
-import nibabel
 import numpy as np
-import SimpleITK as sitk
-import tifffile
 
 OUT = Path(__file__).resolve().parent.parent / "tests" / "fixtures" / "world"
 
@@ -76,6 +76,7 @@ def entry(name, fmt, writer, reader, data_ijk, affine, note, expected=None) -> d
 
 def write_nifti(out, name, data, affine, note, qform=True) -> dict:
     """Writes and reads back with nibabel; `data` is the voxel array in the file's ijk order."""
+    import nibabel
     img = nibabel.Nifti1Image(data, affine)
     img.set_sform(affine, code=2)
     if qform:
@@ -116,6 +117,7 @@ def write_nifti_oblique(out) -> dict:
 
 
 def sitk_image(data_ijk, spacing, direction_lps, origin_lps):
+    import SimpleITK as sitk
     img = sitk.GetImageFromArray(np.ascontiguousarray(data_ijk.transpose(2, 1, 0)))
     img.SetSpacing([float(s) for s in spacing])
     img.SetDirection([float(v) for v in np.asarray(direction_lps).flatten()])
@@ -125,6 +127,7 @@ def sitk_image(data_ijk, spacing, direction_lps, origin_lps):
 
 def sitk_truth(out, name, fmt, note) -> dict:
     """Reads a file back with SimpleITK and turns its LPS geometry into a RAS+ affine."""
+    import SimpleITK as sitk
     img = sitk.ReadImage(str(out / name))
     direction = np.array(img.GetDirection()).reshape(3, 3)
     lps = np.eye(4)
@@ -137,6 +140,7 @@ def sitk_truth(out, name, fmt, note) -> dict:
 
 
 def write_nrrd(out) -> dict:
+    import SimpleITK as sitk
     img = sitk_image(anatomy().astype(np.int16), [1.1, 0.9, 1.7],
                      rotation([0.3, -0.5, 1.0], 30.0), [5.0, -3.0, 20.0])
     sitk.WriteImage(img, str(out / "sitk.nrrd"))
@@ -145,6 +149,7 @@ def write_nrrd(out) -> dict:
 
 
 def write_nhdr(out) -> dict:
+    import SimpleITK as sitk
     img = sitk_image(anatomy().astype(np.uint16), [0.7, 1.3, 1.0],
                      np.diag([-1.0, 1.0, -1.0]), [-8.0, 4.0, 15.0])
     sitk.WriteImage(img, str(out / "sitk_gzip.nhdr"), useCompression=True)
@@ -153,6 +158,7 @@ def write_nhdr(out) -> dict:
 
 
 def write_mha(out) -> dict:
+    import SimpleITK as sitk
     img = sitk_image(anatomy(), [1.2, 1.0, 1.5], rotation([-0.2, 1.0, 0.4], 35.0),
                      [-10.0, 12.0, -6.0])
     sitk.WriteImage(img, str(out / "sitk.mha"), useCompression=True)
@@ -161,6 +167,7 @@ def write_mha(out) -> dict:
 
 
 def write_mhd(out) -> dict:
+    import SimpleITK as sitk
     img = sitk_image(anatomy().astype(np.int16), [0.8, 0.8, 2.5], np.eye(3), [3.0, -7.0, -12.0])
     sitk.WriteImage(img, str(out / "sitk.mhd"))
     return sitk_truth(out, "sitk.mhd", "metaimage", "int16, raw data file beside the header")
@@ -170,6 +177,7 @@ def write_mhd(out) -> dict:
 
 
 def write_tiff(out) -> dict:
+    import tifffile
     spacing = [0.5, 0.5, 1.25]  # mm: XResolution/YResolution 2 px/mm, ImageJ spacing=1.25
     pages = np.ascontiguousarray(anatomy().astype(np.uint16).transpose(2, 1, 0))  # [z, y, x]
     name = "imagej_stack.tif"
@@ -190,6 +198,59 @@ def write_tiff(out) -> dict:
                  back, affine, "uint16 pages, ImageJ spacing/unit=mm, axis-aligned")
 
 
+# --- VTK ImageData (VTK writes and reads; its world is taken as RAS+ as it stands) -------------
+
+
+def write_vti(out) -> dict:
+    """A mirroring, rotated Direction (determinant -1) and an extent that does not start at 0:
+    point (i, j, k) of the extent lies at Origin + Direction . (Spacing * (i, j, k))."""
+    import vtk
+    from vtk.util import numpy_support
+
+    name = "vtk_mirrored_offset.vti"
+    extent_min = (3, -2, 5)
+    direction = rotation([0.2, 1.0, 0.3], 20.0) @ np.diag([1.0, -1.0, 1.0])
+    image = vtk.vtkImageData()
+    image.SetExtent(extent_min[0], extent_min[0] + DIMS[0] - 1,
+                    extent_min[1], extent_min[1] + DIMS[1] - 1,
+                    extent_min[2], extent_min[2] + DIMS[2] - 1)
+    image.SetSpacing(1.3, 0.9, 1.6)
+    image.SetOrigin(-6.0, 4.0, -9.0)
+    image.SetDirectionMatrix(*direction.flatten().tolist())
+    values = numpy_support.numpy_to_vtk(anatomy().transpose(2, 1, 0).ravel(), deep=True,
+                                        array_type=vtk.VTK_UNSIGNED_CHAR)
+    values.SetName("anatomy")
+    image.GetPointData().SetScalars(values)
+    writer = vtk.vtkXMLImageDataWriter()  # VTK's defaults: appended raw data, zlib
+    writer.SetFileName(str(out / name))
+    writer.SetInputData(image)
+    if not writer.Write():
+        sys.exit(f"{name}: VTK could not write it")
+
+    reader = vtk.vtkXMLImageDataReader()
+    reader.SetFileName(str(out / name))
+    reader.Update()
+    back = reader.GetOutput()
+    e = back.GetExtent()
+
+    def at(di, dj, dk):
+        """VTK's world point of extent index (e0 + di, e1 + dj, e2 + dk)."""
+        point = [0.0, 0.0, 0.0]
+        back.TransformIndexToPhysicalPoint(e[0] + di, e[2] + dj, e[4] + dk, point)
+        return np.array(point)
+
+    affine = np.eye(4)
+    for c, d in enumerate([(1, 0, 0), (0, 1, 0), (0, 0, 1)]):
+        affine[:3, c] = at(*d) - at(0, 0, 0)
+    affine[:3, 3] = at(0, 0, 0)
+    dims = (e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1)
+    data = numpy_support.vtk_to_numpy(back.GetPointData().GetScalars())
+    data = data.reshape(dims[::-1]).transpose(2, 1, 0)
+    return entry(name, "vti", f"VTK {vtk.vtkVersion.GetVTKVersion()}",
+                 "VTK (TransformIndexToPhysicalPoint)", data, affine,
+                 "uint8 point data, zlib, mirroring oblique Direction, extent from (3, -2, 5)")
+
+
 WRITERS = [
     write_nifti_ras,
     write_nifti_las,
@@ -199,12 +260,21 @@ WRITERS = [
     write_mha,
     write_mhd,
     write_tiff,
+    write_vti,
 ]
 
 
 def main():
     OUT.mkdir(parents=True, exist_ok=True)
-    files = [write(OUT) for write in WRITERS]
+    chosen = [w for w in WRITERS if not sys.argv[1:] or w.__name__ in sys.argv[1:]]
+    if len(chosen) != len(set(sys.argv[1:])):
+        sys.exit(f"unknown writer; choose from {[w.__name__ for w in WRITERS]}")
+    files = [write(OUT) for write in chosen]
+    if sys.argv[1:]:
+        # Keep the other formats' records (in WRITERS order) and replace the rewritten ones.
+        old = json.loads((OUT / "truth.json").read_text())["files"]
+        new = {f["file"]: f for f in files}
+        files = [new.pop(f["file"], f) for f in old] + list(new.values())
     truth = {
         "about": "Written by scripts/make_world_fixtures.py. affine_ras: voxel -> world, RAS+ mm, "
                  "as the independent reader reports it. centroid_ras: mean of affine . ijk over "

@@ -1,4 +1,4 @@
-//! One asymmetric anatomy written by independent tools (nibabel, SimpleITK, tifffile) in every
+//! One asymmetric anatomy written by independent tools (nibabel, SimpleITK, tifffile, VTK) in every
 //! format, loaded here: each must land where the writer's own reader puts it. The files and
 //! `truth.json` come from `scripts/make_world_fixtures.py`; nothing in the truth comes from
 //! hatchery.
@@ -81,8 +81,13 @@ fn every_fixture_lands_where_its_writer_put_it() {
 
         // (a) The voxel -> world affine, entry by entry.
         let m = v.geometry.to_world();
-        let want = entry["affine_ras"].as_array().unwrap();
-        for (r, row) in want.iter().enumerate().take(3) {
+        let want_affine: Vec<&Vec<Value>> = entry["affine_ras"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|row| row.as_array().unwrap())
+            .collect();
+        for (r, row) in want_affine.iter().enumerate().take(3) {
             for c in 0..4 {
                 let (got, want) = (m.col(c)[r], row[c].as_f64().unwrap());
                 assert!(
@@ -101,8 +106,19 @@ fn every_fixture_lands_where_its_writer_put_it() {
             (centroid - want).length() < 1e-3,
             "{name}: voxel centroid {centroid}, want {want}"
         );
-        // ... and the marching-cubes surface around them stays within half a voxel of it.
+        // ... and the marching-cubes surface around them stays within half a voxel of it: half
+        // the shortest voxel edge of the independent reader's affine.
         let half_diagonal = entry["half_voxel_diagonal"].as_f64().unwrap();
+        let half_voxel = (0..3)
+            .map(|c| {
+                let column = DVec3::new(
+                    want_affine[0][c].as_f64().unwrap(),
+                    want_affine[1][c].as_f64().unwrap(),
+                    want_affine[2][c].as_f64().unwrap(),
+                );
+                0.5 * column.length()
+            })
+            .fold(f64::INFINITY, f64::min);
         let mesh = marching_cubes(&v, iso);
         assert!(!mesh.positions.is_empty(), "{name}");
         let mean = mesh
@@ -112,8 +128,9 @@ fn every_fixture_lands_where_its_writer_put_it() {
             .sum::<DVec3>()
             / mesh.positions.len() as f64;
         assert!(
-            (mean - want).length() < half_diagonal,
-            "{name}: surface centroid {mean} is {} mm from {want} (half a voxel diagonal: {half_diagonal})",
+            (mean - want).length() < half_voxel,
+            "{name}: surface centroid {mean} is {} mm from {want} (half the shortest voxel edge: \
+             {half_voxel})",
             (mean - want).length()
         );
         // A reader that mirrored any axis would be caught: the mirrored centroid is far off.
@@ -127,7 +144,7 @@ fn every_fixture_lands_where_its_writer_put_it() {
         assert!(!v.placement.is_empty(), "{name}");
         formats.push(entry["format"].as_str().unwrap().to_string());
     }
-    for format in ["nifti", "nrrd", "metaimage", "tiff"] {
+    for format in ["nifti", "nrrd", "metaimage", "tiff", "vti"] {
         assert!(
             formats.iter().any(|f| f == format),
             "no {format} fixture was checked"
