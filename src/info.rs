@@ -62,15 +62,19 @@ pub fn describe(path: &Path) -> Result<String> {
         v.stored_type,
         v.voxels.type_name()
     );
-    out += &format!(
-        "  value range: {} .. {}{}\n",
-        v.value_range[0],
-        v.value_range[1],
-        if no_data > 0 {
-            format!(" ({no_data} voxels are no data: NaN/inf)")
-        } else {
-            String::new()
-        }
-    );
+    out += &if v.has_finite_values() {
+        format!(
+            "  value range: {} .. {}{}\n",
+            v.value_range[0],
+            v.value_range[1],
+            if no_data > 0 {
+                format!(" ({no_data} voxels are no data: NaN/inf)")
+            } else {
+                String::new()
+            }
+        )
+    } else {
+        format!("  value range: none (all {no_data} voxels are no data: NaN/inf)\n")
+    };
     Ok(out)
 }

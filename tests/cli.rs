@@ -101,6 +101,33 @@ fn render_writes_the_picture_and_every_requested_dump() {
     assert_eq!(volume.shape, vec![40, 40, 40]);
 }
 
+/// Issue 9 item 4 through the command line: an iso value with no surface renders the rest of
+/// the picture and says why in one warning line naming the node.
+#[test]
+fn an_iso_value_without_surface_renders_with_one_warning_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let output = hatchery(&[
+        "render",
+        "graphs/shaded_surface.ron",
+        "-o",
+        &out.to_string_lossy(),
+        "--size",
+        "64x48",
+        "--set",
+        "surface.iso=3",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(out.exists());
+    let err = stderr(&output);
+    let lines: Vec<&str> = err.lines().filter(|l| l.contains("no surface")).collect();
+    assert_eq!(lines.len(), 1, "{err}");
+    assert!(
+        lines[0].contains("surface:") && lines[0].contains("outside the volume's value range"),
+        "{err}"
+    );
+}
+
 #[test]
 fn bad_command_line_input_is_one_clean_error() {
     let cases: &[(&[&str], &[&str])] = &[
@@ -149,9 +176,9 @@ fn bad_command_line_input_is_one_clean_error() {
                 "render",
                 "graphs/shaded_surface.ron",
                 "--set",
-                "surface.iso=3",
+                "camera.near=5000",
             ],
-            &["node `surface`", "outside the volume's value range"],
+            &["node `camera` (Camera)", "must be less than far"],
         ),
         (
             &[

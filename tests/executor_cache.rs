@@ -105,10 +105,29 @@ fn pulling_one_target_runs_only_its_ancestors() {
 #[test]
 fn execution_errors_name_the_node() {
     let mut session = common::session_from_text(GRAPH, 64, 48);
-    session.set_param_text("surface", "iso", "5.0").unwrap();
+    session.set_param_text("camera", "near", "5000").unwrap();
     let err = session.run(&["shaded"]).unwrap_err().to_string();
-    assert!(err.starts_with("node `surface` (MarchingCubes)"), "{err}");
-    assert!(err.contains("outside the volume's value range"), "{err}");
+    assert!(err.starts_with("node `camera` (Camera)"), "{err}");
+    assert!(err.contains("must be less than far"), "{err}");
+}
+
+/// Issue 9 item 4: an iso value that yields no surface is a warning on its node, not an error;
+/// the rest of the picture renders, and the warning goes when the node runs again with a surface.
+#[test]
+fn no_surface_is_a_warning_on_the_node_and_the_picture_renders() {
+    let mut session = common::session_from_text(GRAPH, 64, 48);
+    session.set_param_text("surface", "iso", "5.0").unwrap();
+    session.run(&["shaded"]).unwrap();
+    let warning = session.ctx.warnings().get("surface").cloned();
+    assert!(
+        warning.as_deref().is_some_and(
+            |w| w.contains("outside the volume's value range") && w.contains("no surface")
+        ),
+        "{warning:?}"
+    );
+    session.set_param_text("surface", "iso", "0.0").unwrap();
+    session.run(&["shaded"]).unwrap();
+    assert_eq!(session.ctx.warnings().get("surface"), None);
 }
 
 #[test]

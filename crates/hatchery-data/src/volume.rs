@@ -118,6 +118,14 @@ impl VolumeData {
             .is_some_and(|v| !v.par_iter().all(|x| x.is_finite()))
     }
 
+    /// Whether any voxel holds a finite value (integer voxels always do); `value_range` is
+    /// `[0, 0]` when none does.
+    pub fn has_finite_values(&self) -> bool {
+        self.voxels
+            .as_f32()
+            .is_none_or(|v| v.par_iter().any(|x| x.is_finite()))
+    }
+
     /// The values as f32: borrowed when stored as f32, else converted (a copy: avoid on big
     /// volumes).
     pub fn values_f32(&self) -> std::borrow::Cow<'_, [f32]> {

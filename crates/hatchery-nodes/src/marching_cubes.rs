@@ -48,16 +48,23 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         let volume = inputs.require("volume")?.volume("volume")?;
         let iso = p.f32("iso");
         let range = volume.data.value_range;
-        if !(range[0]..=range[1]).contains(&iso) {
-            return Err(NodeError::new(format!(
-                "iso value {iso} is outside the volume's value range [{}, {}]: no surface",
-                range[0], range[1]
-            )));
-        }
-        let mesh = hatchery_data::marching_cubes::marching_cubes(&volume.data, iso);
+        // No surface is a warning, not an error (issue 9 item 4): the picture renders without it
+        // and the node says why, as for an iso value that crosses no cell.
+        let mesh = if (range[0]..=range[1]).contains(&iso) {
+            hatchery_data::marching_cubes::marching_cubes(&volume.data, iso)
+        } else {
+            hatchery_data::mesh::MeshData::default()
+        };
         tracing::info!(iso, triangles = mesh.triangle_count(), "marching cubes");
         if mesh.triangle_count() == 0 {
-            ctx.warn(if range[0] == range[1] {
+            ctx.warn(if !volume.data.has_finite_values() {
+                "the volume holds no finite value (all voxels are no data): no surface".into()
+            } else if !(range[0]..=range[1]).contains(&iso) {
+                format!(
+                    "iso value {iso} is outside the volume's value range [{}, {}]: no surface",
+                    range[0], range[1]
+                )
+            } else if range[0] == range[1] {
                 format!("the volume is constant ({}): no surface", range[0])
             } else {
                 format!("iso value {iso} gives no surface")

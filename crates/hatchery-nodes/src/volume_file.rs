@@ -64,7 +64,12 @@ impl Node<Value, Ctx> for VolumeFileNode {
         };
         let data = hatchery_data::volume_file::load_volume_with(&path, &options)
             .map_err(|e| NodeError::new(e.to_string()))?;
-        if data.value_range[0] == data.value_range[1] {
+        if !data.has_finite_values() {
+            ctx.warn(format!(
+                "{}: no voxel holds a finite value (all are no data: NaN/inf)",
+                path.display()
+            ));
+        } else if data.value_range[0] == data.value_range[1] {
             ctx.warn(format!(
                 "{}: the volume is constant ({}): nothing to tell apart",
                 path.display(),

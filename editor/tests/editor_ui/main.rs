@@ -504,6 +504,39 @@ fn an_execution_error_is_shown_on_its_node_and_the_editor_keeps_working() {
     }
 }
 
+/// An iso value without a surface is a warning shown on its node (issue 9 item 4); the picture
+/// still renders, and the warning goes once the node has a surface again.
+#[test]
+fn a_warning_is_shown_on_its_node_and_the_picture_still_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    app.preview_enabled = true;
+    let mut h = harness(app);
+    wait_for_render(&mut h);
+    h.state_mut()
+        .state
+        .set_param("surface", "iso", ParamValue::Float(3.0), false)
+        .unwrap();
+    wait_for_render(&mut h);
+    assert!(h.state().preview.failed_node.is_none());
+    assert!(h.state().preview.viewport.is_some());
+    h.run_steps(2);
+    let label = h.get_by_label_contains("outside the volume's value range");
+    let at = h.state().canvas_transform * label.rect().center();
+    assert_eq!(h.state().node_at(at), Some("surface"), "shown on its node");
+    h.state_mut()
+        .state
+        .set_param("surface", "iso", ParamValue::Float(0.0), false)
+        .unwrap();
+    wait_for_render(&mut h);
+    h.run_steps(2);
+    assert_eq!(
+        h.query_all_by_label_contains("outside the volume's value range")
+            .count(),
+        0
+    );
+}
+
 #[test]
 fn the_node_menu_duplicates_previews_and_deletes() {
     let dir = tempfile::tempdir().unwrap();

@@ -2,6 +2,7 @@
 //! base64), uncompressed or in compressed blocks, into [`Voxels`] of the array's own type where
 //! hatchery keeps it.
 
+use std::borrow::Cow;
 use std::io::Read;
 
 use rayon::prelude::*;
@@ -63,9 +64,9 @@ pub(super) fn read_array(
         }
         source.take(byte_count)?
     } else {
-        read_compressed(&mut source, encoding, byte_count)?
+        Cow::Owned(read_compressed(&mut source, encoding, byte_count)?)
     };
-    Ok(from_bytes(&bytes, scalar, encoding.big_endian))
+    Ok(from_bytes(bytes, scalar, encoding.big_endian))
 }
 
 /// Compressed layout (vtkXMLDataParser): `[nb][nu][np][nc_1 .. nc_nb]` header numbers, then
@@ -197,8 +198,9 @@ fn header_size(encoding: &Encoding) -> usize {
 }
 
 /// Binary values in the file's byte order to voxels: 8- and 16-bit integers and Float32 stay
-/// as they are, wider integers and Float64 become float32.
-fn from_bytes(bytes: &[u8], scalar: Scalar, big_endian: bool) -> (Voxels, Loss) {
+/// as they are, wider integers and Float64 become float32. Decompressed uint8 bytes become the
+/// voxels as they are (no copy: a big volume is held once plus the file's bytes, not more).
+fn from_bytes(bytes: Cow<[u8]>, scalar: Scalar, big_endian: bool) -> (Voxels, Loss) {
     macro_rules! values {
         ($t:ty) => {{
             const N: usize = std::mem::size_of::<$t>();
@@ -231,7 +233,7 @@ fn from_bytes(bytes: &[u8], scalar: Scalar, big_endian: bool) -> (Voxels, Loss) 
     }
     let none = Loss::default();
     match scalar {
-        Scalar::U8 => (Voxels::U8(bytes.to_vec()), none),
+        Scalar::U8 => (Voxels::U8(bytes.into_owned()), none),
         Scalar::I8 => (Voxels::I8(bytes.iter().map(|&b| b as i8).collect()), none),
         Scalar::U16 => (Voxels::U16(values!(u16).collect()), none),
         Scalar::I16 => (Voxels::I16(values!(i16).collect()), none),
@@ -350,8 +352,9 @@ enum ByteSource<'a> {
     Base64(Base64<'a>),
 }
 
-impl ByteSource<'_> {
-    fn take(&mut self, n: usize) -> Result<Vec<u8>, String> {
+impl<'a> ByteSource<'a> {
+    /// The next `n` bytes: borrowed from raw data, decoded from base64.
+    fn take(&mut self, n: usize) -> Result<Cow<'a, [u8]>, String> {
         match self {
             ByteSource::Raw(data) => {
                 if data.len() < n {
@@ -362,9 +365,9 @@ impl ByteSource<'_> {
                 }
                 let (head, rest) = data.split_at(n);
                 *data = rest;
-                Ok(head.to_vec())
+                Ok(Cow::Borrowed(head))
             }
-            ByteSource::Base64(b) => b.take(n),
+            ByteSource::Base64(b) => b.take(n).map(Cow::Owned),
         }
     }
 
