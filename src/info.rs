@@ -1,7 +1,7 @@
 //! `hatchery info FILE`: what a volume or mesh file holds and where it lies in the world.
 
 use anyhow::Result;
-use hatchery_data::mesh_file::load_mesh;
+use hatchery_data::mesh_file::{MESH_ENDINGS, load_mesh};
 use hatchery_data::volume_file::{VOLUME_ENDINGS, load_volume};
 use std::path::Path;
 
@@ -13,6 +13,14 @@ pub fn describe(path: &Path) -> Result<String> {
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
     let is_volume = VOLUME_ENDINGS.iter().any(|e| name.ends_with(e)) || path.is_dir();
+    if !is_volume && !MESH_ENDINGS.iter().any(|e| name.ends_with(e)) {
+        anyhow::bail!(
+            "{}: unknown file ending; volumes: {}, or a DICOM folder; meshes: {}",
+            path.display(),
+            VOLUME_ENDINGS.join(", "),
+            MESH_ENDINGS.join(", ")
+        );
+    }
     if !is_volume {
         let mesh = load_mesh(path)?;
         let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);

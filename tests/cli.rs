@@ -194,6 +194,10 @@ fn bad_command_line_input_is_one_clean_error() {
             &["0x10"],
         ),
         (
+            &["info", "Cargo.lock"],
+            &["Cargo.lock", "unknown file ending", ".nii.gz", ".stl"],
+        ),
+        (
             &["validate", "graphs/nope.ron"],
             &["graphs/nope.ron", "cannot read graph file"],
         ),

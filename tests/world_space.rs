@@ -155,3 +155,55 @@ fn no_data_voxels_are_transparent_to_the_ray_caster() {
         }
     }
 }
+
+/// A volume wider than the adapter's 3-D textures is refused when it would be uploaded, with a
+/// message naming the node and the limit, before anything is allocated (issue 9 item 2).
+#[test]
+fn a_volume_beyond_the_adapter_limit_is_refused_naming_the_limit() {
+    let probe = session();
+    let limit = probe.ctx.gpu.device.limits().max_texture_dimension_3d;
+    let nx = limit + 1;
+    let dir = tempfile::tempdir().unwrap();
+    let mut values = vec!["0"; nx as usize * 4];
+    values[0] = "1";
+    let vti = format!(
+        r#"<?xml version="1.0"?>
+<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">
+  <ImageData WholeExtent="0 {last} 0 1 0 1" Origin="0 0 0" Spacing="1 1 1">
+    <Piece Extent="0 {last} 0 1 0 1">
+      <PointData Scalars="v">
+        <DataArray type="UInt8" Name="v" format="ascii">{data}</DataArray>
+      </PointData>
+    </Piece>
+  </ImageData>
+</VTKFile>
+"#,
+        last = nx - 1,
+        data = values.join(" ")
+    );
+    let path = dir.path().join("wide.vti");
+    std::fs::write(&path, vti).unwrap();
+    let graph = format!(
+        r#"(version: 1, nodes: [
+            (id: "volume", kind: "VolumeFile", params: {{"path": "{}"}}),
+            (id: "camera", kind: "Camera"),
+            (id: "tf", kind: "TransferFunction1D"),
+            (id: "ray", kind: "Raycast"),
+        ], edges: [
+            (from: ("volume", "volume"), to: ("ray", "volume")),
+            (from: ("camera", "camera"), to: ("ray", "camera")),
+            (from: ("tf", "tf"), to: ("ray", "tf")),
+        ])"#,
+        path.display()
+    );
+    let mut s = common::session_from_text(&graph, 32, 32);
+    let err = s.run(&["ray"]).unwrap_err().to_string();
+    assert!(err.starts_with("node `ray` (Raycast)"), "{err}");
+    assert!(
+        err.contains(&format!("{nx}×2×2"))
+            && err.contains(&format!(
+                "{limit} voxels per axis (max_texture_dimension_3d)"
+            )),
+        "{err}"
+    );
+}

@@ -174,7 +174,14 @@ impl Geometry {
         let m = self.to_world();
         let row = |r: usize| {
             let v = m.row(r);
-            format!("[{:.4}, {:.4}, {:.4}, {:.4}]", v.x, v.y, v.z, v.w)
+            // + 0.0 shows −0 as 0.
+            format!(
+                "[{:.4}, {:.4}, {:.4}, {:.4}]",
+                v.x + 0.0,
+                v.y + 0.0,
+                v.z + 0.0,
+                v.w + 0.0
+            )
         };
         format!("[{}, {}, {}]", row(0), row(1), row(2))
     }
@@ -200,6 +207,18 @@ mod tests {
         );
         let back = g.world_to_voxel(Vec3::new(19.0, -7.0, -7.0));
         assert!((back - Vec3::new(2.0, 4.0, 4.0)).abs().max_element() < 1e-5);
+        // Negated zeros (from LPS) read as 0 in `hatchery info`.
+        let negated = Geometry::from_affine([
+            [0.7, -0.0, 0.0, 8.0],
+            [-0.0, -1.3, -0.0, -4.0],
+            [0.0, 0.0, -1.0, 15.0],
+        ])
+        .unwrap();
+        assert!(
+            !negated.describe().contains("-0.0000"),
+            "{}",
+            negated.describe()
+        );
         // The same grid in LPS: x and y negated.
         let lps = Geometry::from_lps(
             [2.0; 3],

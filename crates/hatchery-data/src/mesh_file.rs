@@ -11,6 +11,8 @@ use std::path::Path;
 
 use crate::{DataError, MeshData};
 
+/// The file endings `load_mesh` reads (any case).
+pub const MESH_ENDINGS: [&str; 3] = [".obj", ".ply", ".stl"];
 const SUPPORTED: &str = ".obj, .ply, .stl";
 
 /// Loads a mesh, choosing the format by the (case-insensitive) extension:
@@ -27,7 +29,7 @@ const SUPPORTED: &str = ".obj, .ply, .stl";
 ///   may be written `1.`, `.5`, `1e3` or (in integer properties) `3.0`. Data after the last
 ///   declared entry is an error, not dropped.
 /// * `.stl`: binary, or ASCII with one or more `solid … endsolid` blocks (all read), a bare
-///   `solid` or `endsolid`, keywords in any case, any mix of spaces, tabs, blank lines and
+///   `solid` or `endsolid` or a name glued to them, keywords in any case, NULs padding the end, any mix of spaces, tabs, blank lines and
 ///   line ends, with or without a final line end or final `endsolid`. A file is binary when its
 ///   size is exactly 84 + 50 × the triangle count in its header (so a binary header starting
 ///   with "solid" is no trouble), or when it does not start with "solid"; a binary triangle

@@ -27,7 +27,10 @@ const HEADER_SIZE: u64 = 348;
 ///   `sform_code > 0`, else the qform quaternion with `qfac = pixdim[0]` when `qform_code > 0`,
 ///   else `pixdim` scaling with the origin at 0 ("method 1"). NIfTI's world is RAS+, which is
 ///   hatchery's (see [`crate::geometry`]). A degenerate sform falls back to the qform.
-/// * Of 4-D (and higher) files only the first 3-D volume is read.
+/// * Of 4-D files (time series) only the first 3-D volume is read, and `placement` says so;
+///   files with several values per voxel (`dim[5] > 1`: vectors, tensors) are refused.
+/// * A negative `pixdim[1..3]` is taken as its magnitude and noted (nifti1_io uses 1, nibabel
+///   refuses the qform); only `qfac` (or the sform) mirrors an axis.
 /// * Non-finite voxel values (NaN is common in float maps) are kept: they mean "no data".
 pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
@@ -239,6 +242,36 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
             ),
         ));
     }
+    // dim[4] counts volumes (time points), dim[5] values per voxel (intent vectors), dim[6..7]
+    // further volume axes.
+    let extra = |i: usize| {
+        if i <= rank as usize {
+            h.dim[i] as i16
+        } else {
+            1
+        }
+    };
+    if (4..=7).any(|i| extra(i) < 1) {
+        return Err(DataError::format(
+            path,
+            format!(
+                "dim[4..7] must be at least 1, the header has {:?}",
+                h.dim[4..].iter().map(|&d| d as i16).collect::<Vec<_>>()
+            ),
+        ));
+    }
+    if extra(5) > 1 {
+        return Err(DataError::unsupported(
+            path,
+            format!(
+                "{} values per voxel (dim[5], intent code {}): only scalar volumes are \
+                 supported",
+                extra(5),
+                h.intent_code
+            ),
+        ));
+    }
+    let volumes = [4, 6, 7].iter().map(|&i| extra(i) as u64).product::<u64>();
     let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
     if voxels > MAX_VOXELS {
         return Err(DataError::TooLarge {
@@ -276,7 +309,10 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
         (0.0, 0.0)
     };
 
-    let (geometry, placement) = nifti_geometry(path, h)?;
+    let (geometry, mut placement) = nifti_geometry(path, h)?;
+    if volumes > 1 {
+        placement += &format!("; the first of {volumes} volumes (dim[4] = {})", extra(4));
+    }
 
     // vox_offset is a float in the format; it must leave room for the 4-byte extender. Some
     // writers leave it 0 for single files, meaning "right after the extender".
@@ -304,9 +340,23 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
 /// The voxel → world transform by the standard's rules (nifti1.h, "3 different methods"), as
 /// nibabel's `get_best_affine` applies them, and a note of which rule was used.
 fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), DataError> {
+    // Voxel sizes are magnitudes: the sign of pixdim[1..3] never mirrors (see load_nifti).
     let pixdim = |i: usize| {
         let s = h.pixdim[i] as f64;
-        if s.is_finite() && s != 0.0 { s } else { 1.0 }
+        if s.is_finite() && s != 0.0 {
+            s.abs()
+        } else {
+            1.0
+        }
+    };
+    let negative: Vec<String> = (1..=3)
+        .filter(|&i| h.pixdim[i] < 0.0)
+        .map(|i| format!("pixdim[{i}] = {}", h.pixdim[i]))
+        .collect();
+    let note = if negative.is_empty() {
+        String::new()
+    } else {
+        format!("; negative {} taken as the magnitude", negative.join(", "))
     };
     if h.sform_code > 0 {
         let rows = [h.srow_x, h.srow_y, h.srow_z].map(|r| r.map(f64::from));
@@ -362,14 +412,14 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
             .map_err(|e| DataError::format(path, format!("bad qform: {e}")))?;
         return Ok((
             g,
-            format!("qform (qform_code {}, qfac {qfac})", h.qform_code),
+            format!("qform (qform_code {}, qfac {qfac}){note}", h.qform_code),
         ));
     }
-    let g = Geometry::axis_aligned(
-        [pixdim(1).abs(), pixdim(2).abs(), pixdim(3).abs()],
-        [0.0; 3],
-    );
-    Ok((g, "pixdim scaling (sform_code and qform_code are 0)".into()))
+    let g = Geometry::axis_aligned([pixdim(1), pixdim(2), pixdim(3)], [0.0; 3]);
+    Ok((
+        g,
+        format!("pixdim scaling (sform_code and qform_code are 0){note}"),
+    ))
 }
 
 fn truncated(path: &Path, gzip: bool) -> DataError {

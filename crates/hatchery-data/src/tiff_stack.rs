@@ -304,10 +304,12 @@ fn spacing(
     let per_pixel = |r: Option<f64>| r.map_or(1.0, |r| 1.0 / r);
     let (xy_scale, from) = if ij.found {
         let unit = ij.unit.as_deref().unwrap_or("");
+        // Shown as written, but with ImageJ's `\u00B5` escape as the µ it stands for.
+        let shown = unit.replace("\\u00B5", "µ").replace("\\u00b5", "µ");
         match millimetres_per(unit) {
             Some(mm) => (
                 Some(mm),
-                format!("ImageJ spacing and X/YResolution in {unit}, as mm"),
+                format!("ImageJ spacing and X/YResolution in {shown}, as mm"),
             ),
             None if unit.is_empty() => (
                 Some(1.0),
@@ -315,7 +317,7 @@ fn spacing(
             ),
             None => (
                 Some(1.0),
-                format!("ImageJ spacing and X/YResolution in `{unit}` (taken as given)"),
+                format!("ImageJ spacing and X/YResolution in `{shown}` (taken as given)"),
             ),
         }
     } else {
@@ -380,7 +382,7 @@ mod tests {
         assert_eq!(ij.spacing, Some(2.5));
         let (s, note) = spacing(&ij, Some(4.0), Some(2.0), 1);
         assert_eq!(s, [0.25e-3, 0.5e-3, 2.5e-3]);
-        assert!(note.contains("as mm"), "{note}");
+        assert!(note.contains("in µm, as mm"), "{note}");
         // Not ImageJ: a 72 dpi print resolution is no voxel size; centimetres are.
         let none = ImageJ::parse("{\"shape\": [3, 4, 5]}");
         assert!(!none.found);

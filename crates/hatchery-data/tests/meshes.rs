@@ -427,6 +427,19 @@ fn ascii_stl_variants_load_whole() {
             format!("\u{feff}\n{}", plain.replacen("solid ", "solid_", 1)),
         ),
         (
+            "name glued to solid and to endsolid",
+            plain.replace("solid octahedron", "solidoctahedron"),
+        ),
+        (
+            // Compact, so that the NULs start within the first KiB, where binary is sniffed.
+            "NUL padding after the text",
+            {
+                let (first_line, body) = plain.split_once('\n').unwrap();
+                let body = body.split_whitespace().collect::<Vec<_>>().join(" ");
+                format!("{first_line}\n{body}\n{}", "\0".repeat(300))
+            },
+        ),
+        (
             "one facet per line",
             plain
                 .replace("\n    ", " ")

@@ -267,6 +267,28 @@ fn four_d_file_gives_first_volume() {
     ))
     .unwrap();
     assert_eq!(v.values_f32(), (0..8).map(|i| i as f32).collect::<Vec<_>>());
+    assert!(
+        v.placement.contains("the first of 2 volumes"),
+        "{}",
+        v.placement
+    );
+}
+
+/// A vector field (dim[0] = 5, dim[5] = 3 values per voxel) is refused, not read as its first
+/// component.
+#[test]
+fn several_values_per_voxel_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let raw = vec![0u8; 8 * 3];
+    let e = load_nifti(&write(
+        dir.path(),
+        "vectors.nii",
+        &Header::new(&[2, 2, 2, 1, 3], 2, 8).file(&raw),
+    ))
+    .unwrap_err();
+    assert!(matches!(e, DataError::Unsupported { .. }), "{e}");
+    assert!(e.to_string().contains("3 values per voxel"), "{e}");
+    assert!(e.to_string().contains("vectors.nii"), "{e}");
 }
 
 #[test]
@@ -336,6 +358,20 @@ fn qform_quaternion_qfac_and_pixdim_rules() {
         at([0.0, 0.0, 1.0])
     );
     assert_eq!(v.spacing(), [0.5, 2.0, 3.0]);
+
+    // A negative pixdim is a size, not a mirror: only qfac flips (nibabel refuses such a
+    // qform, nifti1_io takes 1; hatchery takes the magnitude and says so).
+    let mut negative = Header::new(&[3, 4, 2], 2, 8);
+    negative.pixdim = [0.5, -2.0, 3.0];
+    let file = with_qform(negative.file(&raw), [0.0, 0.0, s], [10.0, -5.0, 2.0], -1.0);
+    let w = load_nifti(&write(dir.path(), "neg.nii", &file)).unwrap();
+    assert_eq!(w.geometry, v.geometry);
+    assert!(
+        w.placement
+            .contains("negative pixdim[2] = -2 taken as the magnitude"),
+        "{}",
+        w.placement
+    );
 
     // Neither code: pixdim scaling, origin 0.
     let v = load_nifti(&write(dir.path(), "p.nii", &h.file(&raw))).unwrap();

@@ -319,7 +319,7 @@ impl GpuContext {
         let size = || format!("{}×{}×{}", dims[0], dims[1], dims[2]);
         if dims.iter().any(|&d| d == 0 || d > limit) {
             return Err(GpuError::TooLarge {
-                what: format!("volume {label}"),
+                what: format!("the {label} texture"),
                 size: size(),
                 limit: format!("{limit} voxels per axis (max_texture_dimension_3d)"),
             });
@@ -328,7 +328,7 @@ impl GpuContext {
         let bytes = dims.iter().map(|&d| d as u64).product::<u64>() * texel;
         if bytes > limits.max_buffer_size {
             return Err(GpuError::TooLarge {
-                what: format!("volume {label}"),
+                what: format!("the {label} texture"),
                 size: format!("{} ({bytes} bytes)", size()),
                 limit: format!("{} bytes (max_buffer_size)", limits.max_buffer_size),
             });

@@ -22,16 +22,27 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<MeshData, DataError> {
     if is_binary(bytes) {
         read_binary(bytes, &mut welder).map_err(|m| DataError::format(path, m))?;
     } else {
-        let text = String::from_utf8_lossy(bytes);
+        let text = String::from_utf8_lossy(without_padding(bytes));
         read_ascii(&text, &mut welder).map_err(|m| DataError::format(path, m))?;
     }
     MeshData::new(welder.positions, None, welder.indices).map_err(|e| e.in_file(path))
 }
 
+/// The bytes without trailing NUL and white space (some tools pad text files with NULs to a
+/// block size).
+fn without_padding(bytes: &[u8]) -> &[u8] {
+    let end = bytes
+        .iter()
+        .rposition(|&b| b != 0 && !b.is_ascii_whitespace())
+        .map_or(0, |last| last + 1);
+    &bytes[..end]
+}
+
 /// Binary if the size is exactly that of a binary STL with the count in the header (as
 /// trimesh decides; many binary writers start the header with "solid"). Otherwise ASCII if the
 /// file starts with "solid" (any case, after white space) and has no NUL byte near the start
-/// (binary headers and counts nearly always hold one; text never does).
+/// before any trailing padding (binary headers and counts nearly always hold one; text never
+/// does).
 fn is_binary(bytes: &[u8]) -> bool {
     if let Some(count) = header_count(bytes)
         && bytes.len() as u64 == HEADER as u64 + RECORD as u64 * count as u64
@@ -44,7 +55,8 @@ fn is_binary(bytes: &[u8]) -> bool {
         text.get(s..s + 5)
             .is_some_and(|w| w.eq_ignore_ascii_case(b"solid"))
     });
-    !starts_with_solid || bytes[..bytes.len().min(1024)].contains(&0)
+    let content = without_padding(bytes);
+    !starts_with_solid || content[..content.len().min(1024)].contains(&0)
 }
 
 fn header_count(bytes: &[u8]) -> Option<u32> {
@@ -131,7 +143,11 @@ fn read_solid(words: &mut Words, welder: &mut Welder) -> Result<(), String> {
         let Some((word, line)) = words.next() else {
             return Ok(());
         };
-        if word.eq_ignore_ascii_case("endsolid") {
+        // "endsolidname" (no space) is seen too, as "solidname" is.
+        if word
+            .get(..8)
+            .is_some_and(|w| w.eq_ignore_ascii_case("endsolid"))
+        {
             words.skip_line();
             return Ok(());
         }
