@@ -5,8 +5,9 @@
 //! ImageOrientationPatient) and sorted along it, as ITK/GDCM do. DICOM states positions in LPS+;
 //! they are turned into hatchery's RAS+ world by [`Geometry::from_lps`].
 //!
-//! Pixel data is decoded here from the raw bytes of the uncompressed transfer syntaxes, so no
-//! image codec crates are needed; compressed (encapsulated) pixel data is refused by name.
+//! Native pixel data is decoded here from its bytes; compressed pixel data by the transfer
+//! syntax's codec (JPEG baseline, extended and lossless; RLE Lossless), other compressed syntaxes
+//! (JPEG-LS, JPEG 2000, ...) are refused by name.
 
 use std::collections::BTreeMap;
 use std::error::Error;
@@ -14,7 +15,10 @@ use std::fs::File;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use dicom_dictionary_std::tags;
+use dicom_core::VR;
+use dicom_core::dictionary::DataDictionary;
+use dicom_core::value::PrimitiveValue;
+use dicom_dictionary_std::{StandardDataDictionary, tags};
 use dicom_object::{DefaultDicomObject, OpenFileOptions, Tag};
 use glam::{DMat3, DVec3};
 
@@ -60,14 +64,14 @@ const SAME_TOLERANCE: f64 = 1e-4;
 ///   are applied (float32 result); they may differ between slices.
 ///   MONOCHROME1 values are kept as stored (not inverted), as ITK does.
 /// * **Transfer syntaxes**: implicit VR little endian, explicit VR little and big endian,
-///   deflated explicit VR little endian.
+///   deflated explicit VR little endian; JPEG baseline, extended and lossless, RLE Lossless.
 ///
 /// Errors (a [`DataError`] naming the folder or the offending file): no DICOM image in the
 /// folder; fewer than 2 slices, or fewer than 2 rows or columns; a missing or malformed
 /// geometry attribute; slices that disagree in size, orientation, spacing or pixel format;
 /// two slices at one position (several echoes or time points in one series); non-uniform
 /// slice spacing (missing slices) or slices not stacked along their normal (gantry tilt);
-/// compressed pixel data (named by its transfer syntax); colour or palette images; multi-frame
+/// other compressed pixel data (named by its transfer syntax); colour or palette images; multi-frame
 /// files; more than [`MAX_VOXELS`] voxels; truncated pixel data.
 pub fn load_dicom_series(path: &Path) -> Result<VolumeData, DataError> {
     let (folder, wanted) = if path.is_dir() {
@@ -228,22 +232,62 @@ fn chain(e: &dyn Error) -> String {
     out
 }
 
-/// A string attribute, trimmed; empty when absent or not text.
+/// An attribute's value. An element stored with VR UN (what some tools write for attributes
+/// whose VR they lost, e.g. GDCM converting implicit-VR files) is read by its dictionary VR, as
+/// pydicom and GDCM do: binary numbers little-endian, other VRs as text.
+fn value(object: &DefaultDicomObject, tag: Tag) -> Option<PrimitiveValue> {
+    let element = object.element_opt(tag).ok().flatten()?;
+    let value = element.value().primitive()?;
+    if element.vr() != VR::UN {
+        return Some(value.clone());
+    }
+    let bytes = value.to_bytes();
+    let vr = StandardDataDictionary.by_tag(tag)?.vr.relaxed();
+    macro_rules! binary {
+        ($variant:ident, $t:ty) => {{
+            const N: usize = std::mem::size_of::<$t>();
+            PrimitiveValue::$variant(
+                bytes
+                    .chunks_exact(N)
+                    .map(|c| <$t>::from_le_bytes(c.try_into().expect("N bytes")))
+                    .collect(),
+            )
+        }};
+    }
+    Some(match vr {
+        VR::US => binary!(U16, u16),
+        VR::SS => binary!(I16, i16),
+        VR::UL => binary!(U32, u32),
+        VR::SL => binary!(I32, i32),
+        VR::FL => binary!(F32, f32),
+        VR::FD => binary!(F64, f64),
+        _ => PrimitiveValue::Strs(
+            String::from_utf8_lossy(&bytes)
+                .split('\\')
+                .map(|part| part.to_string())
+                .collect(),
+        ),
+    })
+}
+
+/// A string attribute, trimmed of spaces and of the NUL that pads UIDs to an even length; empty
+/// when absent or not text.
 fn text(object: &DefaultDicomObject, tag: Tag) -> String {
-    object
-        .element_opt(tag)
-        .ok()
-        .flatten()
-        .and_then(|e| e.to_str().ok().map(|s| s.trim().to_string()))
+    value(object, tag)
+        .map(|v| {
+            v.to_str()
+                .trim_matches(|c: char| c.is_whitespace() || c == '\0')
+                .to_string()
+        })
         .unwrap_or_default()
 }
 
 /// Numeric attribute values (DS, IS, US, ...); `None` when absent.
 fn numbers(header: &Header, tag: Tag, name: &str) -> Result<Option<Vec<f64>>, DataError> {
-    let Some(element) = header.object.element_opt(tag).ok().flatten() else {
+    let Some(value) = value(&header.object, tag) else {
         return Ok(None);
     };
-    let values = element
+    let values = value
         .to_multi_float64()
         .map_err(|e| DataError::format(&header.path, format!("bad {name}: {}", chain(&e))))?;
     if values.iter().any(|v| !v.is_finite()) {

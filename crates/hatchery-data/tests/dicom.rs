@@ -257,6 +257,44 @@ fn error(dir: &Path) -> String {
     e
 }
 
+/// The fixture series compressed by other tools' encoders (scripts/
+/// make_dicom_compressed_fixtures.py: RLE Lossless by pydicom, JPEG Lossless by GDCM) loads to
+/// exactly the voxels and placement of the uncompressed series. GDCM writes the attributes of the
+/// slices that were implicit VR with VR UN (SeriesInstanceUID, Rows, ...): they are read by their
+/// dictionary VR, as pydicom and GDCM read them.
+#[test]
+fn lossless_compressed_copies_load_the_same_volume() {
+    let native = load_dicom_series(&fixture("dicom_series")).unwrap();
+    for (folder, syntax) in [
+        ("dicom_series_rle", "RLE Lossless"),
+        ("dicom_series_jpegll", "JPEG Lossless"),
+    ] {
+        let v = load_dicom_series(&fixture(folder)).unwrap_or_else(|e| panic!("{folder}: {e}"));
+        assert_eq!(v.dims, native.dims, "{folder}");
+        assert_eq!(v.geometry, native.geometry, "{folder}");
+        assert_eq!(v.stored_type, native.stored_type, "{folder}");
+        assert!(v.voxels == native.voxels, "{folder}: voxels differ");
+        assert_eq!(v.value_range, native.value_range, "{folder}");
+        // The files really are compressed.
+        let first = std::fs::read_dir(fixture(folder))
+            .unwrap()
+            .next()
+            .unwrap()
+            .unwrap()
+            .path();
+        let bytes = std::fs::read(first).unwrap();
+        let uid = if syntax == "RLE Lossless" {
+            uids::RLE_LOSSLESS
+        } else {
+            uids::JPEG_LOSSLESS_SV1
+        };
+        assert!(
+            bytes.windows(uid.len()).any(|w| w == uid.as_bytes()),
+            "{folder} is not {syntax}"
+        );
+    }
+}
+
 #[test]
 fn slices_are_ordered_by_position_along_the_normal() {
     // Sagittal: rows along +y, columns along -z, so the normal is -x (LPS): slices at x = 10,
@@ -430,7 +468,16 @@ fn colour_compressed_and_odd_files_are_refused() {
     let e = error(dir.path());
     assert!(e.contains("colour") && e.contains("RGB"), "{e}");
 
-    // Compressed transfer syntaxes are named.
+    // Compressed transfer syntaxes without a codec here are named.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices[1].syntax = uids::JPEG2000;
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(
+        e.contains("1.dcm") && e.contains("JPEG 2000") && e.contains("not supported"),
+        "{e}"
+    );
+    // A JPEG slice whose pixel data is no JPEG stream: an error naming the file, no panic.
     let mut slices = stack("1.2.3", &[0.0, 1.0]);
     slices[1].syntax = uids::JPEG_BASELINE8_BIT;
     let dir = write_series(&slices, |i| format!("{i}.dcm"));

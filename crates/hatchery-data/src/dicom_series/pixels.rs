@@ -1,11 +1,12 @@
 //! The pixels of DICOM slices: the sample format a header states (refusing what is not
-//! decoded here), one slice's uncompressed pixel data decoded from its bytes, and the voxel
-//! array the slices are gathered in.
+//! decoded here), one slice's pixel data — native bytes decoded here, compressed frames by the
+//! transfer syntax's codec (JPEG, RLE) — and the voxel array the slices are gathered in.
 
 use std::path::Path;
 
 use dicom_core::value::{PrimitiveValue, Value};
 use dicom_dictionary_std::{tags, uids};
+use dicom_encoding::Codec;
 use dicom_object::OpenFileOptions;
 use dicom_transfer_syntax_registry::{TransferSyntaxIndex, TransferSyntaxRegistry};
 
@@ -113,17 +114,7 @@ pub(super) fn read_pixels(
         EXPLICIT_VR_BIG_ENDIAN,
     ];
     if !uncompressed.contains(&syntax) {
-        let name = TransferSyntaxRegistry
-            .get(syntax)
-            .map(|ts| ts.name())
-            .unwrap_or("unknown transfer syntax");
-        return Err(DataError::unsupported(
-            path,
-            format!(
-                "transfer syntax {name} ({syntax}) is not supported, only uncompressed pixel data \
-                 is (convert the series with e.g. `gdcmconv --raw` or `dcmdjpeg`)"
-            ),
-        ));
+        return read_compressed(path, syntax, count, format);
     }
     if big_endian && format.bits_allocated == 32 {
         return Err(DataError::unsupported(
@@ -164,6 +155,49 @@ pub(super) fn read_pixels(
         return Err(DataError::format(
             path,
             format!("truncated pixel data: {} of {needed} bytes", le.len()),
+        ));
+    }
+    Ok(decode(&le[..needed], format))
+}
+
+/// One slice of a compressed transfer syntax, decoded by its codec into little-endian samples
+/// of `format.bits_allocated` bits; refused by name where no codec is built in.
+fn read_compressed(
+    path: &Path,
+    syntax: &str,
+    count: usize,
+    format: PixelFormat,
+) -> Result<Voxels, DataError> {
+    let ts = TransferSyntaxRegistry.get(syntax);
+    let Some(Codec::EncapsulatedPixelData(Some(reader), _)) = ts.map(|ts| ts.codec()) else {
+        let name = ts.map_or("an unknown transfer syntax", |ts| ts.name());
+        return Err(DataError::unsupported(
+            path,
+            format!(
+                "{name} ({syntax}) pixel data is not supported; uncompressed, JPEG (baseline, \
+                 extended, lossless) and RLE Lossless are (convert with e.g. `gdcmconv --raw`)"
+            ),
+        ));
+    };
+    let object = OpenFileOptions::new()
+        .open_file(path)
+        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))?;
+    let mut le = Vec::new();
+    reader.decode_frame(&object, 0, &mut le).map_err(|e| {
+        DataError::format(
+            path,
+            format!(
+                "cannot decode its {} pixel data: {}",
+                ts.map_or("", |t| t.name()),
+                chain(&e)
+            ),
+        )
+    })?;
+    let needed = count * (format.bits_allocated as usize / 8);
+    if le.len() < needed {
+        return Err(DataError::format(
+            path,
+            format!("decoded pixel data has {} of {needed} bytes", le.len()),
         ));
     }
     Ok(decode(&le[..needed], format))

@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Writes compressed copies of the DICOM series fixture (scripts/make_dicom_fixture.py), as
+archives hold them, with other tools' encoders:
+
+    python3 -m pip install pydicom python-gdcm numpy
+    python3 scripts/make_dicom_compressed_fixtures.py
+
+Out (repo root, next to tests/fixtures/world/dicom_series/):
+  dicom_series_rle/    RLE Lossless (1.2.840.10008.1.2.5), pydicom's own RLE encoder
+  dicom_series_jpegll/ JPEG Lossless, first-order prediction (1.2.840.10008.1.2.4.70), GDCM
+
+Both are lossless, so crates/hatchery-data/tests/dicom.rs expects exactly the voxels and the
+geometry of the uncompressed series. The script decodes every written file again (pydicom,
+which uses GDCM for JPEG) and fails unless it gives back the original pixels.
+"""
+
+import sys
+from pathlib import Path
+
+import gdcm
+import numpy as np
+import pydicom
+from pydicom.uid import JPEGLosslessSV1, RLELossless
+
+WORLD = Path(__file__).resolve().parent.parent / "tests" / "fixtures" / "world"
+SOURCE = WORLD / "dicom_series"
+
+
+def write_rle(src: Path, out: Path) -> None:
+    ds = pydicom.dcmread(src)
+    # From the decoded pixels in native byte order: compressing a big-endian slice's raw bytes
+    # would swap them.
+    pixels = ds.pixel_array
+    pixels = pixels.astype(pixels.dtype.newbyteorder("="))
+    ds.compress(RLELossless, arr=pixels, encoding_plugin="pydicom")
+    # dcmwrite, not save_as: the big-endian slices become little endian (as RLE requires).
+    pydicom.dcmwrite(out, ds, enforce_file_format=True)
+
+
+def write_jpeg_lossless(src: Path, out: Path) -> None:
+    reader = gdcm.ImageReader()
+    reader.SetFileName(str(src))
+    if not reader.Read():
+        sys.exit(f"GDCM cannot read {src}")
+    change = gdcm.ImageChangeTransferSyntax()
+    change.SetTransferSyntax(gdcm.TransferSyntax(gdcm.TransferSyntax.JPEGLosslessProcess14_1))
+    change.SetInput(reader.GetImage())
+    if not change.Change():
+        sys.exit(f"GDCM cannot compress {src}")
+    writer = gdcm.ImageWriter()
+    writer.SetFile(reader.GetFile())
+    writer.SetImage(change.GetOutput())
+    writer.SetFileName(str(out))
+    if not writer.Write():
+        sys.exit(f"GDCM cannot write {out}")
+
+
+def main():
+    sources = sorted(SOURCE.glob("*.dcm"))
+    if not sources:
+        sys.exit(f"no slices in {SOURCE}: run scripts/make_dicom_fixture.py first")
+    for folder, syntax, write in [
+        ("dicom_series_rle", RLELossless, write_rle),
+        ("dicom_series_jpegll", JPEGLosslessSV1, write_jpeg_lossless),
+    ]:
+        out_dir = WORLD / folder
+        out_dir.mkdir(exist_ok=True)
+        for src in sources:
+            out = out_dir / src.name
+            write(src, out)
+            back = pydicom.dcmread(out)
+            if back.file_meta.TransferSyntaxUID != syntax:
+                sys.exit(f"{out}: written as {back.file_meta.TransferSyntaxUID}, not {syntax}")
+            if not np.array_equal(back.pixel_array, pydicom.dcmread(src).pixel_array):
+                sys.exit(f"{out}: does not decode to the pixels of {src}")
+        size = sum(p.stat().st_size for p in out_dir.glob("*.dcm"))
+        print(f"{folder}: {len(sources)} slices, {size} bytes, {syntax.name}")
+
+
+if __name__ == "__main__":
+    main()
