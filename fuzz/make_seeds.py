@@ -195,6 +195,11 @@ def metaimage_seeds():
 def dicom_seeds():
     files = sorted(glob.glob("tests/fixtures/world/dicom_series/*.dcm"))
     copy("dicom", files[:3])
+    # Compressed pixel data (RLE, JPEG Lossless with VR UN attributes), for the codec paths.
+    for folder in ("dicom_series_rle", "dicom_series_jpegll"):
+        for path in sorted(glob.glob(f"tests/fixtures/world/{folder}/*.dcm"))[:2]:
+            with open(path, "rb") as f:
+                put("dicom", f"{folder}_{os.path.basename(path)}", f.read())
     data = []
     for path in files[:4]:
         with open(path, "rb") as f:
