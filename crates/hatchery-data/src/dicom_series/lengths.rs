@@ -5,9 +5,8 @@
 //! sequences recursively, so sequences nested deep enough overflow the stack (an abort, not an
 //! error). This walk reads only the element headers, skipping values, and refuses a file
 //! whose declared lengths exceed what is left of it, or whose sequences nest deeper than
-//! [`MAX_DEPTH`]. Where it cannot tell what dicom-rs would make of the bytes (undefined-length
-//! values other than sequences and encapsulated pixel data), it stops and leaves the file to
-//! dicom-rs.
+//! [`MAX_DEPTH`]. Undefined-length values are walked as dicom-parser reads them: PixelData as
+//! fragments, every other one as a sequence of items.
 
 use std::fs::File;
 use std::io::{self, BufReader, Read, Seek};
@@ -336,14 +335,12 @@ impl<'a> Walk<'a> {
                     false
                 }
                 _ if header.len == UNDEFINED => {
-                    let sequence = &header.vr == b"SQ" || self.encoding == Encoding::ImplicitLittle;
                     if header.tag == PIXEL_DATA {
                         self.fragments = true;
-                    } else if sequence {
-                        self.open(input, header.len)?;
                     } else {
-                        // An undefined-length UN, OB or OW: not modelled here.
-                        return Ok(());
+                        // dicom-parser reads every other undefined-length element (an OB or UN
+                        // too, whatever its VR) as a sequence of data set items: walk it so.
+                        self.open(input, header.len)?;
                     }
                     false
                 }
