@@ -264,7 +264,10 @@ fn value(object: &DefaultDicomObject, tag: Tag) -> Option<PrimitiveValue> {
         _ => PrimitiveValue::Strs(
             String::from_utf8_lossy(&bytes)
                 .split('\\')
-                .map(|part| part.to_string())
+                .map(|part| {
+                    part.trim_matches(|c: char| c == '\0' || c == ' ')
+                        .to_string()
+                })
                 .collect(),
         ),
     })
