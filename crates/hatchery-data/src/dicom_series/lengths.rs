@@ -177,8 +177,9 @@ fn peek(r: &mut BufReader<File>) -> io::Result<&[u8]> {
 struct Walk<'a> {
     path: &'a Path,
     encoding: Encoding,
-    /// Where each open sequence or item ends (`None`: undefined length, ended by a delimiter).
-    open: Vec<Option<u64>>,
+    /// Where each open sequence or item ends (`None`: undefined length, ended by a delimiter),
+    /// and whether it is a sequence (holding items) rather than an item (holding elements).
+    open: Vec<(Option<u64>, bool)>,
     fragments: bool,
 }
 
@@ -285,22 +286,24 @@ impl<'a> Walk<'a> {
         Ok(())
     }
 
-    fn open(&mut self, input: &Input, len: u32) -> Result<(), DataError> {
+    fn open(&mut self, input: &Input, len: u32, sequence: bool) -> Result<(), DataError> {
         if self.open.len() >= MAX_DEPTH {
             return Err(DataError::unsupported(
                 self.path,
                 format!("DICOM sequences nested more than {MAX_DEPTH} deep"),
             ));
         }
-        self.open
-            .push((len != UNDEFINED).then(|| input.pos + u64::from(len)));
+        self.open.push((
+            (len != UNDEFINED).then(|| input.pos + u64::from(len)),
+            sequence,
+        ));
         Ok(())
     }
 
     fn data_set(&mut self, input: &mut Input) -> Result<(), DataError> {
         loop {
             // Close the defined-length sequences and items that end here.
-            while let Some(&Some(end)) = self.open.last() {
+            while let Some(&(Some(end), _)) = self.open.last() {
                 if input.pos < end {
                     break;
                 }
@@ -310,6 +313,21 @@ impl<'a> Walk<'a> {
                 Ok(h) => h,
                 Err(e) => return self.ended(e),
             };
+            // A sequence holds items only (PS3.5 7.5); dicom-parser's recovery from anything
+            // else is not modelled here, and it once allocated a 4 GB value after such a header.
+            if !self.fragments
+                && matches!(self.open.last(), Some((_, true)))
+                && !matches!(header.tag, ITEM | SEQUENCE_END)
+            {
+                let (group, element) = header.tag;
+                return Err(DataError::format(
+                    self.path,
+                    format!(
+                        "unreadable DICOM file: element ({group:04X},{element:04X}) inside a \
+                         sequence where an item should start"
+                    ),
+                ));
+            }
             // Delimiters have no value (their length is not used); everything else is read.
             if !matches!(header.tag, ITEM_END | SEQUENCE_END) {
                 self.check_length(input, header)?;
@@ -317,11 +335,11 @@ impl<'a> Walk<'a> {
             let skip = match header.tag {
                 ITEM if self.fragments => true,
                 ITEM => {
-                    self.open(input, header.len)?;
+                    self.open(input, header.len, false)?;
                     false
                 }
                 ITEM_END => {
-                    if matches!(self.open.last(), Some(None)) {
+                    if matches!(self.open.last(), Some((None, false))) {
                         self.open.pop();
                     }
                     false
@@ -329,7 +347,7 @@ impl<'a> Walk<'a> {
                 SEQUENCE_END => {
                     if self.fragments {
                         self.fragments = false;
-                    } else if matches!(self.open.last(), Some(None)) {
+                    } else if matches!(self.open.last(), Some((None, true))) {
                         self.open.pop();
                     }
                     false
@@ -340,12 +358,12 @@ impl<'a> Walk<'a> {
                     } else {
                         // dicom-parser reads every other undefined-length element (an OB or UN
                         // too, whatever its VR) as a sequence of data set items: walk it so.
-                        self.open(input, header.len)?;
+                        self.open(input, header.len, true)?;
                     }
                     false
                 }
                 _ if &header.vr == b"SQ" => {
-                    self.open(input, header.len)?;
+                    self.open(input, header.len, true)?;
                     false
                 }
                 // Implicit VR does not say which elements are sequences; one whose value starts
@@ -354,7 +372,7 @@ impl<'a> Walk<'a> {
                     && header.len >= 8
                     && input.peek_item() =>
                 {
-                    self.open(input, header.len)?;
+                    self.open(input, header.len, true)?;
                     false
                 }
                 _ => true,
