@@ -9,11 +9,13 @@
 //! fragments, every other one as a sequence of items.
 
 use std::fs::File;
-use std::io::{self, BufReader, Read, Seek};
+use std::io::{self, BufReader, Read};
 
 use std::path::Path;
 
-use dicom_dictionary_std::uids;
+use dicom_core::dictionary::DataDictionary;
+use dicom_core::{Tag, VR};
+use dicom_dictionary_std::{StandardDataDictionary, uids};
 
 use crate::DataError;
 use crate::raw_voxels::decoded_bound;
@@ -161,17 +163,6 @@ impl Input {
     }
 }
 
-/// The next bytes of a buffered file without consuming them: at least four unless the file
-/// ends first.
-fn peek(r: &mut BufReader<File>) -> io::Result<&[u8]> {
-    if r.buffer().len() < 4 {
-        // Seeking drops the buffer, so the next fill starts here.
-        let here = r.stream_position()?;
-        r.seek(io::SeekFrom::Start(here))?;
-    }
-    io::BufRead::fill_buf(r)
-}
-
 /// The walk through a data set: open sequences and items, and whether the current undefined
 /// length value holds pixel data fragments.
 struct Walk<'a> {
@@ -223,11 +214,28 @@ impl<'a> Walk<'a> {
         let mut buf = [0u8; 8];
         input.read_exact(&mut buf)?;
         let tag = (u16_at(&buf[0..2]), u16_at(&buf[2..4]));
-        // Items and delimiters have no VR, in every encoding; neither has implicit VR.
-        if tag.0 == 0xFFFE || self.encoding == Encoding::ImplicitLittle {
+        // Items and delimiters have no VR, in every encoding.
+        if tag.0 == 0xFFFE {
             return Ok(Header {
                 tag,
                 vr: *b"  ",
+                len: u32_at(&buf[4..8]),
+            });
+        }
+        // Implicit VR: the VR dicom-encoding's decoder gives the tag (OW for pixel and overlay
+        // data, else the dictionary's, else UN), so that values are sized and sequences found
+        // as dicom-parser reads them.
+        if self.encoding == Encoding::ImplicitLittle {
+            let vr = if tag == PIXEL_DATA || (tag.0 >> 8 == 0x60 && tag.1 == 0x3000) {
+                VR::OW
+            } else {
+                StandardDataDictionary
+                    .by_tag(Tag(tag.0, tag.1))
+                    .map_or(VR::UN, |entry| entry.vr.relaxed())
+            };
+            return Ok(Header {
+                tag,
+                vr: vr.to_bytes(),
                 len: u32_at(&buf[4..8]),
             });
         }
@@ -366,30 +374,11 @@ impl<'a> Walk<'a> {
                     self.open(input, header.len, true)?;
                     false
                 }
-                // Implicit VR does not say which elements are sequences; one whose value starts
-                // with an item tag is walked into, as dicom-rs would (by its dictionary).
-                _ if self.encoding == Encoding::ImplicitLittle
-                    && header.len >= 8
-                    && input.peek_item() =>
-                {
-                    self.open(input, header.len, true)?;
-                    false
-                }
                 _ => true,
             };
             if skip && let Err(e) = input.skip(header.len.into()) {
                 return self.ended(e);
             }
         }
-    }
-}
-
-impl Input {
-    /// Whether the next bytes are an item tag (little endian).
-    fn peek_item(&mut self) -> bool {
-        let Reader::File(r) = &mut self.reader else {
-            return false;
-        };
-        matches!(peek(r), Ok([0xFE, 0xFF, 0x00, 0xE0, ..]))
     }
 }
