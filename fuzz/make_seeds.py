@@ -195,11 +195,16 @@ def metaimage_seeds():
 def dicom_seeds():
     files = sorted(glob.glob("tests/fixtures/world/dicom_series/*.dcm"))
     copy("dicom", files[:3])
-    # Compressed pixel data (RLE, JPEG Lossless with VR UN attributes), for the codec paths.
+    # Compressed pixel data (RLE, JPEG Lossless with VR UN attributes): single files for the
+    # header paths, pairs (a series) for the codecs, which only a stack of two slices reaches.
     for folder in ("dicom_series_rle", "dicom_series_jpegll"):
+        pair = []
         for path in sorted(glob.glob(f"tests/fixtures/world/{folder}/*.dcm"))[:2]:
             with open(path, "rb") as f:
-                put("dicom", f"{folder}_{os.path.basename(path)}", f.read())
+                pair.append(f.read())
+            put("dicom", f"{folder}_{os.path.basename(path)}", pair[-1])
+        if len(pair) == 2:
+            put("dicom2", f"{folder}_pair", struct.pack("<H", len(pair[0])) + pair[0] + pair[1])
     data = []
     for path in files[:4]:
         with open(path, "rb") as f:

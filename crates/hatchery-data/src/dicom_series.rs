@@ -6,8 +6,8 @@
 //! they are turned into hatchery's RAS+ world by [`Geometry::from_lps`].
 //!
 //! Native pixel data is decoded here from its bytes; compressed pixel data by the transfer
-//! syntax's codec (JPEG baseline, extended and lossless; RLE Lossless), other compressed syntaxes
-//! (JPEG-LS, JPEG 2000, ...) are refused by name.
+//! syntax's codec (8-bit JPEG baseline/extended, JPEG lossless, RLE Lossless; see `compressed`);
+//! other compressed syntaxes (12-bit JPEG, JPEG-LS, JPEG 2000, ...) are refused by name.
 
 use std::collections::BTreeMap;
 use std::error::Error;
@@ -29,6 +29,7 @@ use crate::nifti_file::MAX_VOXELS;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
+mod compressed;
 mod lengths;
 mod pixels;
 
@@ -64,7 +65,9 @@ const SAME_TOLERANCE: f64 = 1e-4;
 ///   are applied (float32 result); they may differ between slices.
 ///   MONOCHROME1 values are kept as stored (not inverted), as ITK does.
 /// * **Transfer syntaxes**: implicit VR little endian, explicit VR little and big endian,
-///   deflated explicit VR little endian; JPEG baseline, extended and lossless, RLE Lossless.
+///   deflated explicit VR little endian; 8-bit JPEG baseline/extended, JPEG lossless (2–16
+///   bits), RLE Lossless (each slice's stream checked against its Rows, Columns and
+///   BitsAllocated before decoding).
 ///
 /// Errors (a [`DataError`] naming the folder or the offending file): no DICOM image in the
 /// folder; fewer than 2 slices, or fewer than 2 rows or columns; a missing or malformed
@@ -490,8 +493,12 @@ impl Stack {
             .all(|s| s.slope == self.slices[0].slope && s.intercept == self.slices[0].intercept);
         let mut out: Option<Voxels> = None;
         for slice in &self.slices {
-            let mut voxels =
-                read_pixels(&slice.path, &slice.transfer_syntax, per_slice, self.format)?;
+            let mut voxels = read_pixels(
+                &slice.path,
+                &slice.transfer_syntax,
+                [self.rows, self.columns],
+                self.format,
+            )?;
             if !uniform_rescale {
                 voxels = Voxels::F32(voxels.rescaled(slice.slope, slice.intercept).into_f32());
             }

@@ -311,7 +311,12 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
 
     let (geometry, mut placement) = nifti_geometry(path, h)?;
     if volumes > 1 {
-        placement += &format!("; the first of {volumes} volumes (dim[4] = {})", extra(4));
+        placement += &format!(
+            "; the first of {volumes} volumes (dim[4], dim[6], dim[7] = {}, {}, {})",
+            extra(4),
+            extra(6),
+            extra(7)
+        );
     }
 
     // vox_offset is a float in the format; it must leave room for the 4-byte extender. Some

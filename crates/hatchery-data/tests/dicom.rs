@@ -259,9 +259,9 @@ fn error(dir: &Path) -> String {
 
 /// The fixture series compressed by other tools' encoders (scripts/
 /// make_dicom_compressed_fixtures.py: RLE Lossless by pydicom, JPEG Lossless by GDCM) loads to
-/// exactly the voxels and placement of the uncompressed series. GDCM writes the attributes of the
-/// slices that were implicit VR with VR UN (SeriesInstanceUID, Rows, ...): they are read by their
-/// dictionary VR, as pydicom and GDCM read them.
+/// exactly the voxels and placement of the uncompressed series. GDCM writes some text attributes
+/// of the 4 slices that were implicit VR with VR UN (SeriesInstanceUID, SOPInstanceUID,
+/// Modality, ...): they are read by their dictionary VR, as pydicom and GDCM read them.
 #[test]
 fn lossless_compressed_copies_load_the_same_volume() {
     let native = load_dicom_series(&fixture("dicom_series")).unwrap();
@@ -293,6 +293,30 @@ fn lossless_compressed_copies_load_the_same_volume() {
             "{folder} is not {syntax}"
         );
     }
+}
+
+/// A JPEG stream that does not fit its slice is refused before the codec sees it (the codec
+/// would index past its buffer): the JPEG Lossless fixture with Rows changed from 16 to 20.
+#[test]
+fn a_jpeg_frame_that_does_not_fit_its_slice_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let rows_16 = b"\x28\x00\x10\x00US\x02\x00\x10\x00";
+    let rows_20 = b"\x28\x00\x10\x00US\x02\x00\x14\x00";
+    for entry in std::fs::read_dir(fixture("dicom_series_jpegll")).unwrap() {
+        let path = entry.unwrap().path();
+        let mut bytes = std::fs::read(&path).unwrap();
+        let at = bytes
+            .windows(rows_16.len())
+            .position(|w| w == rows_16)
+            .expect("Rows as US 16");
+        bytes[at..at + rows_20.len()].copy_from_slice(rows_20);
+        std::fs::write(dir.path().join(path.file_name().unwrap()), bytes).unwrap();
+    }
+    let e = load_dicom_series(dir.path()).unwrap_err().to_string();
+    assert!(
+        e.contains("JPEG frame is 20×16") && e.contains("the slice is 20×20"),
+        "{e}"
+    );
 }
 
 #[test]

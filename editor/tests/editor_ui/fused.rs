@@ -78,13 +78,10 @@ fn node_times_name_the_fused_pass_and_a_pinned_inner_output_reruns_without_what_
         "the click pinned it"
     );
     wait_for_render(&mut h);
-    let thumbnail = h
-        .state()
-        .preview
-        .thumbnails
-        .get(&port)
-        .expect("a thumbnail");
-    assert!(thumbnail.size()[0] > 0);
+    assert!(
+        h.state().preview.thumbnails.contains_key(&port),
+        "a thumbnail"
+    );
     let times = h.state().preview.times.clone();
     let node = &times["with_secondary"];
     assert!(

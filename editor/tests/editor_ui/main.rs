@@ -519,7 +519,11 @@ fn a_warning_is_shown_on_its_node_and_the_picture_still_renders() {
         .unwrap();
     wait_for_render(&mut h);
     assert!(h.state().preview.failed_node.is_none());
-    assert!(h.state().preview.viewport.is_some());
+    assert!(
+        h.state().preview.error.is_none(),
+        "{:?}",
+        h.state().preview.error
+    );
     h.run_steps(2);
     let label = h.get_by_label_contains("outside the volume's value range");
     let at = h.state().canvas_transform * label.rect().center();

@@ -1,14 +1,12 @@
 //! The pixels of DICOM slices: the sample format a header states (refusing what is not
-//! decoded here), one slice's pixel data — native bytes decoded here, compressed frames by the
-//! transfer syntax's codec (JPEG, RLE) — and the voxel array the slices are gathered in.
+//! decoded here), one slice's pixel data — native bytes decoded here, compressed frames by
+//! [`super::compressed`] — and the voxel array the slices are gathered in.
 
 use std::path::Path;
 
 use dicom_core::value::{PrimitiveValue, Value};
 use dicom_dictionary_std::{tags, uids};
-use dicom_encoding::Codec;
 use dicom_object::OpenFileOptions;
-use dicom_transfer_syntax_registry::{TransferSyntaxIndex, TransferSyntaxRegistry};
 
 use super::{Header, chain, optional, required, text};
 use crate::DataError;
@@ -97,13 +95,15 @@ pub(super) fn pixel_format(header: &Header) -> Result<PixelFormat, DataError> {
     })
 }
 
-/// Reads one slice's pixel data: `count` samples in `format`, in the slice's own type.
+/// Reads one slice's pixel data: `rows` × `columns` samples in `format`, in the slice's own
+/// type.
 pub(super) fn read_pixels(
     path: &Path,
     syntax: &str,
-    count: usize,
+    [rows, columns]: [u32; 2],
     format: PixelFormat,
 ) -> Result<Voxels, DataError> {
+    let count = rows as usize * columns as usize;
     let big_endian = syntax == EXPLICIT_VR_BIG_ENDIAN;
     // Deflate compresses the whole data set, which dicom-object inflates; the pixel data inside
     // is native.
@@ -114,7 +114,15 @@ pub(super) fn read_pixels(
         EXPLICIT_VR_BIG_ENDIAN,
     ];
     if !uncompressed.contains(&syntax) {
-        return read_compressed(path, syntax, count, format);
+        let le = super::compressed::decode_slice(path, syntax, [rows, columns], format)?;
+        let needed = count * (format.bits_allocated as usize / 8);
+        if le.len() < needed {
+            return Err(DataError::format(
+                path,
+                format!("decoded pixel data has {} of {needed} bytes", le.len()),
+            ));
+        }
+        return Ok(decode(&le[..needed], format));
     }
     if big_endian && format.bits_allocated == 32 {
         return Err(DataError::unsupported(
@@ -155,49 +163,6 @@ pub(super) fn read_pixels(
         return Err(DataError::format(
             path,
             format!("truncated pixel data: {} of {needed} bytes", le.len()),
-        ));
-    }
-    Ok(decode(&le[..needed], format))
-}
-
-/// One slice of a compressed transfer syntax, decoded by its codec into little-endian samples
-/// of `format.bits_allocated` bits; refused by name where no codec is built in.
-fn read_compressed(
-    path: &Path,
-    syntax: &str,
-    count: usize,
-    format: PixelFormat,
-) -> Result<Voxels, DataError> {
-    let ts = TransferSyntaxRegistry.get(syntax);
-    let Some(Codec::EncapsulatedPixelData(Some(reader), _)) = ts.map(|ts| ts.codec()) else {
-        let name = ts.map_or("an unknown transfer syntax", |ts| ts.name());
-        return Err(DataError::unsupported(
-            path,
-            format!(
-                "{name} ({syntax}) pixel data is not supported; uncompressed, JPEG (baseline, \
-                 extended, lossless) and RLE Lossless are (convert with e.g. `gdcmconv --raw`)"
-            ),
-        ));
-    };
-    let object = OpenFileOptions::new()
-        .open_file(path)
-        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))?;
-    let mut le = Vec::new();
-    reader.decode_frame(&object, 0, &mut le).map_err(|e| {
-        DataError::format(
-            path,
-            format!(
-                "cannot decode its {} pixel data: {}",
-                ts.map_or("", |t| t.name()),
-                chain(&e)
-            ),
-        )
-    })?;
-    let needed = count * (format.bits_allocated as usize / 8);
-    if le.len() < needed {
-        return Err(DataError::format(
-            path,
-            format!("decoded pixel data has {} of {needed} bytes", le.len()),
         ));
     }
     Ok(decode(&le[..needed], format))

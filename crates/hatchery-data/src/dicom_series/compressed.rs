@@ -1,0 +1,261 @@
+//! Compressed (encapsulated) pixel data of one slice, decoded by the transfer syntax's codec
+//! from dicom-transfer-syntax-registry: JPEG (jpeg-decoder) and RLE Lossless.
+//!
+//! The codecs trust their input: a JPEG frame larger than the slice, or an RLE header with
+//! segments outside its fragment, makes them index out of bounds (panic), and jpeg-decoder
+//! allocates what a JPEG frame header says. So the stream's own header is checked against the
+//! slice first (size, precision, segments), and a panic inside a codec still becomes an error
+//! naming the file.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
+
+use dicom_dictionary_std::tags;
+use dicom_encoding::Codec;
+use dicom_object::OpenFileOptions;
+use dicom_transfer_syntax_registry::{TransferSyntaxIndex, TransferSyntaxRegistry};
+
+use super::chain;
+use super::pixels::PixelFormat;
+use crate::DataError;
+
+const RLE_LOSSLESS: &str = "1.2.840.10008.1.2.5";
+/// The supported encodings, for messages.
+const SUPPORTED: &str = "uncompressed, 8-bit JPEG baseline/extended, JPEG lossless (2–16 bits) \
+                         and RLE Lossless are";
+
+/// Decodes the first frame of the slice at `path` (`rows` × `columns` samples of `format`) into
+/// little-endian samples of `format.bits_allocated` bits.
+pub(super) fn decode_slice(
+    path: &Path,
+    syntax: &str,
+    [rows, columns]: [u32; 2],
+    format: PixelFormat,
+) -> Result<Vec<u8>, DataError> {
+    let ts = TransferSyntaxRegistry.get(syntax);
+    let name = ts.map_or("an unknown transfer syntax", |ts| ts.name());
+    let Some(Codec::EncapsulatedPixelData(Some(reader), _)) = ts.map(|ts| ts.codec()) else {
+        return Err(DataError::unsupported(
+            path,
+            format!(
+                "{name} ({syntax}) pixel data is not supported; {SUPPORTED} (convert with e.g. \
+                 `gdcmconv --raw`)"
+            ),
+        ));
+    };
+    let object = OpenFileOptions::new()
+        .open_file(path)
+        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))?;
+    let fragments = object
+        .element_opt(tags::PIXEL_DATA)
+        .ok()
+        .flatten()
+        .and_then(|e| e.value().fragments())
+        .filter(|f| !f.is_empty())
+        .ok_or_else(|| DataError::format(path, format!("{name} pixel data without fragments")))?;
+    let first = fragments[0].as_slice();
+    if syntax == RLE_LOSSLESS {
+        check_rle(first, format).map_err(|m| DataError::format(path, format!("{name}: {m}")))?;
+    } else {
+        check_jpeg(first, rows, columns, format).map_err(|(unsupported, m)| {
+            if unsupported {
+                DataError::unsupported(path, format!("{m}; {SUPPORTED}"))
+            } else {
+                DataError::format(path, format!("{name}: {m}"))
+            }
+        })?;
+    }
+    let mut le = Vec::new();
+    match catch_unwind(AssertUnwindSafe(|| {
+        reader.decode_frame(&object, 0, &mut le)
+    })) {
+        Ok(Ok(())) => Ok(le),
+        Ok(Err(e)) => Err(DataError::format(
+            path,
+            format!("cannot decode its {name} pixel data: {}", chain(&e)),
+        )),
+        Err(_) => Err(DataError::format(
+            path,
+            format!("corrupt {name} pixel data (its decoder failed)"),
+        )),
+    }
+}
+
+/// RLE Lossless (PS3.5 G.3): a 64-byte header of 15 segment offsets, one segment per byte of
+/// a sample (single-sample pixels), each starting inside the fragment after the previous one.
+fn check_rle(fragment: &[u8], format: PixelFormat) -> Result<(), String> {
+    let word = |i: usize| {
+        fragment
+            .get(4 * i..4 * i + 4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
+    };
+    let segments = word(0).filter(|_| fragment.len() >= 64).ok_or_else(|| {
+        format!(
+            "the fragment has {} bytes, less than its 64-byte header",
+            fragment.len()
+        )
+    })?;
+    let wanted = format.bits_allocated as usize / 8;
+    if segments != wanted {
+        return Err(format!(
+            "{segments} segments, a {}-bit grey image has {wanted}",
+            format.bits_allocated
+        ));
+    }
+    let mut previous = 63;
+    for i in 1..=segments {
+        let offset = word(i).unwrap_or(0);
+        if offset <= previous || offset >= fragment.len() {
+            return Err(format!(
+                "segment {i} starts at byte {offset}, outside the {}-byte fragment or before \
+                 the previous one",
+                fragment.len()
+            ));
+        }
+        previous = offset;
+    }
+    Ok(())
+}
+
+/// The JPEG frame header (SOFn) against the slice: same size, one component, a precision the
+/// decoder reads into `format.bits_allocated`. Errors: `(true, _)` for a valid stream the
+/// decoder does not read, `(false, _)` for a stream that does not fit the slice.
+fn check_jpeg(
+    stream: &[u8],
+    rows: u32,
+    columns: u32,
+    format: PixelFormat,
+) -> Result<(), (bool, String)> {
+    let bad = |m: String| Err((false, m));
+    if !stream.starts_with(&[0xFF, 0xD8]) {
+        return bad("the fragment does not start a JPEG stream (no SOI marker)".into());
+    }
+    let mut at = 2;
+    loop {
+        // Markers may be preceded by fill bytes 0xFF.
+        while stream.get(at) == Some(&0xFF) && stream.get(at + 1) == Some(&0xFF) {
+            at += 1;
+        }
+        let (Some(&0xFF), Some(&marker)) = (stream.get(at), stream.get(at + 1)) else {
+            return bad("no JPEG frame header (SOF) before the image data".into());
+        };
+        let Some(length) = stream
+            .get(at + 2..at + 4)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]) as usize)
+        else {
+            return bad("the JPEG stream ends inside a marker".into());
+        };
+        let segment = stream.get(at + 4..at + 2 + length);
+        match marker {
+            0xC0..=0xC3 | 0xC5..=0xC7 | 0xC9..=0xCB | 0xCD..=0xCF => {
+                let Some(&[precision, y0, y1, x0, x1, components, ..]) = segment else {
+                    return bad("a truncated JPEG frame header".into());
+                };
+                let (height, width) = (
+                    u16::from_be_bytes([y0, y1]) as u32,
+                    u16::from_be_bytes([x0, x1]) as u32,
+                );
+                if marker > 0xC3 {
+                    return Err((
+                        true,
+                        format!(
+                            "JPEG process SOF{} (hierarchical or arithmetic coding) is not \
+                             decoded",
+                            marker - 0xC0
+                        ),
+                    ));
+                }
+                if (width, height) != (columns, rows) || components != 1 {
+                    return bad(format!(
+                        "its JPEG frame is {width}×{height} with {components} components, the \
+                         slice is {columns}×{rows} grey"
+                    ));
+                }
+                let lossless = marker == 0xC3;
+                if !lossless && precision != 8 {
+                    return Err((
+                        true,
+                        format!("{precision}-bit JPEG (DCT) is not decoded, only 8-bit"),
+                    ));
+                }
+                let allocated = if precision <= 8 { 8 } else { 16 };
+                if !(2..=16).contains(&precision) || format.bits_allocated != allocated {
+                    return bad(format!(
+                        "{precision}-bit JPEG samples in a slice of BitsAllocated {}",
+                        format.bits_allocated
+                    ));
+                }
+                return Ok(());
+            }
+            // Start of scan or end of image before any frame header.
+            0xDA | 0xD9 => return bad("no JPEG frame header (SOF) before the image data".into()),
+            _ => at += 2 + length,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GREY8: PixelFormat = PixelFormat {
+        bits_allocated: 8,
+        bits_stored: 8,
+        signed: false,
+    };
+    const GREY16: PixelFormat = PixelFormat {
+        bits_allocated: 16,
+        bits_stored: 12,
+        signed: true,
+    };
+
+    fn sof(marker: u8, precision: u8, height: u16, width: u16, components: u8) -> Vec<u8> {
+        let mut s = vec![
+            0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x04, 0x00, 0x00, 0xFF, marker, 0, 11,
+        ];
+        s.push(precision);
+        s.extend(height.to_be_bytes());
+        s.extend(width.to_be_bytes());
+        s.extend([components, 1, 0x11, 0]);
+        s
+    }
+
+    #[test]
+    fn jpeg_frames_must_fit_the_slice() {
+        assert!(check_jpeg(&sof(0xC3, 16, 4, 6, 1), 4, 6, GREY16).is_ok());
+        assert!(check_jpeg(&sof(0xC0, 8, 4, 6, 1), 4, 6, GREY8).is_ok());
+        let refused = |s: &[u8], f| check_jpeg(s, 4, 6, f).unwrap_err();
+        // A frame larger than the slice (the codec would index past its buffer).
+        assert!(!refused(&sof(0xC3, 16, 400, 6, 1), GREY16).0);
+        assert!(!refused(&sof(0xC3, 16, 4, 6, 3), GREY16).0);
+        // 8-bit samples in a 16-bit slice, 12-bit DCT, arithmetic coding.
+        assert!(!refused(&sof(0xC3, 8, 4, 6, 1), GREY16).0);
+        assert!(refused(&sof(0xC1, 12, 4, 6, 1), GREY16).0);
+        assert!(refused(&sof(0xC9, 8, 4, 6, 1), GREY8).0);
+        // Not JPEG, truncated, no frame header.
+        assert!(!refused(&[0, 1, 2], GREY8).0);
+        assert!(!refused(&sof(0xC3, 16, 4, 6, 1)[..14], GREY16).0);
+        assert!(!refused(&[0xFF, 0xD8, 0xFF, 0xDA, 0, 2], GREY8).0);
+        assert!(!refused(&[0xFF, 0xD8, 0xFF, 0xE0, 0xFF, 0xFF], GREY8).0);
+    }
+
+    #[test]
+    fn rle_headers_must_fit_the_fragment() {
+        let header = |segments: u32, offsets: &[u32], len: usize| {
+            let mut f = vec![0u8; len];
+            f[0..4].copy_from_slice(&segments.to_le_bytes());
+            for (i, o) in offsets.iter().enumerate() {
+                f[4 + 4 * i..8 + 4 * i].copy_from_slice(&o.to_le_bytes());
+            }
+            f
+        };
+        assert!(check_rle(&header(2, &[64, 70], 80), GREY16).is_ok());
+        assert!(check_rle(&header(1, &[64], 80), GREY8).is_ok());
+        assert!(check_rle(&[1, 0, 0], GREY8).is_err());
+        assert!(check_rle(&header(u32::MAX, &[64], 80), GREY8).is_err());
+        assert!(check_rle(&header(1, &[64], 80), GREY16).is_err());
+        assert!(check_rle(&header(2, &[64, 64], 80), GREY16).is_err());
+        assert!(check_rle(&header(2, &[64, 900], 80), GREY16).is_err());
+        assert!(check_rle(&header(1, &[10], 80), GREY8).is_err());
+    }
+}
