@@ -55,7 +55,9 @@ pub(super) fn decode_slice(
         .ok_or_else(|| DataError::format(path, format!("{name} pixel data without fragments")))?;
     let first = fragments[0].as_slice();
     if syntax == RLE_LOSSLESS {
-        check_rle(first, format).map_err(|m| DataError::format(path, format!("{name}: {m}")))?;
+        let samples = rows as usize * columns as usize;
+        check_rle(first, samples, format)
+            .map_err(|m| DataError::format(path, format!("{name}: {m}")))?;
     } else {
         check_jpeg(first, rows, columns, format).map_err(|(unsupported, m)| {
             if unsupported {
@@ -82,8 +84,10 @@ pub(super) fn decode_slice(
 }
 
 /// RLE Lossless (PS3.5 G.3): a 64-byte header of 15 segment offsets, one segment per byte of
-/// a sample (single-sample pixels), each starting inside the fragment after the previous one.
-fn check_rle(fragment: &[u8], format: PixelFormat) -> Result<(), String> {
+/// a sample (single-sample pixels), each starting inside the fragment after the previous one
+/// and holding PackBits runs for at least `samples` bytes (the codec indexes past a shorter
+/// one).
+fn check_rle(fragment: &[u8], samples: usize, format: PixelFormat) -> Result<(), String> {
     let word = |i: usize| {
         fragment
             .get(4 * i..4 * i + 4)
@@ -114,7 +118,52 @@ fn check_rle(fragment: &[u8], format: PixelFormat) -> Result<(), String> {
         }
         previous = offset;
     }
+    for i in 1..=segments {
+        let end = if i == segments {
+            fragment.len()
+        } else {
+            word(i + 1).unwrap_or(0)
+        };
+        let segment = &fragment[word(i).unwrap_or(0)..end];
+        if !packbits_holds(segment, samples) {
+            return Err(format!(
+                "segment {i} decodes to fewer than the slice's {samples} bytes"
+            ));
+        }
+    }
     Ok(())
+}
+
+/// Whether PackBits `data` decodes to at least `needed` bytes with every run complete.
+fn packbits_holds(data: &[u8], needed: usize) -> bool {
+    let (mut at, mut out) = (0usize, 0usize);
+    while out < needed {
+        let Some(&control) = data.get(at) else {
+            return false;
+        };
+        match control as i8 {
+            // A literal run of n + 1 bytes.
+            n @ 0.. => {
+                let count = n as usize + 1;
+                if at + 1 + count > data.len() {
+                    return false;
+                }
+                at += 1 + count;
+                out += count;
+            }
+            // No operation.
+            -128 => at += 1,
+            // The next byte 1 − n times.
+            n => {
+                if at + 1 >= data.len() {
+                    return false;
+                }
+                at += 2;
+                out += (1 - n as isize) as usize;
+            }
+        }
+    }
+    true
 }
 
 /// The JPEG frame header (SOFn) against the slice: same size, one component, a precision the
@@ -249,13 +298,27 @@ mod tests {
             }
             f
         };
-        assert!(check_rle(&header(2, &[64, 70], 80), GREY16).is_ok());
-        assert!(check_rle(&header(1, &[64], 80), GREY8).is_ok());
-        assert!(check_rle(&[1, 0, 0], GREY8).is_err());
-        assert!(check_rle(&header(u32::MAX, &[64], 80), GREY8).is_err());
-        assert!(check_rle(&header(1, &[64], 80), GREY16).is_err());
-        assert!(check_rle(&header(2, &[64, 64], 80), GREY16).is_err());
-        assert!(check_rle(&header(2, &[64, 900], 80), GREY16).is_err());
-        assert!(check_rle(&header(1, &[10], 80), GREY8).is_err());
+        // Segments of 6 samples: a run of 6 (−5, value), or a literal of 6 (5, six bytes).
+        let with = |mut f: Vec<u8>, at: usize, bytes: &[u8]| {
+            f[at..at + bytes.len()].copy_from_slice(bytes);
+            f
+        };
+        let two = with(
+            header(2, &[64, 70], 80),
+            64,
+            &[0xFB, 7, 5, 1, 2, 3, 4, 5, 6],
+        );
+        assert!(check_rle(&two, 6, GREY16).is_ok());
+        let one = with(header(1, &[64], 66), 64, &[0xFB, 7]);
+        assert!(check_rle(&one, 6, GREY8).is_ok());
+        // Decodes to fewer bytes than the slice (the codec would index past it).
+        assert!(check_rle(&one, 7, GREY8).is_err());
+        assert!(check_rle(&with(header(1, &[64], 70), 64, &[5, 1, 2]), 6, GREY8).is_err());
+        assert!(check_rle(&[1, 0, 0], 6, GREY8).is_err());
+        assert!(check_rle(&header(u32::MAX, &[64], 80), 6, GREY8).is_err());
+        assert!(check_rle(&header(1, &[64], 80), 6, GREY16).is_err());
+        assert!(check_rle(&header(2, &[64, 64], 80), 6, GREY16).is_err());
+        assert!(check_rle(&header(2, &[64, 900], 80), 6, GREY16).is_err());
+        assert!(check_rle(&header(1, &[10], 80), 6, GREY8).is_err());
     }
 }
