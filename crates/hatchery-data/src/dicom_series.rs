@@ -223,6 +223,13 @@ fn read_header(path: &Path) -> Result<Option<DefaultDicomObject>, DataError> {
         .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))
 }
 
+/// Reads a whole DICOM file, pixel data included (after [`read_header`] checked it).
+fn open_whole(path: &Path) -> Result<DefaultDicomObject, DataError> {
+    OpenFileOptions::new()
+        .open_file(path)
+        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))
+}
+
 /// An error and its causes on one line (dicom-rs errors say the most in their sources).
 fn chain(e: &dyn Error) -> String {
     let mut out = e.to_string();

@@ -12,11 +12,10 @@ use std::path::Path;
 
 use dicom_dictionary_std::tags;
 use dicom_encoding::Codec;
-use dicom_object::OpenFileOptions;
 use dicom_transfer_syntax_registry::{TransferSyntaxIndex, TransferSyntaxRegistry};
 
-use super::chain;
 use super::pixels::PixelFormat;
+use super::{chain, open_whole};
 use crate::DataError;
 
 const RLE_LOSSLESS: &str = "1.2.840.10008.1.2.5";
@@ -43,9 +42,7 @@ pub(super) fn decode_slice(
             ),
         ));
     };
-    let object = OpenFileOptions::new()
-        .open_file(path)
-        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))?;
+    let object = open_whole(path)?;
     let fragments = object
         .element_opt(tags::PIXEL_DATA)
         .ok()

@@ -6,9 +6,8 @@ use std::path::Path;
 
 use dicom_core::value::{PrimitiveValue, Value};
 use dicom_dictionary_std::{tags, uids};
-use dicom_object::OpenFileOptions;
 
-use super::{Header, chain, optional, required, text};
+use super::{Header, open_whole, optional, required, text};
 use crate::DataError;
 use crate::voxels::Voxels;
 
@@ -130,9 +129,7 @@ pub(super) fn read_pixels(
             "32-bit pixel data in Explicit VR Big Endian is not supported",
         ));
     }
-    let object = OpenFileOptions::new()
-        .open_file(path)
-        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))?;
+    let object = open_whole(path)?;
     let element = object
         .element_opt(tags::PIXEL_DATA)
         .ok()
