@@ -13,7 +13,6 @@ use crate::{DataError, MeshData};
 
 /// The file endings `load_mesh` reads (any case).
 pub const MESH_ENDINGS: [&str; 3] = [".obj", ".ply", ".stl"];
-const SUPPORTED: &str = ".obj, .ply, .stl";
 
 /// Loads a mesh, choosing the format by the (case-insensitive) extension:
 ///
@@ -51,7 +50,10 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, DataError> {
         "stl" => stl::read(path, &read()?),
         _ => Err(DataError::unsupported(
             path,
-            format!("unknown mesh file extension, supported are {SUPPORTED}"),
+            format!(
+                "unknown mesh file extension, supported are {}",
+                MESH_ENDINGS.join(", ")
+            ),
         )),
     }?;
     if mesh.triangle_count() == 0 {

@@ -50,7 +50,8 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         let range = volume.data.value_range;
         // No surface is a warning, not an error (issue 9 item 4): the picture renders without it
         // and the node says why, as for an iso value that crosses no cell.
-        let mesh = if (range[0]..=range[1]).contains(&iso) {
+        let in_range = (range[0]..=range[1]).contains(&iso);
+        let mesh = if in_range {
             hatchery_data::marching_cubes::marching_cubes(&volume.data, iso)
         } else {
             hatchery_data::mesh::MeshData::default()
@@ -59,7 +60,7 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         if mesh.triangle_count() == 0 {
             ctx.warn(if !volume.data.has_finite_values() {
                 "the volume holds no finite value (all voxels are no data): no surface".into()
-            } else if !(range[0]..=range[1]).contains(&iso) {
+            } else if !in_range {
                 format!(
                     "iso value {iso} is outside the volume's value range [{}, {}]: no surface",
                     range[0], range[1]
