@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The editor in a real X window: opens a copy of graphs/shaded_surface.ron under Xvfb, clicks
-# the `surface` node with xdotool, types a new iso value into its Inspector field, saves with
-# Ctrl+S and passes when the saved file holds the new value. The editor writes where its nodes
+# the `surface` node with xdotool, types a new iso value into its Inspector field, right-clicks
+# empty canvas and types "silh" + Enter into the add-node palette, saves with Ctrl+S and passes
+# when the saved file holds the new value and the new Silhouette node. The editor writes where its nodes
 # and parameter widgets are (HATCHERY_EDITOR_LAYOUT) so the clicks land on them.
 #
 # Needs Xvfb and xdotool (scripts/install-deps.sh installs them) and the editor binary (built
@@ -101,12 +102,24 @@ xdotool key ctrl+a
 xdotool type --delay 50 "0.25"
 xdotool key Return
 sleep 0.5
-# 3. Save.
+# 3. Right-click empty canvas, type a kind's name at once, Enter: the palette adds it.
+read -r x y < <(wait_for canvas:empty title)
+xdotool mousemove --window "$window" "$x" "$((y - 12))"
+sleep 0.3
+xdotool click 3
+sleep 0.5
+xdotool type --delay 50 "silh"
+sleep 0.3
+xdotool key Return
+sleep 0.5
+# 4. Save.
 xdotool key ctrl+s
 for _ in $(seq 50); do
-    grep -q '"iso": 0.25' "$work/graph.ron" && break
+    grep -q '"iso": 0.25' "$work/graph.ron" && grep -q 'kind: "Silhouette"' "$work/graph.ron" && break
     sleep 0.1
 done
 grep -q '"iso": 0.25' "$work/graph.ron" || fail "the saved graph does not have iso 0.25:
 $(grep -n iso "$work/graph.ron")"
-echo "editor-smoke: ok (clicked a node, set iso = 0.25 in the Inspector, saved)"
+grep -q 'kind: "Silhouette"' "$work/graph.ron" || fail "the saved graph has no Silhouette node added from the palette:
+$(grep -n kind "$work/graph.ron")"
+echo "editor-smoke: ok (clicked a node, set iso = 0.25 in the Inspector, right-clicked the canvas, typed silh + Enter to add a Silhouette, saved)"

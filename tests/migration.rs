@@ -1,6 +1,8 @@
-//! Format version 1 → 2: every preset as it was committed in version 1
-//! (tests/fixtures/v1_presets/, copies of graphs/ before the change) loads, saves as version 2,
-//! and the saved file renders exactly what the version 1 file renders.
+//! Older formats load unchanged: every preset as it was committed in version 1
+//! (tests/fixtures/v1_presets/, copies of graphs/ before groups came) loads, saves in the current
+//! version, and the saved file renders exactly what the version 1 file renders; every preset as
+//! it was committed in version 2 (tests/fixtures/v2_presets/, before inputs, framing and
+//! relative values) loads and saves with only its version line changed.
 
 mod common;
 
@@ -35,8 +37,49 @@ fn render(text: &str, base: &Path, name: &str) -> Vec<(String, image::RgbaImage)
         .collect()
 }
 
+fn current() -> String {
+    format!("\n    version: {},\n", hatchery_graph::FORMAT_VERSION)
+}
+
 #[test]
-fn every_v1_preset_loads_saves_as_v2_and_renders_identically() {
+fn every_v2_preset_loads_and_saves_with_only_its_version_changed() {
+    let dir = common::repo_root().join("tests/fixtures/v2_presets");
+    let base = common::repo_root().join("graphs");
+    let registry = hatchery_nodes::registry();
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 28, "the version 2 presets are missing");
+    for path in files {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let v2 = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            v2.contains("\n    version: 2,\n"),
+            "{name} is not version 2"
+        );
+        let (doc, source) = GraphDocument::parse(&v2, Some(&path)).unwrap();
+        assert_eq!(doc.version, hatchery_graph::FORMAT_VERSION, "{name}");
+        assert!(
+            doc.inputs.is_empty() && doc.description.is_empty(),
+            "{name}"
+        );
+        let saved = doc.to_ron_string();
+        assert_eq!(
+            saved,
+            v2.replacen("\n    version: 2,\n", &current(), 1),
+            "{name}"
+        );
+        // It validates against today's node kinds (parameters of version 2 still exist).
+        Graph::from_document(&doc, &source, &registry, Some(&base))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+#[test]
+fn every_v1_preset_loads_saves_in_the_current_version_and_renders_identically() {
     let dir = common::repo_root().join("tests/fixtures/v1_presets");
     // Paths in the presets are relative to graphs/, where they were written.
     let base = common::repo_root().join("graphs");
@@ -56,12 +99,12 @@ fn every_v1_preset_loads_saves_as_v2_and_renders_identically() {
             "{name} is not version 1"
         );
         let (doc, _) = GraphDocument::parse(&v1, Some(&path)).unwrap();
-        assert_eq!(doc.version, 2, "{name}");
+        assert_eq!(doc.version, hatchery_graph::FORMAT_VERSION, "{name}");
         let v2 = doc.to_ron_string();
-        // Nothing but the version changes: no groups, frames or reroutes appear.
+        // Nothing but the version changes: no groups, frames, reroutes or inputs appear.
         assert_eq!(
             v2,
-            v1.replacen("\n    version: 1,\n", "\n    version: 2,\n", 1),
+            v1.replacen("\n    version: 1,\n", &current(), 1),
             "{name}"
         );
         // The saved file loads back to the same document, through the runtime graph too.

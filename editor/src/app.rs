@@ -9,7 +9,7 @@ use crate::state::EditorState;
 use egui::{Color32, Id, Key, Modifiers, Pos2, Ui};
 use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer, SnarlWidget};
 use egui_snarl::{InPin, NodeId, OutPin, Snarl};
-use hatchery_graph::{EditorPos, ParamKind, ParamSpec, ParamValue, PortType, SchemaLookup};
+use hatchery_graph::{EditorPos, ParamKind, ParamSpec, ParamValue, PortType};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -66,7 +66,8 @@ pub struct EditorApp {
     pub canvas_rect: egui::Rect,
     /// Screen positions for scripted checks (off unless asked for).
     layout: crate::layout_dump::LayoutDump,
-    search: String,
+    /// The add-node palette, while open (see [`crate::add_menu`]).
+    pub add_menu: Option<crate::add_menu::Palette>,
     clipboard: String,
     /// Why the last wire drop was refused, where and when (shown as a tooltip for a while).
     pub refusal: Option<Refusal>,
@@ -149,7 +150,7 @@ impl EditorApp {
             export: Default::default(),
             picture: Default::default(),
             canvas_rect: egui::Rect::NOTHING,
-            search: String::new(),
+            add_menu: None,
             clipboard: String::new(),
             refusal: None,
             style_thumbnails: Default::default(),
@@ -365,6 +366,18 @@ impl EditorApp {
                     self.layout.record(format!("node:{id}"), r);
                 }
             }
+            // A canvas point on no node (where a scripted right-click opens the palette).
+            let canvas = self.canvas_rect.shrink(30.0);
+            let empty = (0..40)
+                .flat_map(|j| (0..40).map(move |i| (i, j)))
+                .map(|(i, j)| canvas.lerp_inside(egui::vec2(i as f32 / 39.0, j as f32 / 39.0)))
+                .find(|p| self.node_at(*p).is_none());
+            if let Some(p) = empty {
+                self.layout.record(
+                    "canvas:empty".into(),
+                    egui::Rect::from_center_size(p, egui::vec2(2.0, 2.0)),
+                );
+            }
             self.layout.flush(ui.ctx().pixels_per_point());
         }
 
@@ -433,7 +446,9 @@ impl EditorApp {
             };
         }
         // Esc clears the selection unless a popup, menu or text field takes it.
-        let popup = egui::Popup::is_any_open(ui.ctx());
+        // (The add-node palette takes Esc itself: egui drops the keyboard focus on Esc before
+        // this runs, so `typing` no longer says the palette's field had it.)
+        let popup = egui::Popup::is_any_open(ui.ctx()) || self.add_menu.is_some();
         if !typing && !popup && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Escape)) {
             if self.picture.placement == Placement::FullWindow {
                 self.picture.placement = Placement::Beside;
@@ -616,7 +631,7 @@ impl EditorApp {
             transform: self.canvas_transform,
             selecting: &mut self.selecting,
             state: &mut self.state,
-            search: &mut self.search,
+            add_menu: &mut self.add_menu,
             clipboard: &mut self.clipboard,
             preview: &mut self.preview.chosen,
             pins: &mut self.preview.pins,
@@ -680,6 +695,12 @@ impl EditorApp {
             });
         }
         self.refusal_tooltip(ui);
+        let clipboard = self.clipboard.clone();
+        for (name, r) in
+            crate::add_menu::show(ui.ctx(), &mut self.add_menu, &mut self.state, &clipboard)
+        {
+            self.layout.record(name, r);
+        }
         let changed_by_viewer = self.synced_revision != Some(self.state.revision());
 
         // Node moves: written back to the document (one undo step per drag).
@@ -1363,7 +1384,7 @@ struct Viewer<'a> {
     /// Where nodes are drawn (for selection by the mouse).
     selecting: &'a mut CanvasSelection,
     state: &'a mut EditorState,
-    search: &'a mut String,
+    add_menu: &'a mut Option<crate::add_menu::Palette>,
     clipboard: &'a mut String,
     preview: &'a mut Option<(String, String)>,
     /// Ports shown as thumbnails on their nodes (clicking an output's name toggles it).
@@ -1430,26 +1451,6 @@ impl Viewer<'_> {
 
     fn is_reroute(&self, id: &str) -> bool {
         hatchery_graph::reroute::is_reroute(self.state.doc(), id)
-    }
-
-    fn kind_menu(&mut self, ui: &mut Ui, kinds: Vec<&'static str>) -> Option<&'static str> {
-        ui.add(egui::TextEdit::singleline(self.search).hint_text("search"));
-        let needle = self.search.to_lowercase();
-        let mut picked = None;
-        egui::ScrollArea::vertical()
-            .max_height(300.0)
-            .show(ui, |ui| {
-                for kind in kinds {
-                    if kind.to_lowercase().contains(&needle) && ui.button(kind).clicked() {
-                        picked = Some(kind);
-                    }
-                }
-            });
-        if picked.is_some() {
-            self.search.clear();
-            ui.close();
-        }
-        picked
     }
 }
 
@@ -1681,21 +1682,10 @@ impl SnarlViewer<String> for Viewer<'_> {
     }
 
     fn show_graph_menu(&mut self, at: Pos2, ui: &mut Ui, _snarl: &mut Snarl<String>) {
-        crate::frames::graph_menu(self.state, ui, at);
-        if ui.button("Add reroute").clicked() {
-            let _ = self.state.add_reroute(crate::groups::reroute_pos(at));
-            ui.close();
-        }
-        ui.label("Add node");
-        let kinds = self.state.registry.kinds();
-        if let Some(kind) = self.kind_menu(ui, kinds) {
-            let _ = self.state.add_node(kind, pos(at));
-        }
-        if !self.clipboard.is_empty() && ui.button("Paste").clicked() {
-            let text = self.clipboard.clone();
-            let _ = self.state.paste(&text, pos(at));
-            ui.close();
-        }
+        // Snarl's menu only opens the palette, which takes typing (see crate::add_menu).
+        let screen = ui.cursor().min;
+        *self.add_menu = Some(crate::add_menu::Palette::new(ui.ctx(), screen, at, None));
+        ui.close();
     }
 
     fn has_dropped_wire_menu(&mut self, _src: AnyPins, _snarl: &mut Snarl<String>) -> bool {
@@ -1737,50 +1727,19 @@ impl SnarlViewer<String> for Viewer<'_> {
             ui.close();
             return;
         }
-        // A reroute takes any wire: it is the first choice.
-        if ui.button("Reroute").clicked() {
-            if let Ok(r) = self.state.add_reroute(crate::groups::reroute_pos(at)) {
-                for (id, name, _) in &ends {
-                    let _ = if output {
-                        self.state
-                            .connect((id, name), (&r, hatchery_graph::reroute::IN))
-                    } else {
-                        self.state
-                            .connect((&r, hatchery_graph::reroute::OUT), (id, name))
-                    };
-                }
-            }
-            ui.close();
-            return;
-        }
-        let Some(ty) = ends.first().and_then(|e| e.2) else {
-            return;
+        let wire = crate::add_menu::DroppedWire {
+            ty: ends.first().and_then(|e| e.2),
+            ends: ends.into_iter().map(|(id, port, _)| (id, port)).collect(),
+            output,
         };
-        ui.label(format!("Add a node taking {ty}"));
-        let kinds = hatchery_graph::edit::compatible_kinds(&self.state.registry, ty, output);
-        let Some(kind) = self.kind_menu(ui, kinds) else {
-            return;
-        };
-        let Ok(new) = self.state.add_node(kind, pos(at)) else {
-            return;
-        };
-        let Some(schema) = self.state.registry.schema(kind).cloned() else {
-            return;
-        };
-        let ports = if output {
-            &schema.inputs
-        } else {
-            &schema.outputs
-        };
-        if let Some(port) = ports.iter().find(|p| p.ty == ty) {
-            for (id, name, _) in &ends {
-                let _ = if output {
-                    self.state.connect((id, name), (&new, port.name))
-                } else {
-                    self.state.connect((&new, port.name), (id, name))
-                };
-            }
-        }
+        let screen = ui.cursor().min;
+        *self.add_menu = Some(crate::add_menu::Palette::new(
+            ui.ctx(),
+            screen,
+            at,
+            Some(wire),
+        ));
+        ui.close();
     }
 
     fn current_transform(

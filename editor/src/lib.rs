@@ -7,6 +7,7 @@
 //! - [`render_worker::RenderWorker`]: the thread that runs the graph (`hatchery_nodes::Session`)
 //!   so the UI never waits for a frame.
 
+pub mod add_menu;
 pub mod app;
 pub mod arrange;
 pub mod curve_editor;

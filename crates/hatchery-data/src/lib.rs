@@ -22,6 +22,7 @@ pub mod segmentation;
 pub mod style;
 pub mod tiff_stack;
 pub mod transfer_function;
+pub mod value_stats;
 pub mod volume;
 pub mod volume_file;
 pub mod voxels;

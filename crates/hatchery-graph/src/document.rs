@@ -1,8 +1,8 @@
-//! The stored model: exactly what a graph file says, and its RON format (version 2).
+//! The stored model: exactly what a graph file says, and its RON format (version 3).
 //!
 //! The document is written in one canonical layout (nodes sorted by id, parameters sorted by
 //! name, edges sorted, groups sorted by id, frames in drawing order), so that load → save
-//! reproduces a saved file byte for byte. Version 1 files load through [`crate::migrate`].
+//! reproduces a saved file byte for byte. Older files load through [`crate::migrate`].
 
 use crate::error::{ErrorKind, GraphError};
 use crate::locate;
@@ -14,7 +14,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The newest graph file format version this build reads and writes.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// A graph as stored in a file. Two documents are equal when their files would be
 /// (`base_dir`, where the file lies, is not compared).
@@ -22,6 +22,12 @@ pub const FORMAT_VERSION: u32 = 2;
 #[serde(deny_unknown_fields)]
 pub struct GraphDocument {
     pub version: u32,
+    /// One line on what the graph shows (version 3; `hatchery presets` lists it).
+    #[serde(default)]
+    pub description: String,
+    /// The data files the graph reads, by name (version 3; see [`crate::inputs`]).
+    #[serde(default)]
+    pub inputs: Vec<crate::inputs::InputDoc>,
     #[serde(default)]
     pub nodes: Vec<NodeDoc>,
     #[serde(default)]
@@ -41,6 +47,8 @@ pub struct GraphDocument {
 impl PartialEq for GraphDocument {
     fn eq(&self, other: &Self) -> bool {
         self.version == other.version
+            && self.description == other.description
+            && self.inputs == other.inputs
             && self.nodes == other.nodes
             && self.edges == other.edges
             && self.groups == other.groups
@@ -235,6 +243,32 @@ impl GraphDocument {
         let mut out = String::new();
         out.push_str("(\n");
         let _ = writeln!(out, "    version: {},", self.version);
+        // Sections of version 3, written only when used.
+        if !self.description.is_empty() {
+            let _ = writeln!(
+                out,
+                "    description: {},",
+                string_literal(&self.description)
+            );
+        }
+        if !self.inputs.is_empty() {
+            out.push_str("    inputs: [\n");
+            for i in &self.inputs {
+                let to: Vec<String> =
+                    i.to.iter()
+                        .map(|(n, p)| format!("({}, {})", string_literal(n), string_literal(p)))
+                        .collect();
+                let _ = writeln!(
+                    out,
+                    "        (name: {}, type: {}, doc: {}, to: [{}]),",
+                    string_literal(&i.name),
+                    string_literal(&i.kind),
+                    string_literal(&i.doc),
+                    to.join(", ")
+                );
+            }
+            out.push_str("    ],\n");
+        }
         out.push_str("    nodes: [\n");
         for node in nodes {
             out.push_str("        (\n");
@@ -396,7 +430,11 @@ mod tests {
     #[test]
     fn canonical_text_round_trips_byte_for_byte() {
         let text = r#"(
-    version: 2,
+    version: 3,
+    description: "a \"test\" graph",
+    inputs: [
+        (name: "volume", type: "volume", doc: "the scan", to: [("a", "path"), ("b", "path")]),
+    ],
     nodes: [
         (
             id: "a",
@@ -433,6 +471,8 @@ mod tests {
         assert_eq!(doc.nodes.len(), 2);
         assert_eq!(doc.nodes[1].group.as_deref(), Some("lights"));
         assert_eq!(doc.frames[0].color[1], 0.5);
+        assert_eq!(doc.inputs[0].to[1], ("b".to_owned(), "path".to_owned()));
+        assert_eq!(doc.description, "a \"test\" graph");
         assert_eq!(doc.to_ron_string(), text);
     }
 

@@ -43,7 +43,7 @@ impl GraphError {
             UnknownNode { edge_to, .. } => Some(&edge_to.0),
             TypeMismatch { to, .. } => Some(&to.0),
             Cycle { nodes } => nodes.first().map(String::as_str),
-            Syntax { .. } | UnsupportedVersion { .. } | Io { .. } => None,
+            Syntax { .. } | UnsupportedVersion { .. } | Io { .. } | BadInput { .. } => None,
         }
     }
 }
@@ -124,6 +124,11 @@ pub enum ErrorKind {
     NodeDefinition {
         node: String,
         message: String,
+    },
+    /// A graph input (version 3) that is declared wrongly.
+    BadInput {
+        input: String,
+        reason: String,
     },
 }
 
@@ -231,6 +236,7 @@ impl fmt::Display for ErrorKind {
                 "node `{node}`: no group with id `{group}` (declare it in `groups`)"
             ),
             NodeDefinition { node, message } => write!(f, "node `{node}`: {message}"),
+            BadInput { input, reason } => write!(f, "input `{input}`: {reason}"),
         }
     }
 }

@@ -57,6 +57,10 @@ pub struct Graph {
     /// The document's groups and frames, kept for [`Graph::to_document`]; rendering ignores them.
     groups: Vec<GroupDoc>,
     frames: Vec<FrameDoc>,
+    description: String,
+    /// The declared inputs as written, and the validated ones.
+    input_docs: Vec<crate::inputs::InputDoc>,
+    inputs: Vec<crate::inputs::GraphInput>,
 }
 
 /// Node ids are used on the command line as `node.param`, so they are plain identifiers.
@@ -97,8 +101,11 @@ impl Graph {
             base_dir: base_dir.clone(),
             groups: doc.groups.clone(),
             frames: doc.frames.clone(),
+            description: doc.description.clone(),
+            input_docs: doc.inputs.clone(),
             ..Default::default()
         };
+        graph.inputs = crate::inputs::check(doc, source, schemas, &mut errors);
         // Version 2 only adds optional sections, so a version 1 document validates as it is.
         if doc.version == 0 || doc.version > FORMAT_VERSION {
             errors.push(source.error(
@@ -386,6 +393,8 @@ impl Graph {
         edges.sort();
         GraphDocument {
             version: FORMAT_VERSION,
+            description: self.description.clone(),
+            inputs: self.input_docs.clone(),
             nodes,
             edges,
             groups: self.groups.clone(),
@@ -396,6 +405,23 @@ impl Graph {
 
     pub fn base_dir(&self) -> Option<&Path> {
         self.base_dir.as_deref()
+    }
+
+    /// The graph's one-line description (empty when the file has none).
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
+    /// The declared inputs (see [`crate::inputs`]), in file order.
+    pub fn inputs(&self) -> &[crate::inputs::GraphInput] {
+        &self.inputs
+    }
+
+    /// The input named `name`, or an error that lists the graph's inputs.
+    pub fn input(&self, name: &str) -> Result<&crate::inputs::GraphInput, String> {
+        self.inputs.iter().find(|i| i.name == name).ok_or_else(|| {
+            crate::inputs::unknown_input(self.inputs.iter().map(|i| i.name.as_str()), name)
+        })
     }
 
     pub fn node(&self, id: &str) -> Option<&NodeInstance> {

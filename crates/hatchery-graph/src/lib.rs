@@ -16,6 +16,7 @@ pub mod error;
 pub mod executor;
 pub mod fusion;
 pub mod graph;
+pub mod inputs;
 mod locate;
 pub mod migrate;
 pub mod organise;
@@ -30,7 +31,8 @@ pub use document::{
 pub use error::{ErrorKind, GraphError, GraphErrors};
 pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Registry};
 pub use graph::{Graph, NodeInstance};
-pub use param::{ParamKind, ParamSpec, ParamValue, Params};
+pub use inputs::{GraphInput, InputDoc, InputKind};
+pub use param::{ParamKind, ParamSpec, ParamValue, Params, RelativeValue};
 pub use port::PortType;
 pub use schema::{
     NodeError, NodeSchema, OwnSchema, PortSpec, SchemaLookup, SchemaRef, intern, node_schema,

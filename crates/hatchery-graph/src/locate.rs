@@ -33,6 +33,14 @@ pub(crate) fn node_offset(text: &str, node: &str) -> Option<usize> {
     })
 }
 
+/// Where `name: "input"` of a graph input is written.
+pub(crate) fn input_offset(text: &str, input: &str) -> Option<usize> {
+    quoted(text, input).into_iter().find(|&i| {
+        let b = before(text, i);
+        b.ends_with(':') && b[..b.len() - 1].trim_end().ends_with("name")
+    })
+}
+
 /// Where parameter `"param":` of a node is written (first one after the node's id).
 pub(crate) fn param_offset(text: &str, node: &str, param: &str) -> Option<usize> {
     let start = node_offset(text, node)?;

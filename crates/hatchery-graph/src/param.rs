@@ -74,6 +74,12 @@ pub struct ParamSpec {
     pub kind: ParamKind,
     pub default: ParamValue,
     pub doc: &'static str,
+    /// For a path parameter that reads data: which kind of file (a graph input of that kind
+    /// may be bound to it, see [`crate::inputs`]).
+    pub reads: Option<crate::inputs::InputKind>,
+    /// A float in data units that may also be given relative to the connected volume's values
+    /// (`"percentile(60)"`, `"range(0.3)"`, `"otsu"`; see [`RelativeValue`]).
+    pub relative: bool,
 }
 
 impl ParamSpec {
@@ -83,6 +89,8 @@ impl ParamSpec {
             kind: ParamKind::Float { min, max },
             default: ParamValue::Float(default),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn int(name: &'static str, default: i64, min: i64, max: i64, doc: &'static str) -> Self {
@@ -91,6 +99,8 @@ impl ParamSpec {
             kind: ParamKind::Int { min, max },
             default: ParamValue::Int(default),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn bool(name: &'static str, default: bool, doc: &'static str) -> Self {
@@ -99,6 +109,8 @@ impl ParamSpec {
             kind: ParamKind::Bool,
             default: ParamValue::Bool(default),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn choice(
@@ -113,6 +125,8 @@ impl ParamSpec {
             kind: ParamKind::Choice(choices),
             default: ParamValue::Choice(default.into()),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn color(name: &'static str, default: [f64; 4], doc: &'static str) -> Self {
@@ -121,6 +135,8 @@ impl ParamSpec {
             kind: ParamKind::Color,
             default: ParamValue::Color(default),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn vec3(name: &'static str, default: [f64; 3], doc: &'static str) -> Self {
@@ -129,6 +145,8 @@ impl ParamSpec {
             kind: ParamKind::Vec3,
             default: ParamValue::Vec3(default),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn path(name: &'static str, default: &'static str, doc: &'static str) -> Self {
@@ -137,6 +155,8 @@ impl ParamSpec {
             kind: ParamKind::Path,
             default: ParamValue::Path(default.into()),
             doc,
+            reads: None,
+            relative: false,
         }
     }
     pub fn text(name: &'static str, default: &'static str, doc: &'static str) -> Self {
@@ -145,7 +165,22 @@ impl ParamSpec {
             kind: ParamKind::Text,
             default: ParamValue::Text(default.into()),
             doc,
+            reads: None,
+            relative: false,
         }
+    }
+
+    /// Marks a path parameter as reading a data file of `kind` (graph inputs bind to it).
+    pub fn reads(mut self, kind: crate::inputs::InputKind) -> Self {
+        self.reads = Some(kind);
+        self
+    }
+
+    /// Lets this float (a value in data units) be given relative to the connected volume.
+    pub fn relative(mut self) -> Self {
+        debug_assert!(matches!(self.kind, ParamKind::Float { .. }));
+        self.relative = true;
+        self
     }
 
     /// Converts a raw value from a graph file, checking type and range.
@@ -153,6 +188,12 @@ impl ParamSpec {
         let found = describe_raw(raw);
         let wrong = || format!("expected {}, found {found}", self.kind.describe());
         let value = match &self.kind {
+            ParamKind::Float { .. } if self.relative && as_str(raw).is_some() => {
+                let text = as_str(raw).unwrap_or_default();
+                ParamValue::Relative(RelativeValue::parse(text).map_err(|e| {
+                    format!("expected a number or a value relative to the data, found the string \"{text}\": {e}")
+                })?)
+            }
             ParamKind::Float { .. } => ParamValue::Float(as_f64(raw).ok_or_else(wrong)?),
             ParamKind::Int { .. } => ParamValue::Int(as_i64(raw).ok_or_else(wrong)?),
             ParamKind::Bool => match raw {
@@ -205,6 +246,7 @@ impl ParamSpec {
                     return Err(format!("vector {v:?} is not finite"));
                 }
             }
+            (ParamKind::Float { .. }, ParamValue::Relative(r)) if self.relative => r.check()?,
             (ParamKind::Bool, ParamValue::Bool(_))
             | (ParamKind::Path, ParamValue::Path(_))
             | (ParamKind::Text, ParamValue::Text(_)) => {}
@@ -220,6 +262,9 @@ impl ParamSpec {
             ParamKind::Path => ParamValue::Path(text.to_owned()),
             ParamKind::Text => ParamValue::Text(text.to_owned()),
             ParamKind::Choice(_) => ParamValue::Choice(text.trim_matches('"').to_owned()),
+            ParamKind::Float { .. } if self.relative && RelativeValue::parse(text).is_ok() => {
+                ParamValue::Relative(RelativeValue::parse(text)?)
+            }
             _ => {
                 // Numbers, bools and lists: RON syntax, plus bare comma lists ("1,0,0").
                 let wrapped = if text.contains(',') && !text.starts_with(['[', '(']) {
@@ -252,6 +297,72 @@ pub enum ParamValue {
     Vec3([f64; 3]),
     Path(String),
     Text(String),
+    /// A data value relative to the connected volume (floats marked [`ParamSpec::relative`]).
+    Relative(RelativeValue),
+}
+
+/// A data value given relative to a volume's values, resolved when the node runs (Issue 25):
+/// written in graph files and on the command line as `"percentile(60)"` (of the finite
+/// values), `"range(0.3)"` (min + 0.3·(max − min)) or `"otsu"` (Otsu's threshold between the
+/// two classes of the value histogram).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RelativeValue {
+    Percentile(f64),
+    Range(f64),
+    Otsu,
+}
+
+impl RelativeValue {
+    /// Parses `percentile(P)`, `range(F)` or `otsu` (case and spaces ignored).
+    pub fn parse(text: &str) -> Result<RelativeValue, String> {
+        let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
+        let t = t.to_ascii_lowercase();
+        if t == "otsu" {
+            return Ok(RelativeValue::Otsu);
+        }
+        let arg = |name: &str| {
+            t.strip_prefix(name)
+                .and_then(|r| r.strip_prefix('('))
+                .and_then(|r| r.strip_suffix(')'))
+                .map(|n| {
+                    n.parse::<f64>()
+                        .map_err(|_| format!("`{n}` in `{text}` is not a number"))
+                })
+        };
+        let value = if let Some(p) = arg("percentile") {
+            RelativeValue::Percentile(p?)
+        } else if let Some(f) = arg("range") {
+            RelativeValue::Range(f?)
+        } else {
+            return Err(format!("`{text}` is not percentile(P), range(F) or otsu"));
+        };
+        value.check()?;
+        Ok(value)
+    }
+
+    /// Percentiles lie in [0, 100]; range fractions are finite (outside [0, 1] is beyond the
+    /// data's range, allowed).
+    pub fn check(&self) -> Result<(), String> {
+        match *self {
+            RelativeValue::Percentile(p) if !(0.0..=100.0).contains(&p) => {
+                Err(format!("percentile {p} is outside [0, 100]"))
+            }
+            RelativeValue::Range(f) if !f.is_finite() => {
+                Err(format!("range fraction {f} is not finite"))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+impl fmt::Display for RelativeValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RelativeValue::Percentile(p) => write!(f, "percentile({p})"),
+            RelativeValue::Range(x) => write!(f, "range({x})"),
+            RelativeValue::Otsu => write!(f, "otsu"),
+        }
+    }
 }
 
 impl ParamValue {
@@ -267,6 +378,7 @@ impl ParamValue {
             }
             ParamValue::Color(c) => ron::Value::Seq(c.iter().map(|x| num(*x)).collect()),
             ParamValue::Vec3(v) => ron::Value::Seq(v.iter().map(|x| num(*x)).collect()),
+            ParamValue::Relative(r) => ron::Value::String(r.to_string()),
         }
     }
 }
@@ -282,6 +394,7 @@ impl fmt::Display for ParamValue {
             }
             ParamValue::Color(c) => write!(f, "[{}, {}, {}, {}]", c[0], c[1], c[2], c[3]),
             ParamValue::Vec3(v) => write!(f, "[{}, {}, {}]", v[0], v[1], v[2]),
+            ParamValue::Relative(r) => write!(f, "{r}"),
         }
     }
 }
@@ -296,6 +409,7 @@ impl Hash for ParamValue {
             ParamValue::Choice(s) | ParamValue::Path(s) | ParamValue::Text(s) => s.hash(state),
             ParamValue::Color(c) => c.iter().for_each(|x| x.to_bits().hash(state)),
             ParamValue::Vec3(v) => v.iter().for_each(|x| x.to_bits().hash(state)),
+            ParamValue::Relative(r) => r.to_string().hash(state),
         }
     }
 }
@@ -392,6 +506,14 @@ impl Params {
     }
     pub fn f32(&self, name: &str) -> f32 {
         self.float(name) as f32
+    }
+    /// A data-value parameter ([`ParamSpec::relative`]): its number, or how it is given
+    /// relative to the data (the node resolves it against its volume).
+    pub fn data_value(&self, name: &str) -> Result<f64, RelativeValue> {
+        match self.expect(name) {
+            ParamValue::Relative(r) => Err(*r),
+            _ => Ok(self.float(name)),
+        }
     }
     pub fn int(&self, name: &str) -> i64 {
         match self.expect(name) {

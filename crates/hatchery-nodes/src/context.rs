@@ -21,6 +21,9 @@ pub struct RenderContext {
     /// The last execution's warning of each node that gave one (a constant volume, an iso value
     /// with no surface): shown on stderr and on the node in the editor.
     warnings: BTreeMap<String, String>,
+    /// Data-relative parameters as the last execution of each node resolved them:
+    /// node → parameter → "percentile(60) = 80" (the editor shows them).
+    resolved: BTreeMap<String, BTreeMap<String, String>>,
     /// Fused image-space passes as fragment shaders or compute kernels (crate::fused_pass).
     image_kernel: crate::raycast::Kernel,
 }
@@ -35,6 +38,7 @@ impl RenderContext {
             current_node: None,
             statics: HashMap::new(),
             warnings: BTreeMap::new(),
+            resolved: BTreeMap::new(),
             image_kernel: crate::raycast::Kernel::choose(
                 &std::env::var("HATCHERY_IMAGE_KERNEL").unwrap_or_default(),
                 &gpu,
@@ -78,6 +82,20 @@ impl RenderContext {
         let node = self.current_node.clone().unwrap_or_default();
         tracing::warn!("{node}: {message}");
         self.warnings.insert(node, message);
+    }
+
+    /// Records how the executing node resolved a data-relative parameter.
+    pub fn note_resolved(&mut self, param: &str, text: String) {
+        let node = self.current_node.clone().unwrap_or_default();
+        self.resolved
+            .entry(node)
+            .or_default()
+            .insert(param.to_owned(), text);
+    }
+
+    /// Resolved data-relative parameters by node id, from each node's last execution.
+    pub fn resolved(&self) -> &BTreeMap<String, BTreeMap<String, String>> {
+        &self.resolved
     }
 
     /// Warnings by node id, from each node's last execution.
@@ -194,6 +212,7 @@ impl ExecContext for RenderContext {
     fn begin_node(&mut self, node: &str) {
         self.current_node = Some(node.to_owned());
         self.warnings.remove(node);
+        self.resolved.remove(node);
     }
     fn end_node(&mut self, _node: &str) {
         self.current_node = None;

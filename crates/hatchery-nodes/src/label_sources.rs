@@ -43,7 +43,8 @@ impl Node<Value, Ctx> for LabelFileNode {
             inputs: vec![],
             outputs: vec![labels_output()],
             params: vec![
-                ParamSpec::path("path", "", "the label map file, or a DICOM folder"),
+                ParamSpec::path("path", "", "the label map file, or a DICOM folder")
+                    .reads(hatchery_graph::InputKind::Labels),
                 ParamSpec::text(
                     "array",
                     "",
@@ -53,7 +54,8 @@ impl Node<Value, Ctx> for LabelFileNode {
                     "names",
                     "",
                     "object names: CSV `id,name` or ITK-SNAP label file (optional)",
-                ),
+                )
+                .reads(hatchery_graph::InputKind::Names),
             ],
             frame_dependent: false,
             sink: false,
@@ -97,8 +99,12 @@ impl Node<Value, Ctx> for LabelFileNode {
     }
 }
 
-/// Parses "lo..hi: id; …" (intervals [lo, hi) in data units).
-pub fn parse_intervals(text: &str) -> Result<Vec<(f32, f32, u16)>, String> {
+/// Parses "lo..hi: id; …" (intervals [lo, hi) in data units; a bound may be relative to
+/// `volume`'s values, e.g. "otsu..percentile(99): 1").
+pub fn parse_intervals(
+    text: &str,
+    volume: Option<&hatchery_data::VolumeData>,
+) -> Result<Vec<(f32, f32, u16)>, String> {
     let mut intervals = Vec::new();
     for (n, part) in text.split(';').map(str::trim).enumerate() {
         if part.is_empty() {
@@ -107,8 +113,11 @@ pub fn parse_intervals(text: &str) -> Result<Vec<(f32, f32, u16)>, String> {
         let bad = || format!("interval {} `{part}`: expected `lo..hi: id`", n + 1);
         let (range, id) = part.split_once(':').ok_or_else(bad)?;
         let (lo, hi) = range.split_once("..").ok_or_else(bad)?;
-        let lo: f32 = lo.trim().parse().map_err(|_| bad())?;
-        let hi: f32 = hi.trim().parse().map_err(|_| bad())?;
+        let number = |t: &str| {
+            crate::relative::number_in_text(t, volume)
+                .map_err(|e| format!("interval {} `{part}`: {e}", n + 1))
+        };
+        let (lo, hi) = (number(lo)?, number(hi)?);
         let id: u16 = id.trim().parse().map_err(|_| bad())?;
         if lo >= hi || lo.is_nan() || hi.is_nan() || id == 0 {
             return Err(format!(
@@ -142,7 +151,7 @@ impl Node<Value, Ctx> for LabelsFromThresholdNode {
             params: vec![ParamSpec::text(
                 "intervals",
                 "80..140: 1; 140..256: 2",
-                "\"lo..hi: id; …\" in data units",
+                "\"lo..hi: id; …\" in data units; bounds may be \"percentile(P)\", \"range(F)\" or \"otsu\" of the volume",
             )],
             frame_dependent: false,
             sink: false,
@@ -156,7 +165,7 @@ impl Node<Value, Ctx> for LabelsFromThresholdNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let volume = inputs.require("volume")?.volume("volume")?.clone();
-        let intervals = parse_intervals(p.text("intervals"))
+        let intervals = parse_intervals(p.text("intervals"), Some(&volume.data))
             .map_err(|e| NodeError::new(format!("parameter `intervals`: {e}")))?;
         finish(
             ctx,
@@ -188,8 +197,9 @@ impl Node<Value, Ctx> for LabelsFromMapsNode {
                     128.0,
                     -1e12,
                     1e12,
-                    "smallest value that makes a voxel part of an object (data units)",
-                ),
+                    "smallest value that makes a voxel part of an object (data units of map a, or \"percentile(P)\", \"range(F)\", \"otsu\" of map a)",
+                )
+                .relative(),
                 ParamSpec::text(
                     "names",
                     "",
@@ -214,8 +224,9 @@ impl Node<Value, Ctx> for LabelsFromMapsNode {
             }
         }
         let data: Vec<&hatchery_data::VolumeData> = maps.iter().map(|m| &*m.data).collect();
-        let mut labels = segmentation::from_maps(&data, p.f32("floor"))
-            .map_err(|e| NodeError::new(e.to_string()))?;
+        let floor = crate::relative::data_value(ctx, p, "floor", data[0])?;
+        let mut labels =
+            segmentation::from_maps(&data, floor).map_err(|e| NodeError::new(e.to_string()))?;
         let names: std::collections::BTreeMap<u16, String> = p
             .text("names")
             .split(',')

@@ -37,6 +37,7 @@ pub mod over;
 pub mod overlay;
 pub mod procedural_volume;
 pub mod raycast;
+pub mod relative;
 pub mod ridge_valley;
 pub mod save_image;
 pub mod save_svg;

@@ -3,7 +3,7 @@
 use crate::value::Mesh;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -27,13 +27,7 @@ impl Node<Value, Ctx> for MarchingCubesNode {
                 PortType::Mesh,
                 "the iso-surface in world units",
             )],
-            params: vec![ParamSpec::float(
-                "iso",
-                0.0,
-                -1e12,
-                1e12,
-                "iso value, in the volume's units",
-            )],
+            params: vec![crate::relative::iso_param()],
             frame_dependent: false,
             sink: false,
         }
@@ -46,7 +40,7 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let volume = inputs.require("volume")?.volume("volume")?;
-        let iso = p.f32("iso");
+        let iso = crate::relative::data_value(ctx, p, "iso", &volume.data)?;
         let range = volume.data.value_range;
         // No surface is a warning, not an error (issue 9 item 4): the picture renders without it
         // and the node says why, as for an iso value that crosses no cell.

@@ -19,7 +19,9 @@ impl Node<Value, Ctx> for MeshFileNode {
                   file's folder.",
             inputs: vec![],
             outputs: vec![PortSpec::output("mesh", PortType::Mesh, "the mesh")],
-            params: vec![ParamSpec::path("path", "", "the mesh file")],
+            params: vec![
+                ParamSpec::path("path", "", "the mesh file").reads(hatchery_graph::InputKind::Mesh),
+            ],
             frame_dependent: false,
             sink: false,
         }

@@ -30,7 +30,7 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
             inputs: vec![PortSpec::optional(
                 "volume",
                 PortType::Volume,
-                "sets the value range of presets",
+                "sets the value range of presets (and resolves relative point values)",
             )],
             outputs: vec![PortSpec::output(
                 "tf",
@@ -47,7 +47,7 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
                 ParamSpec::text(
                     "points",
                     "0: 0 0 0 0; 255: 1 1 1 1",
-                    "control points for `custom`",
+                    "control points for `custom`; a value may be relative to the connected volume (\"percentile(5): 0 0 0 0\", \"range(0.5): …\", \"otsu: …\")",
                 ),
                 ParamSpec::float(
                     "range_min",
@@ -75,13 +75,24 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let range = match inputs.get("volume") {
-            Some(v) => v.volume("volume")?.data.value_range,
+        let volume = match inputs.get("volume") {
+            Some(v) => Some(v.volume("volume")?.clone()),
+            None => None,
+        };
+        let range = match &volume {
+            Some(v) => v.data.value_range,
             None => [p.f32("range_min"), p.f32("range_max")],
         };
         let points = match p.choice("preset") {
-            "custom" => tf::TransferFunction1D::parse_points(p.text("points"))
-                .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?,
+            "custom" => {
+                let text = crate::relative::resolve_point_values(
+                    p.text("points"),
+                    volume.as_ref().map(|v| &*v.data),
+                )
+                .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?;
+                tf::TransferFunction1D::parse_points(&text)
+                    .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?
+            }
             name => TransferFunction1D::preset(name, range)
                 .ok_or_else(|| NodeError::new(format!("unknown preset `{name}`")))?,
         };

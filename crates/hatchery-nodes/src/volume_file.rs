@@ -32,7 +32,8 @@ impl Node<Value, Ctx> for VolumeFileNode {
                     "path",
                     "",
                     "the volume file, or a folder holding a DICOM series",
-                ),
+                )
+                .reads(hatchery_graph::InputKind::Volume),
                 ParamSpec::text(
                     "array",
                     "",

@@ -10,6 +10,7 @@ use hatchery_editor::{EditorApp, EditorState};
 use hatchery_graph::{EditorPos, GraphDocument, ParamValue, SchemaLookup};
 use std::path::{Path, PathBuf};
 
+mod add_menu;
 mod custom_shader;
 mod export;
 mod fused;
@@ -375,36 +376,6 @@ fn right_click_at(h: &Harness<EditorApp>, pos: egui::Pos2) {
             modifiers: Modifiers::NONE,
         });
     }
-}
-
-#[test]
-fn the_canvas_menu_adds_a_searched_node() {
-    let dir = tempfile::tempdir().unwrap();
-    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
-    let mut h = harness(app);
-    h.run();
-    right_click_at(&h, egui::pos2(500.0, 720.0));
-    h.run();
-    h.get_by_label("Add node");
-    h.get_by_role(Role::TextInput).focus();
-    h.run();
-    h.get_by_role(Role::TextInput).type_text("silh");
-    h.run();
-    assert!(
-        h.query_by_label("Camera").is_none(),
-        "filtered out by the search"
-    );
-    h.get_by_label("Silhouette").click();
-    h.run();
-    let doc = h.state().state.doc();
-    let added = doc
-        .nodes
-        .iter()
-        .find(|n| n.kind == "Silhouette")
-        .expect("added");
-    assert_eq!(added.id, "silhouette_1");
-    assert!(added.editor.is_some());
-    assert_eq!(h.get_all_by_label("silhouette_1 (Silhouette)").count(), 2);
 }
 
 #[test]

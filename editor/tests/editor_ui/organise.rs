@@ -71,11 +71,11 @@ fn ctrl_g_groups_tab_enters_and_leaves_ctrl_shift_g_ungroups_and_undo_restores()
     );
     assert!(h.state().state.graph_errors().is_empty() && h.state().state.errors().is_empty());
 
-    // Saved as version 2 with the group; the file loads and validates (the CLI can render it).
+    // Saved in the current version with the group; the file loads and validates (the CLI can render it).
     h.key_press_modifiers(Modifiers::COMMAND, Key::S);
     h.run();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.contains("version: 2,"), "{text}");
+    assert!(text.contains("version: 3,"), "{text}");
     assert!(text.contains("group: Some(\"group_1\")"), "{text}");
     assert!(
         text.contains("groups: [\n        (id: \"group_1\""),
@@ -138,7 +138,7 @@ fn a_wire_dropped_on_empty_canvas_becomes_a_reroute_that_carries_it() {
     let from = out_pin(label_rect(&h, "volume", true));
     let to = empty_canvas_point(&h);
     drop_wire(&mut h, from, to);
-    h.get_by_label("Reroute").click();
+    h.get_by_label("Add reroute").click();
     h.run();
     let doc = h.state().state.doc().clone();
     let reroute = doc

@@ -603,6 +603,8 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
             kind: ParamKind::Vec3,
             default: ParamValue::Vec3([0.0; 3]),
             doc,
+            reads: None,
+            relative: false,
         },
         MemberType::Vec4 => ParamSpec::color(name, [0.0, 0.0, 0.0, 1.0], doc),
     };

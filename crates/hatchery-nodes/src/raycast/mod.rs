@@ -208,7 +208,14 @@ impl Node<Value, Ctx> for RaycastNode {
             ],
             params: vec![
                 ParamSpec::choice("mode", "dvr", MODES, "compositing"),
-                ParamSpec::float("iso", 0.5, -1e12, 1e12, "iso value for mode iso"),
+                ParamSpec::float(
+                    "iso",
+                    0.5,
+                    -1e12,
+                    1e12,
+                    "iso value for mode iso (data units, or \"percentile(P)\", \"range(F)\", \"otsu\")",
+                )
+                .relative(),
                 ParamSpec::float(
                     "step",
                     0.5,
@@ -332,7 +339,7 @@ impl Node<Value, Ctx> for RaycastNode {
                 .iter()
                 .position(|m| *m == p.choice("mode"))
                 .unwrap_or(0),
-            iso: p.f32("iso"),
+            iso: crate::relative::data_value(ctx, p, "iso", &volume.data)?,
             step_voxels: p.f32("step"),
             shading: SHADINGS
                 .iter()
@@ -419,7 +426,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
                 "depth + normal of the iso-surface",
             )],
             params: vec![
-                ParamSpec::float("iso", 0.0, -1e12, 1e12, "iso value, in the volume's units"),
+                crate::relative::iso_param(),
                 ParamSpec::float("step", 0.25, 0.05, 8.0, "sample distance in voxels"),
             ],
             frame_dependent: true,
@@ -437,7 +444,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let options = RayOptions {
             mode: 2,
-            iso: p.f32("iso"),
+            iso: crate::relative::data_value(ctx, p, "iso", &volume.data)?,
             step_voxels: p.f32("step"),
             shading: 0,
             lighting_model: "phong",
