@@ -3,6 +3,7 @@
 mod bench;
 mod catalogue;
 mod info;
+mod presets;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
@@ -43,6 +44,21 @@ enum Command {
     },
     /// Load and validate a graph without running it.
     Validate { graph: PathBuf },
+    /// List a graph's inputs: the data files it reads, with their type, doc and default.
+    Inputs {
+        graph: PathBuf,
+        /// A JSON list of objects with `name`, `type`, `doc`, `default` and `to`.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List the presets (graphs/) with their one-line description and inputs.
+    Presets {
+        /// The folder of presets (default: ./graphs, else the repository's).
+        #[arg(long)]
+        dir: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+    },
     /// List every node kind with its ports, parameters and docs.
     Nodes {
         /// Markdown, as committed in docs/nodes.md.
@@ -91,6 +107,10 @@ struct FrameArgs {
     /// Override a parameter: `node.param=value` (paths relative to the current folder).
     #[arg(long, value_name = "NODE.PARAM=VALUE")]
     set: Vec<String>,
+    /// Give a graph input another file: `name=path` (see `hatchery inputs GRAPH`; paths
+    /// relative to the current folder).
+    #[arg(long, value_name = "NAME=PATH")]
+    input: Vec<String>,
 }
 
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
@@ -185,6 +205,15 @@ fn run(cli: Cli) -> Result<()> {
             println!("{}: valid ({} nodes)", graph.display(), g.nodes().count());
             Ok(())
         }
+        Command::Inputs { graph, json } => {
+            print!("{}", presets::inputs(&graph, json)?);
+            Ok(())
+        }
+        Command::Presets { dir, json } => {
+            let dir = dir.unwrap_or_else(presets::default_dir);
+            print!("{}", presets::presets(&dir, json)?);
+            Ok(())
+        }
         Command::Nodes { markdown } => {
             let registry = hatchery_nodes::registry();
             print!(
@@ -216,6 +245,7 @@ fn run(cli: Cli) -> Result<()> {
                     &FrameArgs {
                         size: size[0],
                         set: Vec::new(),
+                        input: Vec::new(),
                     },
                 )?;
                 // Each override applies to the graphs that have its node.
@@ -281,6 +311,14 @@ fn run(cli: Cli) -> Result<()> {
 fn open(graph: &Path, frame: &FrameArgs) -> Result<Session> {
     let (width, height) = frame.size;
     let mut session = Session::open(graph, width, height)?;
+    for assignment in &frame.input {
+        let (name, path) = assignment
+            .split_once('=')
+            .with_context(|| format!("--input `{assignment}`: expected NAME=PATH"))?;
+        let path = std::path::absolute(path.trim())
+            .with_context(|| format!("--input `{assignment}`: not a usable path"))?;
+        session.set_input(name.trim(), &path)?;
+    }
     for assignment in &frame.set {
         let (node, param, value) = split_assignment(assignment, "NODE.PARAM")?;
         let value = resolve_cli_path(&session, node, param, value);
@@ -385,7 +423,15 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
             graph.display()
         );
     }
-    session.run(&targets)?;
+    if let Err(e) = session.run(&targets) {
+        // A node that reads a graph input names it, so a bad file given with --input says so.
+        if let hatchery_nodes::SessionError::Exec(exec) = &e
+            && let Some(input) = session.input_of(&exec.node)
+        {
+            bail!("input `{}`: {e}", input.name);
+        }
+        return Err(e.into());
+    }
     for (node, port, path) in &requests {
         let ext = path
             .extension()

@@ -23,6 +23,26 @@ pub struct LabelData {
 }
 
 impl LabelData {
+    /// The voxel-index box `[lo, hi]` (inclusive) around every labelled (non-zero) voxel, or
+    /// `None` when the map holds background only.
+    pub fn object_voxel_bounds(&self) -> Option<([u32; 3], [u32; 3])> {
+        let [nx, ny, _] = self.dims.map(|d| d as usize);
+        let mut lo = [u32::MAX; 3];
+        let mut hi = [0u32; 3];
+        for (i, _) in self.ids.iter().enumerate().filter(|(_, id)| **id != 0) {
+            let ijk = [
+                (i % nx) as u32,
+                ((i / nx) % ny) as u32,
+                (i / (nx * ny)) as u32,
+            ];
+            for a in 0..3 {
+                lo[a] = lo[a].min(ijk[a]);
+                hi[a] = hi[a].max(ijk[a]);
+            }
+        }
+        (lo[0] != u32::MAX).then_some((lo, hi))
+    }
+
     /// The ids of a volume whose values are object ids (a label map in any volume format).
     /// Errors: a value that is not a whole number in 0..=65535 (naming the first such voxel),
     /// or "no data" (NaN). Names default to "object N".

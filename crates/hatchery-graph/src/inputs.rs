@@ -191,7 +191,10 @@ fn check_binding(
         ));
     }
     match spec.reads {
-        Some(reads) if reads == kind => Ok(()),
+        // A label map is a volume file too (frog presets read it both ways).
+        Some(reads) if reads == kind || (kind, reads) == (InputKind::Labels, InputKind::Volume) => {
+            Ok(())
+        }
         Some(reads) => Err(format!(
             "a {kind} input bound to `{node}.{param}`, which reads a {reads} file"
         )),

@@ -303,8 +303,8 @@ pub enum ParamValue {
 
 /// A data value given relative to a volume's values, resolved when the node runs (Issue 25):
 /// written in graph files and on the command line as `"percentile(60)"` (of the finite
-/// values), `"range(0.3)"` (min + 0.3·(max − min)) or `"otsu"` (Otsu's threshold between the
-/// two classes of the value histogram).
+/// values), `"range(0.3)"` (min + 0.3·(max − min); the argument may be a fraction such as
+/// `80/255`) or `"otsu"` (Otsu's threshold between the two classes of the value histogram).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RelativeValue {
     Percentile(f64),
@@ -325,8 +325,14 @@ impl RelativeValue {
                 .and_then(|r| r.strip_prefix('('))
                 .and_then(|r| r.strip_suffix(')'))
                 .map(|n| {
-                    n.parse::<f64>()
-                        .map_err(|_| format!("`{n}` in `{text}` is not a number"))
+                    // A number, or a fraction `a/b` ("range(80/255)": 80 of a 0–255 range).
+                    let number = |s: &str| s.parse::<f64>().ok().filter(|x| x.is_finite());
+                    match n.split_once('/') {
+                        Some((a, b)) => number(a).zip(number(b)).map(|(a, b)| a / b),
+                        None => number(n),
+                    }
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| format!("`{n}` in `{text}` is not a number"))
                 })
         };
         let value = if let Some(p) = arg("percentile") {
@@ -559,5 +565,53 @@ impl Params {
             Some(base) if !raw.is_empty() && path.is_relative() => base.join(path),
             _ => path,
         }
+    }
+}
+
+#[cfg(test)]
+mod relative_tests {
+    use super::*;
+
+    #[test]
+    fn relative_values_parse_check_and_print() {
+        assert_eq!(
+            RelativeValue::parse(" Percentile( 60 )"),
+            Ok(RelativeValue::Percentile(60.0))
+        );
+        assert_eq!(
+            RelativeValue::parse("range(80/255)"),
+            Ok(RelativeValue::Range(80.0 / 255.0))
+        );
+        assert_eq!(RelativeValue::parse("OTSU"), Ok(RelativeValue::Otsu));
+        assert!(
+            RelativeValue::parse("percentile(101)")
+                .unwrap_err()
+                .contains("[0, 100]")
+        );
+        assert!(RelativeValue::parse("range(1/0)").is_err());
+        assert!(RelativeValue::parse("median").is_err());
+        assert_eq!(
+            RelativeValue::Percentile(60.0).to_string(),
+            "percentile(60)"
+        );
+        // Only parameters marked relative take them, from files and the command line.
+        let iso = ParamSpec::float("iso", 0.0, -1e12, 1e12, "iso").relative();
+        let raw = ron::Value::String("otsu".into());
+        assert_eq!(
+            iso.convert(&raw),
+            Ok(ParamValue::Relative(RelativeValue::Otsu))
+        );
+        assert_eq!(
+            iso.parse_cli("range(0.5)"),
+            Ok(ParamValue::Relative(RelativeValue::Range(0.5)))
+        );
+        assert_eq!(iso.parse_cli("12.5"), Ok(ParamValue::Float(12.5)));
+        let e = iso
+            .convert(&ron::Value::String("percentile(x)".into()))
+            .unwrap_err();
+        assert!(e.contains("not a number"), "{e}");
+        let plain = ParamSpec::float("step", 0.5, 0.0, 8.0, "step");
+        assert!(plain.convert(&raw).is_err());
+        assert!(plain.parse_cli("otsu").is_err());
     }
 }

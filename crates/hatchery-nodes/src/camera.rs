@@ -93,6 +93,22 @@ impl Camera {
         }
     }
 
+    /// The same orthographic view showing 2·`extent_distance`·tan(fov/2) across the frame's
+    /// shorter side (framing puts the eye outside the data and sizes the view separately).
+    pub fn with_orthographic_extent(mut self, extent_distance: f32, fov_deg: f32) -> Camera {
+        let aspect = self.width as f32 / self.height as f32;
+        let half_short = (fov_deg.to_radians() / 2.0).tan();
+        let half_h = extent_distance
+            * if aspect >= 1.0 {
+                half_short
+            } else {
+                half_short / aspect
+            };
+        let half_w = half_h * aspect;
+        self.proj = directx::orthographic(-half_w, half_w, -half_h, half_h, self.near, self.far);
+        self
+    }
+
     pub fn view_proj(&self) -> Mat4 {
         self.proj * self.view
     }
@@ -178,8 +194,26 @@ impl Node<Value, Ctx> for CameraNode {
             doc: "Orbit camera around a target point, perspective or orthographic. The field of view \
                   spans the frame's shorter side; orthographic views show 2·distance·tan(fov/2) \
                   across it; azimuth 0, elevation 0 with up \"y\" looks \
-                  along -z (axis-aligned).",
-            inputs: vec![],
+                  along -z (axis-aligned). With data connected (a volume, labels, a mesh, or \
+                  several) and `framing` \"fit\", it frames them: the target is the centre of \
+                  their bounds (moved by `pan_x`, `pan_y`), the distance (or orthographic extent) \
+                  makes them fill `fill` of the frame's width or height from this azimuth and \
+                  elevation; `near` and `far` scale with the framed distance relative to \
+                  `distance` (so depth-based thresholds act alike on data of any size), widened \
+                  to enclose the data; `target` goes unused.",
+            inputs: vec![
+                PortSpec::optional(
+                    "volume",
+                    PortType::Volume,
+                    "data to frame: the volume's grid",
+                ),
+                PortSpec::optional(
+                    "labels",
+                    PortType::Labels,
+                    "data to frame: the labelled objects (not the background)",
+                ),
+                PortSpec::optional("mesh", PortType::Mesh, "data to frame: the mesh's vertices"),
+            ],
             outputs: vec![PortSpec::output(
                 "camera",
                 PortType::Camera,
@@ -229,6 +263,33 @@ impl Node<Value, Ctx> for CameraNode {
                 ),
                 ParamSpec::float("near", 0.05, 1e-5, 1e6, "near clipping distance"),
                 ParamSpec::float("far", 100.0, 1e-4, 1e7, "far clipping distance"),
+                ParamSpec::choice(
+                    "framing",
+                    "fit",
+                    &["fit", "fixed"],
+                    "fit: frame the connected data; fixed: use target and distance (also when nothing is connected)",
+                ),
+                ParamSpec::float(
+                    "fill",
+                    0.8,
+                    0.05,
+                    1.0,
+                    "framing: the fraction of the frame's width or height the data fills",
+                ),
+                ParamSpec::float(
+                    "pan_x",
+                    0.0,
+                    -10.0,
+                    10.0,
+                    "framing: target shift to the right, in frame widths (shorter side)",
+                ),
+                ParamSpec::float(
+                    "pan_y",
+                    0.0,
+                    -10.0,
+                    10.0,
+                    "framing: target shift upwards, in frame heights (shorter side)",
+                ),
             ],
             frame_dependent: true,
             sink: false,
@@ -238,29 +299,96 @@ impl Node<Value, Ctx> for CameraNode {
     fn execute(
         &self,
         ctx: &mut Ctx,
-        _inputs: &NodeInputs<Value>,
+        inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let (near, far) = (p.f32("near"), p.f32("far"));
-        if near >= far {
-            return Err(NodeError::new(format!(
-                "near ({near}) must be less than far ({far})"
-            )));
-        }
         let (width, height) = ctx.size();
-        let camera = Camera::orbit(
-            Vec3::from(p.vec3("target")),
+        let orthographic = p.choice("projection") == "orthographic";
+        let (az, el, fov, up_z) = (
             p.f32("azimuth"),
             p.f32("elevation"),
-            p.f32("distance"),
             p.f32("fov"),
-            p.choice("projection") == "orthographic",
-            near,
-            far,
             p.choice("up") == "z",
-            width,
-            height,
         );
+        let points = framed_points(inputs)?;
+        let framing = (p.choice("framing") == "fit" && !points.is_empty())
+            .then(|| {
+                crate::framing::frame_points(
+                    &points,
+                    az,
+                    el,
+                    up_z,
+                    fov,
+                    width as f32 / height as f32,
+                    orthographic,
+                    p.f32("fill"),
+                    [p.f32("pan_x"), p.f32("pan_y")],
+                    (p.f32("near"), p.f32("far"), p.f32("distance")),
+                )
+            })
+            .flatten();
+        let camera = match framing {
+            Some(f) => {
+                let camera = Camera::orbit(
+                    f.target,
+                    az,
+                    el,
+                    f.distance,
+                    fov,
+                    orthographic,
+                    f.near,
+                    f.far,
+                    up_z,
+                    width,
+                    height,
+                );
+                if orthographic {
+                    camera.with_orthographic_extent(f.extent_distance, fov)
+                } else {
+                    camera
+                }
+            }
+            None => {
+                let (near, far) = (p.f32("near"), p.f32("far"));
+                if near >= far {
+                    return Err(NodeError::new(format!(
+                        "near ({near}) must be less than far ({far})"
+                    )));
+                }
+                Camera::orbit(
+                    Vec3::from(p.vec3("target")),
+                    az,
+                    el,
+                    p.f32("distance"),
+                    fov,
+                    orthographic,
+                    near,
+                    far,
+                    up_z,
+                    width,
+                    height,
+                )
+            }
+        };
         Ok(vec![Value::Camera(Arc::new(camera))])
     }
+}
+
+/// World points the camera frames (see [`crate::framing`]): the occupied blocks of the
+/// connected volume's foreground and of the labelled objects, and the mesh's vertices.
+fn framed_points(inputs: &NodeInputs<Value>) -> Result<Vec<Vec3>, NodeError> {
+    let mut points = Vec::new();
+    if let Some(v) = inputs.get("volume") {
+        points.extend_from_slice(v.volume("volume")?.frame_points());
+    }
+    if let Some(v) = inputs.get("labels") {
+        points.extend_from_slice(v.labels("labels")?.frame_points());
+    }
+    if let Some(v) = inputs.get("mesh") {
+        points.extend(crate::framing::strided(
+            &v.mesh("mesh")?.data.positions,
+            65_536,
+        ));
+    }
+    Ok(points)
 }

@@ -76,6 +76,29 @@ impl Session {
         Ok(report)
     }
 
+    /// Gives graph input `name` (issue 25) the file `path`: checks that the input exists and
+    /// that the file can be read and is of the input's kind, then sets every parameter bound to
+    /// it. A relative `path` is taken as it is (callers resolve it against their own folder).
+    /// Errors are one line naming the input.
+    pub fn set_input(&mut self, name: &str, path: &Path) -> Result<(), SessionError> {
+        let input = self.graph.input(name).map_err(SessionError::Other)?.clone();
+        crate::graph_inputs::check_input_file(name, input.kind, path)
+            .map_err(SessionError::Other)?;
+        let text = path.to_string_lossy();
+        for (node, param) in &input.to {
+            self.set_param_text(node, param, &text)?;
+        }
+        Ok(())
+    }
+
+    /// The graph input a node's parameter is bound to, if any (error messages name it).
+    pub fn input_of(&self, node: &str) -> Option<&hatchery_graph::GraphInput> {
+        self.graph
+            .inputs()
+            .iter()
+            .find(|i| i.to.iter().any(|(n, _)| n == node))
+    }
+
     /// Sets `node.param` from command-line text.
     pub fn set_param_text(
         &mut self,

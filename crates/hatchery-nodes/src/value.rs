@@ -14,6 +14,7 @@ pub struct Volume {
     max_gradient: OnceLock<f32>,
     /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
     bricks: OnceLock<wgpu::Texture>,
+    frame_points: OnceLock<Vec<glam::Vec3>>,
 }
 
 impl Volume {
@@ -23,7 +24,30 @@ impl Volume {
             texture: OnceLock::new(),
             max_gradient: OnceLock::new(),
             bricks: OnceLock::new(),
+            frame_points: OnceLock::new(),
         }
+    }
+    /// What a Camera frames (see [`crate::framing`]), found once: the occupied 8³ blocks of the
+    /// volume's foreground (voxels at or above Otsu's threshold), or its whole grid when the
+    /// values do not split into two classes.
+    pub fn frame_points(&self) -> &[glam::Vec3] {
+        self.frame_points.get_or_init(|| {
+            let d = &self.data;
+            let values = d.values_f32();
+            let points = hatchery_data::value_stats::otsu(d)
+                .map(|t| {
+                    crate::framing::occupied_block_corners(d.dims, &d.geometry, |i| values[i] >= t)
+                })
+                .unwrap_or_default();
+            if points.is_empty() {
+                let last = d.dims.map(|n| (n - 1) as f32);
+                crate::framing::box_corners(glam::Vec3::ZERO, glam::Vec3::from(last))
+                    .map(|c| d.voxel_to_world(c))
+                    .to_vec()
+            } else {
+                points
+            }
+        })
     }
     /// The 3-D texture in a format matching the voxel type (see [`crate::volume_texture`]),
     /// uploaded on first use.
@@ -75,6 +99,7 @@ pub struct Labels {
     drawn_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
     /// The last selection mask (SelectionRender), with its ids.
     selection_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
+    frame_points: OnceLock<Vec<glam::Vec3>>,
 }
 
 /// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
@@ -93,7 +118,17 @@ impl Labels {
             bricks: OnceLock::new(),
             drawn_mask: std::sync::Mutex::new(None),
             selection_mask: std::sync::Mutex::new(None),
+            frame_points: OnceLock::new(),
         }
+    }
+
+    /// What a Camera frames: the occupied 8³ blocks of the labelled (non-background) voxels,
+    /// found once; empty for a map of background only.
+    pub fn frame_points(&self) -> &[glam::Vec3] {
+        self.frame_points.get_or_init(|| {
+            let d = &self.data;
+            crate::framing::occupied_block_corners(d.dims, &d.geometry, |i| d.ids[i] != 0)
+        })
     }
 
     /// An R8Unorm volume: 1 where a voxel's id is in `drawn` (sorted), else 0. Filtered

@@ -1,0 +1,112 @@
+//! Giving a graph's inputs (issue 25) files of the user's: the checks that make a wrong or
+//! unreadable file a one-line error naming the input, before anything runs.
+
+use hatchery_data::mesh_file::MESH_ENDINGS;
+use hatchery_data::volume_file::VOLUME_ENDINGS;
+use hatchery_graph::InputKind;
+use std::path::Path;
+
+/// Endings of object-name tables (`LabelFile.names`).
+pub const NAMES_ENDINGS: [&str; 4] = [".csv", ".tsv", ".txt", ".label"];
+
+fn ends_with_any(name: &str, endings: &[&str]) -> bool {
+    endings.iter().any(|e| name.ends_with(e))
+}
+
+/// What kind of data file `path` is by its name: a volume or label map (the same formats), a
+/// mesh, a names table, or unknown.
+fn kind_of_name(path: &Path) -> Option<&'static str> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if path.is_dir() || ends_with_any(&name, &VOLUME_ENDINGS) {
+        Some("volume")
+    } else if ends_with_any(&name, &MESH_ENDINGS) {
+        Some("mesh")
+    } else if ends_with_any(&name, &NAMES_ENDINGS) {
+        Some("names table")
+    } else {
+        None
+    }
+}
+
+/// Checks that `path` can be given to an input of `kind`: it exists and can be read, and its
+/// name says it is that kind of file (a folder is a DICOM series, for volumes and labels).
+/// Errors are one line naming the input: "input `volume`: brain.obj is a mesh file, not a
+/// volume (NIfTI .nii/.nii.gz, …)".
+pub fn check_input_file(input: &str, kind: InputKind, path: &Path) -> Result<(), String> {
+    let shown = path.display();
+    let metadata = std::fs::metadata(path)
+        .map_err(|e| format!("input `{input}`: cannot read {shown}: {e}"))?;
+    if metadata.is_file() {
+        std::fs::File::open(path)
+            .map_err(|e| format!("input `{input}`: cannot read {shown}: {e}"))?;
+    }
+    let (wanted, endings): (&str, Vec<&str>) = match kind {
+        InputKind::Volume => ("volume", VOLUME_ENDINGS.to_vec()),
+        InputKind::Labels => ("volume", VOLUME_ENDINGS.to_vec()),
+        InputKind::Mesh => ("mesh", MESH_ENDINGS.to_vec()),
+        InputKind::Names => ("names table", NAMES_ENDINGS.to_vec()),
+    };
+    if metadata.is_dir() && kind != InputKind::Volume && kind != InputKind::Labels {
+        return Err(format!(
+            "input `{input}`: {shown} is a folder, not a {kind} file ({})",
+            endings.join(", ")
+        ));
+    }
+    match kind_of_name(path) {
+        Some(found) if found == wanted => Ok(()),
+        Some(found) => Err(format!(
+            "input `{input}` takes a {} file ({}), but {shown} is a {found} file",
+            kind_word(kind),
+            endings.join(", ")
+        )),
+        None => Err(format!(
+            "input `{input}` takes a {} file ({}); {shown} has none of these endings",
+            kind_word(kind),
+            endings.join(", ")
+        )),
+    }
+}
+
+fn kind_word(kind: InputKind) -> &'static str {
+    match kind {
+        InputKind::Volume => "volume",
+        InputKind::Labels => "label map",
+        InputKind::Mesh => "mesh",
+        InputKind::Names => "names table",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrong_kinds_and_missing_files_name_the_input() {
+        let dir = tempfile::tempdir().unwrap();
+        let mesh = dir.path().join("bunny.OBJ");
+        std::fs::write(&mesh, "v 0 0 0\n").unwrap();
+        let table = dir.path().join("names.csv");
+        std::fs::write(&table, "1,liver\n").unwrap();
+        let e = check_input_file("volume", InputKind::Volume, &mesh).unwrap_err();
+        assert!(
+            e.starts_with("input `volume` takes a volume file") && e.contains("is a mesh file"),
+            "{e}"
+        );
+        assert!(check_input_file("mesh", InputKind::Mesh, &mesh).is_ok());
+        assert!(check_input_file("names", InputKind::Names, &table).is_ok());
+        let e = check_input_file("labels", InputKind::Labels, &table).unwrap_err();
+        assert!(e.contains("label map") && e.contains("names table"), "{e}");
+        let e =
+            check_input_file("volume", InputKind::Volume, &dir.path().join("no.nii")).unwrap_err();
+        assert!(
+            e.starts_with("input `volume`: cannot read") && e.contains("no.nii"),
+            "{e}"
+        );
+        // A folder is a DICOM series.
+        assert!(check_input_file("volume", InputKind::Volume, dir.path()).is_ok());
+        assert!(check_input_file("mesh", InputKind::Mesh, dir.path()).is_err());
+    }
+}
