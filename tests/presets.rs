@@ -49,7 +49,10 @@ fn every_preset_loads_validates_and_renders() {
 
 /// The presets on the shared MRI and frog render as they did before volumes carried a full
 /// voxel → world transform and kept their native voxel types: 256×192 renders by the binary of
-/// commit 96c2639 are in tests/fixtures/before_world_space/.
+/// commit 96c2639 are in tests/fixtures/before_world_space/. Their cameras are held at the fixed
+/// target and distance they were written with (`framing` "fixed"; they frame their data now), so
+/// this also shows that their data-relative values (iso "range(80/255)", …) resolve to the
+/// numbers they replaced.
 ///
 /// Tolerance: every channel within 1/255. One exception, by kind: where a label volume picks the
 /// transfer function's row (§4.2 of Bruckner & Gröller 2007: the label at the *nearest* voxel),
@@ -77,6 +80,9 @@ fn shared_data_presets_render_as_before_the_world_space_change() {
             .join("graphs")
             .join(format!("{name}.ron"));
         let mut session = Session::open(&graph, 256, 192).unwrap();
+        session
+            .set_param_text("camera", "framing", "fixed")
+            .unwrap();
         let nearest_label_rows = session.graph.nodes().any(|n| {
             n.kind == "StyleTransferFunction" && !n.params.text("label_nodes").trim().is_empty()
         });

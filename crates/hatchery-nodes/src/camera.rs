@@ -374,8 +374,8 @@ impl Node<Value, Ctx> for CameraNode {
     }
 }
 
-/// World points the camera frames (see [`crate::framing`]): the occupied blocks of the
-/// connected volume's foreground and of the labelled objects, and the mesh's vertices.
+/// World points the camera frames (see [`crate::framing`]): the outlines of the connected
+/// volume's foreground and of the labelled objects, and the mesh's vertices.
 fn framed_points(inputs: &NodeInputs<Value>) -> Result<Vec<Vec3>, NodeError> {
     let mut points = Vec::new();
     if let Some(v) = inputs.get("volume") {

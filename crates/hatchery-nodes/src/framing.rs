@@ -122,13 +122,13 @@ pub fn frame_points(
 }
 
 /// Edge of the voxel blocks whose occupancy approximates a volume's shape for framing.
-const BLOCK: u32 = 8;
+const BLOCK: u32 = 4;
 
-/// Points outlining where a grid holds something: the corners of every 8³-voxel block with at
-/// least one voxel for which `occupied(index)` holds (index = x + nx·(y + ny·z)), in world
-/// space. A tight stand-in for the shape (within a block), cheap to project from every view.
-/// Empty when nothing is occupied.
-pub fn occupied_block_corners(
+/// Points outlining where a grid holds something, in world space: the centres of the 4³-voxel
+/// blocks that hold at least one voxel for which `occupied(index)` holds (index =
+/// x + nx·(y + ny·z)) and touch an empty block or the grid's edge. The data's outline within
+/// two voxels, few enough points to project from every view. Empty when nothing is occupied.
+pub fn occupied_block_outline(
     dims: [u32; 3],
     geometry: &hatchery_data::geometry::Geometry,
     occupied: impl Fn(usize) -> bool + Sync,
@@ -136,7 +136,7 @@ pub fn occupied_block_corners(
     use rayon::prelude::*;
     let [nx, ny, nz] = dims;
     let b = dims.map(|d| d.div_ceil(BLOCK));
-    // One row of blocks per (block y, block z), filled in parallel over z slabs.
+    // One row of blocks per (block y, block z), filled in parallel.
     let blocks: Vec<bool> = (0..b[1] * b[2])
         .into_par_iter()
         .flat_map_iter(|row| {
@@ -156,14 +156,36 @@ pub fn occupied_block_corners(
             hit
         })
         .collect();
+    let at = |x: i64, y: i64, z: i64| {
+        let inside = (0..b[0] as i64).contains(&x)
+            && (0..b[1] as i64).contains(&y)
+            && (0..b[2] as i64).contains(&z);
+        inside && blocks[(x + b[0] as i64 * (y + b[1] as i64 * z)) as usize]
+    };
     let last = Vec3::new((nx - 1) as f32, (ny - 1) as f32, (nz - 1) as f32);
     let mut points = Vec::new();
     for (i, _) in blocks.iter().enumerate().filter(|(_, h)| **h) {
-        let i = i as u32;
-        let (bx, by, bz) = (i % b[0], (i / b[0]) % b[1], i / (b[0] * b[1]));
-        let lo = Vec3::new(bx as f32, by as f32, bz as f32) * BLOCK as f32;
-        let hi = (lo + Vec3::splat(BLOCK as f32 - 1.0)).min(last);
-        points.extend(box_corners(lo, hi).map(|c| geometry.voxel_to_world(c)));
+        let i = i as i64;
+        let (x, y, z) = (
+            i % b[0] as i64,
+            (i / b[0] as i64) % b[1] as i64,
+            i / (b[0] * b[1]) as i64,
+        );
+        let inner = [
+            (1, 0, 0),
+            (-1, 0, 0),
+            (0, 1, 0),
+            (0, -1, 0),
+            (0, 0, 1),
+            (0, 0, -1),
+        ]
+        .iter()
+        .all(|(dx, dy, dz)| at(x + dx, y + dy, z + dz));
+        if !inner {
+            let lo = Vec3::new(x as f32, y as f32, z as f32) * BLOCK as f32;
+            let centre = ((lo + (lo + Vec3::splat(BLOCK as f32 - 1.0)).min(last)) * 0.5).min(last);
+            points.push(geometry.voxel_to_world(centre));
+        }
     }
     points
 }

@@ -22,11 +22,14 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
                   several times (the index function ift of §4.1). `label_nodes` adds the 2-D variant of \
                   §4.2 (value × object): rows for chosen labels of the label volume given to \
                   Raycast's `labels`. Connect to Raycast's `tf`.",
-            inputs: vec![PortSpec::input(
-                "styles",
-                PortType::StyleSet,
-                "the lit-sphere styles",
-            )],
+            inputs: vec![
+                PortSpec::input("styles", PortType::StyleSet, "the lit-sphere styles"),
+                PortSpec::optional(
+                    "volume",
+                    PortType::Volume,
+                    "resolves node values given relative to the data (\"range(0.3): 1 0.5\")",
+                ),
+            ],
             outputs: vec![PortSpec::output(
                 "tf",
                 PortType::TransferFunction,
@@ -36,7 +39,7 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
                 ParamSpec::text(
                     "nodes",
                     "40: 0 0.02; 90: 1 0.3; 160: 2 1.0",
-                    "value: style opacity; … (every object)",
+                    "value: style opacity; … (every object); a value may be relative to the connected volume: \"percentile(P)\", \"range(F)\", \"otsu\"",
                 ),
                 ParamSpec::text(
                     "label_nodes",
@@ -56,7 +59,16 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let styles = inputs.require("styles")?.style_set("styles")?.clone();
-        let nodes = StyleTransferFunction::parse(p.text("nodes"))
+        let volume = match inputs.get("volume") {
+            Some(v) => Some(v.volume("volume")?.clone()),
+            None => None,
+        };
+        let text = crate::relative::resolve_point_values(
+            p.text("nodes"),
+            volume.as_ref().map(|v| &*v.data),
+        )
+        .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
+        let nodes = StyleTransferFunction::parse(&text)
             .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
         let function = StyleTransferFunction::from_nodes(&nodes, styles.maps.len())
             .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;

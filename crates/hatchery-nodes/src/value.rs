@@ -27,8 +27,8 @@ impl Volume {
             frame_points: OnceLock::new(),
         }
     }
-    /// What a Camera frames (see [`crate::framing`]), found once: the occupied 8³ blocks of the
-    /// volume's foreground (voxels at or above Otsu's threshold), or its whole grid when the
+    /// What a Camera frames (see [`crate::framing`]), found once: the outline of the volume's
+    /// foreground (voxels at or above Otsu's threshold), or its whole grid when the
     /// values do not split into two classes.
     pub fn frame_points(&self) -> &[glam::Vec3] {
         self.frame_points.get_or_init(|| {
@@ -36,7 +36,7 @@ impl Volume {
             let values = d.values_f32();
             let points = hatchery_data::value_stats::otsu(d)
                 .map(|t| {
-                    crate::framing::occupied_block_corners(d.dims, &d.geometry, |i| values[i] >= t)
+                    crate::framing::occupied_block_outline(d.dims, &d.geometry, |i| values[i] >= t)
                 })
                 .unwrap_or_default();
             if points.is_empty() {
@@ -122,12 +122,12 @@ impl Labels {
         }
     }
 
-    /// What a Camera frames: the occupied 8³ blocks of the labelled (non-background) voxels,
-    /// found once; empty for a map of background only.
+    /// What a Camera frames: the outline of the labelled (non-background) voxels, found once;
+    /// empty for a map of background only.
     pub fn frame_points(&self) -> &[glam::Vec3] {
         self.frame_points.get_or_init(|| {
             let d = &self.data;
-            crate::framing::occupied_block_corners(d.dims, &d.geometry, |i| d.ids[i] != 0)
+            crate::framing::occupied_block_outline(d.dims, &d.geometry, |i| d.ids[i] != 0)
         })
     }
 
