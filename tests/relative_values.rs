@@ -52,7 +52,7 @@ fn relative_values_resolve_to_the_numbers_they_replaced_on_the_presets_own_data(
                 };
                 let what = format!("{}: {id}.{param}", name.to_string_lossy());
                 match (&value, before) {
-                    (ParamValue::Relative(r), ron::Value::Number(n)) => {
+                    (ParamValue::Relative(r, _), ron::Value::Number(n)) => {
                         session
                             .run(&[&id])
                             .unwrap_or_else(|e| panic!("{what}: {e}"));

@@ -78,6 +78,15 @@ pub struct EditorApp {
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
     pub frame_all: bool,
+    /// The Data panel's input rows last frame (screen points): drop targets.
+    pub data_rows: Vec<(String, egui::Rect)>,
+    /// The Presets menu's presets (read when it first opens) and their thumbnails.
+    gallery: Option<Vec<crate::gallery::PresetInfo>>,
+    thumbnails: crate::gallery::Thumbnails,
+    /// Where preset thumbnails are cached (see [`crate::gallery`]).
+    pub thumbnail_dir: PathBuf,
+    /// *Apply to my data…*: once this preset is open, ask for a file for this input (name, type).
+    apply_after_open: Option<(PathBuf, String, String)>,
     /// Wakes the UI when a custom shader's file changes.
     file_watch: Option<crate::file_watch::FileWatch>,
     /// Frame once more when every node has been drawn (their sizes are known then).
@@ -160,6 +169,11 @@ impl EditorApp {
             pending: None,
             quitting: false,
             frame_all: true,
+            data_rows: Vec::new(),
+            gallery: None,
+            thumbnails: Default::default(),
+            thumbnail_dir: crate::gallery::cache_dir(),
+            apply_after_open: None,
             file_watch: None,
             frame_all_again: false,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
@@ -342,6 +356,7 @@ impl EditorApp {
             }
         }
         self.dropped_files(ui);
+        self.apply_to_my_data();
         if let Some((purpose, path)) = self.picker.update(ui.ctx()) {
             self.picked(purpose, &path);
         }
@@ -519,22 +534,18 @@ impl EditorApp {
                 });
             });
             ui.menu_button("Presets", |ui| {
-                let mut presets: Vec<PathBuf> = std::fs::read_dir(&self.presets_dir)
-                    .map(|d| {
-                        d.filter_map(|e| e.ok().map(|e| e.path()))
-                            .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-                            .collect()
-                    })
-                    .unwrap_or_default();
-                presets.sort();
-                for p in presets {
-                    let name = p
-                        .file_stem()
-                        .map_or(String::new(), |s| s.to_string_lossy().into());
-                    if ui.button(name).clicked() {
+                let dir = self.presets_dir.clone();
+                let presets = self
+                    .gallery
+                    .get_or_insert_with(|| crate::gallery::list(&dir, &self.thumbnail_dir))
+                    .clone();
+                match crate::gallery::menu(ui, &presets, &mut self.thumbnails) {
+                    Some(crate::gallery::Choice::Open(p)) => self.request(Pending::Open(p)),
+                    Some(crate::gallery::Choice::Apply(p, input, kind)) => {
+                        self.apply_after_open = Some((p.clone(), input, kind));
                         self.request(Pending::Open(p));
-                        ui.close();
                     }
+                    None => {}
                 }
             });
             ui.menu_button("Edit", |ui| {
@@ -744,6 +755,11 @@ impl EditorApp {
     }
 
     fn inspector(&mut self, ui: &mut Ui) {
+        self.data_rows = crate::data_panel::show(&mut self.state, ui, &mut self.picker);
+        for (name, rect) in &self.data_rows {
+            self.layout.record(format!("input:{name}"), *rect);
+        }
+        ui.separator();
         ui.heading("Inspector");
         let Some(id) = self.state.inspected().map(str::to_owned) else {
             ui.label("Click a node to edit its parameters.");
@@ -790,7 +806,19 @@ impl EditorApp {
                     .and_then(|raw| spec.convert(raw).ok())
                     .unwrap_or_else(|| spec.default.clone());
                 ui.label(spec.name).on_hover_text(spec.doc);
-                let widget = ui.scope(|ui| param_widget(ui, spec, &current));
+                let resolved = self
+                    .preview
+                    .resolved
+                    .get(&id)
+                    .and_then(|r| r.get(spec.name))
+                    .cloned();
+                let widget = ui.scope(|ui| {
+                    if spec.relative {
+                        relative_widget(ui, spec, &current, resolved.as_deref())
+                    } else {
+                        param_widget(ui, spec, &current)
+                    }
+                });
                 self.layout
                     .record(format!("param:{}", spec.name), widget.response.rect);
                 if let Some(value) = widget.inner {
@@ -867,6 +895,26 @@ impl EditorApp {
         self.picker.open(purpose, kind, folder);
     }
 
+    /// *Apply to my data…*: the preset is open, ask for the file of its main input; forget the
+    /// request if opening it was cancelled.
+    fn apply_to_my_data(&mut self) {
+        let Some((path, input, kind)) = self.apply_after_open.clone() else {
+            return;
+        };
+        if self.state.path() == Some(path.as_path()) {
+            self.apply_after_open = None;
+            let file_kind = match kind.as_str() {
+                "volume" | "labels" => Some(FileKind::Volume),
+                "mesh" => Some(FileKind::Mesh),
+                _ => None,
+            };
+            self.picker
+                .open(Purpose::Input { name: input }, file_kind, None);
+        } else if self.pending.is_none() {
+            self.apply_after_open = None;
+        }
+    }
+
     /// The user picked `path` in the file dialog.
     fn picked(&mut self, purpose: Purpose, path: &Path) {
         match purpose {
@@ -875,6 +923,11 @@ impl EditorApp {
                 let _ = self
                     .state
                     .set_param(&node, &param, ParamValue::Path(stored), false);
+            }
+            Purpose::Input { name } => {
+                if let Err(e) = crate::data_panel::set_input(&mut self.state, &name, path) {
+                    self.state.status = e;
+                }
             }
             Purpose::OpenGraph => self.request(Pending::Open(path.to_path_buf())),
             Purpose::SaveGraphAs => {
@@ -911,6 +964,15 @@ impl EditorApp {
             .input(|i| i.pointer.latest_pos())
             .unwrap_or_else(|| ui.max_rect().center());
         let graph_at = self.canvas_transform.inverse() * at;
+        // Dropped on an input of the Data panel: that input reads the file.
+        if let Some((name, _)) = self.data_rows.iter().find(|(_, r)| r.contains(at)).cloned() {
+            for file in &dropped {
+                if let Err(e) = crate::data_panel::set_input(&mut self.state, &name, file.path()) {
+                    self.state.status = e;
+                }
+            }
+            return;
+        }
         for (n, file) in dropped.iter().enumerate() {
             let path = file.path().to_path_buf();
             let kind = FileKind::of(&path);
@@ -1101,12 +1163,20 @@ impl EditorApp {
 
     /// Dragging in the viewport orbits the graph's Camera node (azimuth, elevation), dragging
     /// with the right or middle button (or with Shift) pans its target, the wheel zooms
-    /// (distance); one drag or one burst of scrolling is one undo step.
+    /// (distance); one drag or one burst of scrolling is one undo step. A camera that frames
+    /// its data (issue 25) keeps framing: the pan moves `pan_x`/`pan_y` (fractions of the
+    /// frame) and the wheel scales `fill`, so the view survives a change of data.
     fn orbit_camera(&mut self, ui: &Ui, response: &egui::Response) {
         let Some(camera) = viewport_camera(self.state.doc()) else {
             return;
         };
         let current = |state: &EditorState, name: &str| camera_param(state, &camera, name);
+        let framing = camera_choice(&self.state, &camera, "framing").as_deref() != Some("fixed")
+            && self.state.doc().edges.iter().any(|e| e.to.0 == camera);
+        if framing {
+            self.orbit_framing_camera(ui, response, &camera);
+            return;
+        }
         let panning = response.dragged_by(egui::PointerButton::Secondary)
             || response.dragged_by(egui::PointerButton::Middle)
             || (response.dragged_by(egui::PointerButton::Primary)
@@ -1147,6 +1217,55 @@ impl EditorApp {
                 let _ = self.state.set_params(
                     &camera,
                     &[("distance", ParamValue::Float(distance))],
+                    "viewport zoom",
+                );
+            }
+        }
+    }
+
+    /// [`Self::orbit_camera`] for a camera that frames its data.
+    fn orbit_framing_camera(&mut self, ui: &Ui, response: &egui::Response, camera: &str) {
+        let current = |state: &EditorState, name: &str| camera_param(state, camera, name);
+        let panning = response.dragged_by(egui::PointerButton::Secondary)
+            || response.dragged_by(egui::PointerButton::Middle)
+            || (response.dragged_by(egui::PointerButton::Primary)
+                && ui.input(|i| i.modifiers.shift));
+        let delta = response.drag_delta();
+        if panning && delta != egui::Vec2::ZERO {
+            // The scene follows the pointer: the target moves the other way, in frame sizes.
+            let across = response.rect.size().min_elem().max(1.0) as f64;
+            let pan_x =
+                (current(&self.state, "pan_x") - delta.x as f64 / across).clamp(-10.0, 10.0);
+            let pan_y =
+                (current(&self.state, "pan_y") + delta.y as f64 / across).clamp(-10.0, 10.0);
+            let values = [
+                ("pan_x", ParamValue::Float(pan_x)),
+                ("pan_y", ParamValue::Float(pan_y)),
+            ];
+            let _ = self.state.set_params(camera, &values, "viewport pan");
+        } else if response.dragged() && delta != egui::Vec2::ZERO {
+            let azimuth = (current(&self.state, "azimuth") - delta.x as f64 * 0.4 + 180.0)
+                .rem_euclid(360.0)
+                - 180.0;
+            let elevation =
+                (current(&self.state, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0);
+            let values = [
+                ("azimuth", ParamValue::Float(azimuth)),
+                ("elevation", ParamValue::Float(elevation)),
+            ];
+            let _ = self.state.set_params(camera, &values, "viewport orbit");
+        }
+        if response.drag_stopped() {
+            self.state.end_group();
+        }
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                let fill = (current(&self.state, "fill") * (scroll as f64 * 0.002).exp())
+                    .clamp(0.05, 20.0);
+                let _ = self.state.set_params(
+                    camera,
+                    &[("fill", ParamValue::Float(fill))],
                     "viewport zoom",
                 );
             }
@@ -1293,6 +1412,91 @@ impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         EditorApp::ui(self, ui);
     }
+}
+
+/// A data value that may be given relative to the data (issue 25): a number field or the
+/// relative form as text, a menu to switch between the forms, and what the last render
+/// resolved it to.
+fn relative_widget(
+    ui: &mut Ui,
+    spec: &ParamSpec,
+    current: &ParamValue,
+    resolved: Option<&str>,
+) -> Option<ParamValue> {
+    let mut changed = None;
+    ui.horizontal(|ui| {
+        match current {
+            ParamValue::Relative(_, written) => {
+                let id = ui.id().with(("relative", spec.name));
+                let mut text = ui
+                    .data(|d| d.get_temp::<String>(id))
+                    .unwrap_or_else(|| written.clone());
+                let field = ui.add(egui::TextEdit::singleline(&mut text).desired_width(110.0));
+                if field.lost_focus() {
+                    ui.data_mut(|d| d.remove::<String>(id));
+                    match spec.parse_cli(&text) {
+                        Ok(v) if &v != current => changed = Some(v),
+                        _ => {}
+                    }
+                } else if field.has_focus() {
+                    ui.data_mut(|d| d.insert_temp(id, text));
+                }
+                field.on_hover_text(format!(
+                    "{}: a number, percentile(P), range(F) or otsu",
+                    spec.doc
+                ));
+            }
+            _ => changed = param_widget(ui, spec, current),
+        }
+        let number = resolved
+            .and_then(|t| t.rsplit("= ").next())
+            .and_then(|t| t.parse::<f64>().ok())
+            .or(match current {
+                ParamValue::Float(x) => Some(*x),
+                _ => None,
+            });
+        egui::ComboBox::from_id_salt(("relative-form", spec.name))
+            .selected_text(match current {
+                ParamValue::Relative(..) => "relative",
+                _ => "value",
+            })
+            .width(70.0)
+            .show_ui(ui, |ui| {
+                let forms = [
+                    ("value", number.map(ParamValue::Float)),
+                    (
+                        "percentile(50)",
+                        Some(ParamValue::relative(
+                            hatchery_graph::RelativeValue::Percentile(50.0),
+                        )),
+                    ),
+                    (
+                        "range(0.5)",
+                        Some(ParamValue::relative(hatchery_graph::RelativeValue::Range(
+                            0.5,
+                        ))),
+                    ),
+                    (
+                        "otsu",
+                        Some(ParamValue::relative(hatchery_graph::RelativeValue::Otsu)),
+                    ),
+                ];
+                for (label, value) in forms {
+                    if let Some(value) = value
+                        && ui.selectable_label(false, label).clicked()
+                    {
+                        changed = Some(value);
+                    }
+                }
+            })
+            .response
+            .on_hover_text("give the value in data units, or relative to the connected volume");
+        if let (ParamValue::Relative(..), Some(number)) = (current, number) {
+            ui.weak(format!("= {number}"))
+                .on_hover_text("what the last render resolved it to, in data units");
+        }
+    });
+    changed
 }
 
 /// A widget for one parameter; returns the new value when the user changed it.

@@ -89,6 +89,10 @@ pub enum Purpose {
     },
     OpenGraph,
     SaveGraphAs,
+    /// A graph input (the Data panel).
+    Input {
+        name: String,
+    },
 }
 
 /// The one file dialog of the editor.
@@ -106,6 +110,7 @@ impl FilePicker {
                 Purpose::Param { node, param } => format!("Choose {node}.{param}"),
                 Purpose::OpenGraph => "Open a graph".into(),
                 Purpose::SaveGraphAs => "Save the graph as".into(),
+                Purpose::Input { name } => format!("Choose the file for input `{name}`"),
             }
             .as_str(),
         );

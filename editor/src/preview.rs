@@ -87,6 +87,8 @@ pub struct Preview {
     pub times: BTreeMap<String, NodeTime>,
     /// Warnings by node from the last answer.
     pub warnings: BTreeMap<String, String>,
+    /// Data-relative parameters as the last render resolved them (node → parameter → text).
+    pub resolved: BTreeMap<String, BTreeMap<String, String>>,
     /// Value ranges of the evaluated `TransferFunction1D` nodes.
     pub tf_domains: BTreeMap<String, [f32; 2]>,
     /// The objects of each node with a `labels` output, from the last render.
@@ -241,6 +243,7 @@ impl Preview {
         self.failed_node = answer.failed_node;
         self.times = answer.times;
         self.warnings = answer.warnings;
+        self.resolved.extend(answer.resolved);
         self.tf_domains.extend(answer.tf_domains);
         self.object_names.extend(answer.object_names);
         self.last_render = Some((answer.elapsed, answer.adapter));

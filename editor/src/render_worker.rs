@@ -60,6 +60,8 @@ pub struct Rendered {
     pub times: BTreeMap<String, NodeTime>,
     /// Warnings of the nodes the requested ports depend on (a constant volume, no surface).
     pub warnings: BTreeMap<String, String>,
+    /// Data-relative parameters as the nodes resolved them: node → parameter → "otsu = 80".
+    pub resolved: BTreeMap<String, BTreeMap<String, String>>,
     /// The value range each evaluated transfer function node spans (a `TransferFunction1D`'s
     /// presets follow the connected volume's range, which only the executed graph knows).
     pub tf_domains: BTreeMap<String, [f32; 2]>,
@@ -82,6 +84,7 @@ impl Rendered {
             failed_node: None,
             times: BTreeMap::new(),
             warnings: BTreeMap::new(),
+            resolved: BTreeMap::new(),
             tf_domains: BTreeMap::new(),
             object_names: BTreeMap::new(),
             elapsed: Duration::ZERO,
@@ -301,6 +304,9 @@ impl Worker {
         for node in answer.times.keys() {
             if let Some(w) = session.ctx.warnings().get(node) {
                 answer.warnings.insert(node.clone(), w.clone());
+            }
+            if let Some(r) = session.ctx.resolved().get(node) {
+                answer.resolved.insert(node.clone(), r.clone());
             }
             if let Ok(Value::TransferFunction(tf)) = session.output(node, "tf") {
                 let domain = match tf.as_ref() {

@@ -190,9 +190,12 @@ impl ParamSpec {
         let value = match &self.kind {
             ParamKind::Float { .. } if self.relative && as_str(raw).is_some() => {
                 let text = as_str(raw).unwrap_or_default();
-                ParamValue::Relative(RelativeValue::parse(text).map_err(|e| {
+                ParamValue::Relative(
+                    RelativeValue::parse(text).map_err(|e| {
                     format!("expected a number or a value relative to the data, found the string \"{text}\": {e}")
-                })?)
+                })?,
+                    text.trim().to_owned(),
+                )
             }
             ParamKind::Float { .. } => ParamValue::Float(as_f64(raw).ok_or_else(wrong)?),
             ParamKind::Int { .. } => ParamValue::Int(as_i64(raw).ok_or_else(wrong)?),
@@ -246,7 +249,7 @@ impl ParamSpec {
                     return Err(format!("vector {v:?} is not finite"));
                 }
             }
-            (ParamKind::Float { .. }, ParamValue::Relative(r)) if self.relative => r.check()?,
+            (ParamKind::Float { .. }, ParamValue::Relative(r, _)) if self.relative => r.check()?,
             (ParamKind::Bool, ParamValue::Bool(_))
             | (ParamKind::Path, ParamValue::Path(_))
             | (ParamKind::Text, ParamValue::Text(_)) => {}
@@ -263,7 +266,7 @@ impl ParamSpec {
             ParamKind::Text => ParamValue::Text(text.to_owned()),
             ParamKind::Choice(_) => ParamValue::Choice(text.trim_matches('"').to_owned()),
             ParamKind::Float { .. } if self.relative && RelativeValue::parse(text).is_ok() => {
-                ParamValue::Relative(RelativeValue::parse(text)?)
+                ParamValue::Relative(RelativeValue::parse(text)?, text.to_owned())
             }
             _ => {
                 // Numbers, bools and lists: RON syntax, plus bare comma lists ("1,0,0").
@@ -297,8 +300,9 @@ pub enum ParamValue {
     Vec3([f64; 3]),
     Path(String),
     Text(String),
-    /// A data value relative to the connected volume (floats marked [`ParamSpec::relative`]).
-    Relative(RelativeValue),
+    /// A data value relative to the connected volume (floats marked [`ParamSpec::relative`]),
+    /// with its text as written (saved as it was: `"range(80/255)"` stays so).
+    Relative(RelativeValue, String),
 }
 
 /// A data value given relative to a volume's values, resolved when the node runs (Issue 25):
@@ -372,6 +376,11 @@ impl fmt::Display for RelativeValue {
 }
 
 impl ParamValue {
+    /// A relative data value written in its canonical form.
+    pub fn relative(r: RelativeValue) -> ParamValue {
+        ParamValue::Relative(r, r.to_string())
+    }
+
     /// The raw RON value written to a graph file.
     pub fn to_ron(&self) -> ron::Value {
         let num = |x: f64| ron::Value::Number(ron::Number::new(x));
@@ -384,7 +393,7 @@ impl ParamValue {
             }
             ParamValue::Color(c) => ron::Value::Seq(c.iter().map(|x| num(*x)).collect()),
             ParamValue::Vec3(v) => ron::Value::Seq(v.iter().map(|x| num(*x)).collect()),
-            ParamValue::Relative(r) => ron::Value::String(r.to_string()),
+            ParamValue::Relative(_, text) => ron::Value::String(text.clone()),
         }
     }
 }
@@ -400,7 +409,7 @@ impl fmt::Display for ParamValue {
             }
             ParamValue::Color(c) => write!(f, "[{}, {}, {}, {}]", c[0], c[1], c[2], c[3]),
             ParamValue::Vec3(v) => write!(f, "[{}, {}, {}]", v[0], v[1], v[2]),
-            ParamValue::Relative(r) => write!(f, "{r}"),
+            ParamValue::Relative(_, text) => write!(f, "{text}"),
         }
     }
 }
@@ -415,7 +424,7 @@ impl Hash for ParamValue {
             ParamValue::Choice(s) | ParamValue::Path(s) | ParamValue::Text(s) => s.hash(state),
             ParamValue::Color(c) => c.iter().for_each(|x| x.to_bits().hash(state)),
             ParamValue::Vec3(v) => v.iter().for_each(|x| x.to_bits().hash(state)),
-            ParamValue::Relative(r) => r.to_string().hash(state),
+            ParamValue::Relative(_, text) => text.hash(state),
         }
     }
 }
@@ -517,7 +526,7 @@ impl Params {
     /// relative to the data (the node resolves it against its volume).
     pub fn data_value(&self, name: &str) -> Result<f64, RelativeValue> {
         match self.expect(name) {
-            ParamValue::Relative(r) => Err(*r),
+            ParamValue::Relative(r, _) => Err(*r),
             _ => Ok(self.float(name)),
         }
     }
@@ -599,11 +608,11 @@ mod relative_tests {
         let raw = ron::Value::String("otsu".into());
         assert_eq!(
             iso.convert(&raw),
-            Ok(ParamValue::Relative(RelativeValue::Otsu))
+            Ok(ParamValue::relative(RelativeValue::Otsu))
         );
         assert_eq!(
             iso.parse_cli("range(0.5)"),
-            Ok(ParamValue::Relative(RelativeValue::Range(0.5)))
+            Ok(ParamValue::relative(RelativeValue::Range(0.5)))
         );
         assert_eq!(iso.parse_cli("12.5"), Ok(ParamValue::Float(12.5)));
         let e = iso

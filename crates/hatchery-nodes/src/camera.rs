@@ -273,8 +273,8 @@ impl Node<Value, Ctx> for CameraNode {
                     "fill",
                     0.8,
                     0.05,
-                    1.0,
-                    "framing: the fraction of the frame's width or height the data fills",
+                    20.0,
+                    "framing: the fraction of the frame's width or height the data fills (above 1: closer, part of the data)",
                 ),
                 ParamSpec::float(
                     "pan_x",

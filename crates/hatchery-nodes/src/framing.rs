@@ -82,7 +82,7 @@ pub fn frame_points(
     } else {
         (half_short, half_short / aspect)
     };
-    let fill = fill.clamp(1e-3, 1.0);
+    let fill = fill.clamp(1e-3, 20.0);
     let radius = points
         .iter()
         .map(|p| (*p - centre).length())

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod add_menu;
 mod custom_shader;
+mod data_panel;
 mod export;
 mod fused;
 mod layout;
