@@ -895,6 +895,20 @@ impl EditorApp {
         self.picker.open(purpose, kind, folder);
     }
 
+    /// The text of a point list as a curve editor draws it: as written when every value is a
+    /// number; with values relative to the data (`range(30/255): …`) as the last render
+    /// resolved them (`None` before it ran). Editing the curve then writes numbers.
+    fn resolved_text(&self, node: &str, param: &str, written: String) -> Option<String> {
+        let relative = written.split(';').any(|e| {
+            e.split_once(':')
+                .is_some_and(|(v, _)| !v.trim().is_empty() && v.trim().parse::<f32>().is_err())
+        });
+        if !relative {
+            return Some(written);
+        }
+        self.preview.resolved.get(node)?.get(param).cloned()
+    }
+
     /// *Apply to my data…*: the preset is open, ask for the file of its main input; forget the
     /// request if opening it was cancelled.
     fn apply_to_my_data(&mut self) {
@@ -1022,14 +1036,17 @@ impl EditorApp {
         ui.label("Transfer function").on_hover_text(
             "drag a point to move it, double-click to add one, right-click a point to remove it",
         );
-        let mut points =
-            match crate::curve_editor::node_points(&preset, &text(value("points")), range) {
-                Ok(points) => points,
-                Err(e) => {
-                    ui.colored_label(Color32::LIGHT_RED, format!("cannot draw the curve: {e}"));
-                    return;
-                }
-            };
+        let Some(written) = self.resolved_text(id, "points", text(value("points"))) else {
+            ui.weak("the points are relative to the data: they show once the graph has run");
+            return;
+        };
+        let mut points = match crate::curve_editor::node_points(&preset, &written, range) {
+            Ok(points) => points,
+            Err(e) => {
+                ui.colored_label(Color32::LIGHT_RED, format!("cannot draw the curve: {e}"));
+                return;
+            }
+        };
         let context = self.preview.tf_domains.get(id).copied();
         if crate::curve_editor::transfer_function_editor(
             ui,
@@ -1059,6 +1076,10 @@ impl EditorApp {
             "drag a point to move it, double-click to add one, right-click a point to remove it; \
              click a point to pick its style",
         );
+        let Some(text) = self.resolved_text(id, "nodes", text) else {
+            ui.weak("the nodes are relative to the data: they show once the graph has run");
+            return;
+        };
         let mut nodes = match hatchery_data::style::StyleTransferFunction::parse(&text) {
             Ok(nodes) => nodes,
             Err(e) => {

@@ -54,7 +54,7 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
 
     fn execute(
         &self,
-        _ctx: &mut Ctx,
+        ctx: &mut Ctx,
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
@@ -68,6 +68,9 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
             volume.as_ref().map(|v| &*v.data),
         )
         .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
+        if text != p.text("nodes") {
+            ctx.note_resolved("nodes", text.clone());
+        }
         let nodes = StyleTransferFunction::parse(&text)
             .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
         let function = StyleTransferFunction::from_nodes(&nodes, styles.maps.len())

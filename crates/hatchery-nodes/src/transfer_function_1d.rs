@@ -71,7 +71,7 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
 
     fn execute(
         &self,
-        _ctx: &mut Ctx,
+        ctx: &mut Ctx,
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
@@ -90,6 +90,10 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
                     volume.as_ref().map(|v| &*v.data),
                 )
                 .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?;
+                if text != p.text("points") {
+                    // The editor's curve shows relative points where they resolved to.
+                    ctx.note_resolved("points", text.clone());
+                }
                 tf::TransferFunction1D::parse_points(&text)
                     .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?
             }

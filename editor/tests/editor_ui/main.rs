@@ -570,6 +570,18 @@ fn the_node_menu_duplicates_previews_and_deletes() {
     assert_eq!(h.state().state.doc().nodes.len(), 6);
 }
 
+/// The canvas label `label` (a port name) drawn on node `id`, in graph space (the canvas
+/// transform takes it to the screen). Port names repeat across nodes (the Camera's `volume`
+/// input, a source's `volume` output), so the node says which.
+fn port_label(h: &Harness<EditorApp>, id: &str, label: &str) -> egui::Rect {
+    let t = h.state().canvas_transform;
+    let node = h.state().node_screen_rect(id).expect("node on screen");
+    h.get_all_by_label(label)
+        .map(|n| n.rect())
+        .find(|r| node.contains(t * r.center()))
+        .unwrap_or_else(|| panic!("no label `{label}` on node {id}"))
+}
+
 /// Drags with the primary button from `from` to `to` (screen points) in small steps.
 fn drag(h: &mut Harness<EditorApp>, from: egui::Pos2, to: egui::Pos2) {
     drag_with(h, from, to, egui::PointerButton::Primary);
@@ -623,20 +635,8 @@ fn dragging_a_wire_between_incompatible_pins_is_refused_with_a_message() {
     h.run();
     let t = h.state().canvas_transform;
     // Pin labels in graph space; the pins sit just outside them.
-    let leftmost = |h: &Harness<EditorApp>, label: &str| {
-        h.get_all_by_label(label)
-            .map(|n| n.rect())
-            .min_by(|a, b| a.left().total_cmp(&b.left()))
-            .unwrap()
-    };
-    let rightmost = |h: &Harness<EditorApp>, label: &str| {
-        h.get_all_by_label(label)
-            .map(|n| n.rect())
-            .max_by(|a, b| a.left().total_cmp(&b.left()))
-            .unwrap()
-    };
-    let volume_out = leftmost(&h, "volume"); // shells.volume
-    let camera_in = rightmost(&h, "camera"); // shaded.camera
+    let volume_out = port_label(&h, "shells", "volume");
+    let camera_in = port_label(&h, "shaded", "camera");
     let from = t * egui::pos2(volume_out.right() + 8.0, volume_out.center().y);
     let to = t * egui::pos2(camera_in.left() - 12.0, camera_in.center().y);
     let before = h.state().state.doc().clone();
@@ -676,15 +676,8 @@ fn dragging_a_wire_between_compatible_pins_connects_them() {
     h.key_press(Key::Escape);
     h.run();
     let t = h.state().canvas_transform;
-    let volumes: Vec<egui::Rect> = h.get_all_by_label("volume").map(|n| n.rect()).collect();
-    let out = *volumes
-        .iter()
-        .min_by(|a, b| a.left().total_cmp(&b.left()))
-        .unwrap(); // shells.volume
-    let input = *volumes
-        .iter()
-        .max_by(|a, b| a.top().total_cmp(&b.top()))
-        .unwrap(); // the new node's volume input
+    let out = port_label(&h, "shells", "volume");
+    let input = port_label(&h, &added, "volume");
     let from = t * egui::pos2(out.right() + 8.0, out.center().y);
     let to = t * egui::pos2(input.left() - 12.0, input.center().y);
     drag(&mut h, from, to);
@@ -1059,7 +1052,7 @@ fn click_with(h: &mut Harness<EditorApp>, at: egui::Pos2, button: egui::PointerB
 #[test]
 fn the_transfer_function_editor_moves_adds_and_removes_points() {
     let dir = tempfile::tempdir().unwrap();
-    let (app, _) = open_copy("graphs/tf1d_phong_brain.ron", dir.path());
+    let (app, _) = open_copy("tests/fixtures/v2_presets/tf1d_phong_brain.ron", dir.path());
     // Frames 1/60 s apart (kittest's default 1/4 s is too slow for a double-click).
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
@@ -1274,7 +1267,14 @@ fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
     let mut h = harness(app);
     h.run();
     select_by_click(&mut h, "bunny");
-    h.get_by_label("📂").click();
+    // The Inspector's 📂 (the Data panel has one per input too).
+    let rows = h.state().data_rows.clone();
+    let button = h
+        .get_all_by_label("📂")
+        .map(|n| n.rect())
+        .find(|b| !rows.iter().any(|(_, r)| r.contains(b.center())))
+        .expect("the path parameter's folder button");
+    selection::click_mod(&mut h, button.center(), Modifiers::NONE);
     // The dialog reads the folder on a thread of its own: step until it lists the file.
     for _ in 0..400 {
         h.step();
@@ -1358,7 +1358,7 @@ fn closing_the_window_with_unsaved_changes_asks_first() {
 #[test]
 fn the_style_transfer_function_editor_moves_points_and_picks_their_styles() {
     let dir = tempfile::tempdir().unwrap();
-    let (app, _) = open_copy("graphs/style_tf_brain.ron", dir.path());
+    let (app, _) = open_copy("tests/fixtures/v2_presets/style_tf_brain.ron", dir.path());
     let mut h = harness(app);
     h.run();
     select_by_click(&mut h, "tf");

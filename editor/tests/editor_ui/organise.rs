@@ -21,6 +21,12 @@ fn label_rect(h: &Harness<EditorApp>, label: &str, leftmost: bool) -> egui::Rect
     egui::Rect::from_min_max(t * r.min, t * r.max)
 }
 
+/// A graph-space rectangle on screen.
+fn on_screen(h: &Harness<EditorApp>, r: egui::Rect) -> egui::Rect {
+    let t = h.state().canvas_transform;
+    egui::Rect::from_min_max(t * r.min, t * r.max)
+}
+
 /// Where an output pin sits: just right of its label (screen).
 fn out_pin(label: egui::Rect) -> egui::Pos2 {
     egui::pos2(label.right() + 8.0 * 1.0, label.center().y)
@@ -135,7 +141,7 @@ fn a_wire_dropped_on_empty_canvas_becomes_a_reroute_that_carries_it() {
     let mut h = harness(app);
     h.run();
     // shells.volume (an output, leftmost) dropped on empty canvas.
-    let from = out_pin(label_rect(&h, "volume", true));
+    let from = out_pin(on_screen(&h, port_label(&h, "shells", "volume")));
     let to = empty_canvas_point(&h);
     drop_wire(&mut h, from, to);
     h.get_by_label("Add reroute").click();
@@ -161,7 +167,7 @@ fn a_wire_dropped_on_empty_canvas_becomes_a_reroute_that_carries_it() {
     // Its output (typed Volume now) dragged onto surface.volume replaces the direct wire.
     h.run();
     let out = out_pin(label_rect(&h, "out", true));
-    let input = in_pin(label_rect(&h, "volume", false));
+    let input = in_pin(on_screen(&h, port_label(&h, "surface", "volume")));
     drag(&mut h, out, input);
     let doc = h.state().state.doc().clone();
     assert!(
@@ -187,7 +193,7 @@ fn a_wire_dropped_on_empty_canvas_becomes_a_reroute_that_carries_it() {
     );
 
     // A Camera output cannot go through a Volume reroute.
-    let camera = out_pin(label_rect(&h, "camera", true));
+    let camera = out_pin(on_screen(&h, port_label(&h, "camera", "camera")));
     let reroute_in = in_pin(label_rect(&h, "in", true));
     drag(&mut h, camera, reroute_in);
     assert!(
