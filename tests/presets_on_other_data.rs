@@ -99,7 +99,7 @@ fn other_data() -> OtherData {
                 let w = (1.0 - (r / 0.55)).clamp(0.0, 1.0).sqrt();
                 let g = if brain && r > 0.5 { 1.0 - w } else { 0.0 };
                 white.extend_from_slice(&w.to_le_bytes());
-                grey.extend_from_slice(&(g as f32).to_le_bytes());
+                grey.extend_from_slice(&g.to_le_bytes());
             }
         }
     }

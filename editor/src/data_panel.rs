@@ -68,7 +68,11 @@ pub fn show(state: &mut EditorState, ui: &mut Ui, picker: &mut FilePicker) -> Ve
                         ui.strong(&input.name).on_hover_text(&input.doc);
                         ui.weak(format!("({})", input.kind));
                         ui.label(shown).on_hover_text(&current);
-                        if ui.button("📂").on_hover_text("pick another file").clicked() {
+                        if ui
+                            .button("Pick…")
+                            .on_hover_text("pick another file")
+                            .clicked()
+                        {
                             let folder =
                                 Path::new(&current)
                                     .parent()

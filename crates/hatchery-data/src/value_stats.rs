@@ -37,7 +37,8 @@ const OTSU_BINS: usize = 256;
 /// class. `None` when the volume is constant or holds no finite value.
 pub fn otsu(volume: &VolumeData) -> Option<f32> {
     let [lo, hi] = volume.value_range;
-    if !(hi > lo) {
+    // (NaN bounds fail the comparison too.)
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     let width = (hi - lo) as f64 / OTSU_BINS as f64;

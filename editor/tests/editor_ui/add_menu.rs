@@ -75,11 +75,7 @@ fn right_click_type_and_enter_adds_the_first_match() {
         .nodes
         .iter()
         .find(|n| n.id == "silhouette_1");
-    let p = placed
-        .unwrap()
-        .editor
-        .clone()
-        .expect("placed on the canvas");
+    let p = placed.unwrap().editor.expect("placed on the canvas");
     let screen = h.state().canvas_transform * egui::pos2(p.x, p.y);
     assert!(
         screen.distance(at) < 40.0,

@@ -89,9 +89,9 @@ fn the_data_panel_button_picks_a_file_for_an_input() {
     let mut h = harness(app);
     h.run();
     let r = row(&h, "volume");
-    // The 📂 button sits at the row's right end.
+    // The Pick… button sits at the row's right end.
     let button = h
-        .get_all_by_label("📂")
+        .get_all_by_label("Pick…")
         .map(|n| n.rect())
         .find(|b| r.contains(b.center()))
         .expect("a pick button in the volume row");

@@ -1267,7 +1267,7 @@ fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
     let mut h = harness(app);
     h.run();
     select_by_click(&mut h, "bunny");
-    // The Inspector's 📂 (the Data panel has one per input too).
+    // The Inspector's 📂 (the Data panel's rows have a Pick… button each).
     let rows = h.state().data_rows.clone();
     let button = h
         .get_all_by_label("📂")
