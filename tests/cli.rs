@@ -5,13 +5,7 @@ mod common;
 use std::path::Path;
 use std::process::{Command, Output};
 
-fn hatchery(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hatchery"))
-        .args(args)
-        .current_dir(common::repo_root())
-        .output()
-        .expect("hatchery runs")
-}
+use common::hatchery;
 
 fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()

@@ -3,15 +3,8 @@
 
 mod common;
 
-use std::process::{Command, Output};
-
-fn hatchery(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hatchery"))
-        .args(args)
-        .current_dir(common::repo_root())
-        .output()
-        .expect("hatchery runs")
-}
+use common::hatchery;
+use std::process::Output;
 
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()

@@ -46,12 +46,7 @@ fn every_v2_preset_loads_and_saves_with_only_its_version_changed() {
     let dir = common::repo_root().join("tests/fixtures/v2_presets");
     let base = common::repo_root().join("graphs");
     let registry = hatchery_nodes::registry();
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    files.sort();
+    let files = common::ron_files(&dir);
     assert!(files.len() >= 28, "the version 2 presets are missing");
     for path in files {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
@@ -83,12 +78,7 @@ fn every_v1_preset_loads_saves_in_the_current_version_and_renders_identically() 
     let dir = common::repo_root().join("tests/fixtures/v1_presets");
     // Paths in the presets are relative to graphs/, where they were written.
     let base = common::repo_root().join("graphs");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    files.sort();
+    let files = common::ron_files(&dir);
     assert!(files.len() >= 14, "the version 1 presets are missing");
     let registry = hatchery_nodes::registry();
     for path in files {

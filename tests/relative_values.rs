@@ -65,7 +65,9 @@ fn relative_values_resolve_to_the_numbers_they_replaced_on_the_presets_own_data(
                         );
                         checked += 1;
                     }
-                    (ParamValue::Text(now), ron::Value::String(was)) if now != was => {
+                    (ParamValue::Text(now), ron::Value::String(was))
+                        if now != was && (param == "points" || param == "nodes") =>
+                    {
                         let volume = input_volume(&mut session, &id, "volume");
                         let resolved =
                             hatchery_nodes::relative::resolve_point_values(now, Some(&volume))

@@ -1117,6 +1117,23 @@ impl EditorApp {
             return;
         };
         ui.label("Objects");
+        let doc = self.state.doc();
+        let names: Vec<(u16, String)> = doc
+            .edges
+            .iter()
+            .find(|e| e.to.0 == id && e.to.1 == "labels")
+            .and_then(|e| self.preview.object_names.get(&e.from.0))
+            .cloned()
+            .unwrap_or_default();
+        // Rows may name their objects: the table shows them by id (an edit writes ids).
+        let by_id: std::collections::BTreeMap<u16, String> = names.iter().cloned().collect();
+        let text = match hatchery_nodes::object_styles::named_rows(&text, &by_id) {
+            Ok(text) => text,
+            Err(e) => {
+                ui.weak(format!("{e} (the table shows once the graph has run)"));
+                return;
+            }
+        };
         let mut rows = match hatchery_nodes::object_styles::parse_rows(&text) {
             Ok(rows) => rows,
             Err(e) => {
@@ -1124,14 +1141,6 @@ impl EditorApp {
                 return;
             }
         };
-        let doc = self.state.doc();
-        let names = doc
-            .edges
-            .iter()
-            .find(|e| e.to.0 == id && e.to.1 == "labels")
-            .and_then(|e| self.preview.object_names.get(&e.from.0))
-            .cloned()
-            .unwrap_or_default();
         if crate::object_table::object_table(ui, id, &mut rows, &names) {
             let text = hatchery_nodes::object_styles::format_rows(&rows);
             let _ = self.state.set_params(
@@ -1215,16 +1224,7 @@ impl EditorApp {
         } else if response.dragged() {
             let delta = response.drag_delta();
             if delta != egui::Vec2::ZERO {
-                let azimuth = (current(&self.state, "azimuth") - delta.x as f64 * 0.4 + 180.0)
-                    .rem_euclid(360.0)
-                    - 180.0;
-                let elevation =
-                    (current(&self.state, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0);
-                let values = [
-                    ("azimuth", ParamValue::Float(azimuth)),
-                    ("elevation", ParamValue::Float(elevation)),
-                ];
-                let _ = self.state.set_params(&camera, &values, "viewport orbit");
+                orbit_by(&mut self.state, &camera, delta);
             }
         }
         if response.drag_stopped() {
@@ -1265,16 +1265,7 @@ impl EditorApp {
             ];
             let _ = self.state.set_params(camera, &values, "viewport pan");
         } else if response.dragged() && delta != egui::Vec2::ZERO {
-            let azimuth = (current(&self.state, "azimuth") - delta.x as f64 * 0.4 + 180.0)
-                .rem_euclid(360.0)
-                - 180.0;
-            let elevation =
-                (current(&self.state, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0);
-            let values = [
-                ("azimuth", ParamValue::Float(azimuth)),
-                ("elevation", ParamValue::Float(elevation)),
-            ];
-            let _ = self.state.set_params(camera, &values, "viewport orbit");
+            orbit_by(&mut self.state, camera, delta);
         }
         if response.drag_stopped() {
             self.state.end_group();
@@ -2158,6 +2149,20 @@ fn node_param(
 fn camera_value(state: &EditorState, camera: &str, name: &str) -> Option<ParamValue> {
     let node = state.doc().nodes.iter().find(|n| n.id == camera)?;
     node_param(state, node, name)
+}
+
+/// Turns the camera by a viewport drag of `delta` points (0.4° a point; one undo group).
+fn orbit_by(state: &mut EditorState, camera: &str, delta: egui::Vec2) {
+    let azimuth = (camera_param(state, camera, "azimuth") - delta.x as f64 * 0.4 + 180.0)
+        .rem_euclid(360.0)
+        - 180.0;
+    let elevation =
+        (camera_param(state, camera, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0);
+    let values = [
+        ("azimuth", ParamValue::Float(azimuth)),
+        ("elevation", ParamValue::Float(elevation)),
+    ];
+    let _ = state.set_params(camera, &values, "viewport orbit");
 }
 
 fn camera_param(state: &EditorState, camera: &str, name: &str) -> f64 {

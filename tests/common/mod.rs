@@ -163,11 +163,25 @@ pub fn field_on_cube(n: u32, f: impl Fn(glam::Vec3) -> f32) -> hatchery_data::Vo
 
 /// Every preset graph in graphs/, sorted.
 pub fn presets() -> Vec<PathBuf> {
-    let mut presets: Vec<PathBuf> = std::fs::read_dir(repo_root().join("graphs"))
+    ron_files(&repo_root().join("graphs"))
+}
+
+/// Every `.ron` file in `dir`, sorted.
+pub fn ron_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "ron"))
         .collect();
-    presets.sort();
-    presets
+    files.sort();
+    files
+}
+
+/// Runs the `hatchery` binary in the repository root.
+pub fn hatchery(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_hatchery"))
+        .args(args)
+        .current_dir(repo_root())
+        .output()
+        .expect("hatchery runs")
 }

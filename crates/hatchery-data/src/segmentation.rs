@@ -286,3 +286,83 @@ mod tests {
         assert!(e.contains("line 2"), "{e}");
     }
 }
+
+/// Object names in a list of objects replaced by their ids, so presets can say `liver` where a
+/// label map names its objects (issue 25). `text` is split into entries at `separator`; in each
+/// entry the part before `key_end` (the whole entry when `None`) is the object: a number or range
+/// stays, a name (matched without regard to case and surrounding spaces) becomes its id. Errors:
+/// a name no object has, listing the names there are.
+pub fn ids_for_names(
+    text: &str,
+    separator: char,
+    key_end: Option<char>,
+    objects: &BTreeMap<u16, String>,
+) -> Result<String, String> {
+    let mut out = Vec::new();
+    for entry in text.split(separator) {
+        let (key, rest) = match key_end.and_then(|k| entry.split_once(k)) {
+            Some((key, rest)) => (key, Some(rest)),
+            None => (entry, None),
+        };
+        let word = key.trim();
+        let numeric = word.is_empty()
+            || word
+                .chars()
+                .all(|c| c.is_ascii_digit() || c == '-' || c.is_whitespace());
+        let key = if numeric {
+            key.to_owned()
+        } else {
+            let id = objects
+                .iter()
+                .find(|(_, name)| name.trim().eq_ignore_ascii_case(word))
+                .map(|(id, _)| *id)
+                .ok_or_else(|| {
+                    let names: Vec<&str> = objects.values().map(String::as_str).collect();
+                    format!(
+                        "no object is named `{word}` (the labels name: {})",
+                        if names.is_empty() {
+                            "none".to_owned()
+                        } else {
+                            names.join(", ")
+                        }
+                    )
+                })?;
+            format!(" {id}")
+        };
+        out.push(match (rest, key_end) {
+            (Some(rest), Some(k)) => format!("{key}{k}{rest}"),
+            _ => key,
+        });
+    }
+    Ok(out.join(&separator.to_string()))
+}
+
+#[cfg(test)]
+mod name_tests {
+    use super::*;
+
+    #[test]
+    fn names_become_ids_and_unknown_names_list_the_known_ones() {
+        let objects: BTreeMap<u16, String> =
+            [(10, "liver".to_owned()), (9, "large intestine".to_owned())].into();
+        assert_eq!(
+            ids_for_names("Liver, 3-4", ',', None, &objects).unwrap(),
+            " 10, 3-4"
+        );
+        assert_eq!(
+            ids_for_names(
+                "liver: iso iso; large intestine: tone over",
+                ';',
+                Some(':'),
+                &objects
+            )
+            .unwrap(),
+            " 10: iso iso; 9: tone over"
+        );
+        let e = ids_for_names("spleen", ',', None, &objects).unwrap_err();
+        assert!(
+            e.contains("`spleen`") && e.contains("large intestine, liver"),
+            "{e}"
+        );
+    }
+}

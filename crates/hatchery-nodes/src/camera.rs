@@ -43,25 +43,8 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Camera {
-        let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
-        let (offset, up) = if up_z {
-            (
-                Vec3::new(az.sin() * el.cos(), -az.cos() * el.cos(), el.sin()),
-                Vec3::Z,
-            )
-        } else {
-            (
-                Vec3::new(az.sin() * el.cos(), el.sin(), az.cos() * el.cos()),
-                Vec3::Y,
-            )
-        };
+        let (offset, up) = crate::framing::orbit_basis(azimuth_deg, elevation_deg, up_z);
         let eye = target + offset * distance;
-        // Looking straight along the up axis: pick another up so the view stays defined.
-        let up = if offset.cross(up).length_squared() < 1e-8 {
-            if up_z { Vec3::Y } else { -Vec3::Z }
-        } else {
-            up
-        };
         let view = look_at_mat4(eye, target, up);
         let aspect = width as f32 / height as f32;
         // The field of view spans the shorter side, so a tall frame (a narrow editor panel)

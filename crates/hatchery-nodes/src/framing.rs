@@ -5,9 +5,12 @@
 
 use glam::Vec3;
 
-/// The orbit's view basis for `azimuth`/`elevation` (degrees): the unit vector from the target
-/// to the eye, and the screen's right and up directions in the world (as [`crate::camera::Camera::orbit`]).
-pub fn orbit_basis(azimuth_deg: f32, elevation_deg: f32, up_z: bool) -> (Vec3, Vec3, Vec3) {
+/// The orbit of [`crate::camera::Camera::orbit`] for `azimuth`/`elevation` (degrees): the unit
+/// vector from the target to the eye, and the world up vector of the view. With `up_z`,
+/// elevation is measured from the xy plane and azimuth 0 looks along -y (medical RAS data);
+/// otherwise azimuth 0, elevation 0 looks along -z with +y up. Looking straight along the up
+/// axis, another up is picked so the view stays defined.
+pub fn orbit_basis(azimuth_deg: f32, elevation_deg: f32, up_z: bool) -> (Vec3, Vec3) {
     let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
     let (offset, up) = if up_z {
         (
@@ -25,9 +28,7 @@ pub fn orbit_basis(azimuth_deg: f32, elevation_deg: f32, up_z: bool) -> (Vec3, V
     } else {
         up
     };
-    let right = (-offset).cross(up).normalize();
-    let screen_up = right.cross(-offset);
-    (offset, right, screen_up)
+    (offset, up)
 }
 
 /// How a camera frames a set of points.
@@ -75,7 +76,10 @@ pub fn frame_points(
             (lo.min(*p), hi.max(*p))
         });
     let centre = (lo + hi) * 0.5;
-    let (toward_eye, right, up) = orbit_basis(azimuth_deg, elevation_deg, up_z);
+    let (toward_eye, world_up) = orbit_basis(azimuth_deg, elevation_deg, up_z);
+    // The screen's right and up directions in the world.
+    let right = (-toward_eye).cross(world_up).normalize();
+    let up = right.cross(-toward_eye);
     let half_short = (fov_deg.to_radians() / 2.0).tan();
     let (tx, ty) = if aspect >= 1.0 {
         (half_short * aspect, half_short)

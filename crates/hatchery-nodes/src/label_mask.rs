@@ -65,9 +65,11 @@ impl Node<Value, Ctx> for LabelMaskNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let from_labels;
+        let mut names = std::collections::BTreeMap::new();
         let data = match (inputs.get("objects"), inputs.get("volume")) {
             (Some(objects), None) => {
                 let l = &objects.labels("objects")?.data;
+                names = l.objects.clone();
                 from_labels = hatchery_data::VolumeData::from_voxels(
                     l.dims,
                     l.geometry,
@@ -88,7 +90,10 @@ impl Node<Value, Ctx> for LabelMaskNode {
                 ));
             }
         };
-        let wanted = labels::parse_label_list(p.text("labels"))
+        // Objects may be named where the labels name them ("liver, 13").
+        let text = hatchery_data::segmentation::ids_for_names(p.text("labels"), ',', None, &names)
+            .map_err(|e| NodeError::new(format!("parameter `labels`: {e}")))?;
+        let wanted = labels::parse_label_list(&text)
             .map_err(|e| NodeError::new(format!("parameter `labels`: {e}")))?;
         let counts = labels::label_counts(data);
         if !wanted.iter().any(|l| counts.contains_key(l)) {

@@ -40,6 +40,15 @@ pub struct Row {
 }
 
 /// Parses "ID: mode compositing [tf=…] [iso=…] [importance=…] [off]; …". Errors name the row.
+/// Rows whose objects are named ("liver: iso iso; …") with the labels' ids put in.
+pub fn named_rows(
+    text: &str,
+    objects: &std::collections::BTreeMap<u16, String>,
+) -> Result<String, NodeError> {
+    hatchery_data::segmentation::ids_for_names(text, ';', Some(':'), objects)
+        .map_err(|e| NodeError::new(format!("`objects`: {e}")))
+}
+
 pub fn parse_rows(text: &str) -> Result<Vec<Row>, String> {
     let mut rows: Vec<Row> = Vec::new();
     for (n, part) in text.split(';').map(str::trim).enumerate() {
@@ -242,8 +251,8 @@ impl Node<Value, Ctx> for ObjectStylesNode {
             Some(f) => f,
             None => preset("grey_ramp").map_err(NodeError::new)?,
         };
-        let rows =
-            parse_rows(p.text("objects")).map_err(|e| NodeError::new(format!("`objects`: {e}")))?;
+        let rows = parse_rows(&named_rows(p.text("objects"), &labels.data.objects)?)
+            .map_err(|e| NodeError::new(format!("`objects`: {e}")))?;
         let mut styles = Vec::new();
         for row in rows {
             let tf = match row.tf.as_deref() {

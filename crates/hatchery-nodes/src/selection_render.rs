@@ -348,7 +348,14 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         let background = color_tf(inputs, "tf")?.expect("a required input");
         let ghost = color_tf(inputs, "tf_ghost")?.unwrap_or_else(|| background.clone());
         let selected = color_tf(inputs, "tf_selection")?.unwrap_or_else(|| background.clone());
-        let ids = parse_ids(p.text("objects"))?;
+        let text = hatchery_data::segmentation::ids_for_names(
+            p.text("objects"),
+            ',',
+            None,
+            &labels.data.objects,
+        )
+        .map_err(|e| NodeError::new(format!("parameter `objects`: {e}")))?;
+        let ids = parse_ids(&text)?;
         let (centre, bounds) = extent_of(&labels, &ids).ok_or_else(|| {
             NodeError::new(format!(
                 "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {})",
