@@ -220,7 +220,6 @@ impl EditorApp {
     fn perform(&mut self, action: Pending) {
         match action {
             Pending::Open(path) => self.open(&path),
-            // The recovery file stays: the next start still offers it.
             Pending::Quit => self.quitting = true,
             Pending::New => {
                 let scratch = self.state.scratch_dir.clone();
@@ -242,10 +241,26 @@ impl EditorApp {
             .resizable(false)
             .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
             .show(ui.ctx(), |ui| {
-                ui.label("The graph has unsaved changes. Discard them?");
+                ui.label("The graph has unsaved changes.");
                 ui.horizontal(|ui| {
+                    // Save needs a file to save to; an untitled graph is saved with File → Save as….
+                    let can_save = self.state.path().is_some();
+                    let save = ui
+                        .add_enabled(can_save, egui::Button::new("Save"))
+                        .on_disabled_hover_text("untitled: use File → Save as… first");
+                    if save.clicked() {
+                        match self.state.save() {
+                            Ok(()) => {
+                                self.pending = None;
+                                self.perform(action.clone());
+                            }
+                            Err(e) => self.state.status = e,
+                        }
+                    }
                     if ui.button("Discard changes").clicked() {
                         self.pending = None;
+                        // Discarded on purpose: no autosave should offer them back.
+                        self.state.discard_recovery();
                         self.perform(action.clone());
                     }
                     if ui.button("Cancel").clicked() {
@@ -1850,7 +1865,8 @@ impl SnarlViewer<String> for Viewer<'_> {
                 snarl.drop_inputs(to.id);
                 snarl.connect(from.id, to.id);
                 self.state.status = format!(
-                    "connected {}.{} → {}.{}",
+                    // ASCII: the editor's default font has no arrow glyph (it drew a box).
+                    "connected {}.{} -> {}.{}",
                     op.node, op.port, ip.node, ip.port
                 );
             }
@@ -2153,11 +2169,14 @@ fn camera_value(state: &EditorState, camera: &str, name: &str) -> Option<ParamVa
 
 /// Turns the camera by a viewport drag of `delta` points (0.4° a point; one undo group).
 fn orbit_by(state: &mut EditorState, camera: &str, delta: egui::Vec2) {
-    let azimuth = (camera_param(state, camera, "azimuth") - delta.x as f64 * 0.4 + 180.0)
-        .rem_euclid(360.0)
-        - 180.0;
+    // Rounded to 1/1000 degree, so the file says `elevation: 9.0`, not 8.999999999999995.
+    let round = |x: f64| (x * 1000.0).round() / 1000.0;
+    let azimuth = round(
+        (camera_param(state, camera, "azimuth") - delta.x as f64 * 0.4 + 180.0).rem_euclid(360.0)
+            - 180.0,
+    );
     let elevation =
-        (camera_param(state, camera, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0);
+        round((camera_param(state, camera, "elevation") + delta.y as f64 * 0.4).clamp(-89.0, 89.0));
     let values = [
         ("azimuth", ParamValue::Float(azimuth)),
         ("elevation", ParamValue::Float(elevation)),

@@ -14,6 +14,7 @@ mod add_menu;
 mod custom_shader;
 mod data_panel;
 mod export;
+mod first_hour;
 mod fused;
 mod layout;
 mod objects;
@@ -690,6 +691,9 @@ fn dragging_a_wire_between_compatible_pins_connects_them() {
         "status: {}",
         h.state().state.status
     );
+    // Said in characters the editor's font has (an arrow glyph drew as a box).
+    let said = format!("connected shells.volume -> {added}.volume");
+    assert_eq!(h.state().state.status, said);
     assert!(h.state().state.node_error(&added).is_none());
     assert!(h.state_mut().state.undo());
     assert!(!h.state().state.doc().edges.contains(&edge));

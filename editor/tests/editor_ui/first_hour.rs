@@ -1,0 +1,95 @@
+//! Small findings of issue 24 ("the editor's first hour"), each driven as a user meets it.
+
+use super::*;
+
+/// The window's close button, as the platform reports it; returns the commands the app sent.
+fn close_window(h: &mut Harness<EditorApp>) -> Vec<egui::ViewportCommand> {
+    h.input_mut()
+        .viewports
+        .entry(egui::ViewportId::ROOT)
+        .or_default()
+        .events
+        .push(egui::ViewportEvent::Close);
+    h.step();
+    h.output()
+        .viewport_output
+        .get(&egui::ViewportId::ROOT)
+        .map(|v| v.commands.clone())
+        .unwrap_or_default()
+}
+
+fn closes(h: &mut Harness<EditorApp>) -> bool {
+    h.step();
+    h.step();
+    h.output().viewport_output[&egui::ViewportId::ROOT]
+        .commands
+        .contains(&egui::ViewportCommand::Close)
+}
+
+/// An orbit by dragging in the viewport (the edit a user makes first).
+fn orbit(h: &mut Harness<EditorApp>) {
+    let centre = h.state().viewport_rect.center();
+    drag(h, centre, centre + egui::vec2(-30.0, 25.0));
+}
+
+#[test]
+fn the_quit_prompt_saves_or_discards_and_discarding_drops_the_autosave() {
+    // Save: the file gets the edit, then the window closes.
+    let dir = tempfile::tempdir().unwrap();
+    let (app, path) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    orbit(&mut h);
+    assert!(close_window(&mut h).contains(&egui::ViewportCommand::CancelClose));
+    h.run();
+    h.get_by_label("Save").click();
+    assert!(closes(&mut h), "closed after saving");
+    let saved = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        saved,
+        h.state().state.doc().to_ron_string(),
+        "the edit was saved"
+    );
+
+    // Discard: the window closes and no autosave offers the discarded edit again.
+    let dir = tempfile::tempdir().unwrap();
+    let (app, path) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let before = std::fs::read_to_string(&path).unwrap();
+    let mut h = harness(app);
+    h.run();
+    orbit(&mut h);
+    let later = std::time::Instant::now() + std::time::Duration::from_secs(5);
+    assert!(h.state_mut().state.autosave_at(later), "an autosave exists");
+    let recovery = h.state().state.recovery_path();
+    assert!(recovery.is_file());
+    close_window(&mut h);
+    h.run();
+    h.get_by_label("Discard changes").click();
+    assert!(closes(&mut h));
+    assert!(
+        !recovery.exists(),
+        "{} stayed after Discard",
+        recovery.display()
+    );
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), before);
+}
+
+#[test]
+fn an_orbit_stores_round_angles() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    for _ in 0..3 {
+        orbit(&mut h);
+    }
+    let camera = h.state().state.doc().node("camera").unwrap().clone();
+    for name in ["azimuth", "elevation"] {
+        let Some(ron::Value::Number(n)) = camera.params.get(name) else {
+            panic!("{name} not set by the orbit");
+        };
+        let v = n.into_f64();
+        assert_eq!((v * 1000.0).round() / 1000.0, v, "{name} = {v}");
+        assert!(format!("{v}").len() <= 8, "{name} written as {v}");
+    }
+}
