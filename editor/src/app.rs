@@ -1532,7 +1532,17 @@ fn param_widget(ui: &mut Ui, spec: &ParamSpec, current: &ParamValue) -> Option<P
     match (&spec.kind, current) {
         (ParamKind::Float { min, max }, ParamValue::Float(x)) => {
             let mut v = *x;
-            let r = if (max - min).is_finite() && max - min <= 1.0e4 {
+            // Angles: a fine drag (about a degree a point) instead of a 720° slider in a few
+            // points, which jumped hundreds of degrees for a short drag.
+            let angle = spec.doc.contains("degrees");
+            let r = if angle {
+                ui.add(
+                    egui::DragValue::new(&mut v)
+                        .range(*min..=*max)
+                        .speed(0.5)
+                        .suffix("°"),
+                )
+            } else if (max - min).is_finite() && max - min <= 1.0e4 {
                 ui.add(egui::Slider::new(&mut v, *min..=*max))
             } else {
                 ui.add(egui::DragValue::new(&mut v).range(*min..=*max).speed(0.01))

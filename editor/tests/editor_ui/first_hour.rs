@@ -93,3 +93,48 @@ fn an_orbit_stores_round_angles() {
         assert!(format!("{v}").len() <= 8, "{name} written as {v}");
     }
 }
+
+#[test]
+fn an_angle_parameter_drags_finely() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let halftone = app
+        .state
+        .add_node("Halftone", EditorPos { x: 300.0, y: 400.0 })
+        .unwrap();
+    let mut h = harness(app);
+    h.run();
+    select_by_click(&mut h, &halftone);
+    let theta = |h: &Harness<EditorApp>| match h
+        .state()
+        .state
+        .doc()
+        .node(&halftone)
+        .unwrap()
+        .params
+        .get("theta")
+    {
+        Some(ron::Value::Number(n)) => n.into_f64(),
+        _ => 0.0,
+    };
+    let before = theta(&h);
+    // The widget right of the Inspector's `theta` label, dragged 36 points to the right.
+    let label = h
+        .get_all_by_label("theta")
+        .map(|n| n.rect())
+        .max_by(|a, b| a.left().total_cmp(&b.left()))
+        .unwrap();
+    let widget = h
+        .get_all_by_role(egui::accesskit::Role::SpinButton)
+        .map(|n| n.rect())
+        .find(|r| (r.center().y - label.center().y).abs() < 8.0 && r.left() > label.right())
+        .expect("an angle field beside theta");
+    let from = widget.center();
+    drag(&mut h, from, from + egui::vec2(36.0, 0.0));
+    let change = theta(&h) - before;
+    // About a degree a point at most (the 720° slider moved it ~290° for this drag).
+    assert!(
+        change > 5.0 && change <= 40.0,
+        "36 points moved theta by {change}°"
+    );
+}
