@@ -651,6 +651,21 @@ impl EditorApp {
         }
         self.selecting.begin_frame();
         let mut frame_request = false;
+        // The wheel over the canvas (not over a popup or the palette) zooms it.
+        let pointer = ui.input(|i| i.pointer.latest_pos());
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        let wheel_zoom = pointer
+            .filter(|&at| {
+                scroll != 0.0
+                    && !ui.input(|i| i.modifiers.shift || i.modifiers.command)
+                    && ui.available_rect_before_wrap().contains(at)
+                    && self.add_menu.is_none()
+                    && ui
+                        .ctx()
+                        .layer_id_at(at)
+                        .is_none_or(|l| l.order == egui::Order::Background)
+            })
+            .map(|at| (scroll, at));
         let mut viewer = Viewer {
             frame_into,
             node_sizes,
@@ -667,7 +682,9 @@ impl EditorApp {
             warnings: self.preview.warnings.clone(),
             failed,
             frame_request: &mut frame_request,
+            wheel_zoom,
         };
+
         // Dragging a node's title moves the node instead of selecting its text.
         ui.style_mut().interaction.selectable_labels = false;
         // Snarl sees no modifiers, so its own (Shift-click) selection never starts: the editor
@@ -1641,6 +1658,9 @@ struct Viewer<'a> {
     failed: Option<(String, String)>,
     /// *Frame selection* was chosen in a node menu (done after the canvas is drawn).
     frame_request: &'a mut bool,
+    /// The mouse wheel over the canvas this frame (points, pointer): it zooms about the
+    /// pointer instead of scrolling (Shift+wheel still scrolls).
+    wheel_zoom: Option<(f32, Pos2)>,
 }
 
 impl Viewer<'_> {
@@ -1992,6 +2012,19 @@ impl SnarlViewer<String> for Viewer<'_> {
         // The canvas holds still while a box selection is dragged (the drag would pan it).
         if let Some(held) = self.selecting.box_transform {
             *to_global = held;
+        }
+        // The wheel zooms about the pointer: undo the scroll the canvas took (from last
+        // frame's transform) and scale about the point under the pointer instead, so the graph
+        // stays where it is under the mouse (a few notches used to scroll it off-screen).
+        if let Some((scroll, at)) = self.wheel_zoom.take() {
+            let before = self.transform;
+            let factor = (scroll * 0.002).exp();
+            let scaling = (before.scaling * factor).clamp(0.2, 2.0);
+            let factor = scaling / before.scaling;
+            *to_global = egui::emath::TSTransform::from_translation(at.to_vec2())
+                * egui::emath::TSTransform::from_scaling(factor)
+                * egui::emath::TSTransform::from_translation(-at.to_vec2())
+                * before;
         }
         self.transform = *to_global;
         let Some(rect) = self.frame_into.take() else {

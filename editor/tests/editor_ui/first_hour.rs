@@ -138,3 +138,52 @@ fn an_angle_parameter_drags_finely() {
         "36 points moved theta by {change}°"
     );
 }
+
+fn wheel(h: &mut Harness<EditorApp>, at: egui::Pos2, notches: f32, modifiers: Modifiers) {
+    h.event(egui::Event::PointerMoved(at));
+    h.event_modifiers(
+        egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Line,
+            delta: egui::vec2(0.0, notches),
+            modifiers,
+            phase: egui::TouchPhase::Move,
+        },
+        modifiers,
+    );
+    h.run();
+}
+
+#[test]
+fn the_wheel_zooms_the_canvas_about_the_pointer_and_shift_wheel_scrolls() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    let at = super::selection::empty_canvas_point(&h) + egui::vec2(40.0, 40.0);
+    let before = h.state().canvas_transform;
+    let under = before.inverse() * at;
+    for _ in 0..4 {
+        wheel(&mut h, at, -1.0, Modifiers::NONE);
+    }
+    let after = h.state().canvas_transform;
+    assert!(
+        after.scaling < before.scaling * 0.95,
+        "four notches down zoomed out: {} -> {}",
+        before.scaling,
+        after.scaling
+    );
+    let moved = (after * under).distance(at);
+    assert!(
+        moved < 1.0,
+        "the graph point under the pointer moved {moved} points"
+    );
+    // Every node is still on the canvas.
+    let canvas = h.state().canvas_rect;
+    for id in ["camera", "shells", "surface", "shaded", "save"] {
+        let r = h.state().node_screen_rect(id).unwrap();
+        assert!(canvas.intersects(r), "{id} left the canvas");
+    }
+    // Shift+wheel scrolls: the scale stays.
+    wheel(&mut h, at, -1.0, Modifiers::SHIFT);
+    assert!((h.state().canvas_transform.scaling - after.scaling).abs() < 1e-6);
+}

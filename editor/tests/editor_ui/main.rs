@@ -1278,7 +1278,17 @@ fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
         .map(|n| n.rect())
         .find(|b| !rows.iter().any(|(_, r)| r.contains(b.center())))
         .expect("the path parameter's folder button");
-    selection::click_mod(&mut h, button.center(), Modifiers::NONE);
+    // A click by pointer events, stepped (the dialog repaints while it reads the folder).
+    h.event(egui::Event::PointerMoved(button.center()));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: button.center(),
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
     // The dialog reads the folder on a thread of its own: step until it lists the file.
     for _ in 0..400 {
         h.step();
