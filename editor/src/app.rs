@@ -353,10 +353,15 @@ impl EditorApp {
         } else {
             egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
             egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
+            // The Inspector keeps its width when a node with a wide editor (the object table)
+            // is selected: wide content scrolls sideways instead of pushing the picture and the
+            // canvas over.
             egui::Panel::right("inspector")
                 .default_size(320.0)
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| self.inspector(ui));
+                    egui::ScrollArea::both()
+                        .auto_shrink([false, false])
+                        .show(ui, |ui| self.inspector(ui));
                 });
             if placement == Placement::Maximised {
                 egui::CentralPanel::default().show(ui, |ui| self.viewport(ui));

@@ -187,3 +187,32 @@ fn the_wheel_zooms_the_canvas_about_the_pointer_and_shift_wheel_scrolls() {
     wheel(&mut h, at, -1.0, Modifiers::SHIFT);
     assert!((h.state().canvas_transform.scaling - after.scaling).abs() < 1e-6);
 }
+
+#[test]
+fn selecting_a_node_with_a_wide_editor_does_not_move_the_panels() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/two_level_frog.ron", dir.path());
+    // The copy's data paths point at the shared frog by absolute path.
+    let frog = repo("../shared/data/volumes/frog_tissues.vti")
+        .canonicalize()
+        .unwrap();
+    let names = repo("../shared/data/volumes/frog_tissues_names.csv")
+        .canonicalize()
+        .unwrap();
+    hatchery_editor::data_panel::set_input(&mut app.state, "labels", &frog).unwrap();
+    hatchery_editor::data_panel::set_input(&mut app.state, "names", &names).unwrap();
+    app.preview_enabled = true;
+    let mut h = harness(app);
+    wait_for_render(&mut h);
+    let (viewport, canvas) = (h.state().viewport_rect, h.state().canvas_rect);
+    select_by_click(&mut h, "objects");
+    wait_for_render(&mut h);
+    // The object table lists the organs by name.
+    h.get_by_label_contains("liver");
+    h.get_by_label_contains("skeleton");
+    let (v, c) = (h.state().viewport_rect, h.state().canvas_rect);
+    assert!(
+        (v.width() - viewport.width()).abs() < 1.0 && (c.right() - canvas.right()).abs() < 1.0,
+        "the picture went from {viewport:?} to {v:?}, the canvas from {canvas:?} to {c:?}"
+    );
+}

@@ -67,7 +67,17 @@ fn the_object_table_names_objects_and_edits_rows_by_clicks() {
         "1: shaded_dvr over off; 2: tone mip; 3: shaded_dvr over"
     );
 
-    // Row 2's importance, typed into its field (the numeric field on row 2's line).
+    // Row 2's importance, typed into its field (the numeric field on row 2's line). The table
+    // is wider than the Inspector (which keeps its width): scroll it sideways to the field.
+    let over = h.get_by_label("2 object 2").rect().center();
+    h.event(egui::Event::PointerMoved(over));
+    h.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Point,
+        delta: egui::vec2(-400.0, 0.0),
+        modifiers: Modifiers::NONE,
+        phase: egui::TouchPhase::Move,
+    });
+    h.run();
     let row = h.get_by_label("2 object 2").rect().center().y;
     let field = h
         .get_all_by_role(Role::SpinButton)
