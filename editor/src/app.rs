@@ -853,11 +853,18 @@ impl EditorApp {
                     if spec.relative {
                         relative_widget(ui, spec, &current, resolved.as_deref())
                     } else {
-                        param_widget(ui, spec, &current)
+                        (param_widget(ui, spec, &current), egui::Rect::NOTHING)
                     }
                 });
-                self.layout
-                    .record(format!("param:{}", spec.name), widget.response.rect);
+                // Where its value is typed (a relative value's row also has a form menu).
+                let (value, field) = widget.inner;
+                let rect = if field.is_positive() {
+                    field
+                } else {
+                    widget.response.rect
+                };
+                self.layout.record(format!("param:{}", spec.name), rect);
+                let widget = egui::InnerResponse::new(value, widget.response);
                 if let Some(value) = widget.inner {
                     let dragging =
                         ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
@@ -1471,8 +1478,9 @@ fn relative_widget(
     spec: &ParamSpec,
     current: &ParamValue,
     resolved: Option<&str>,
-) -> Option<ParamValue> {
+) -> (Option<ParamValue>, egui::Rect) {
     let mut changed = None;
+    let mut field_rect = egui::Rect::NOTHING;
     ui.horizontal(|ui| {
         match current {
             ParamValue::Relative(_, written) => {
@@ -1490,12 +1498,17 @@ fn relative_widget(
                 } else if field.has_focus() {
                     ui.data_mut(|d| d.insert_temp(id, text));
                 }
+                field_rect = field.rect;
                 field.on_hover_text(format!(
                     "{}: a number, percentile(P), range(F) or otsu",
                     spec.doc
                 ));
             }
-            _ => changed = param_widget(ui, spec, current),
+            _ => {
+                let r = ui.scope(|ui| param_widget(ui, spec, current));
+                field_rect = r.response.rect;
+                changed = r.inner;
+            }
         }
         let number = resolved
             .and_then(|t| t.rsplit("= ").next())
@@ -1545,7 +1558,7 @@ fn relative_widget(
                 .on_hover_text("what the last render resolved it to, in data units");
         }
     });
-    changed
+    (changed, field_rect)
 }
 
 /// A widget for one parameter; returns the new value when the user changed it.

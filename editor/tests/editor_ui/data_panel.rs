@@ -209,3 +209,34 @@ fn the_presets_gallery_lists_descriptions_and_applies_a_preset_to_my_data() {
         })
     );
 }
+
+#[test]
+fn an_iso_value_switches_to_a_relative_form_and_takes_one_typed() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    select_by_click(&mut h, "surface");
+    let iso = |h: &Harness<EditorApp>| {
+        h.state().state.doc().node("surface").unwrap().params["iso"].clone()
+    };
+    assert!(matches!(iso(&h), ron::Value::Number(n) if n.into_f64() == 0.0));
+    // The form menu beside the number: choose otsu.
+    let menu = h
+        .get_all_by_role(egui::accesskit::Role::ComboBox)
+        .find(|n| n.value().as_deref() == Some("value"))
+        .expect("the value/relative menu")
+        .rect();
+    super::selection::click_mod(&mut h, menu.center(), Modifiers::NONE);
+    let otsu = h.get_by_label("otsu").rect();
+    super::selection::click_mod(&mut h, otsu.center(), Modifiers::NONE);
+    assert_eq!(iso(&h), ron::Value::String("otsu".into()));
+    // Now a text field: type another form and press Enter.
+    let field = h
+        .get_all_by_role(Role::TextInput)
+        .map(|n| n.rect())
+        .find(|r| (r.center().y - menu.center().y).abs() < 8.0)
+        .expect("the relative value's text field");
+    super::export::type_into(&mut h, field.center(), "percentile(40)");
+    assert_eq!(iso(&h), ron::Value::String("percentile(40)".into()));
+}
