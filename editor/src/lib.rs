@@ -22,6 +22,7 @@ pub mod layout_dump;
 pub mod object_table;
 pub mod picture;
 pub mod preview;
+pub mod relative_value;
 pub mod render_worker;
 pub mod selection;
 pub mod state;

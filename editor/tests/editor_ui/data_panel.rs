@@ -160,7 +160,10 @@ fn the_presets_gallery_lists_descriptions_and_applies_a_preset_to_my_data() {
     let mut h = harness(app);
     h.run();
     h.get_by_label("Presets").click();
-    h.run();
+    // The menu's thumbnail thread keeps repainting: step instead of running until idle.
+    for _ in 0..3 {
+        h.step();
+    }
     h.get_by_label_contains("the MRI brain surface");
     // Thumbnails render off the UI thread, in name order, into the cache: the first one appears.
     let thumbs = dir.path().join("thumbnails");
@@ -192,8 +195,21 @@ fn the_presets_gallery_lists_descriptions_and_applies_a_preset_to_my_data() {
         .next()
         .expect("an Apply button")
         .rect();
-    super::selection::click_mod(&mut h, apply.center(), Modifiers::NONE);
-    h.run();
+    // Clicked by stepped pointer events: the thumbnail thread and the file dialog that opens
+    // keep repainting, so the UI never settles for `run`.
+    h.event(egui::Event::PointerMoved(apply.center()));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: apply.center(),
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+    for _ in 0..5 {
+        h.step();
+    }
     // The first data preset in name order is brain_surface: it opened, and the dialog asks for
     // its volume.
     let opened = h.state().state.path().unwrap().to_path_buf();
