@@ -445,13 +445,18 @@ impl EditorApp {
 
     fn shortcuts(&mut self, ui: &mut Ui) {
         let typing = ui.ctx().egui_wants_keyboard_input();
-        let (redo, undo, save) = ui.input_mut(|i| {
+        let (redo, undo, save, quit) = ui.input_mut(|i| {
             let redo = i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z)
                 || i.consume_key(Modifiers::COMMAND, Key::Y);
             let undo = i.consume_key(Modifiers::COMMAND, Key::Z);
             let save = i.consume_key(Modifiers::COMMAND, Key::S);
-            (redo, undo, save)
+            let quit = i.consume_key(Modifiers::COMMAND, Key::Q);
+            (redo, undo, save, quit)
         });
+        // Ctrl+Q closes the window, asking first about unsaved changes (as its close button).
+        if quit {
+            self.request(Pending::Quit);
+        }
         if redo {
             self.state.redo();
         } else if undo {

@@ -18,6 +18,7 @@ pub mod files;
 pub mod frames;
 pub mod gallery;
 pub mod groups;
+pub mod history_text;
 pub mod layout_dump;
 pub mod object_table;
 pub mod picture;

@@ -291,6 +291,7 @@ impl EditorState {
         let Some(prev) = self.undo.pop() else {
             return false;
         };
+        self.status = format!("Undid {}", crate::history_text::describe(&prev, &self.doc));
         self.redo.push(std::mem::replace(&mut self.doc, prev));
         self.after_history_step();
         true
@@ -300,6 +301,7 @@ impl EditorState {
         let Some(next) = self.redo.pop() else {
             return false;
         };
+        self.status = format!("Redid {}", crate::history_text::describe(&self.doc, &next));
         self.undo.push(std::mem::replace(&mut self.doc, next));
         self.after_history_step();
         true

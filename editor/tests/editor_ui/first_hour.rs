@@ -216,3 +216,48 @@ fn selecting_a_node_with_a_wide_editor_does_not_move_the_panels() {
         "the picture went from {viewport:?} to {v:?}, the canvas from {canvas:?} to {c:?}"
     );
 }
+
+#[test]
+fn undo_and_redo_say_what_they_undid_and_ctrl_q_quits_asking_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    orbit(&mut h);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run();
+    assert_eq!(
+        h.state().state.status,
+        "Undid camera.azimuth, camera.elevation"
+    );
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.run();
+    assert_eq!(
+        h.state().state.status,
+        "Redid camera.azimuth, camera.elevation"
+    );
+    // A node added from the palette, undone.
+    super::right_click_at(&h, super::selection::empty_canvas_point(&h));
+    h.run();
+    h.event(egui::Event::Text("fill".into()));
+    h.key_press(Key::Enter);
+    h.run();
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run();
+    assert_eq!(h.state().state.status, "Undid adding fill_1");
+
+    // Ctrl+Q with unsaved changes asks (Save / Discard / Cancel) ...
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Q);
+    h.run();
+    assert_eq!(
+        h.state().pending(),
+        Some(&hatchery_editor::app::Pending::Quit)
+    );
+    h.get_by_label("Save");
+    h.get_by_label("Cancel").click();
+    h.run();
+    // ... and without them closes the window.
+    h.state_mut().state.save().unwrap();
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Q);
+    assert!(closes(&mut h), "Ctrl+Q closed the window");
+}
