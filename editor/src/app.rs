@@ -78,6 +78,8 @@ pub struct EditorApp {
     offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
     pub frame_all: bool,
+    /// The picture shown is being replaced by a render in progress (drawn dimmed).
+    pub picture_stale: bool,
     /// The Data panel's input rows last frame (screen points): drop targets.
     pub data_rows: Vec<(String, egui::Rect)>,
     /// The Presets menu's presets (read when it first opens) and their thumbnails.
@@ -169,6 +171,7 @@ impl EditorApp {
             pending: None,
             quitting: false,
             frame_all: true,
+            picture_stale: false,
             data_rows: Vec::new(),
             gallery: None,
             thumbnails: Default::default(),
@@ -197,6 +200,8 @@ impl EditorApp {
             Ok(()) => {
                 self.file_field = path.display().to_string();
                 self.preview.chosen = None;
+                // The previous graph's picture is not this one's: nothing until it renders.
+                self.preview.viewport = None;
                 self.offer_recovery = self.state.has_recovery();
             }
             Err(e) => self.state.status = e,
@@ -1416,6 +1421,20 @@ impl EditorApp {
             None => ui.allocate_response(size, sense),
         };
         self.viewport_rect = response.rect;
+        // While a newer picture renders, the one shown is dimmed and says so on itself (a small
+        // label beside the checkbox went unnoticed during 8–18 s CPU renders).
+        self.picture_stale = self.preview.is_busy();
+        if self.picture_stale {
+            let painter = ui.painter_at(response.rect);
+            painter.rect_filled(response.rect, 0.0, Color32::from_black_alpha(120));
+            painter.text(
+                response.rect.center(),
+                egui::Align2::CENTER_CENTER,
+                "rendering…",
+                egui::FontId::proportional(22.0),
+                Color32::WHITE,
+            );
+        }
         // Alt: the picture's own zoom and pan; otherwise the camera.
         if ui.input(|i| i.modifiers.alt) {
             if response.dragged() {

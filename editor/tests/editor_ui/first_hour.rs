@@ -261,3 +261,31 @@ fn undo_and_redo_say_what_they_undid_and_ctrl_q_quits_asking_first() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Q);
     assert!(closes(&mut h), "Ctrl+Q closed the window");
 }
+
+#[test]
+fn a_stale_picture_is_dimmed_while_it_renders_and_another_graph_does_not_show_the_old_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    app.preview_enabled = true;
+    let mut h = harness(app);
+    wait_for_render(&mut h);
+    assert!(h.state().preview.viewport.is_some() && !h.state().picture_stale);
+    // An edit: the old picture stays up, dimmed, until the new one arrives.
+    orbit(&mut h);
+    h.step();
+    assert!(h.state().preview.is_busy());
+    assert!(h.state().picture_stale, "dimmed while rendering");
+    wait_for_render(&mut h);
+    assert!(!h.state().picture_stale);
+    // Opening another graph drops the old picture at once.
+    let other = dir.path().join("volume_styles.ron");
+    std::fs::copy(repo("graphs/volume_styles.ron"), &other).unwrap();
+    h.state_mut().state.save().unwrap();
+    h.state_mut().open(&other);
+    assert!(
+        h.state().preview.viewport.is_none(),
+        "the previous graph's picture is gone"
+    );
+    wait_for_render(&mut h);
+    assert!(h.state().preview.viewport.is_some());
+}
