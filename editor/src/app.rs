@@ -114,6 +114,10 @@ const TITLE_FONT_PX: f32 = 13.0;
 /// The smallest title height *Frame all* zooms out to.
 pub const LEGIBLE_TITLE_PX: f32 = 11.0;
 
+/// The widest an error or warning line makes a node's body (points at zoom 1); the body sits
+/// between the input and output pins.
+const NODE_MESSAGE_WIDTH: f32 = 120.0;
+
 /// How long a refusal tooltip stays up, seconds.
 const REFUSAL_SECONDS: f64 = 4.0;
 
@@ -1773,14 +1777,19 @@ impl SnarlViewer<String> for Viewer<'_> {
         let Some(id) = snarl.get_node(node).cloned() else {
             return;
         };
+        // At most NODE_MESSAGE_WIDTH wide, cut with "…" (the whole text on hover): a long
+        // message used to stretch a new node past the canvas edge.
+        let message = |ui: &mut Ui, color: Color32, text: String, whole: &str| {
+            let label = egui::Label::new(egui::RichText::new(text).color(color)).truncate();
+            ui.add_sized(egui::vec2(NODE_MESSAGE_WIDTH, 0.0), label)
+                .on_hover_text(whole);
+        };
         if let Some(e) = self.error(&id) {
             let first = e.lines().next().unwrap_or_default().to_owned();
-            ui.colored_label(Color32::LIGHT_RED, format!("⚠ {first}"))
-                .on_hover_text(e);
+            message(ui, Color32::LIGHT_RED, format!("⚠ {first}"), &e);
         }
-        if let Some(w) = self.warnings.get(&id) {
-            ui.colored_label(Color32::YELLOW, format!("⚠ {w}"))
-                .on_hover_text(w);
+        if let Some(w) = self.warnings.get(&id).cloned() {
+            message(ui, Color32::YELLOW, format!("⚠ {w}"), &w);
         }
     }
 

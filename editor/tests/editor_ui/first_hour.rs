@@ -289,3 +289,39 @@ fn a_stale_picture_is_dimmed_while_it_renders_and_another_graph_does_not_show_th
     wait_for_render(&mut h);
     assert!(h.state().preview.viewport.is_some());
 }
+
+#[test]
+fn an_error_on_a_new_node_does_not_stretch_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    // Added from the palette, unconnected: it says its input is missing.
+    super::right_click_at(&h, super::selection::empty_canvas_point(&h));
+    h.run();
+    h.event(egui::Event::Text("MarchingCubes".into()));
+    h.key_press(Key::Enter);
+    h.run();
+    h.run();
+    let id = "marching_cubes_1";
+    let error = h.state().state.node_error(id).expect("an error").to_owned();
+    assert!(error.contains("not connected"), "{error}");
+    h.get_by_label_contains("⚠");
+    let width =
+        h.state().node_screen_rect(id).unwrap().width() / h.state().canvas_transform.scaling;
+    // Connected, it has no message: the message made it no wider than that.
+    h.state_mut()
+        .state
+        .connect(("shells", "volume"), (id, "volume"))
+        .unwrap();
+    for _ in 0..3 {
+        h.run();
+    }
+    assert!(h.state().state.node_error(id).is_none());
+    let plain =
+        h.state().node_screen_rect(id).unwrap().width() / h.state().canvas_transform.scaling;
+    assert!(
+        width <= plain + 10.0,
+        "the node is {width} points wide with the message ({error}), {plain} without"
+    );
+}
