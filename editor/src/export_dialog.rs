@@ -123,10 +123,14 @@ impl ExportDialog {
             })
             .collect();
         let mut open = self.open;
+        // Below the menu bar, centred (by default egui put it over the menus).
+        let top = ctx.content_rect().center_top() + egui::vec2(0.0, 80.0);
         egui::Window::new("Export image")
             .open(&mut open)
             .collapsible(false)
             .resizable(false)
+            .pivot(egui::Align2::CENTER_TOP)
+            .default_pos(top)
             .show(ctx, |ui| {
                 egui::Grid::new("export").num_columns(2).show(ui, |ui| {
                     ui.label("port");

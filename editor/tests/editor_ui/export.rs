@@ -23,7 +23,13 @@ fn export_image_writes_what_the_command_line_renders() {
     h.run();
     h.get_by_label("Export image…").click();
     h.run();
-    h.get_by_label("Export image");
+    // The dialog opens below the menu bar, not over it.
+    let menu_bottom = h.get_by_label("File").rect().bottom();
+    let title = h.get_by_label("Export image").rect();
+    assert!(
+        title.top() > menu_bottom + 10.0,
+        "dialog title at {title:?}, menu bar ends at {menu_bottom}"
+    );
     // The port defaults to what the graph saves.
     assert_eq!(
         h.state().export.port,
