@@ -78,13 +78,8 @@ pub fn object_table(ui: &mut Ui, salt: &str, rows: &mut Vec<Row>, names: &[(u16,
                             }
                         }
                     });
-                let mut tf = row.tf.clone().unwrap_or_default();
-                if ui
-                    .add(egui::TextEdit::singleline(&mut tf).desired_width(56.0))
-                    .on_hover_text("a TransferFunction1D preset, 1–3 for inputs tf1–tf3, empty: tf")
-                    .changed()
-                {
-                    row.tf = (!tf.trim().is_empty()).then(|| tf.trim().to_string());
+                if let Some(tf) = tf_menu(ui, (salt, row.id), row.tf.as_deref()) {
+                    row.tf = tf;
                     changed = true;
                 }
                 if row.compositing == Compositing::Iso {
@@ -149,4 +144,74 @@ pub fn object_table(ui: &mut Ui, salt: &str, rows: &mut Vec<Row>, names: &[(u16,
             });
     }
     changed
+}
+
+/// The transfer functions a row can use: the node's `tf` input, its inputs tf1–tf3, or a preset
+/// (with its colour ramp drawn beside its name). Returns the choice when the user made one
+/// (`None` inside: the default `tf` input).
+fn tf_menu(
+    ui: &mut Ui,
+    salt: impl std::hash::Hash + std::fmt::Debug,
+    current: Option<&str>,
+) -> Option<Option<String>> {
+    let shown = current.unwrap_or("tf");
+    let mut chosen = None;
+    egui::ComboBox::from_id_salt(("object-tf", salt))
+        .selected_text(shown)
+        .width(70.0)
+        .show_ui(ui, |ui| {
+            let inputs = [
+                (None, "tf (the tf input)"),
+                (Some("1"), "1 (input tf1)"),
+                (Some("2"), "2 (input tf2)"),
+                (Some("3"), "3 (input tf3)"),
+            ];
+            for (value, label) in inputs {
+                if ui.selectable_label(current == value, label).clicked() {
+                    chosen = Some(value.map(str::to_owned));
+                }
+            }
+            ui.separator();
+            for preset in hatchery_data::transfer_function::PRESETS {
+                ui.horizontal(|ui| {
+                    ramp(ui, preset);
+                    if ui.selectable_label(current == Some(*preset), *preset).clicked() {
+                        chosen = Some(Some((*preset).to_owned()));
+                    }
+                });
+            }
+        })
+        .response
+        .on_hover_text("this object's transfer function: an input of the node or a preset over the volume's range");
+    chosen
+}
+
+/// A small preview of a preset: its colours over its range, on a checkerboard-free dark ground
+/// (opacity darkens).
+fn ramp(ui: &mut Ui, preset: &str) {
+    use hatchery_data::transfer_function::TransferFunction1D;
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(48.0, 12.0), egui::Sense::hover());
+    let Some(f) = TransferFunction1D::preset(preset, [0.0, 1.0])
+        .and_then(|p| TransferFunction1D::from_points(&p).ok())
+    else {
+        return;
+    };
+    let steps = 24;
+    for i in 0..steps {
+        let v = (i as f32 + 0.5) / steps as f32;
+        let [r, g, b, a] = f.lookup(v);
+        let a = a.clamp(0.0, 1.0).sqrt();
+        let c = egui::Color32::from_rgb(
+            (r * a * 255.0) as u8,
+            (g * a * 255.0) as u8,
+            (b * a * 255.0) as u8,
+        );
+        let x0 = rect.left() + rect.width() * i as f32 / steps as f32;
+        let x1 = rect.left() + rect.width() * (i + 1) as f32 / steps as f32;
+        ui.painter().rect_filled(
+            egui::Rect::from_min_max(egui::pos2(x0, rect.top()), egui::pos2(x1, rect.bottom())),
+            0.0,
+            c,
+        );
+    }
 }

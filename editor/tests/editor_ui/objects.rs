@@ -46,11 +46,11 @@ fn the_object_table_names_objects_and_edits_rows_by_clicks() {
     h.run();
     assert_eq!(objects(&h), "1: shaded_dvr over off; 2: contours mip");
 
-    // The rendering mode of row 2 from its combo box (combo boxes in row order: mode and
-    // compositing of each row).
+    // The rendering mode of row 2 from its combo box (combo boxes in row order: mode,
+    // compositing and transfer function of each row).
     let combos: Vec<_> = h.get_all_by_role(Role::ComboBox).collect();
-    assert_eq!(combos.len(), 5, "two per row and the add menu");
-    combos[2].click();
+    assert_eq!(combos.len(), 7, "three per row and the add menu");
+    combos[3].click();
     h.run();
     h.get_by_label("tone").click();
     h.run();
@@ -58,7 +58,7 @@ fn the_object_table_names_objects_and_edits_rows_by_clicks() {
 
     // Object 3 is in the labels but not in the table: add it from the menu.
     let combos: Vec<_> = h.get_all_by_role(Role::ComboBox).collect();
-    combos[4].click();
+    combos[6].click();
     h.run();
     h.get_by_label("3 object 3").click();
     h.run();
@@ -90,8 +90,20 @@ fn the_object_table_names_objects_and_edits_rows_by_clicks() {
         "1: shaded_dvr over off; 2: tone mip importance=0.25; 3: shaded_dvr over"
     );
 
+    // Row 1's transfer function from its menu: the presets are listed (with their ramps).
+    let combos: Vec<_> = h.get_all_by_role(Role::ComboBox).collect();
+    combos[2].click();
+    h.run();
+    h.get_by_label("2 (input tf2)");
+    h.get_by_label("bone").click();
+    h.run();
+    assert_eq!(
+        objects(&h),
+        "1: shaded_dvr over tf=bone off; 2: tone mip importance=0.25; 3: shaded_dvr over"
+    );
+
     // Each edit is one undo step.
-    for _ in 0..4 {
+    for _ in 0..5 {
         h.state_mut().state.undo();
     }
     h.run();
