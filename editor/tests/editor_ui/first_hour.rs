@@ -2,22 +2,6 @@
 
 use super::*;
 
-/// The window's close button, as the platform reports it; returns the commands the app sent.
-fn close_window(h: &mut Harness<EditorApp>) -> Vec<egui::ViewportCommand> {
-    h.input_mut()
-        .viewports
-        .entry(egui::ViewportId::ROOT)
-        .or_default()
-        .events
-        .push(egui::ViewportEvent::Close);
-    h.step();
-    h.output()
-        .viewport_output
-        .get(&egui::ViewportId::ROOT)
-        .map(|v| v.commands.clone())
-        .unwrap_or_default()
-}
-
 fn closes(h: &mut Harness<EditorApp>) -> bool {
     h.step();
     h.step();

@@ -363,6 +363,22 @@ fn snapshot_of_the_editor_with_a_preset() {
     h.get_by_label("Inspector");
 }
 
+/// The window's close button, as the platform reports it; returns the commands the app sent.
+fn close_window(h: &mut Harness<EditorApp>) -> Vec<egui::ViewportCommand> {
+    h.input_mut()
+        .viewports
+        .entry(egui::ViewportId::ROOT)
+        .or_default()
+        .events
+        .push(egui::ViewportEvent::Close);
+    h.step();
+    h.output()
+        .viewport_output
+        .get(&egui::ViewportId::ROOT)
+        .map(|v| v.commands.clone())
+        .unwrap_or_default()
+}
+
 fn non_blank(img: &image::RgbaImage) -> bool {
     let first = img.get_pixel(0, 0);
     img.pixels().filter(|p| *p != first).count() > (img.width() * img.height() / 100) as usize
@@ -1326,20 +1342,7 @@ fn closing_the_window_with_unsaved_changes_asks_first() {
     let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
     let mut h = harness(app);
     h.run();
-    let close = |h: &mut Harness<EditorApp>| {
-        h.input_mut()
-            .viewports
-            .entry(egui::ViewportId::ROOT)
-            .or_default()
-            .events
-            .push(egui::ViewportEvent::Close);
-        h.step();
-        h.output()
-            .viewport_output
-            .get(&egui::ViewportId::ROOT)
-            .map(|v| v.commands.clone())
-            .unwrap_or_default()
-    };
+    let close = close_window;
     // Without edits the window just closes.
     assert!(!close(&mut h).contains(&egui::ViewportCommand::CancelClose));
     h.state_mut()
