@@ -318,3 +318,19 @@ fn a_frame_too_narrow_for_a_label_leaves_it_out_rather_than_cut() {
         );
     }
 }
+
+/// The frog's organs are labelled by name in the two-level preset (its LabelFile reads the
+/// names table; the labels are the object table's drawn rows).
+#[test]
+fn the_two_level_frog_labels_its_organs_by_name() {
+    let preset = common::repo_root().join("graphs/two_level_frog.ron");
+    let mut session = hatchery_nodes::Session::open(&preset, 240, 180).unwrap();
+    session.run(&["layout"]).unwrap();
+    let hatchery_nodes::Value::Annotations(a) = session.output("layout", "annotations").unwrap()
+    else {
+        panic!("layout.annotations is not annotations");
+    };
+    let mut names: Vec<&str> = a.anchors.iter().map(|x| x.text.as_str()).collect();
+    names.sort();
+    assert_eq!(names, ["liver", "lung", "skeleton", "stomach"]);
+}
