@@ -1261,84 +1261,49 @@ impl EditorApp {
         let current = |state: &EditorState, name: &str| camera_param(state, &camera, name);
         let framing = camera_choice(&self.state, &camera, "framing").as_deref() != Some("fixed")
             && self.state.doc().edges.iter().any(|e| e.to.0 == camera);
-        if framing {
-            self.orbit_framing_camera(ui, response, &camera);
-            return;
-        }
-        let panning = response.dragged_by(egui::PointerButton::Secondary)
-            || response.dragged_by(egui::PointerButton::Middle)
-            || (response.dragged_by(egui::PointerButton::Primary)
-                && ui.input(|i| i.modifiers.shift));
-        if panning {
-            let delta = response.drag_delta();
-            if delta != egui::Vec2::ZERO {
-                let target = pan_target(&self.state, &camera, delta, response.rect.size());
-                let _ = self.state.set_params(
-                    &camera,
-                    &[("target", ParamValue::Vec3(target))],
-                    "viewport pan",
-                );
-            }
-        } else if response.dragged() {
-            let delta = response.drag_delta();
-            if delta != egui::Vec2::ZERO {
-                orbit_by(&mut self.state, &camera, delta);
-            }
-        }
-        if response.drag_stopped() {
-            self.state.end_group();
-        }
-        if response.hovered() {
-            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-            if scroll != 0.0 {
-                let distance =
-                    (current(&self.state, "distance") * (-scroll as f64 * 0.002).exp()).max(1e-3);
-                let _ = self.state.set_params(
-                    &camera,
-                    &[("distance", ParamValue::Float(distance))],
-                    "viewport zoom",
-                );
-            }
-        }
-    }
-
-    /// [`Self::orbit_camera`] for a camera that frames its data.
-    fn orbit_framing_camera(&mut self, ui: &Ui, response: &egui::Response, camera: &str) {
-        let current = |state: &EditorState, name: &str| camera_param(state, camera, name);
         let panning = response.dragged_by(egui::PointerButton::Secondary)
             || response.dragged_by(egui::PointerButton::Middle)
             || (response.dragged_by(egui::PointerButton::Primary)
                 && ui.input(|i| i.modifiers.shift));
         let delta = response.drag_delta();
         if panning && delta != egui::Vec2::ZERO {
-            // The scene follows the pointer: the target moves the other way, in frame sizes.
-            let across = response.rect.size().min_elem().max(1.0) as f64;
-            let pan_x =
-                (current(&self.state, "pan_x") - delta.x as f64 / across).clamp(-10.0, 10.0);
-            let pan_y =
-                (current(&self.state, "pan_y") + delta.y as f64 / across).clamp(-10.0, 10.0);
-            let values = [
-                ("pan_x", ParamValue::Float(pan_x)),
-                ("pan_y", ParamValue::Float(pan_y)),
-            ];
-            let _ = self.state.set_params(camera, &values, "viewport pan");
-        } else if response.dragged() && delta != egui::Vec2::ZERO {
-            orbit_by(&mut self.state, camera, delta);
+            let values = if framing {
+                // The scene follows the pointer: the target moves the other way, in frame sizes.
+                let across = response.rect.size().min_elem().max(1.0) as f64;
+                let pan = |name: &str, by: f64| {
+                    ParamValue::Float((current(&self.state, name) + by).clamp(-10.0, 10.0))
+                };
+                vec![
+                    ("pan_x", pan("pan_x", -delta.x as f64 / across)),
+                    ("pan_y", pan("pan_y", delta.y as f64 / across)),
+                ]
+            } else {
+                let target = pan_target(&self.state, &camera, delta, response.rect.size());
+                vec![("target", ParamValue::Vec3(target))]
+            };
+            let _ = self.state.set_params(&camera, &values, "viewport pan");
+        } else if !panning && response.dragged() && delta != egui::Vec2::ZERO {
+            orbit_by(&mut self.state, &camera, delta);
         }
         if response.drag_stopped() {
             self.state.end_group();
         }
-        if response.hovered() {
-            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-            if scroll != 0.0 {
-                let fill = (current(&self.state, "fill") * (scroll as f64 * 0.002).exp())
-                    .clamp(0.05, 20.0);
-                let _ = self.state.set_params(
-                    camera,
-                    &[("fill", ParamValue::Float(fill))],
-                    "viewport zoom",
-                );
-            }
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if response.hovered() && scroll != 0.0 {
+            let zoom = (scroll as f64 * 0.002).exp();
+            let value = if framing {
+                (
+                    "fill",
+                    (current(&self.state, "fill") * zoom).clamp(0.05, 20.0),
+                )
+            } else {
+                (
+                    "distance",
+                    (current(&self.state, "distance") / zoom).max(1e-3),
+                )
+            };
+            let values = [(value.0, ParamValue::Float(value.1))];
+            let _ = self.state.set_params(&camera, &values, "viewport zoom");
         }
     }
 

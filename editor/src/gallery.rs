@@ -167,6 +167,19 @@ impl Thumbnails {
     }
 }
 
+/// A thumbnail's place with a word in it (while it renders, or where it could not).
+fn placeholder(ui: &mut egui::Ui, size: egui::Vec2, text: &str) -> egui::Response {
+    let (r, response) = ui.allocate_exact_size(size, egui::Sense::hover());
+    ui.painter().text(
+        r.center(),
+        egui::Align2::CENTER_CENTER,
+        text,
+        egui::FontId::proportional(11.0),
+        ui.visuals().weak_text_color(),
+    );
+    response
+}
+
 /// What the user chose in the gallery.
 pub enum Choice {
     Open(PathBuf),
@@ -190,26 +203,10 @@ pub fn menu(ui: &mut egui::Ui, presets: &[PresetInfo], thumbs: &mut Thumbnails) 
                             ui.add(egui::Image::new((t.id(), size)));
                         }
                         Some(Err(e)) => {
-                            let (r, _) = ui.allocate_exact_size(size, egui::Sense::hover());
-                            ui.painter().text(
-                                r.center(),
-                                egui::Align2::CENTER_CENTER,
-                                "no picture",
-                                egui::FontId::proportional(11.0),
-                                ui.visuals().weak_text_color(),
-                            );
-                            ui.interact(r, ui.id().with(&p.name), egui::Sense::hover())
-                                .on_hover_text(e.to_owned());
+                            placeholder(ui, size, "no picture").on_hover_text(e.to_owned());
                         }
                         None => {
-                            let (r, _) = ui.allocate_exact_size(size, egui::Sense::hover());
-                            ui.painter().text(
-                                r.center(),
-                                egui::Align2::CENTER_CENTER,
-                                "rendering…",
-                                egui::FontId::proportional(11.0),
-                                ui.visuals().weak_text_color(),
-                            );
+                            placeholder(ui, size, "rendering…");
                         }
                     }
                     ui.vertical(|ui| {

@@ -188,7 +188,7 @@ impl Node<Value, Ctx> for CameraNode {
                 PortSpec::optional(
                     "volume",
                     PortType::Volume,
-                    "data to frame: the volume's grid",
+                    "data to frame: the volume's foreground (voxels at or above Otsu's threshold)",
                 ),
                 PortSpec::optional(
                     "labels",
@@ -293,44 +293,25 @@ impl Node<Value, Ctx> for CameraNode {
             p.f32("fov"),
             p.choice("up") == "z",
         );
-        let points = framed_points(inputs)?;
-        let framing = (p.choice("framing") == "fit" && !points.is_empty())
-            .then(|| {
-                crate::framing::frame_points(
-                    &points,
-                    az,
-                    el,
-                    up_z,
-                    fov,
-                    width as f32 / height as f32,
-                    orthographic,
-                    p.f32("fill"),
-                    [p.f32("pan_x"), p.f32("pan_y")],
-                    (p.f32("near"), p.f32("far"), p.f32("distance")),
-                )
-            })
-            .flatten();
-        let camera = match framing {
-            Some(f) => {
-                let camera = Camera::orbit(
-                    f.target,
-                    az,
-                    el,
-                    f.distance,
-                    fov,
-                    orthographic,
-                    f.near,
-                    f.far,
-                    up_z,
-                    width,
-                    height,
-                );
-                if orthographic {
-                    camera.with_orthographic_extent(f.extent_distance, fov)
-                } else {
-                    camera
-                }
-            }
+        // The data's outline is only gathered when the camera frames it.
+        let framing = if p.choice("framing") == "fit" {
+            crate::framing::frame_points(
+                &framed_points(inputs)?,
+                az,
+                el,
+                up_z,
+                fov,
+                width as f32 / height as f32,
+                orthographic,
+                p.f32("fill"),
+                [p.f32("pan_x"), p.f32("pan_y")],
+                (p.f32("near"), p.f32("far"), p.f32("distance")),
+            )
+        } else {
+            None
+        };
+        let (target, distance, near, far) = match framing {
+            Some(f) => (f.target, f.distance, f.near, f.far),
             None => {
                 let (near, far) = (p.f32("near"), p.f32("far"));
                 if near >= far {
@@ -338,21 +319,25 @@ impl Node<Value, Ctx> for CameraNode {
                         "near ({near}) must be less than far ({far})"
                     )));
                 }
-                Camera::orbit(
-                    Vec3::from(p.vec3("target")),
-                    az,
-                    el,
-                    p.f32("distance"),
-                    fov,
-                    orthographic,
-                    near,
-                    far,
-                    up_z,
-                    width,
-                    height,
-                )
+                (Vec3::from(p.vec3("target")), p.f32("distance"), near, far)
             }
         };
+        let mut camera = Camera::orbit(
+            target,
+            az,
+            el,
+            distance,
+            fov,
+            orthographic,
+            near,
+            far,
+            up_z,
+            width,
+            height,
+        );
+        if let (Some(f), true) = (framing, orthographic) {
+            camera = camera.with_orthographic_extent(f.extent_distance, fov);
+        }
         Ok(vec![Value::Camera(Arc::new(camera))])
     }
 }

@@ -283,41 +283,28 @@ mod tests {
 
     const CLIP: (f32, f32, f32) = (0.05, 100.0, 3.5);
 
+    /// A perspective view (40°, up y) of a square frame, the data filling 0.8 of it.
+    fn square_view(
+        points: &[Vec3],
+        az: f32,
+        el: f32,
+        pan: [f32; 2],
+        clip: (f32, f32, f32),
+    ) -> Option<Framing> {
+        frame_points(points, az, el, false, 40.0, 1.0, false, 0.8, pan, clip)
+    }
+
     #[test]
     fn near_and_far_scale_with_the_framed_distance_and_enclose_the_data() {
         let corners = box_corners(Vec3::splat(-10.0), Vec3::splat(10.0));
-        let f = frame_points(
-            &corners,
-            30.0,
-            20.0,
-            false,
-            40.0,
-            1.0,
-            false,
-            0.8,
-            [0.0; 2],
-            (5.0, 400.0, 100.0),
-        )
-        .unwrap();
+        let f = square_view(&corners, 30.0, 20.0, [0.0; 2], (5.0, 400.0, 100.0)).unwrap();
         let s = f.distance / 100.0;
         assert!(
             (f.near - 5.0 * s).abs() < 1e-3 && (f.far - 400.0 * s).abs() < 1e-2,
             "{f:?}"
         );
         // A camera whose near plane would cut into the data is widened to enclose it.
-        let g = frame_points(
-            &corners,
-            30.0,
-            20.0,
-            false,
-            40.0,
-            1.0,
-            false,
-            0.8,
-            [0.0; 2],
-            (90.0, 110.0, 100.0),
-        )
-        .unwrap();
+        let g = square_view(&corners, 30.0, 20.0, [0.0; 2], (90.0, 110.0, 100.0)).unwrap();
         let r = 10.0 * 3f32.sqrt();
         assert!(g.near < g.distance - r && g.far > g.distance + r, "{g:?}");
     }
@@ -325,37 +312,11 @@ mod tests {
     #[test]
     fn panning_moves_the_target_by_fractions_of_the_frame() {
         let corners = box_corners(Vec3::splat(-1.0), Vec3::splat(1.0));
-        let f0 = frame_points(
-            &corners,
-            0.0,
-            0.0,
-            false,
-            40.0,
-            1.0,
-            false,
-            0.8,
-            [0.0, 0.0],
-            CLIP,
-        )
-        .unwrap();
-        let f1 = frame_points(
-            &corners,
-            0.0,
-            0.0,
-            false,
-            40.0,
-            1.0,
-            false,
-            0.8,
-            [0.25, 0.0],
-            CLIP,
-        )
-        .unwrap();
+        let f0 = square_view(&corners, 0.0, 0.0, [0.0, 0.0], CLIP).unwrap();
+        let f1 = square_view(&corners, 0.0, 0.0, [0.25, 0.0], CLIP).unwrap();
         let across = 2.0 * f0.distance * (20.0f32).to_radians().tan();
         // Azimuth 0, elevation 0, up y: screen right is world +x.
         assert!((f1.target - Vec3::new(0.25 * across, 0.0, 0.0)).length() < 1e-4);
-        assert!(
-            frame_points(&[], 0.0, 0.0, false, 40.0, 1.0, false, 0.8, [0.0; 2], CLIP).is_none()
-        );
+        assert!(square_view(&[], 0.0, 0.0, [0.0; 2], CLIP).is_none());
     }
 }

@@ -10,6 +10,12 @@ fn shared(path: &str) -> PathBuf {
         .unwrap()
 }
 
+/// The file dialog is open for input `name`.
+fn assert_asks_for(h: &Harness<EditorApp>, name: &str) {
+    let purpose = hatchery_editor::files::Purpose::Input { name: name.into() };
+    assert_eq!(h.state().picker.purpose(), Some(&purpose));
+}
+
 /// The Data panel's row of input `name`, on screen.
 fn row(h: &Harness<EditorApp>, name: &str) -> egui::Rect {
     h.state()
@@ -96,12 +102,7 @@ fn the_data_panel_button_picks_a_file_for_an_input() {
         .find(|b| r.contains(b.center()))
         .expect("a pick button in the volume row");
     super::selection::click_mod(&mut h, button.center(), Modifiers::NONE);
-    assert_eq!(
-        h.state().picker.purpose(),
-        Some(&hatchery_editor::files::Purpose::Input {
-            name: "volume".into()
-        })
-    );
+    assert_asks_for(&h, "volume");
 }
 
 #[test]
@@ -197,16 +198,7 @@ fn the_presets_gallery_lists_descriptions_and_applies_a_preset_to_my_data() {
         .rect();
     // Clicked by stepped pointer events: the thumbnail thread and the file dialog that opens
     // keep repainting, so the UI never settles for `run`.
-    h.event(egui::Event::PointerMoved(apply.center()));
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos: apply.center(),
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: Modifiers::NONE,
-        });
-        h.step();
-    }
+    click_stepped(&mut h, apply.center());
     for _ in 0..5 {
         h.step();
     }
@@ -218,12 +210,7 @@ fn the_presets_gallery_lists_descriptions_and_applies_a_preset_to_my_data() {
         "{}",
         opened.display()
     );
-    assert_eq!(
-        h.state().picker.purpose(),
-        Some(&hatchery_editor::files::Purpose::Input {
-            name: "volume".into()
-        })
-    );
+    assert_asks_for(&h, "volume");
 }
 
 #[test]

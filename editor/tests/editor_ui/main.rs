@@ -363,6 +363,21 @@ fn snapshot_of_the_editor_with_a_preset() {
     h.get_by_label("Inspector");
 }
 
+/// A primary click at `at` by pointer events, one frame per event and no run to idle (for UIs
+/// that keep repainting: a file dialog reading a folder, a thumbnail thread).
+fn click_stepped(h: &mut Harness<EditorApp>, at: egui::Pos2) {
+    h.event(egui::Event::PointerMoved(at));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+}
+
 /// The window's close button, as the platform reports it; returns the commands the app sent.
 fn close_window(h: &mut Harness<EditorApp>) -> Vec<egui::ViewportCommand> {
     h.input_mut()
@@ -1294,17 +1309,8 @@ fn the_folder_button_of_a_path_parameter_picks_a_file_with_the_dialog() {
         .map(|n| n.rect())
         .find(|b| !rows.iter().any(|(_, r)| r.contains(b.center())))
         .expect("the path parameter's folder button");
-    // A click by pointer events, stepped (the dialog repaints while it reads the folder).
-    h.event(egui::Event::PointerMoved(button.center()));
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos: button.center(),
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: Modifiers::NONE,
-        });
-        h.step();
-    }
+    // Stepped: the dialog repaints while it reads the folder.
+    click_stepped(&mut h, button.center());
     // The dialog reads the folder on a thread of its own: step until it lists the file.
     for _ in 0..400 {
         h.step();
