@@ -26,6 +26,8 @@ pub struct RenderContext {
     resolved: BTreeMap<String, BTreeMap<String, String>>,
     /// Fused image-space passes as fragment shaders or compute kernels (crate::fused_pass).
     image_kernel: crate::raycast::Kernel,
+    /// Graph inputs given as data in memory, by key (see [`crate::memory_inputs`]).
+    memory: HashMap<String, crate::memory_inputs::InputData>,
 }
 
 impl RenderContext {
@@ -39,6 +41,7 @@ impl RenderContext {
             statics: HashMap::new(),
             warnings: BTreeMap::new(),
             resolved: BTreeMap::new(),
+            memory: HashMap::new(),
             image_kernel: crate::raycast::Kernel::choose(
                 &std::env::var("HATCHERY_IMAGE_KERNEL").unwrap_or_default(),
                 &gpu,
@@ -96,6 +99,28 @@ impl RenderContext {
     /// Resolved data-relative parameters by node id, from each node's last execution.
     pub fn resolved(&self) -> &BTreeMap<String, BTreeMap<String, String>> {
         &self.resolved
+    }
+
+    /// The in-memory data a parameter's text names, when it is a key (`memory:NAME#N`).
+    pub fn memory(&self, text: &str) -> Option<&crate::memory_inputs::InputData> {
+        self.memory.get(text)
+    }
+
+    /// Keeps `data` under `key`, dropping what was kept under keys starting with `drop_prefix`
+    /// (the input's earlier data).
+    pub fn put_memory(
+        &mut self,
+        key: String,
+        data: crate::memory_inputs::InputData,
+        drop_prefix: &str,
+    ) {
+        self.memory.retain(|k, _| !k.starts_with(drop_prefix));
+        self.memory.insert(key, data);
+    }
+
+    /// Drops the in-memory data under keys starting with `prefix`.
+    pub fn drop_memory(&mut self, prefix: &str) {
+        self.memory.retain(|k, _| !k.starts_with(prefix));
     }
 
     /// Warnings by node id, from each node's last execution.

@@ -2,12 +2,14 @@
 //! volume format, names from a side table), `LabelsFromThreshold` (value intervals → ids) and
 //! `LabelsFromMaps` (probability maps → ids by arg-max).
 
+use crate::memory_inputs::{self, InputData};
 use crate::value::Labels;
 use crate::{Ctx, Value};
 use hatchery_data::segmentation::{self, LabelData};
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
 };
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 fn labels_output() -> PortSpec {
@@ -19,13 +21,17 @@ fn labels_output() -> PortSpec {
 }
 
 fn finish(ctx: &mut Ctx, what: &str, data: LabelData) -> Result<Vec<Value>, NodeError> {
+    finish_shared(ctx, what, Arc::new(data))
+}
+
+fn finish_shared(ctx: &mut Ctx, what: &str, data: Arc<LabelData>) -> Result<Vec<Value>, NodeError> {
     if data.objects.is_empty() {
         ctx.warn(format!(
             "{what}: no object (every voxel is background, id 0)"
         ));
     }
     tracing::info!(what, objects = data.objects.len(), "labels");
-    Ok(vec![Value::Labels(Arc::new(Labels::new(data)))])
+    Ok(vec![Value::Labels(Arc::new(Labels::shared(data)))])
 }
 
 pub struct LabelFileNode;
@@ -68,6 +74,23 @@ impl Node<Value, Ctx> for LabelFileNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let key = p.text("path");
+        if memory_inputs::is_memory_key(key) {
+            let mut data = match ctx.memory(key) {
+                Some(InputData::Labels(l)) => l.clone(),
+                Some(other) => return Err(memory_inputs::wrong_kind(key, "label map", other)),
+                None => return Err(memory_inputs::missing(key)),
+            };
+            // Names given with the array win over a names table (which names the rest).
+            let table = names_table(ctx, p)?;
+            if !table.is_empty() {
+                let given = data.objects.clone();
+                let labels = Arc::make_mut(&mut data);
+                labels.name_objects(&table);
+                labels.name_objects(&given_names(&given));
+            }
+            return finish_shared(ctx, "labels in memory", data);
+        }
         let path = p.path("path");
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
@@ -89,14 +112,35 @@ impl Node<Value, Ctx> for LabelFileNode {
                 .map_err(|e| NodeError::new(e.to_string()))?;
             data.name_objects(&table);
         }
-        let names = p.path("names");
-        if !names.as_os_str().is_empty() {
-            let table =
-                segmentation::read_names(&names).map_err(|e| NodeError::new(e.to_string()))?;
-            data.name_objects(&table);
-        }
+        data.name_objects(&names_table(ctx, p)?);
         finish(ctx, &path.display().to_string(), data)
     }
+}
+
+/// The `names` table: from its file, or from memory (a `memory:` key); empty when not set.
+fn names_table(ctx: &Ctx, p: &Params) -> Result<BTreeMap<u16, String>, NodeError> {
+    let key = p.text("names");
+    if memory_inputs::is_memory_key(key) {
+        return match ctx.memory(key) {
+            Some(InputData::Names(n)) => Ok(n.as_ref().clone()),
+            Some(other) => Err(memory_inputs::wrong_kind(key, "names table", other)),
+            None => Err(memory_inputs::missing(key)),
+        };
+    }
+    let names = p.path("names");
+    if names.as_os_str().is_empty() {
+        return Ok(BTreeMap::new());
+    }
+    segmentation::read_names(&names).map_err(|e| NodeError::new(e.to_string()))
+}
+
+/// The names an in-memory label map was given (not the "object N" placeholders).
+fn given_names(objects: &BTreeMap<u16, String>) -> BTreeMap<u16, String> {
+    objects
+        .iter()
+        .filter(|(id, name)| **name != format!("object {id}"))
+        .map(|(id, name)| (*id, name.clone()))
+        .collect()
 }
 
 /// Parses "lo..hi: id; …" (intervals [lo, hi) in data units; a bound may be relative to

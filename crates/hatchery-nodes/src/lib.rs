@@ -29,6 +29,7 @@ pub mod label_sources;
 pub mod light;
 pub mod marching_cubes;
 pub mod mask_combine;
+pub mod memory_inputs;
 pub mod mesh_file;
 pub mod mesh_pass;
 pub mod mesh_transform;
@@ -62,7 +63,7 @@ pub mod volume_file;
 pub mod volume_texture;
 
 pub use context::RenderContext;
-pub use session::{Session, SessionError};
+pub use session::{Session, SessionError, parse_param};
 pub use value::Value;
 
 /// The context every node executes in.

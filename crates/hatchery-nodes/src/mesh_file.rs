@@ -29,10 +29,20 @@ impl Node<Value, Ctx> for MeshFileNode {
 
     fn execute(
         &self,
-        _ctx: &mut Ctx,
+        ctx: &mut Ctx,
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let key = p.text("path");
+        if crate::memory_inputs::is_memory_key(key) {
+            return match ctx.memory(key) {
+                Some(crate::memory_inputs::InputData::Mesh(m)) => {
+                    Ok(vec![Value::Mesh(Arc::new(Mesh::shared(m.clone())))])
+                }
+                Some(other) => Err(crate::memory_inputs::wrong_kind(key, "mesh", other)),
+                None => Err(crate::memory_inputs::missing(key)),
+            };
+        }
         let path = p.path("path");
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(

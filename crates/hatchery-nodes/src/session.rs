@@ -1,10 +1,18 @@
 //! A graph with its executor and GPU context: what the command line, the editor and the tests run.
 
+use crate::memory_inputs::InputData;
 use crate::{Ctx, Registry, RenderContext, Value, registry};
 use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_graph::GraphDocument;
 use hatchery_graph::executor::PassReport;
 use hatchery_graph::{ExecError, Executor, Graph, GraphErrors, ParamValue};
+use std::collections::BTreeMap;
 use std::path::Path;
+
+/// Keys of input `name`'s in-memory data start with this.
+fn memory_key_prefix(name: &str) -> String {
+    format!("{}{name}#", crate::memory_inputs::MEMORY_PREFIX)
+}
 
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
@@ -23,6 +31,11 @@ pub struct Session {
     pub graph: Graph,
     pub executor: Executor<Value>,
     pub ctx: Ctx,
+    /// What the parameters bound to in-memory inputs held before (node, param → value; `None`:
+    /// the default), written back by [`Session::document`].
+    memory_bound: BTreeMap<(String, String), Option<ParamValue>>,
+    /// Counts in-memory data given, so each gets a key of its own.
+    memory_count: u64,
 }
 
 impl Session {
@@ -56,6 +69,8 @@ impl Session {
             graph,
             executor: Executor::new(),
             ctx,
+            memory_bound: BTreeMap::new(),
+            memory_count: 0,
         })
     }
 
@@ -87,8 +102,76 @@ impl Session {
         let text = path.to_string_lossy();
         for (node, param) in &input.to {
             self.set_param_text(node, param, &text)?;
+            self.memory_bound.remove(&(node.clone(), param.clone()));
         }
+        self.ctx.drop_memory(&memory_key_prefix(name));
         Ok(())
+    }
+
+    /// Gives graph input `name` data held in memory (numpy arrays from Python): every parameter
+    /// bound to it names the data by a new key (see [`crate::memory_inputs`]), so what reads it
+    /// runs again. Errors, one line naming the input: no such input, data of another kind.
+    pub fn set_input_data(&mut self, name: &str, data: InputData) -> Result<(), SessionError> {
+        let input = self.graph.input(name).map_err(SessionError::Other)?.clone();
+        if data.kind() != input.kind {
+            return Err(SessionError::Other(format!(
+                "input `{name}` takes a {}, not a {}",
+                input.kind,
+                data.kind()
+            )));
+        }
+        self.memory_count += 1;
+        let prefix = memory_key_prefix(name);
+        let key = format!("{prefix}{}", self.memory_count);
+        for (node, param) in &input.to {
+            let before = self.explicit_param(node, param);
+            self.graph
+                .set_param(&self.registry, node, param, ParamValue::Path(key.clone()))
+                .map_err(|e| SessionError::Graph(e.into()))?;
+            self.memory_bound
+                .entry((node.clone(), param.clone()))
+                .or_insert(before);
+        }
+        self.ctx.put_memory(key, data, &prefix);
+        Ok(())
+    }
+
+    /// A node's parameter as the file gave it (`None`: not written, the default).
+    fn explicit_param(&self, node: &str, param: &str) -> Option<ParamValue> {
+        let n = self.graph.node(node)?;
+        n.explicit
+            .contains(param)
+            .then(|| n.params.get(param).cloned())
+            .flatten()
+    }
+
+    /// The graph as a document to save: parameters bound to in-memory inputs hold what they
+    /// held before the data was given (a key is meaningless outside this session).
+    pub fn document(&self) -> GraphDocument {
+        let mut doc = self.graph.to_document(&self.registry);
+        for ((node, param), before) in &self.memory_bound {
+            if let Some(n) = doc.nodes.iter_mut().find(|n| &n.id == node) {
+                match before {
+                    Some(value) => {
+                        n.params.insert(param.clone(), value.to_ron());
+                    }
+                    None => {
+                        n.params.remove(param);
+                    }
+                }
+            }
+        }
+        doc
+    }
+
+    /// The graph inputs given data in memory (their names), for messages on save.
+    pub fn memory_inputs(&self) -> Vec<String> {
+        self.graph
+            .inputs()
+            .iter()
+            .filter(|i| i.to.iter().any(|b| self.memory_bound.contains_key(b)))
+            .map(|i| i.name.clone())
+            .collect()
     }
 
     /// The graph input a node's parameter is bound to, if any (error messages name it).
@@ -113,21 +196,7 @@ impl Session {
     }
 
     fn parse_param(&self, node: &str, param: &str, text: &str) -> Result<ParamValue, SessionError> {
-        let instance = self
-            .graph
-            .node(node)
-            .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
-        let schema = instance.schema(&self.registry).expect("validated kind");
-        let spec = schema.param(param).ok_or_else(|| {
-            let names: Vec<_> = schema.params.iter().map(|p| p.name).collect();
-            SessionError::Other(format!(
-                "node `{node}` ({}) has no parameter `{param}` (its parameters are: {})",
-                instance.kind,
-                names.join(", ")
-            ))
-        })?;
-        spec.parse_cli(text)
-            .map_err(|m| SessionError::Other(format!("node `{node}`, parameter `{param}`: {m}")))
+        parse_param(&self.graph, &self.registry, node, param, text)
     }
 
     /// The value on an output port from the last pass (run the node first).
@@ -180,4 +249,29 @@ impl Session {
         self.run(&[node])?;
         self.output(node, port).cloned()
     }
+}
+
+/// Parses `text` as `--set node.param=text` does. Errors, one line: no such node, no such
+/// parameter (listing the node's), a value the parameter cannot take.
+pub fn parse_param(
+    graph: &Graph,
+    registry: &Registry,
+    node: &str,
+    param: &str,
+    text: &str,
+) -> Result<ParamValue, SessionError> {
+    let instance = graph
+        .node(node)
+        .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
+    let schema = instance.schema(registry).expect("validated kind");
+    let spec = schema.param(param).ok_or_else(|| {
+        let names: Vec<_> = schema.params.iter().map(|p| p.name).collect();
+        SessionError::Other(format!(
+            "node `{node}` ({}) has no parameter `{param}` (its parameters are: {})",
+            instance.kind,
+            names.join(", ")
+        ))
+    })?;
+    spec.parse_cli(text)
+        .map_err(|m| SessionError::Other(format!("node `{node}`, parameter `{param}`: {m}")))
 }

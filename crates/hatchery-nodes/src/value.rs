@@ -19,8 +19,12 @@ pub struct Volume {
 
 impl Volume {
     pub fn new(data: VolumeData) -> Self {
+        Self::shared(Arc::new(data))
+    }
+    /// A volume over data held elsewhere too (in-memory graph inputs), without a copy.
+    pub fn shared(data: Arc<VolumeData>) -> Self {
         Self {
-            data: Arc::new(data),
+            data,
             texture: OnceLock::new(),
             max_gradient: OnceLock::new(),
             bricks: OnceLock::new(),
@@ -112,8 +116,12 @@ pub struct BrickObjects {
 
 impl Labels {
     pub fn new(data: hatchery_data::segmentation::LabelData) -> Self {
+        Self::shared(Arc::new(data))
+    }
+    /// Labels over data held elsewhere too (in-memory graph inputs), without a copy.
+    pub fn shared(data: Arc<hatchery_data::segmentation::LabelData>) -> Self {
         Self {
-            data: Arc::new(data),
+            data,
             texture: OnceLock::new(),
             bricks: OnceLock::new(),
             drawn_mask: std::sync::Mutex::new(None),
@@ -320,8 +328,12 @@ pub struct MeshBuffers {
 
 impl Mesh {
     pub fn new(data: MeshData) -> Self {
+        Self::shared(Arc::new(data))
+    }
+    /// A mesh over data held elsewhere too (in-memory graph inputs), without a copy.
+    pub fn shared(data: Arc<MeshData>) -> Self {
         Self {
-            data: Arc::new(data),
+            data,
             buffers: OnceLock::new(),
         }
     }

@@ -52,6 +52,9 @@ impl Node<Value, Ctx> for VolumeFileNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        if let Some(volume) = memory_volume(ctx, p.text("path"))? {
+            return Ok(vec![Value::Volume(Arc::new(volume))]);
+        }
         let path = p.path("path");
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
@@ -87,5 +90,22 @@ impl Node<Value, Ctx> for VolumeFileNode {
             "volume loaded"
         );
         Ok(vec![Value::Volume(Arc::new(Volume::new(data)))])
+    }
+}
+
+/// The volume a `memory:` key names (see [`crate::memory_inputs`]): a volume as it is, a label
+/// map's ids as u16 voxels. `None` when `text` is not a key.
+fn memory_volume(ctx: &Ctx, text: &str) -> Result<Option<Volume>, NodeError> {
+    use crate::memory_inputs::{self, InputData};
+    if !memory_inputs::is_memory_key(text) {
+        return Ok(None);
+    }
+    match ctx.memory(text) {
+        Some(InputData::Volume(v)) => Ok(Some(Volume::shared(v.clone()))),
+        Some(InputData::Labels(l)) => memory_inputs::labels_as_volume(l)
+            .map(|v| Some(Volume::new(v)))
+            .map_err(|e| NodeError::new(e.to_string())),
+        Some(other) => Err(memory_inputs::wrong_kind(text, "volume", other)),
+        None => Err(memory_inputs::missing(text)),
     }
 }

@@ -1,0 +1,1658 @@
+"""The node kinds of hatchery, one class each: its documentation, ports and parameters.
+
+Generated from the node schemas by ``python -m hatchery._generate``; do not edit.
+``help(hatchery.kinds.Silhouette)`` reads a kind's documentation; the class attributes
+are the parameters' defaults, typed (usable with ``Graph.set``).
+"""
+
+from typing import Literal, Tuple, Union
+
+Kind = Literal[
+    'AnnotationLayout',
+    'AnnotationList',
+    'AnnotationOverlay',
+    'AnnotationsFromLabels',
+    'Arrow',
+    'BoundingBox',
+    'Camera',
+    'Curvature',
+    'CurvatureColor',
+    'CurvatureContours',
+    'CurvatureFlow',
+    'CustomShader',
+    'DepthLayers',
+    'DepthPeel',
+    'DepthTestMask',
+    'DiffuseIntensity',
+    'Fan',
+    'Fill',
+    'GBuffer',
+    'Halftone',
+    'HatchStrokes',
+    'ImportanceCompositing',
+    'IsoSurfaceRaycast',
+    'LabelFile',
+    'LabelMask',
+    'LabelsFromMaps',
+    'LabelsFromThreshold',
+    'Light',
+    'MarchingCubes',
+    'MaskCombine',
+    'MeshFile',
+    'MeshTransform',
+    'MixByMask',
+    'MultiplyByMask',
+    'ObjectStyles',
+    'Over',
+    'ProceduralVolume',
+    'Raycast',
+    'RidgeValley',
+    'SaveImage',
+    'SaveSvg',
+    'SecondaryGeometry',
+    'SelectImage',
+    'SelectionRender',
+    'ShadedSurface',
+    'Silhouette',
+    'StyleSet',
+    'StyleTransferFunction',
+    'TransferFunction1D',
+    'TwoLevelRaycast',
+    'VolumeFile',
+]
+"""Every node kind's name."""
+
+
+class AnnotationLayout:
+    """Annotation layout (VolumeShop, the tutorial's §6.4): anchors projected with the camera; the
+        convex hull of the visible objects' footprint (their boxes, or the `footprint` mask's
+        pixels) parameterised by arc length; each label placed outside the hull at the point
+        nearest its anchor, then crossing leader lines swapped, labels swapped when both get
+        closer, and overlapping ones shifted by δ (from scratch by 1.5× their overlap, so piles
+        spread fast), until resolved or `max_iterations`; what stays unresolved is left out,
+        lowest priority and farthest (screen depth) first. Leader opacity falls with the
+        anchor's depth; anchors hidden behind the `gbuffer` surface get no label. Starts from
+        this node's previous layout (temporal coherence) when the labels and frame size are
+        unchanged.
+
+    Inputs:
+        annotations (Annotations, required): the anchors
+        camera (Camera, required): the view
+        gbuffer (GBuffer, optional): the rendered surface: anchors behind it are hidden
+        footprint (Mask, optional): the visible objects' footprint (> 0.5), instead of their
+            boxes
+
+    Outputs:
+        annotations (Annotations): the anchors with their labels placed
+
+    Parameters:
+        font_size (float in [6, 96]; default 13.0): label text size, pixels
+        margin (float in [0, 200]; default 10.0): distance of the labels from the hull, pixels
+        max_iterations (int in [1, 10000]; default 300): iterations of the swap/shift loop
+            before labels are left out
+        depth_tolerance (float in [0, 1e+06]; default 5.0): with a gbuffer: an anchor this far
+            (world units) behind the surface still counts as visible
+        coherent (bool; default True): start from the previous layout (labels move little
+            between frames)
+
+    """
+
+    kind = 'AnnotationLayout'
+    category = 'Annotation'
+    font_size: float = 13.0
+    margin: float = 10.0
+    max_iterations: int = 300
+    depth_tolerance: float = 5.0
+    coherent: bool = True
+
+class AnnotationList:
+    """Labelled anchors written in the graph: "x y z: text; …" (world units), one label per row;
+        earlier rows have higher priority when labels must be left out.
+
+    Outputs:
+        annotations (Annotations): the anchors
+
+    Parameters:
+        anchors (text; default '0 0 0: centre'): "x y z: text; …" in world units
+
+    """
+
+    kind = 'AnnotationList'
+    category = 'Annotation'
+    anchors: str = '0 0 0: centre'
+
+class AnnotationOverlay:
+    """Draws laid-out annotations over an image (VolumeShop §6.4): for every shown label its leader
+        line from the anchor to the label's attachment point and a dot at the anchor, both at
+        the label's depth opacity, then its text (at the layout's font size) over a halo. Anti-
+        aliased on the GPU; pixels, top-left origin, y down.
+
+    Inputs:
+        image (Image, required): the picture to annotate
+        annotations (Annotations, required): annotations laid out by AnnotationLayout for this
+            image's size
+
+    Outputs:
+        image (Image): the picture with the labels
+
+    Parameters:
+        text_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): label text colour
+        halo_color (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): colour of the halo around the
+            text (alpha 0: none)
+        halo_width (float in [0, 8]; default 2.0): halo width around the glyphs, pixels
+        leader_color (RGBA in [0, 1]; default (0.2, 0.2, 0.2, 1.0)): leader line and anchor dot
+            colour (alpha times the label's opacity)
+        leader_width (float in [0, 16]; default 1.0): leader line width, pixels
+        dot_radius (float in [0, 32]; default 2.5): radius of the dot at the anchor, pixels (0:
+            none)
+
+    """
+
+    kind = 'AnnotationOverlay'
+    category = 'Annotation'
+    text_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    halo_color: Tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
+    halo_width: float = 2.0
+    leader_color: Tuple[float, float, float, float] = (0.2, 0.2, 0.2, 1.0)
+    leader_width: float = 1.0
+    dot_radius: float = 2.5
+
+class AnnotationsFromLabels:
+    """One anchor per object of a segmentation: at the object's voxel nearest its centroid (on the
+        object even where it is concave), named after the labels (or the object table), with the
+        object's box as its part of the silhouette hull. Objects: those listed in `objects`,
+        else the drawn rows of the `styles` input, else every object of the labels. Priority:
+        the importance from the object table, else the object's share of the voxels.
+
+    Inputs:
+        labels (Labels, required): the segmentation
+        styles (ObjectStyles, optional): which objects are drawn, their names and importance
+
+    Outputs:
+        annotations (Annotations): one anchor per object
+
+    Parameters:
+        objects (text; default ''): label ids to annotate, e.g. "10, 13" (empty: the drawn
+            objects, or all)
+
+    """
+
+    kind = 'AnnotationsFromLabels'
+    category = 'Annotation'
+    objects: str = ''
+
+class Arrow:
+    """A curved arrow from the ghost (anchor 0) to the selection (anchor 1), VolumeShop §6.3
+        "Arrows": the head at the selection. The screen-space depth difference bends it, so
+        ghost and selection that project close together still get a readable arrow: the
+        selection's view-space depth minus the ghost's (world units, positive = nearer the
+        viewer) times the pixels per world unit at their midpoint gives Δ pixels; the curve's
+        greatest distance from the straight chord is curvature × Δ, to the left of the direction
+        of travel on screen when the selection moved towards the viewer, to the right when away.
+        Equal depths: a straight arrow.
+
+    Inputs:
+        image (Image, required): the picture to draw over
+        annotations (Annotations, required): anchor 0 = ghost, anchor 1 = selection (world
+            positions)
+        camera (Camera, required): the view the picture was rendered with
+
+    Outputs:
+        image (Image): the picture with the drawing
+
+    Parameters:
+        color (RGBA in [0, 1]; default (0.8, 0.1, 0.1, 1.0)): arrow colour
+        width (float in [0.1, 32]; default 2.0): shaft width, pixels
+        curvature (float in [0, 4]; default 0.5): greatest distance from the chord per pixel of
+            depth difference
+
+    """
+
+    kind = 'Arrow'
+    category = 'Annotation'
+    color: Tuple[float, float, float, float] = (0.8, 0.1, 0.1, 1.0)
+    width: float = 2.0
+    curvature: float = 0.5
+
+class BoundingBox:
+    """The 12 edges of the ghost's (anchor 0) and/or the selection's (anchor 1) world box projected
+        with the camera, VolumeShop §6.3 "Boxes": cues on an object's position and orientation
+        while arranging an illustration. Edges are clipped at the near plane; all edges are
+        drawn (no occlusion).
+
+    Inputs:
+        image (Image, required): the picture to draw over
+        annotations (Annotations, required): anchor 0 = ghost, anchor 1 = selection, with world
+            boxes as bounds
+        camera (Camera, required): the view the picture was rendered with
+
+    Outputs:
+        image (Image): the picture with the drawing
+
+    Parameters:
+        which (one of 'ghost', 'selection', 'both'; default 'selection'): whose box to draw
+        color (RGBA in [0, 1]; default (0.1, 0.4, 0.9, 1.0)): edge colour
+        width (float in [0.1, 32]; default 1.0): edge width, pixels
+
+    """
+
+    kind = 'BoundingBox'
+    category = 'Annotation'
+    which: Literal['ghost', 'selection', 'both'] = 'selection'
+    color: Tuple[float, float, float, float] = (0.1, 0.4, 0.9, 1.0)
+    width: float = 1.0
+
+class Camera:
+    """Orbit camera around a target point, perspective or orthographic. The field of view spans the
+        frame's shorter side; orthographic views show 2·distance·tan(fov/2) across it; azimuth
+        0, elevation 0 with up "y" looks along -z (axis-aligned). With data connected (a volume,
+        labels, a mesh, or several) and `framing` "fit", it frames them: the target is the
+        centre of their bounds (moved by `pan_x`, `pan_y`), the distance (or orthographic
+        extent) makes them fill `fill` of the frame's width or height from this azimuth and
+        elevation; `near` and `far` scale with the framed distance relative to `distance` (so
+        depth-based thresholds act alike on data of any size), widened to enclose the data;
+        `target` goes unused.
+
+    Inputs:
+        volume (Volume, optional): data to frame: the volume's foreground (voxels at or above
+            Otsu's threshold)
+        labels (Labels, optional): data to frame: the labelled objects (not the background)
+        mesh (Mesh, optional): data to frame: the mesh's vertices
+
+    Outputs:
+        camera (Camera): view and projection for the frame
+
+    Parameters:
+        azimuth (float in [-360, 360]; default 30.0): rotation around the up axis, degrees
+        elevation (float in [-90, 90]; default 20.0): angle above the horizontal plane, degrees
+        distance (float in [0.0001, 1e+06]; default 3.5): distance from the target, world units
+        target ((x, y, z); default (0.0, 0.0, 0.0)): point looked at, world units
+        fov (float in [1, 170]; default 40.0): field of view across the frame's shorter side
+            (the height of a wide frame), degrees
+        projection (one of 'perspective', 'orthographic'; default 'perspective'): projection
+            type
+        up (one of 'y', 'z'; default 'y'): world axis that points up on screen
+        near (float in [1e-05, 1e+06]; default 0.05): near clipping distance
+        far (float in [0.0001, 1e+07]; default 100.0): far clipping distance
+        framing (one of 'fit', 'fixed'; default 'fit'): fit: frame the connected data; fixed:
+            use target and distance (also when nothing is connected)
+        fill (float in [0.05, 20]; default 0.8): framing: the fraction of the frame's width or
+            height the data fills (above 1: closer, part of the data)
+        pan_x (float in [-10, 10]; default 0.0): framing: target shift to the right, in frame
+            widths (shorter side)
+        pan_y (float in [-10, 10]; default 0.0): framing: target shift upwards, in frame heights
+            (shorter side)
+
+    """
+
+    kind = 'Camera'
+    category = 'Scene'
+    azimuth: float = 30.0
+    elevation: float = 20.0
+    distance: float = 3.5
+    target: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    fov: float = 40.0
+    projection: Literal['perspective', 'orthographic'] = 'perspective'
+    up: Literal['y', 'z'] = 'y'
+    near: float = 0.05
+    far: float = 100.0
+    framing: Literal['fit', 'fixed'] = 'fit'
+    fill: float = 0.8
+    pan_x: float = 0.0
+    pan_y: float = 0.0
+
+class Curvature:
+    """Principal curvatures of the iso-surface in a G-buffer (Hadwiger's deferred iso-surface
+        shading, the tutorial's §1): at each pixel's surface point the volume's gradient g and
+        Hessian H (central differences of the gradient at ±`step` voxels along the world axes),
+        the shape operator −P H P / |g| in the tangent plane, its eigenvalues κ1 ≥ κ2 (world
+        units⁻¹, positive where the surface bulges towards lower values) and the first principal
+        direction. Output image channels (32-bit float data): (κ1, κ2, θ1, θ2) with θ1, θ2 the
+        principal directions' screen angles (radians, x right, y down, in [−π/2, π/2)); θ1 = θ2
+        = −10 where there is no surface. Connect the G-buffer of IsoSurfaceRaycast (or Raycast,
+        mode iso) over the same volume.
+
+    Inputs:
+        gbuffer (GBuffer, required): the iso-surface's depth
+        volume (Volume, required): the scalar field it is a level of
+
+    Outputs:
+        curvature (Image): (κ1, κ2, θ1, θ2) per pixel (data, not colour)
+
+    Parameters:
+        step (float in [0.25, 8]; default 1.0): finite-difference step of the Hessian, voxels
+            (of the smallest spacing)
+
+    """
+
+    kind = 'Curvature'
+    category = 'Volume'
+    step: float = 1.0
+
+class CurvatureColor:
+    """Curvature colour mapping (Hadwiger's deferred iso-surface shading, the tutorial's §1, Fig.
+        10): a measure of Curvature's principal curvatures — curvedness √(κ1² + κ2²), κ1, κ2,
+        mean (κ1 + κ2)/2 or Gaussian κ1·κ2, in world units⁻¹ (⁻² for Gaussian) — through a 1-D
+        transfer function whose domain is in the same units (TransferFunction1D with custom
+        points, e.g. "-2: …; 2: …"); or, with measure `k1_k2`, both curvatures through a 2-D
+        transfer function: the image `map` (x: κ1 from −`range` to `range`, y: κ2 from `range`
+        at the top to −`range`), or without a map the built-in shape-class map (shape index cup
+        blue, rut cyan, saddle green, ridge yellow, cap red; flat regions light). Transparent
+        where there is no surface.
+
+    Inputs:
+        curvature (Image, required): Curvature's output
+        tf (TransferFunction, optional): measure → colour (all measures but k1_k2)
+
+    Outputs:
+        image (Image): premultiplied colour
+
+    Parameters:
+        measure (one of 'curvedness', 'k1', 'k2', 'mean', 'gaussian', 'k1_k2'; default
+            'curvedness'): which curvature the colour shows (k1_k2: the 2-D map)
+        map (path; default ''): k1_k2: a 2-D transfer function image (PNG, …); empty = the
+            built-in map
+        range (float in [1e-09, 1e+09]; default 0.25): k1_k2: |κ| at the map's edges, world
+            units⁻¹
+
+    """
+
+    kind = 'CurvatureColor'
+    category = 'Volume'
+    measure: Literal['curvedness', 'k1', 'k2', 'mean', 'gaussian', 'k1_k2'] = 'curvedness'
+    map: str = ''
+    range: float = 0.25
+
+class CurvatureContours:
+    """Curvature-controlled contours (Kindlmann et al. 2003 §5, the tutorial's §1): a pixel of the
+        iso-surface is on the contour where |n·v| ≤ √(T κv (2 − T κv)), κv the normal curvature
+        along the view direction projected into the tangent plane (from the volume's Hessian, as
+        Curvature computes it) and T `thickness` pixels at the point's depth, so the band is
+        about `thickness` pixels wide on screen whatever the curvature (a plain |n·v| threshold
+        is thin on sharp bends and thick on flat ones). No contour where the surface is concave
+        along the view. Connect the G-buffer of IsoSurfaceRaycast and its volume.
+
+    Inputs:
+        gbuffer (GBuffer, required): the iso-surface's depth
+        volume (Volume, required): the scalar field it is a level of
+
+    Outputs:
+        mask (Mask): 1 on the contours
+
+    Parameters:
+        thickness (float in [0.25, 32]; default 2.0): contour width, pixels
+        step (float in [0.25, 8]; default 1.0): finite-difference step of the Hessian, voxels
+            (as Curvature's)
+
+    """
+
+    kind = 'CurvatureContours'
+    category = 'Volume'
+    thickness: float = 2.0
+    step: float = 1.0
+
+class CurvatureFlow:
+    """Flow along curvature directions (the tutorial's §1, Fig. 11/14): a line integral convolution
+        of 3-D value noise along Curvature's principal-direction field in image space — each
+        surface pixel averages the noise at the surface points along its streamline (`length`
+        pixels, RK2 steps of `step`), so the streaks follow the larger-|κ| direction (or the
+        smaller) and stay on the surface as the view moves. A mask in [0, 1] (`mean` on
+        average), 0 off the surface; mix it with MixByMask or multiply a shaded image by it.
+
+    Inputs:
+        curvature (Image, required): Curvature's output
+        gbuffer (GBuffer, required): the surface (the G-buffer Curvature read)
+
+    Outputs:
+        flow (Mask): streaks along the principal direction
+
+    Parameters:
+        length (float in [2, 200]; default 20.0): streamline length, pixels
+        step (float in [0.25, 4]; default 1.0): integration step, pixels
+        direction (one of 'max_curvature', 'min_curvature'; default 'max_curvature'): the
+            principal direction of the larger or of the smaller |κ|
+        grain (float in [1e-06, 1e+06]; default 1.0): noise cell size on the surface, world
+            units (about a pixel's footprint)
+        contrast (float in [0, 4]; default 1.0): streak contrast
+        mean (float in [0, 1]; default 0.5): average output (e.g. 0.8 to multiply a colour image
+            by the streaks)
+
+    """
+
+    kind = 'CurvatureFlow'
+    category = 'Volume'
+    length: float = 20.0
+    step: float = 1.0
+    direction: Literal['max_curvature', 'min_curvature'] = 'max_curvature'
+    grain: float = 1.0
+    contrast: float = 1.0
+    mean: float = 0.5
+
+class CustomShader:
+    """A fragment shader of your own (WGSL file): its texture bindings become input ports (Image,
+        Mask, GBuffer), its uniform struct's members parameters, its result the output (vec4 →
+        image, f32 → mask). Re-read when the file changes. See docs/custom_shader.md.
+
+    Parameters:
+        shader (path; default ''): the WGSL file (relative to the graph file's folder); ports
+            and parameters follow its declarations
+
+    """
+
+    kind = 'CustomShader'
+    category = 'Compositing'
+    shader: str = ''
+
+class DepthLayers:
+    """The nearest surface of a mesh and the one behind it (Fischer et al. 2005, §3.1) from one
+        geometry pass: a k-buffer of the two smallest (depth, normal) keys per pixel, kept with
+        64-bit atomics (Bavoil et al. 2007). The same layers as GBuffer + DepthPeel, which draw
+        the mesh twice (normals within 2e-3: 16 bits per octahedral coordinate; with coincident
+        triangles the fragment kept may differ). Without 64-bit atomics, or when the frame needs
+        a k-buffer larger than the adapter's storage binding limit (16 bytes per pixel), it
+        draws those two passes.
+
+    Inputs:
+        mesh (Mesh, required): the surface
+        camera (Camera, required): the view
+
+    Outputs:
+        layer1 (GBuffer): depth + normal of the nearest surface
+        layer2 (GBuffer): depth + normal of the surface behind it
+
+    Parameters:
+        method (one of 'auto', 'peel'; default 'auto'): auto: one pass where the adapter has
+            64-bit atomics, else two; peel: always the two passes of GBuffer + DepthPeel (to
+            compare)
+
+    """
+
+    kind = 'DepthLayers'
+    category = 'Rendering'
+    method: Literal['auto', 'peel'] = 'auto'
+
+class DepthPeel:
+    """Depth peeling (Fischer et al. 2005, §3.1): rasterises the mesh again, keeping only fragments
+        strictly behind the previous layer's depth, then the nearest of those. Chain peels for
+        layers 3, 4, …
+
+    Inputs:
+        mesh (Mesh, required): the surface (the same mesh as the previous layer)
+        camera (Camera, required): the view
+        previous (GBuffer, required): the layer in front (GBuffer or another DepthPeel)
+
+    Outputs:
+        gbuffer (GBuffer): depth + normal of the next layer
+
+    """
+
+    kind = 'DepthPeel'
+    category = 'Rendering'
+
+class DepthTestMask:
+    """1 where the window-space depths of layers a and b compare true, else 0. With a = layer 2 and
+        b = the secondary geometry, `a<=b` is the depth test of Fischer et al. 2005, eq. 10.
+        Empty pixels have depth 1.
+
+    Inputs:
+        a (GBuffer, required): first layer
+        b (GBuffer, required): second layer
+
+    Outputs:
+        mask (Mask): the test result, 0 or 1
+
+    Parameters:
+        compare (one of 'a<=b', 'a<b', 'a>=b', 'a>b'; default 'a<=b'): the comparison
+
+    """
+
+    kind = 'DepthTestMask'
+    category = 'Compositing'
+    compare: Literal['a<=b', 'a<b', 'a>=b', 'a>b'] = 'a<=b'
+
+class DiffuseIntensity:
+    """Diffuse intensity I = max(n · lightDir, 0) per pixel of a G-buffer layer (Fischer et al.
+        2005, eq. 1/6), with the light's direction in view space. Pixels without surface get
+        `empty` (1 = paper stays white under halftoning).
+
+    Inputs:
+        gbuffer (GBuffer, required): the layer
+        light (Light, required): the light
+
+    Outputs:
+        intensity (Mask): intensity in [0, 1]
+
+    Parameters:
+        empty (float in [0, 1]; default 1.0): value where the layer has no surface
+        two_sided (bool; default False): light back faces with the flipped normal
+
+    """
+
+    kind = 'DiffuseIntensity'
+    category = 'Illustration'
+    empty: float = 1.0
+    two_sided: bool = False
+
+class Fan:
+    """A fan between ghost (anchor 0) and selection (anchor 1), VolumeShop §6.3 "Fans": the screen-
+        space bounding rectangles of their world boxes (the projected 8 corners each), outlined,
+        joined by the two outer common tangents (the edges of the convex hull of both
+        rectangles' corners that go from one rectangle to the other; none when one rectangle
+        contains the other), with a translucent fill between them that leaves both rectangles'
+        insides clear.
+
+    Inputs:
+        image (Image, required): the picture to draw over
+        annotations (Annotations, required): anchor 0 = ghost, anchor 1 = selection, with world
+            boxes as bounds
+        camera (Camera, required): the view the picture was rendered with
+
+    Outputs:
+        image (Image): the picture with the drawing
+
+    Parameters:
+        color (RGBA in [0, 1]; default (0.2, 0.2, 0.2, 1.0)): outline and line colour
+        width (float in [0.1, 32]; default 1.5): line width, pixels
+        fill (RGBA in [0, 1]; default (0.3, 0.3, 0.3, 0.15)): colour between the rectangles
+            (alpha 0: no fill)
+
+    """
+
+    kind = 'Fan'
+    category = 'Annotation'
+    color: Tuple[float, float, float, float] = (0.2, 0.2, 0.2, 1.0)
+    width: float = 1.5
+    fill: Tuple[float, float, float, float] = (0.3, 0.3, 0.3, 0.15)
+
+class Fill:
+    """An image of the frame size filled with one colour (e.g. paperColor of Fischer et al. 2005,
+        §3.3.4).
+
+    Outputs:
+        image (Image): the filled frame
+
+    Parameters:
+        color (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): the colour
+
+    """
+
+    kind = 'Fill'
+    category = 'Compositing'
+    color: Tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
+
+class GBuffer:
+    """Rasterises a mesh into a G-buffer: window-space depth in [0, 1] (1 where empty) and the
+        view-space unit normal with coverage in w. The first layer of depth peeling.
+
+    Inputs:
+        mesh (Mesh, required): the surface
+        camera (Camera, required): the view
+
+    Outputs:
+        gbuffer (GBuffer): depth + normal of the nearest surface
+
+    """
+
+    kind = 'GBuffer'
+    category = 'Rendering'
+
+class Halftone:
+    """Black-and-white hatching by procedural screening (Fischer et al. 2005, eq. 7–9): the pixel
+        (x, y) is rotated by θ, (s, t) = ((x' mod n)/n, (y' mod n)/n), τ = c_cross·t if s ≤
+        c_cross else (1 − c_cross)·s + c_cross, output 1 where intensity ≥ τ, else 0 (ink).
+        Pattern in screen pixels.
+
+    Inputs:
+        intensity (Mask, required): intensity in [0, 1]
+
+    Outputs:
+        mask (Mask): 1 = paper, 0 = ink
+
+    Parameters:
+        theta (float in [-360, 360]; default 20.0): rotation of the pattern, degrees
+        cell (float in [1, 256]; default 4.0): cell size n in pixels
+        c_cross (float in [0, 1]; default 0.9): intensity below which cross-hatching appears
+
+    """
+
+    kind = 'Halftone'
+    category = 'Illustration'
+    theta: float = 20.0
+    cell: float = 4.0
+    c_cross: float = 0.9
+
+class HatchStrokes:
+    """Hatching strokes along principal curvature directions (Nagy et al. 2002; Yuan & Chen 2005
+        §4.4). Seeds are the vertices of `seeds`, a mesh of the same surface (MarchingCubes of
+        the volume at the iso value): a seed draws when it is visible in the G-buffer and its
+        random number (a hash of its index, so strokes stay on the surface as the view moves) is
+        below `density` × its darkness (1 − `tone`, or 1 − the headlight Lambert term of the
+        G-buffer normal without a tone). Each stroke is integrated both ways from the seed with
+        RK4 in image space through Curvature's direction field (the larger-|κ| principal
+        direction, or the smaller), stopping where the surface ends, the depth jumps or the
+        field turns; where the darkness exceeds `cross_hatching` a second stroke follows the
+        other direction. Drawn anti-aliased with tapered ends into `mask`; `strokes` carries the
+        polylines for SaveSvg.
+
+    Inputs:
+        curvature (Image, required): Curvature's output
+        gbuffer (GBuffer, required): the surface (the G-buffer Curvature read)
+        seeds (Mesh, required): candidate seeds: a mesh of the same surface (its vertices)
+        tone (Mask, optional): brightness in [0, 1] (e.g. DiffuseIntensity); darker = more
+            strokes
+
+    Outputs:
+        mask (Mask): stroke coverage
+        strokes (Strokes): the strokes as polylines
+
+    Parameters:
+        density (float in [0, 1]; default 0.05): chance that a seed at full darkness draws a
+            stroke
+        length (float in [2, 256]; default 24.0): stroke length, pixels (at most 256 RK4 steps)
+        width (float in [0.25, 8]; default 1.2): stroke width in the middle, pixels
+        taper (float in [0, 0.5]; default 0.3): fraction of the length over which each end thins
+            to nothing
+        step (float in [0.25, 4]; default 1.0): RK4 step, pixels
+        direction (one of 'max_curvature', 'min_curvature'; default 'max_curvature'): the
+            principal direction of the larger or of the smaller |κ|
+        cross_hatching (float in [0, 1]; default 0.6): darkness above which a second stroke
+            crosses the first (1 = never)
+        depth_tolerance (float in [0, 1]; default 0.01): visibility and fold test: depth
+            difference allowed, as a fraction of the seed mesh's bounding-box diagonal
+        max_strokes (int in [1, 1e+06]; default 20000): most strokes drawn
+        seed (int in [0, 1.04858e+06]; default 0): varies the random numbers
+
+    """
+
+    kind = 'HatchStrokes'
+    category = 'Volume'
+    density: float = 0.05
+    length: float = 24.0
+    width: float = 1.2
+    taper: float = 0.3
+    step: float = 1.0
+    direction: Literal['max_curvature', 'min_curvature'] = 'max_curvature'
+    cross_hatching: float = 0.6
+    depth_tolerance: float = 0.01
+    max_strokes: int = 20000
+    seed: int = 0
+
+class ImportanceCompositing:
+    """Importance compositing (Viola et al., importance-driven feature enhancement): per pixel, the
+        focus object's footprint (its first and last hit along the ray), the countersink depth
+        e_i = e_max − d_i·s_c (eq. 1; d_i the distance to the footprint by jump flooding, e_max
+        the footprint's deepest last hit) and the importance sum Σ I of the objects the ray
+        meets, their footprints dilated and averaged over `transition` pixels (image-space AImC,
+        eq. 2). Feed it to TwoLevelRaycast's `importance` input with the same camera. Methods:
+        mimp (maximum importance projection: only the focus in its footprint, the context cut
+        away in front of the countersink), aimc_image / aimc_object (average importance
+        compositing: levels of sparseness S_o = I_o / Σ I for every sample, or for the context
+        in front of the countersink only), vpimc (visibility preserving: the occluding context's
+        opacity scaled by S_o / α_avg, eq. 3). Importance comes from ObjectStyles'
+        `importance=`.
+
+    Inputs:
+        labels (Labels, required): object ids on the volume's grid
+        styles (ObjectStyles, required): the object table: drawn objects and their importance
+        camera (Camera, required): the view
+
+    Outputs:
+        importance (Importance): footprint, countersink and importance sums of this view
+
+    Parameters:
+        method (one of 'mimp', 'aimc_image', 'aimc_object', 'vpimc'; default 'mimp'): importance
+            compositing: mimp, aimc_image, aimc_object, vpimc
+        focus (int in [0, 65535]; default 0): the focus object's id (0: the drawn object of
+            highest importance)
+        countersink (one of 'conical', 'cylindrical'; default 'conical'): conical (eq. 1) or
+            cylindrical (the footprint swept along the rays)
+        slope (float in [0.05, 20]; default 1.0): s_c of eq. 1: depth per unit of image-space
+            distance (both in world units)
+        transition (float in [0, 64]; default 0.0): image-space AImC: dilate and average the
+            footprints over this radius (pixels) for smooth transitions between levels of
+            sparseness
+        step (float in [0.05, 8]; default 0.5): sample distance along the rays in voxels (of the
+            smallest spacing)
+        boundary (one of 'filtered', 'point'; default 'filtered'): object membership, as
+            TwoLevelRaycast's
+
+    """
+
+    kind = 'ImportanceCompositing'
+    category = 'Volume'
+    method: Literal['mimp', 'aimc_image', 'aimc_object', 'vpimc'] = 'mimp'
+    focus: int = 0
+    countersink: Literal['conical', 'cylindrical'] = 'conical'
+    slope: float = 1.0
+    transition: float = 0.0
+    step: float = 0.5
+    boundary: Literal['filtered', 'point'] = 'filtered'
+
+class IsoSurfaceRaycast:
+    """First hit of an iso value along each ray (refined linearly between samples) as a G-buffer:
+        window depth and the view-space normal −∇f/|∇f|. Feeds Silhouette, DiffuseIntensity,
+        Halftone and the compositing nodes with no mesh at all.
+
+    Inputs:
+        volume (Volume, required): the scalar field
+        camera (Camera, required): the view
+
+    Outputs:
+        gbuffer (GBuffer): depth + normal of the iso-surface
+
+    Parameters:
+        iso (float in [-1e+12, 1e+12], or data-relative text; default 0.0): iso value, in the
+            volume's units, or relative to its values: "percentile(60)", "range(0.3)", "otsu"
+        step (float in [0.05, 8]; default 0.25): sample distance in voxels
+
+    """
+
+    kind = 'IsoSurfaceRaycast'
+    category = 'Volume'
+    iso: Union[float, str] = 0.0
+    step: float = 0.25
+
+class LabelFile:
+    """Reads a label map (object id per voxel, whole numbers 0–65535, 0 = background) from any
+        volume format VolumeFile reads, placed in the world the same way. Object names come from
+        `names` (a CSV/TSV table `id,name` or an ITK-SNAP label description file) or from the
+        file itself (3D Slicer's segment names in a .seg.nrrd header); objects without a name
+        are called "object N".
+
+    Outputs:
+        labels (Labels): object ids on the volume's grid, with names
+
+    Parameters:
+        path (path; default ''): the label map file, or a DICOM folder
+        array (text; default ''): the named data array to read (VTK); empty: the active scalars
+        names (path; default ''): object names: CSV `id,name` or ITK-SNAP label file (optional)
+
+    """
+
+    kind = 'LabelFile'
+    category = 'Data'
+    path: str = ''
+    array: str = ''
+    names: str = ''
+
+class LabelMask:
+    """1 where a voxel's label is in `labels`, else 0, then blurred by a Gaussian of `smooth`
+        voxels so that MarchingCubes at iso 0.5 gives a smooth surface instead of voxel stairs.
+        The labels come from `objects` (a segmented volume: LabelFile, LabelsFromThreshold, …)
+        or, as in graphs made before labels had their own type, from `volume` (values rounded to
+        integers); connect one of the two. Labels not present are an error that lists the labels
+        the volume has.
+
+    Inputs:
+        objects (Labels, optional): a segmented volume (e.g. LabelFile of the frog)
+        volume (Volume, optional): or a label volume read as numbers
+
+    Outputs:
+        mask (Volume): the selected objects, values in [0, 1]
+
+    Parameters:
+        labels (text; default '1'): labels to select: "3", "3, 7", "1-29", "2-4, 9"
+        smooth (float in [0, 8]; default 1.0): Gaussian sigma in voxels (0 = hard mask)
+
+    """
+
+    kind = 'LabelMask'
+    category = 'Geometry'
+    labels: str = '1'
+    smooth: float = 1.0
+
+class LabelsFromMaps:
+    """Object ids from probability maps on one grid (e.g. the MRI's grey- and white-matter maps):
+        each voxel gets the id of the map with the largest value (a = 1, b = 2, c = 3) if that
+        value is at least `floor`, else background.
+
+    Inputs:
+        a (Volume, required): map of object 1
+        b (Volume, optional): map of object 2
+        c (Volume, optional): map of object 3
+
+    Outputs:
+        labels (Labels): object ids on the volume's grid, with names
+
+    Parameters:
+        floor (float in [-1e+12, 1e+12], or data-relative text; default 128.0): smallest value
+            that makes a voxel part of an object (data units of map a, or "percentile(P)",
+            "range(F)", "otsu" of map a)
+        names (text; default ''): object names, "a name, b name, …" (optional)
+
+    """
+
+    kind = 'LabelsFromMaps'
+    category = 'Data'
+    floor: Union[float, str] = 128.0
+    names: str = ''
+
+class LabelsFromThreshold:
+    """Object ids by value intervals: a voxel whose value lies in [lo, hi) of an interval gets its
+        id (the first matching interval wins), others background.
+
+    Inputs:
+        volume (Volume, required): the scalar field
+
+    Outputs:
+        labels (Labels): object ids on the volume's grid, with names
+
+    Parameters:
+        intervals (text; default '80..140: 1; 140..256: 2'): "lo..hi: id; …" in data units;
+            bounds may be "percentile(P)", "range(F)" or "otsu" of the volume
+
+    """
+
+    kind = 'LabelsFromThreshold'
+    category = 'Data'
+    intervals: str = '80..140: 1; 140..256: 2'
+
+class Light:
+    """Directional light. In view space the light follows the camera (the usual choice for
+        illustration); in world space it stays fixed to the data.
+
+    Outputs:
+        light (Light): the light
+
+    Parameters:
+        direction ((x, y, z); default (0.4, 0.5, 1.0)): vector towards the light (normalised)
+        space (one of 'view', 'world'; default 'view'): space the direction is given in
+        color (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): light colour (alpha unused)
+        intensity (float in [0, 100]; default 1.0): scale of the diffuse and specular terms
+        ambient (float in [0, 1]; default 0.15): ambient term added everywhere
+
+    """
+
+    kind = 'Light'
+    category = 'Scene'
+    direction: Tuple[float, float, float] = (0.4, 0.5, 1.0)
+    space: Literal['view', 'world'] = 'view'
+    color: Tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
+    intensity: float = 1.0
+    ambient: float = 0.15
+
+class MarchingCubes:
+    """Lorensen–Cline marching cubes on the CPU, parallel over slabs. Vertices are shared between
+        cells; normals are the negated, normalised volume gradient (pointing towards lower
+        values).
+
+    Inputs:
+        volume (Volume, required): the scalar field
+
+    Outputs:
+        mesh (Mesh): the iso-surface in world units
+
+    Parameters:
+        iso (float in [-1e+12, 1e+12], or data-relative text; default 0.0): iso value, in the
+            volume's units, or relative to its values: "percentile(60)", "range(0.3)", "otsu"
+
+    """
+
+    kind = 'MarchingCubes'
+    category = 'Geometry'
+    iso: Union[float, str] = 0.0
+
+class MaskCombine:
+    """Combines masks a and b per pixel: and = a·b, or = max(a, b), min, add and subtract (clamped
+        to [0, 1]), a_not_b = a·(1 − b). E.g. eq. 10 of Fischer et al. 2005 is I_S a_not_b
+        (silhouette_P2 and depth test).
+
+    Inputs:
+        a (Mask, required): first mask
+        b (Mask, required): second mask
+
+    Outputs:
+        mask (Mask): the result
+
+    Parameters:
+        operation (one of 'and', 'or', 'min', 'add', 'subtract', 'a_not_b'; default 'and'): how
+            to combine
+
+    """
+
+    kind = 'MaskCombine'
+    category = 'Compositing'
+    operation: Literal['and', 'or', 'min', 'add', 'subtract', 'a_not_b'] = 'and'
+
+class MeshFile:
+    """Reads a triangle mesh from .obj, .ply (ASCII or binary) or .stl; polygons are triangulated,
+        missing normals are computed. Relative paths are relative to the graph file's folder.
+
+    Outputs:
+        mesh (Mesh): the mesh
+
+    Parameters:
+        path (path; default ''): the mesh file
+
+    """
+
+    kind = 'MeshFile'
+    category = 'Data'
+    path: str = ''
+
+class MeshTransform:
+    """Applies p' = R·(s ⊙ p) + t to every vertex (rotation R from Euler angles x, then y, then z,
+        in degrees) and transforms normals accordingly; `flip_normals` reverses normals and
+        winding.
+
+    Inputs:
+        mesh (Mesh, required): the mesh to transform
+
+    Outputs:
+        mesh (Mesh): the transformed mesh
+
+    Parameters:
+        scale ((x, y, z); default (1.0, 1.0, 1.0)): scale per axis (non-zero)
+        rotate ((x, y, z); default (0.0, 0.0, 0.0)): Euler angles about x, y, z in degrees
+        translate ((x, y, z); default (0.0, 0.0, 0.0)): offset, world units
+        flip_normals (bool; default False): point normals the other way
+
+    """
+
+    kind = 'MeshTransform'
+    category = 'Geometry'
+    scale: Tuple[float, float, float] = (1.0, 1.0, 1.0)
+    rotate: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    translate: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    flip_normals: bool = False
+
+class MixByMask:
+    """Per pixel mix(base, over, m) = (1 − m)·base + m·over with m the mask clamped to [0, 1];
+        `over` is the `over` image if connected, else `color`. The mix() lines of Fischer et al.
+        2005, §3.3.4.
+
+    Inputs:
+        base (Image, required): the image underneath
+        mask (Mask, required): how much of `over` to take
+        over (Image, optional): the image mixed in (else `color`)
+
+    Outputs:
+        image (Image): the mixed image
+
+    Parameters:
+        color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour mixed in when `over` is not
+            connected
+
+    """
+
+    kind = 'MixByMask'
+    category = 'Compositing'
+    color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+
+class MultiplyByMask:
+    """Colour × m (or × (1 − m) with `invert`), alpha kept: the `pixelColor *= …` lines of Fischer
+        et al. 2005, §3.3.4 (black silhouettes, black hatching).
+
+    Inputs:
+        image (Image, required): the image
+        mask (Mask, required): the factor, clamped to [0, 1]
+
+    Outputs:
+        image (Image): the darkened image
+
+    Parameters:
+        invert (bool; default False): multiply by 1 − mask instead
+
+    """
+
+    kind = 'MultiplyByMask'
+    category = 'Compositing'
+    invert: bool = False
+
+class ObjectStyles:
+    """The object table of a segmented volume for TwoLevelRaycast: one row per object, "ID: mode
+        compositing [tf=…] [iso=…] [importance=…] [off]; …". Rendering modes: dvr, shaded_dvr,
+        tone (cool-to-warm by N·L), contours (gradient magnitude × (1 − |N·V|)^8), mip, iso.
+        Local compositing: over, mip, iso (first hit of iso=…), sum. tf=PRESET uses a
+        TransferFunction1D preset over the volume's range, tf=1…3 the inputs tf1–tf3; default:
+        the `tf` input, else the grey ramp. Objects not listed are not drawn. Names come from
+        the labels.
+
+    Inputs:
+        labels (Labels, required): the segmented volume (names, ids)
+        volume (Volume, optional): value range for presets
+        tf (TransferFunction, optional): default transfer function
+        tf1 (TransferFunction, optional): transfer function tf=1
+        tf2 (TransferFunction, optional): transfer function tf=2
+        tf3 (TransferFunction, optional): transfer function tf=3
+
+    Outputs:
+        styles (ObjectStyles): per-object transfer function, rendering and compositing mode
+
+    Parameters:
+        objects (text; default '1: shaded_dvr over'): "ID: mode compositing [tf=…] [iso=…]
+            [importance=…] [off]; …"
+
+    """
+
+    kind = 'ObjectStyles'
+    category = 'Volume'
+    objects: str = '1: shaded_dvr over'
+
+class Over:
+    """front + (1 − α_front)·back per pixel, on premultiplied colours (Porter–Duff over).
+
+    Inputs:
+        front (Image, required): the image on top
+        back (Image, required): the image underneath
+
+    Outputs:
+        image (Image): the composite
+
+    """
+
+    kind = 'Over'
+    category = 'Compositing'
+
+class ProceduralVolume:
+    """Analytic distance fields on a resolution³ grid over [-1, 1]³ (positive inside, iso 0 is the
+        surface): three nested spherical shells (centre radii 0.8, 0.5, 0.2, half-thickness
+        0.05), a sphere, a torus in the xy plane, an engine-like block (a box with two vertical
+        bores and a horizontal one) and the two pistons that sit in its bores.
+
+    Outputs:
+        volume (Volume): the generated scalar field
+
+    Parameters:
+        shape (one of 'shells', 'sphere', 'torus', 'engine_block', 'pistons'; default 'shells'):
+            which field to generate
+        resolution (int in [4, 512]; default 96): voxels along each axis
+        radius (float in [0.01, 1]; default 0.7): sphere radius, or torus major radius
+        minor_radius (float in [0.01, 1]; default 0.25): torus tube radius
+
+    """
+
+    kind = 'ProceduralVolume'
+    category = 'Data'
+    shape: Literal['shells', 'sphere', 'torus', 'engine_block', 'pistons'] = 'shells'
+    resolution: int = 96
+    radius: float = 0.7
+    minor_radius: float = 0.25
+
+class Raycast:
+    """GPU ray casting of a volume. Front-to-back compositing (eq. 1 of the context-preserving
+        paper) with opacity correction for the sample distance, early ray termination, jittered
+        start, trilinear sampling, gradients by central differences in voxel space (respecting
+        spacing); perspective or orthographic. Modes: dvr, mip (maximum intensity), iso (first
+        hit, refined linearly). Shading: none, phong (eq. 3), lighting (VolumeShop lighting
+        transfer function, eq. 8), context_preserving (eq. 5; κt = 0 is plain DVR). A
+        StyleTransferFunction on `tf` switches to style shading (Bruckner & Gröller 2007: lit
+        spheres, style contours eq. 1, illustrative transparency eq. 2). Strokes (a mask with
+        the depth of its surface) are embedded as Yuan & Chen 2005 §5 do: rays stop at a stroke
+        and its colour lies under what is in front; `rho` scales every sample's opacity (DVR).
+
+    Inputs:
+        volume (Volume, required): the scalar field
+        camera (Camera, required): the view
+        tf (TransferFunction, required): colour/opacity or style transfer function
+        light (Light, optional): the light (default: a headlight)
+        labels (Volume, optional): object labels on the same grid (per-label style rows, §4.2)
+        strokes (Mask, optional): lines or strokes to embed (Yuan & Chen §5), with
+            `strokes_depth`
+        strokes_depth (GBuffer, optional): the depth of the surface the strokes were drawn on
+
+    Outputs:
+        image (Image): premultiplied colour
+        gbuffer (GBuffer): depth and normal where opacity first reaches `hit_opacity`
+
+    Parameters:
+        mode (one of 'dvr', 'mip', 'iso'; default 'dvr'): compositing
+        iso (float in [-1e+12, 1e+12], or data-relative text; default 0.5): iso value for mode
+            iso (data units, or "percentile(P)", "range(F)", "otsu")
+        step (float in [0.05, 8]; default 0.5): sample distance in voxels (of the smallest
+            spacing)
+        shading (one of 'none', 'phong', 'lighting', 'context_preserving'; default 'phong'):
+            shading (style TFs always use their styles)
+        lighting_model (one of 'phong', 'phong_contour', 'cartoon', 'metal'; default
+            'phong_contour'): lighting transfer function for `lighting`
+        ambient (float in [0, 1]; default 0.15): c_a of eq. 3
+        diffuse (float in [0, 4]; default 0.85): c_d of eq. 3
+        specular (float in [0, 4]; default 0.4): c_s of eq. 3
+        exponent (float in [1, 512]; default 32.0): c_e of eq. 3
+        kappa_t (float in [0, 1000]; default 0.0): κt of eq. 5: how deep to look inside (0 =
+            plain DVR)
+        kappa_s (float in [0, 100]; default 0.5): κs of eq. 5: sharpness of the cut
+        fast_exponent (bool; default False): context_preserving: Schlick's rational
+            approximation of eq. 5's two exponentiations (the paper's §6, eq. 6–7) instead of
+            pow
+        contours (bool; default True): style contours (§3.3)
+        thickness (float in [0, 1000]; default 2.0): contour thickness T, world units
+        transparency (bool; default True): illustrative transparency (eq. 2) for styles
+        mip_bias (float in [-4, 8]; default 0.0): bias of the style mip level
+        jitter (bool; default True): jitter the first sample per pixel (hides wood-grain
+            artefacts)
+        rho (float in [0, 1]; default 1.0): global alpha ρ (Yuan & Chen §5): every sample's
+            opacity × ρ (DVR), so embedded strokes show through
+        stroke_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour of embedded strokes
+        early_termination (float in [0.5, 1]; default 0.99): stop a ray at this opacity (1 =
+            never)
+        hit_opacity (float in [0.001, 1]; default 0.5): accumulated opacity that defines the
+            G-buffer depth
+        skip_empty (bool; default True): jump over 8³-voxel bricks that cannot change the
+            picture (DVR: values the transfer function makes transparent; iso: all below the iso
+            value) — same picture, fewer samples. MIP never skips: its plain loop is faster
+        kernel (one of 'auto', 'fragment', 'compute'; default 'auto'): GPU path: fragment shader
+            or compute kernel (same picture); auto picks the faster one for the adapter
+
+    """
+
+    kind = 'Raycast'
+    category = 'Volume'
+    mode: Literal['dvr', 'mip', 'iso'] = 'dvr'
+    iso: Union[float, str] = 0.5
+    step: float = 0.5
+    shading: Literal['none', 'phong', 'lighting', 'context_preserving'] = 'phong'
+    lighting_model: Literal['phong', 'phong_contour', 'cartoon', 'metal'] = 'phong_contour'
+    ambient: float = 0.15
+    diffuse: float = 0.85
+    specular: float = 0.4
+    exponent: float = 32.0
+    kappa_t: float = 0.0
+    kappa_s: float = 0.5
+    fast_exponent: bool = False
+    contours: bool = True
+    thickness: float = 2.0
+    transparency: bool = True
+    mip_bias: float = 0.0
+    jitter: bool = True
+    rho: float = 1.0
+    stroke_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    early_termination: float = 0.99
+    hit_opacity: float = 0.5
+    skip_empty: bool = True
+    kernel: Literal['auto', 'fragment', 'compute'] = 'auto'
+
+class RidgeValley:
+    """Ridge and valley lines of an iso-surface (the tutorial's §1, Fig. 12) from Curvature's
+        image: ridges where κ1 > threshold and κ1 is a maximum along its principal direction,
+        valleys where κ2 < −threshold and κ2 is a minimum along the second principal direction
+        (the extremality test: a parabola through the curvature one pixel before, at and after,
+        along the direction on screen, with a clear maximum: constant curvature draws no line).
+        Lines `thickness` pixels wide, as masks.
+
+    Inputs:
+        curvature (Image, required): Curvature's output
+
+    Outputs:
+        ridges (Mask): 1 on ridge lines
+        valleys (Mask): 1 on valley lines
+
+    Parameters:
+        threshold (float in [0, 1e+06]; default 1.0): smallest |κ| of a line, world units⁻¹
+        thickness (float in [0.5, 3]; default 1.5): line width, pixels (up to 3)
+
+    """
+
+    kind = 'RidgeValley'
+    category = 'Volume'
+    threshold: float = 1.0
+    thickness: float = 1.5
+
+class SaveImage:
+    """Writes its image to a PNG file (8-bit RGBA, straight alpha). `hatchery render -o` replaces
+        the path. Relative paths are relative to the graph file's folder.
+
+    Inputs:
+        image (Image, required): the picture to write
+
+    Parameters:
+        path (path; default 'hatchery.png'): the PNG file to write
+
+    """
+
+    kind = 'SaveImage'
+    category = 'Output'
+    path: str = 'hatchery.png'
+
+class SaveSvg:
+    """Writes an SVG figure whose Inkscape layers are: the picture (the `image` as an embedded
+        PNG), lines (each `lines` mask's region above 0.5, traced by marching squares and
+        simplified, as a filled path in its own colour, or its outlines as strokes), hatching
+        `strokes` as open polylines in a layer of their own, leader lines, arrows, and labels as
+        <text> (from laid-out `annotations`). Open it in Inkscape or Illustrator to edit lines
+        and text. `hatchery render -o x.svg` replaces the path. Relative paths are relative to
+        the graph file's folder.
+
+    Inputs:
+        image (Image, optional): the picture
+        annotations (Annotations, optional): labels placed by AnnotationLayout
+        lines1 (Mask, optional): a line or silhouette mask
+        lines2 (Mask, optional): another, with its own stroke
+        lines3 (Mask, optional): a third
+        strokes (Strokes, optional): hatching strokes (HatchStrokes): one open polyline each,
+            round caps
+        selection (Annotations, optional): ghost (anchor 0) and selection (anchor 1), e.g.
+            SelectionRender's: arrow, fan and boxes as paths
+        camera (Camera, optional): the view of the picture (for `selection`)
+
+    Parameters:
+        path (path; default 'figure.svg'): the SVG file to write
+        embed_picture (bool; default True): embed the `image` as a PNG layer under the lines
+        lines_as (one of 'shapes', 'outlines'; default 'shapes'): traced masks as filled shapes
+            (the mask's exact extent, one path per input) or as stroked outlines (one path per
+            contour)
+        simplify (float in [0, 10]; default 0.5): Douglas–Peucker tolerance of the traced lines,
+            pixels
+        text_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): label text colour
+        halo_color (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): label halo colour
+        halo_width (float in [0, 20]; default 2.0): label halo width, pixels (0: none)
+        leader_color (RGBA in [0, 1]; default (0.2, 0.2, 0.2, 1.0)): leader line colour
+        leader_width (float in [0.1, 20]; default 1.0): leader line width, pixels
+        arrow (bool; default True): with `selection`: the arrow ghost → selection
+        fan (bool; default False): with `selection`: the fan between their rectangles
+        boxes (one of 'none', 'ghost', 'selection', 'both'; default 'none'): with `selection`:
+            whose world box to draw
+        convention_color (RGBA in [0, 1]; default (0.8, 0.1, 0.1, 1.0)): colour of the arrow,
+            fan and boxes
+        convention_width (float in [0.1, 32]; default 2.0): line width of the arrow, fan and
+            boxes, pixels
+        curvature (float in [0, 4]; default 0.5): the arrow's bend per pixel of depth difference
+            (as Arrow's)
+        strokes_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour of the hatching
+            `strokes`
+        color1 (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): stroke colour of the lines traced
+            from this input
+        width1 (float in [0.1, 50]; default 1.5): stroke width of those lines, pixels
+        color2 (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): stroke colour of the lines traced
+            from this input
+        width2 (float in [0.1, 50]; default 1.5): stroke width of those lines, pixels
+        color3 (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): stroke colour of the lines traced
+            from this input
+        width3 (float in [0.1, 50]; default 1.5): stroke width of those lines, pixels
+
+    """
+
+    kind = 'SaveSvg'
+    category = 'Output'
+    path: str = 'figure.svg'
+    embed_picture: bool = True
+    lines_as: Literal['shapes', 'outlines'] = 'shapes'
+    simplify: float = 0.5
+    text_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    halo_color: Tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
+    halo_width: float = 2.0
+    leader_color: Tuple[float, float, float, float] = (0.2, 0.2, 0.2, 1.0)
+    leader_width: float = 1.0
+    arrow: bool = True
+    fan: bool = False
+    boxes: Literal['none', 'ghost', 'selection', 'both'] = 'none'
+    convention_color: Tuple[float, float, float, float] = (0.8, 0.1, 0.1, 1.0)
+    convention_width: float = 2.0
+    curvature: float = 0.5
+    strokes_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    color1: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    width1: float = 1.5
+    color2: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    width2: float = 1.5
+    color3: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    width3: float = 1.5
+
+class SecondaryGeometry:
+    """Renders secondary geometry S with its own depth test. Intensity I_S = max(n · lightDir, 0)
+        (eq. 1) times 1 in front of layer 1, α between layers 1 and 2, β behind layer 2 (eq. 2,
+        Fischer et al. 2005 §3.2). Outputs the intensity (0 where no S) and S's own G-buffer
+        (its depth for eq. 10).
+
+    Inputs:
+        mesh (Mesh, required): the secondary geometry S
+        camera (Camera, required): the view
+        light (Light, required): the light
+        layer1 (GBuffer, required): first iso-surface layer (GBuffer)
+        layer2 (GBuffer, required): second iso-surface layer (DepthPeel)
+
+    Outputs:
+        intensity (Mask): attenuated intensity I_S
+        gbuffer (GBuffer): depth and normal of S
+
+    Parameters:
+        alpha (float in [0, 1]; default 0.7): attenuation behind one layer (α)
+        beta (float in [0, 1]; default 0.21): attenuation behind two layers (β < α)
+        two_sided (bool; default True): light back faces with the flipped normal
+
+    """
+
+    kind = 'SecondaryGeometry'
+    category = 'Illustration'
+    alpha: float = 0.7
+    beta: float = 0.21
+    two_sided: bool = True
+
+class SelectImage:
+    """Outputs input image number `select` (1–4) unchanged; the others are still computed if
+        connected. For presets that offer alternative styles.
+
+    Inputs:
+        image1 (Image, optional): an alternative
+        image2 (Image, optional): an alternative
+        image3 (Image, optional): an alternative
+        image4 (Image, optional): an alternative
+
+    Outputs:
+        image (Image): the selected image
+
+    Parameters:
+        select (int in [1, 4]; default 1): which input to pass through
+
+    """
+
+    kind = 'SelectImage'
+    category = 'Compositing'
+    select: int = 1
+
+class SelectionRender:
+    """VolumeShop selective illustration (Bruckner & Gröller, the tutorial's §4, §6.2–6.3): the
+        labels listed in `objects` form the selection; the volume is drawn as background (tf),
+        ghost (the selection where it was, tf_ghost) and selection (moved by translate/rotate,
+        tf_selection), combined by eq. 1–5 (fuzzy sets: membership = min(selection degree,
+        opacity); colour = membership-weighted mean, opacity = max). Cutaways act on the
+        background in front of the ghost and/or the selection; `ghosting` goes from 0 (no
+        ghosting) to 1 (full cutaway), combined with the lighting transfer function's opacity
+        enhancement (eq. 8) so that enhanced contours survive ghosting. Placement: integrated
+        (moves with the scene), pinned (its centre fixed on screen at `pin`, turning with the
+        view) or decoupled (fixed on screen and in orientation).
+
+    Inputs:
+        volume (Volume, required): the scalar field f_V
+        labels (Labels, required): object ids on the volume's grid; `objects` picks the
+            selection
+        camera (Camera, required): the view
+        tf (TransferFunction, required): the background's colour TF
+        tf_ghost (TransferFunction, optional): the ghost's (default: tf)
+        tf_selection (TransferFunction, optional): the selection's (default: tf)
+        light (Light, optional): the light (default: a headlight)
+
+    Outputs:
+        image (Image): premultiplied colour
+        gbuffer (GBuffer): depth and normal where opaque
+        annotations (Annotations): anchor 0: the ghost's centre, anchor 1: the selection's, with
+            their boxes (for Arrow, Fan, BoundingBox and labels)
+
+    Parameters:
+        objects (text; default '1'): label ids of the selection, e.g. "10" or "10, 11"
+        translate ((x, y, z); default (0.0, 0.0, 0.0)): integrated: the selection's move, world
+            units
+        rotate ((x, y, z); default (0.0, 0.0, 0.0)): rotation about the selection's centre, XYZ
+            Euler degrees (world axes; view axes when decoupled)
+        placement (one of 'integrated', 'pinned', 'decoupled'; default 'integrated'):
+            integrated, pinned or decoupled (§6.3)
+        pin_x (float in [0, 1]; default 0.75): pinned/decoupled: the centre's screen position,
+            fraction of the width from the left
+        pin_y (float in [0, 1]; default 0.3): pinned/decoupled: fraction of the height from the
+            top
+        cutaway (one of 'ghost', 'selection', 'both', 'none'; default 'ghost'): whose far side
+            the background is cut in front of
+        ghosting (float in [0, 1]; default 0.7): 0: no ghosting … 1: full cutaway
+        shading (one of 'phong_contour', 'phong', 'cartoon', 'metal', 'none'; default
+            'phong_contour'): lighting transfer function (eq. 8) or none
+        step (float in [0.05, 8]; default 0.5): sample distance in voxels (of the smallest
+            spacing)
+        jitter (bool; default True): jitter the first sample per pixel
+        early_termination (float in [0.5, 1]; default 0.99): stop a ray at this opacity (1 =
+            never)
+        kernel (one of 'auto', 'fragment', 'compute'; default 'auto'): GPU path: fragment shader
+            or compute kernel (same picture)
+
+    """
+
+    kind = 'SelectionRender'
+    category = 'Volume'
+    objects: str = '1'
+    translate: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rotate: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    placement: Literal['integrated', 'pinned', 'decoupled'] = 'integrated'
+    pin_x: float = 0.75
+    pin_y: float = 0.3
+    cutaway: Literal['ghost', 'selection', 'both', 'none'] = 'ghost'
+    ghosting: float = 0.7
+    shading: Literal['phong_contour', 'phong', 'cartoon', 'metal', 'none'] = 'phong_contour'
+    step: float = 0.5
+    jitter: bool = True
+    early_termination: float = 0.99
+    kernel: Literal['auto', 'fragment', 'compute'] = 'auto'
+
+class ShadedSurface:
+    """Blinn–Phong shaded mesh over a background colour: ambient + diffuse max(n·l, 0) + specular
+        max(n·h, 0)^shininess, lit from the Light input. Output is premultiplied RGBA.
+
+    Inputs:
+        mesh (Mesh, required): the surface
+        camera (Camera, required): the view
+        light (Light, required): the light
+
+    Outputs:
+        image (Image): the shaded picture
+
+    Parameters:
+        color (RGBA in [0, 1]; default (0.85, 0.78, 0.7, 1.0)): surface colour (alpha = opacity)
+        background (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): colour where there is no
+            surface
+        specular (float in [0, 10]; default 0.25): strength of the specular highlight
+        shininess (float in [1, 1024]; default 32.0): Blinn–Phong exponent
+        two_sided (bool; default True): light back faces with the flipped normal
+
+    """
+
+    kind = 'ShadedSurface'
+    category = 'Rendering'
+    color: Tuple[float, float, float, float] = (0.85, 0.78, 0.7, 1.0)
+    background: Tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)
+    specular: float = 0.25
+    shininess: float = 32.0
+    two_sided: bool = True
+
+class Silhouette:
+    """Binary silhouette mask of a G-buffer layer: Sobel magnitude of the window-space depth ≥
+        depth_threshold (eq. 3) OR the sum of the dot products with the four neighbour normals <
+        normal_threshold (eq. 4–5), Fischer et al. 2005. PIP (Yuan & Chen 2005, eq. 2) scales
+        every tap offset by P(x, y): a constant (line width), a tiled PNG, value noise or a dot
+        matrix (stippled, felt-tip lines); P = 0 detects nothing.
+
+    Inputs:
+        gbuffer (GBuffer, required): the layer
+
+    Outputs:
+        mask (Mask): 1 on silhouettes, 0 elsewhere
+
+    Parameters:
+        depth_threshold (float in [0, 100]; default 0.001): threshold on the Sobel depth-
+            gradient magnitude
+        normal_threshold (float in [-4, 4]; default 3.98): threshold on the summed neighbour
+            normal dot products
+        use_depth (bool; default True): detect depth discontinuities (eq. 3)
+        use_normals (bool; default True): detect normal discontinuities (eq. 4–5)
+        pip (one of 'none', 'constant', 'texture', 'noise', 'dots'; default 'none'):
+            perturbation P(x, y) of the sampling positions
+        pip_amount (float in [0, 16]; default 1.0): P's scale in pixels (the constant for
+            `constant`)
+        pip_scale (float in [1, 256]; default 8.0): pattern size in pixels for `noise` and
+            `dots`
+        pip_seed (int in [0, 1e+06]; default 0): seed of the `noise` pattern
+        pip_texture (path; default ''): grey-scale PNG tiled over the frame for `texture`
+
+    """
+
+    kind = 'Silhouette'
+    category = 'Illustration'
+    depth_threshold: float = 0.001
+    normal_threshold: float = 3.98
+    use_depth: bool = True
+    use_normals: bool = True
+    pip: Literal['none', 'constant', 'texture', 'noise', 'dots'] = 'none'
+    pip_amount: float = 1.0
+    pip_scale: float = 8.0
+    pip_seed: int = 0
+    pip_texture: str = ''
+
+class StyleSet:
+    """A list of lit-sphere styles (sphere maps indexed by the eye-space normal, §3.1): `styles`
+        names them in order, comma-separated — procedural ones (shaded, toon2, toon3, gooch,
+        metal, ink_rim, flat), each optionally tinted as name:r,g,b, or a path to a square PNG
+        with a power-of-two size (relative to the graph file). Style k of a
+        StyleTransferFunction is the k-th entry. Each keeps its own mip chain.
+
+    Outputs:
+        styles (StyleSet): the styles
+
+    Parameters:
+        styles (text; default 'shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9'):
+            styles in order: name[:r,g,b] or a PNG path
+
+    """
+
+    kind = 'StyleSet'
+    category = 'Volume'
+    styles: str = 'shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9'
+
+class StyleTransferFunction:
+    """A style transfer function: nodes "value: style opacity; …" (style = index into the StyleSet,
+        opacity = uniform α_u). Between two nodes the style index and α_u are interpolated, so
+        whole styles blend uniformly for every normal; a style may appear several times (the
+        index function ift of §4.1). `label_nodes` adds the 2-D variant of §4.2 (value ×
+        object): rows for chosen labels of the label volume given to Raycast's `labels`. Connect
+        to Raycast's `tf`.
+
+    Inputs:
+        styles (StyleSet, required): the lit-sphere styles
+        volume (Volume, optional): resolves node values given relative to the data ("range(0.3):
+            1 0.5")
+
+    Outputs:
+        tf (TransferFunction): the style transfer function
+
+    Parameters:
+        nodes (text; default '40: 0 0.02; 90: 1 0.3; 160: 2 1.0'): value: style opacity; …
+            (every object); a value may be relative to the connected volume: "percentile(P)",
+            "range(F)", "otsu"
+        label_nodes (text; default ''): per object of a label volume (§4.2): "LABEL = value:
+            style opacity; … | LABEL = …"
+
+    """
+
+    kind = 'StyleTransferFunction'
+    category = 'Volume'
+    nodes: str = '40: 0 0.02; 90: 1 0.3; 160: 2 1.0'
+    label_nodes: str = ''
+
+class TransferFunction1D:
+    """A 1-D transfer function: colour and opacity (per voxel of path) per data value, linear
+        between control points, sampled into a 256-entry table. Either a preset spread over the
+        volume's value range, or `points` as "value: r g b a; value: r g b a; …" in data units.
+
+    Inputs:
+        volume (Volume, optional): sets the value range of presets (and resolves relative point
+            values)
+
+    Outputs:
+        tf (TransferFunction): the transfer function
+
+    Parameters:
+        preset (one of 'custom', 'grey_ramp', 'bone', 'skin_bone', 'brain_mri', 'rainbow';
+            default 'grey_ramp'): a preset, or `custom` to use `points`
+        points (text; default '0: 0 0 0 0; 255: 1 1 1 1'): control points for `custom`; a value
+            may be relative to the connected volume ("percentile(5): 0 0 0 0", "range(0.5): …",
+            "otsu: …")
+        range_min (float in [-1e+12, 1e+12]; default 0.0): value range of presets when no volume
+            is connected
+        range_max (float in [-1e+12, 1e+12]; default 255.0): value range of presets when no
+            volume is connected
+
+    """
+
+    kind = 'TransferFunction1D'
+    category = 'Volume'
+    preset: Literal['custom', 'grey_ramp', 'bone', 'skin_bone', 'brain_mri', 'rainbow'] = 'grey_ramp'
+    points: str = '0: 0 0 0 0; 255: 1 1 1 1'
+    range_min: float = 0.0
+    range_max: float = 255.0
+
+class TwoLevelRaycast:
+    """Two-level volume rendering of a segmented volume (Hadwiger §2.2–2.4): each ray is split into
+        segments where it passes through one object (object membership by boundary filtering,
+        §2.3: each object's binary mask filtered trilinearly and thresholded at 0.5); each
+        segment is composited with its object's local mode and rendering mode from ObjectStyles,
+        and the segments are combined front to back with the global mode: over, mip (per-channel
+        maximum) or sum. Same camera, light and jitter rules as Raycast.
+
+    Inputs:
+        volume (Volume, required): the scalar field
+        labels (Labels, required): object ids on the volume's grid
+        styles (ObjectStyles, required): the object table
+        camera (Camera, required): the view
+        light (Light, optional): the light (default: a headlight)
+        importance (Importance, optional): importance-driven rendering: ImportanceCompositing of
+            the same view
+
+    Outputs:
+        image (Image): premultiplied colour
+        gbuffer (GBuffer): depth and normal of the first visible segment
+
+    Parameters:
+        global (one of 'over', 'mip', 'sum'; default 'over'): global compositing of the segments
+        boundary (one of 'filtered', 'point'; default 'filtered'): object membership: filtered
+            binary masks (§2.3) or the nearest voxel's id
+        normals (one of 'data', 'objects'; default 'data'): shading normals from the data's
+            gradient, or from each object's filtered mask (for label maps without intensities)
+        step (float in [0.05, 8]; default 0.5): sample distance in voxels (of the smallest
+            spacing)
+        ambient (float in [0, 1]; default 0.15): c_a of eq. 3
+        diffuse (float in [0, 4]; default 0.85): c_d of eq. 3
+        specular (float in [0, 4]; default 0.4): c_s of eq. 3
+        exponent (float in [1, 512]; default 32.0): c_e of eq. 3
+        jitter (bool; default True): jitter the first sample per pixel
+        early_termination (float in [0.5, 1]; default 0.99): stop a ray at this opacity with
+            global over (1 = never)
+        skip_empty (bool; default True): jump over 8³-voxel bricks that no drawn object reaches
+            — same picture, fewer samples
+        kernel (one of 'auto', 'fragment', 'compute'; default 'auto'): GPU path: fragment shader
+            or compute kernel (same picture)
+        sparseness (one of 'opacity', 'saturation', 'screen_door', 'style'; default 'opacity'):
+            with `importance` (AImC): how a level of sparseness S shows — opacity × S, opacity
+            and colour saturation × S, a screen door keeping S of the voxels, or a sparse
+            rendering style where S < 1
+        sparse_mode (one of 'contours', 'dvr', 'shaded_dvr', 'tone', 'mip'; default 'contours'):
+            the sparse style's rendering mode
+        sparse_compositing (one of 'mip', 'over', 'sum'; default 'mip'): the sparse style's
+            local compositing
+
+    """
+
+    kind = 'TwoLevelRaycast'
+    category = 'Volume'
+    global_: Literal['over', 'mip', 'sum'] = 'over'
+    boundary: Literal['filtered', 'point'] = 'filtered'
+    normals: Literal['data', 'objects'] = 'data'
+    step: float = 0.5
+    ambient: float = 0.15
+    diffuse: float = 0.85
+    specular: float = 0.4
+    exponent: float = 32.0
+    jitter: bool = True
+    early_termination: float = 0.99
+    skip_empty: bool = True
+    kernel: Literal['auto', 'fragment', 'compute'] = 'auto'
+    sparseness: Literal['opacity', 'saturation', 'screen_door', 'style'] = 'opacity'
+    sparse_mode: Literal['contours', 'dvr', 'shaded_dvr', 'tone', 'mip'] = 'contours'
+    sparse_compositing: Literal['mip', 'over', 'sum'] = 'mip'
+
+class VolumeFile:
+    """Reads a volume: NIfTI-1 (.nii, .nii.gz, scl_slope/scl_inter applied), VTK XML image data
+        (.vti), NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd), a multi-page TIFF stack (.tif) or a
+        DICOM series (a folder, or one .dcm of it). The file's voxel → world transform (origin,
+        spacing, direction; NIfTI sform/qform) places the voxels in hatchery's RAS+ world in mm
+        (LPS formats are converted; see docs/data.md). NaN voxels are "no data". Relative paths
+        are relative to the graph file's folder.
+
+    Outputs:
+        volume (Volume): the volume, in world units (mm)
+
+    Parameters:
+        path (path; default ''): the volume file, or a folder holding a DICOM series
+        array (text; default ''): the named data array to read from a file with several (VTK);
+            empty: the file's active scalars, else the first array
+
+    """
+
+    kind = 'VolumeFile'
+    category = 'Data'
+    path: str = ''
+    array: str = ''
