@@ -22,8 +22,13 @@ use crate::errors::{GraphError, InputError, ParamError, RenderError, render_erro
 const DEFAULT_SIZE: (u32, u32) = (1024, 768);
 
 /// Before the first render a graph needs no GPU; the session opens on first use.
+// One per Graph, so the size of its variants does not matter.
+#[allow(clippy::large_enum_variant)]
 enum State {
-    Closed { registry: Registry, graph: GraphModel },
+    Closed {
+        registry: Registry,
+        graph: GraphModel,
+    },
     Open(Box<Session>),
     /// Only while the session is being opened.
     Opening,
@@ -34,6 +39,8 @@ struct Inner {
     /// The file the graph was loaded from or last saved to.
     path: Option<PathBuf>,
     last: Option<PassReport>,
+    /// Seconds the last `render_rgba8` spent in Rust (the pass and the read-back).
+    last_seconds: f64,
 }
 
 impl Inner {
@@ -122,7 +129,11 @@ impl Inner {
 
     /// The node and port `render` shows: the one given, else what the graph's one SaveImage
     /// node writes.
-    fn picture_port(&self, node: Option<&str>, port: Option<&str>) -> Result<(String, String), String> {
+    fn picture_port(
+        &self,
+        node: Option<&str>,
+        port: Option<&str>,
+    ) -> Result<(String, String), String> {
         let graph = self.graph();
         if let Some(node) = node {
             let instance = graph
@@ -198,6 +209,7 @@ impl Graph {
                 state: State::Closed { registry, graph },
                 path,
                 last: None,
+                last_seconds: 0.0,
             }),
         }
     }
@@ -212,11 +224,7 @@ impl Graph {
     }
 
     /// Runs `f` on the graph with the GIL released (rendering, GPU read-back).
-    fn detached<T: Send>(
-        &self,
-        py: Python<'_>,
-        f: impl FnOnce(&mut Inner) -> T + Send,
-    ) -> T {
+    fn detached<T: Send>(&self, py: Python<'_>, f: impl FnOnce(&mut Inner) -> T + Send) -> T {
         py.detach(|| {
             let mut inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
             f(&mut inner)
@@ -283,7 +291,8 @@ impl Graph {
     fn validate(&self, py: Python<'_>) -> PyResult<()> {
         let inner = self.lock(py);
         let text = inner.document().to_ron_string();
-        let (doc, source) = GraphDocument::parse(&text, inner.path.as_deref()).map_err(graph_error)?;
+        let (doc, source) =
+            GraphDocument::parse(&text, inner.path.as_deref()).map_err(graph_error)?;
         GraphModel::from_document(&doc, &source, inner.registry(), inner.graph().base_dir())
             .map(|_| ())
             .map_err(graph_error)
@@ -304,7 +313,12 @@ impl Graph {
     /// Node ids in execution (topological) order.
     fn node_ids(&self, py: Python<'_>) -> Vec<String> {
         let inner = self.lock(py);
-        inner.graph().topological_order().into_iter().map(String::from).collect()
+        inner
+            .graph()
+            .topological_order()
+            .into_iter()
+            .map(String::from)
+            .collect()
     }
 
     /// A node's kind. Raises GraphError for an unknown node.
@@ -418,7 +432,13 @@ impl Graph {
 
     /// Sets `node.param` from a Python value, parsed as `--set node.param=value` is.
     /// Raises ParamError (unknown node or parameter, a value it cannot take).
-    fn set(&self, py: Python<'_>, node: &str, param: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn set(
+        &self,
+        py: Python<'_>,
+        node: &str,
+        param: &str,
+        value: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
         let text = crate::params::to_text(value, &format!("node `{node}`, parameter `{param}`"))?;
         let mut inner = self.lock(py);
         inner
@@ -473,6 +493,7 @@ impl Graph {
         port: Option<String>,
     ) -> PyResult<(Py<PyAny>, u32, u32)> {
         let (pixels, w, h) = self.detached(py, |inner| -> PyResult<_> {
+            let start = std::time::Instant::now();
             let (node, port) = inner
                 .picture_port(node.as_deref(), port.as_deref())
                 .map_err(GraphError::new_err)?;
@@ -481,6 +502,7 @@ impl Graph {
             let picture = hatchery_nodes::export::to_rgba8(&value, &session.ctx.gpu)
                 .map_err(|e| RenderError::new_err(format!("{node}.{port}: {e}")))?;
             let (w, h) = picture.dimensions();
+            inner.last_seconds = start.elapsed().as_secs_f64();
             Ok((picture.into_raw(), w, h))
         })?;
         Ok((PyArray1::from_vec(py, pixels).into_any().unbind(), w, h))
@@ -503,16 +525,28 @@ impl Graph {
                 let d = PyDict::new(py);
                 let flat = |v: &[[f32; 3]]| v.iter().flatten().copied().collect::<Vec<f32>>();
                 let n = m.data.positions.len();
-                d.set_item("vertices", PyArray1::from_vec(py, flat(&m.data.positions)).reshape([n, 3])?)?;
-                d.set_item("normals", PyArray1::from_vec(py, flat(&m.data.normals)).reshape([n, 3])?)?;
+                d.set_item(
+                    "vertices",
+                    PyArray1::from_vec(py, flat(&m.data.positions)).reshape([n, 3])?,
+                )?;
+                d.set_item(
+                    "normals",
+                    PyArray1::from_vec(py, flat(&m.data.normals)).reshape([n, 3])?,
+                )?;
                 let t = m.data.indices.len() / 3;
-                d.set_item("faces", PyArray1::from_slice(py, &m.data.indices).reshape([t, 3])?)?;
+                d.set_item(
+                    "faces",
+                    PyArray1::from_slice(py, &m.data.indices).reshape([t, 3])?,
+                )?;
                 Ok(d.into_any())
             }
             Value::Labels(l) => {
                 let d = PyDict::new(py);
                 let [x, y, z] = l.data.dims.map(|v| v as usize);
-                d.set_item("ids", PyArray1::from_slice(py, &l.data.ids).reshape([z, y, x])?)?;
+                d.set_item(
+                    "ids",
+                    PyArray1::from_slice(py, &l.data.ids).reshape([z, y, x])?,
+                )?;
                 d.set_item("names", &l.data.objects)?;
                 Ok(d.into_any())
             }
@@ -528,7 +562,10 @@ impl Graph {
                     hatchery_nodes::export::to_array(&value, &session.ctx.gpu)
                         .map_err(|e| RenderError::new_err(format!("{node}.{port}: {e}")))
                 })?;
-                d.set_item("table", PyArray1::from_vec(py, array.data).reshape(array.shape)?)?;
+                d.set_item(
+                    "table",
+                    PyArray1::from_vec(py, array.data).reshape(array.shape)?,
+                )?;
                 Ok(d.into_any())
             }
             _ => {
@@ -582,7 +619,10 @@ impl Graph {
                     )));
                 }
             };
-            let before = inner.graph().node(&saver).map(|n| n.params.text("path").to_owned());
+            let before = inner
+                .graph()
+                .node(&saver)
+                .map(|n| n.params.text("path").to_owned());
             let abs = std::path::absolute(&path)
                 .map_err(|e| GraphError::new_err(format!("{}: {e}", path.display())))?;
             inner
@@ -605,6 +645,12 @@ impl Graph {
             .as_ref()
             .map(|r| r.executed.clone())
             .unwrap_or_default()
+    }
+
+    /// Seconds the last render spent in Rust: the pass and the read-back, without Python's
+    /// share (benchmarks compare it with the wall time of `render`).
+    fn last_seconds(&self, py: Python<'_>) -> f64 {
+        self.lock(py).last_seconds
     }
 
     /// Warnings of the last render, by node id.
@@ -643,7 +689,9 @@ fn output_after_run(
     size: Option<(u32, u32)>,
 ) -> PyResult<Value> {
     if inner.graph().node(node).is_none() {
-        return Err(GraphError::new_err(format!("no node `{node}` in the graph")));
+        return Err(GraphError::new_err(format!(
+            "no node `{node}` in the graph"
+        )));
     }
     inner.run(&[node], size)?;
     let session = inner.session(None)?;

@@ -3,11 +3,11 @@
 //! `np.ravel(order="F")` gives for an array indexed `[i, j, k]`); this module copies them while
 //! the caller holds the GIL and checks their sizes.
 
+use hatchery_data::VolumeData;
 use hatchery_data::geometry::Geometry;
 use hatchery_data::mesh::MeshData;
 use hatchery_data::segmentation::LabelData;
 use hatchery_data::voxels::Voxels;
-use hatchery_data::VolumeData;
 use numpy::{PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use std::collections::BTreeMap;
@@ -134,12 +134,14 @@ pub fn mesh(
     faces: &PyReadonlyArray1<'_, u32>,
     normals: Option<&PyReadonlyArray1<'_, f32>>,
 ) -> Result<MeshData, String> {
-    let triples = |v: &[f32]| -> Vec<[f32; 3]> {
-        v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
-    };
+    let triples =
+        |v: &[f32]| -> Vec<[f32; 3]> { v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect() };
     let v = slice(vertices)?;
     if v.len() % 3 != 0 {
-        return Err(format!("{} vertex coordinates: not (x, y, z) triples", v.len()));
+        return Err(format!(
+            "{} vertex coordinates: not (x, y, z) triples",
+            v.len()
+        ));
     }
     let f = slice(faces)?;
     if f.len() % 3 != 0 {

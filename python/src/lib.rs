@@ -50,10 +50,8 @@ fn png_bytes(
         ))
     })?;
     let mut png = Vec::new();
-    py.detach(|| {
-        image.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-    })
-    .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    py.detach(|| image.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png))
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
     Ok(pyo3::types::PyBytes::new(py, &png).unbind())
 }
 

@@ -42,7 +42,7 @@ pub fn to_text(value: &Bound<'_, PyAny>, what: &str) -> PyResult<String> {
         return Ok(format!("[{}]", parts.join(", ")));
     }
     if value.hasattr("__fspath__")? {
-        return Ok(value.call_method0("__fspath__")?.extract::<String>()?);
+        return value.call_method0("__fspath__")?.extract::<String>();
     }
     number_text(value, what)
 }

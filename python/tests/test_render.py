@@ -50,7 +50,8 @@ def test_picture_is_an_array_that_shows_as_png(repo):
 def test_outputs_have_the_dump_layouts(repo, tmp_path, hatchery_bin):
     graph = repo / "graphs" / "hidden_structures.ron"
     subprocess.run(
-        [hatchery_bin, "render", graph, "--size", "160x120", "--dump", f"layer1.gbuffer={tmp_path / 'g.npy'}"],
+        [hatchery_bin, "render", graph, "--size", "160x120", "-o", tmp_path / "x.png",
+         "--dump", f"layer1.gbuffer={tmp_path / 'g.npy'}"],
         check=True, capture_output=True,
     )
     g = hatchery.Graph.load(graph)
