@@ -135,6 +135,14 @@ class Node(Mapping[str, Any]):
     def __len__(self) -> int:
         return len(self._graph.params(self.id))
 
+    @property
+    def doc(self) -> str:
+        """The kind's documentation: what it does, its ports and parameters (hatchery.kinds)."""
+        from . import kinds
+
+        cls = getattr(kinds, self.kind, None)
+        return (cls.__doc__ or "") if cls is not None else self._graph.schema(self.id)["doc"]
+
     def __repr__(self) -> str:
         return f"<hatchery.Node {self.id} ({self.kind}) {self._graph.params(self.id)}>"
 

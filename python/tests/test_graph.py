@@ -76,6 +76,7 @@ def test_parameters_read_and_write_python_types(repo):
     assert g.get("camera", "elevation") == 15.5
     node = g["camera"]
     assert node.kind == "Camera" and "azimuth" in list(node)
+    assert "azimuth" in node.doc and "Parameters:" in node.doc
 
 
 @pytest.mark.parametrize(

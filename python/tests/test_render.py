@@ -96,3 +96,49 @@ def test_threads_render_without_deadlock_and_as_one_thread_does(repo):
             assert (picture == alone_other).all()
         else:
             assert (picture == alone[key]).all()
+
+
+def test_a_failing_node_raises_render_error(tmp_path):
+    text = """(
+        version: 3,
+        nodes: [
+            (id: "mri", kind: "VolumeFile", params: {"path": "missing.nii.gz"}),
+            (id: "surface", kind: "MarchingCubes"),
+        ],
+        edges: [(from: ("mri", "volume"), to: ("surface", "volume"))],
+    )"""
+    g = hatchery.Graph.from_ron(text, base_dir=tmp_path)
+    try:
+        g.output("surface", "mesh")
+    except hatchery.RenderError as e:
+        message = str(e)
+    else:
+        raise AssertionError("a missing file fails the node")
+    assert message.startswith("node `mri` (VolumeFile): "), message
+    assert "missing.nii.gz" in message and "\n" not in message
+
+
+def test_the_gil_is_released_while_rendering(repo):
+    """Python code runs while another thread is inside a render: a loop in this thread takes
+    steps between the moment the native call starts and the moment it returns."""
+    import threading
+    import time
+
+    g = hatchery.Graph.load(repo / "graphs" / "hidden_structures.ron")
+    g.render(size=(64, 48))
+    span = {}
+
+    def render():
+        span["start"] = time.perf_counter()
+        g._g.set("camera", "azimuth", 50.0)
+        g._g.render_rgba8((1024, 768), None, None)
+        span["end"] = time.perf_counter()
+
+    steps = []
+    worker = threading.Thread(target=render)
+    worker.start()
+    while worker.is_alive():
+        steps.append(time.perf_counter())
+    worker.join()
+    inside = [t for t in steps if span["start"] < t < span["end"]]
+    assert len(inside) > 10, f"{len(inside)} steps while rendering {span['end'] - span['start']:.3f} s"
