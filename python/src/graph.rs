@@ -127,63 +127,6 @@ impl Inner {
         }
     }
 
-    /// The node and port `render` shows: the one given, else what the graph's one SaveImage
-    /// node writes.
-    fn picture_port(
-        &self,
-        node: Option<&str>,
-        port: Option<&str>,
-    ) -> Result<(String, String), String> {
-        let graph = self.graph();
-        if let Some(node) = node {
-            let instance = graph
-                .node(node)
-                .ok_or_else(|| format!("no node `{node}` in the graph"))?;
-            let schema = instance.schema(self.registry()).expect("validated kind");
-            let port = match port {
-                Some(p) => p.to_owned(),
-                None => schema
-                    .outputs
-                    .first()
-                    .ok_or_else(|| format!("node `{node}` ({}) has no outputs", instance.kind))?
-                    .name
-                    .to_owned(),
-            };
-            return Ok((node.to_owned(), port));
-        }
-        let savers: Vec<&str> = graph
-            .nodes()
-            .filter(|n| n.kind == "SaveImage")
-            .map(|n| n.id.as_str())
-            .collect();
-        let saver = match savers.as_slice() {
-            [one] => *one,
-            [] => {
-                return Err(
-                    "the graph has no SaveImage node: name what to render, e.g. \
-                     render(node=\"composite\")"
-                        .into(),
-                );
-            }
-            many => {
-                return Err(format!(
-                    "the graph has {} SaveImage nodes ({}): name one with render(node=...)",
-                    many.len(),
-                    many.join(", ")
-                ));
-            }
-        };
-        let sources = graph.input_sources(saver);
-        let (source, index) = sources
-            .get(&0)
-            .ok_or_else(|| format!("SaveImage `{saver}` has nothing connected"))?;
-        let schema = graph
-            .node(source)
-            .and_then(|n| n.schema(self.registry()))
-            .expect("validated edge");
-        Ok(((*source).to_owned(), schema.outputs[*index].name.to_owned()))
-    }
-
     fn sinks(&self, kind: &str) -> Vec<String> {
         self.graph()
             .nodes()
@@ -495,6 +438,7 @@ impl Graph {
         let (pixels, w, h) = self.detached(py, |inner| -> PyResult<_> {
             let start = std::time::Instant::now();
             let (node, port) = inner
+                .session(size)?
                 .picture_port(node.as_deref(), port.as_deref())
                 .map_err(GraphError::new_err)?;
             let value = output_after_run(inner, &node, &port, size)?;

@@ -239,6 +239,78 @@ impl Session {
             .map_err(|e| SessionError::Other(format!("cannot write {}: {e}", path.display())))
     }
 
+    /// The node and port a picture of the graph shows: `node`'s `port` (its first output when
+    /// not given), else what the graph's one SaveImage node writes. Errors (one line): an
+    /// unknown node, no or several SaveImage nodes, a SaveImage with nothing connected.
+    pub fn picture_port(
+        &self,
+        node: Option<&str>,
+        port: Option<&str>,
+    ) -> Result<(String, String), String> {
+        let graph = &self.graph;
+        if let Some(node) = node {
+            let instance = graph
+                .node(node)
+                .ok_or_else(|| format!("no node `{node}` in the graph"))?;
+            let schema = instance.schema(&self.registry).expect("validated kind");
+            let port = match port {
+                Some(p) => p.to_owned(),
+                None => schema
+                    .outputs
+                    .first()
+                    .ok_or_else(|| format!("node `{node}` ({}) has no outputs", instance.kind))?
+                    .name
+                    .to_owned(),
+            };
+            return Ok((node.to_owned(), port));
+        }
+        let savers: Vec<&str> = graph
+            .nodes()
+            .filter(|n| n.kind == "SaveImage")
+            .map(|n| n.id.as_str())
+            .collect();
+        let saver = match savers.as_slice() {
+            [one] => *one,
+            [] => {
+                return Err(
+                    "the graph has no SaveImage node: name what to render, e.g. \
+                     render(node=\"composite\")"
+                        .into(),
+                );
+            }
+            many => {
+                return Err(format!(
+                    "the graph has {} SaveImage nodes ({}): name one with render(node=...)",
+                    many.len(),
+                    many.join(", ")
+                ));
+            }
+        };
+        let sources = graph.input_sources(saver);
+        let (source, index) = sources
+            .get(&0)
+            .ok_or_else(|| format!("SaveImage `{saver}` has nothing connected"))?;
+        let schema = graph
+            .node(source)
+            .and_then(|n| n.schema(&self.registry))
+            .expect("validated edge");
+        Ok(((*source).to_owned(), schema.outputs[*index].name.to_owned()))
+    }
+
+    /// Renders the picture [`Self::picture_port`] names and returns it as straight-alpha RGBA8,
+    /// the pixels a SaveImage node writes, writing no file (the Python package's `render`, the
+    /// batch items).
+    pub fn render_picture(
+        &mut self,
+        node: Option<&str>,
+        port: Option<&str>,
+    ) -> Result<image::RgbaImage, SessionError> {
+        let (node, port) = self.picture_port(node, port).map_err(SessionError::Other)?;
+        let value = self.evaluate(&node, &port)?;
+        crate::export::to_rgba8(&value, &self.ctx.gpu)
+            .map_err(|e| SessionError::Other(format!("{node}.{port}: {e}")))
+    }
+
     /// Runs just what `node.port` needs and returns its value.
     pub fn evaluate(&mut self, node: &str, port: &str) -> Result<Value, SessionError> {
         if self.graph.node(node).is_none() {
