@@ -44,6 +44,9 @@ pub enum CameraPath {
     },
 }
 
+/// A parameter to set: (node, param, value as `--set` text).
+pub type Setting = (String, String, String);
+
 /// One unit of work: a data set, parameter values and a camera frame, and its output.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Item {
@@ -52,7 +55,7 @@ pub struct Item {
     /// The data set's name (`{input}`) and its files by input name (absolute).
     pub input: Option<(String, BTreeMap<String, PathBuf>)>,
     /// `(node, param, value text)` to set, sweep first, then the camera frame's.
-    pub params: Vec<(String, String, String)>,
+    pub params: Vec<Setting>,
     /// The camera frame (0-based), when the job has a camera path.
     pub frame: Option<usize>,
     /// The output, relative to the output folder.
@@ -191,9 +194,7 @@ fn stem(path: &str) -> String {
 }
 
 /// Every combination of the sweep's values, the first entry varying slowest.
-fn sweep_points(
-    sweep: &[(String, Vec<ron::Value>)],
-) -> Result<Vec<Vec<(String, String, String)>>, String> {
+fn sweep_points(sweep: &[(String, Vec<ron::Value>)]) -> Result<Vec<Vec<Setting>>, String> {
     let mut points = vec![Vec::new()];
     for (target, values) in sweep {
         let (node, param) = target
@@ -248,10 +249,10 @@ fn value_text(value: &ron::Value) -> Result<String, String> {
 
 /// The camera path's frames: (frame index, parameters to set); one frame of nothing without a
 /// path.
-#[allow(clippy::type_complexity)]
-fn camera_frames(
-    path: Option<&CameraPath>,
-) -> Result<Vec<(Option<usize>, Vec<(String, String, String)>)>, String> {
+/// A camera frame: its index and what it sets.
+type Frame = (Option<usize>, Vec<Setting>);
+
+fn camera_frames(path: Option<&CameraPath>) -> Result<Vec<Frame>, String> {
     let Some(path) = path else {
         return Ok(vec![(None, Vec::new())]);
     };

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::job::{Item, Job};
+use crate::job::{Item, Job, Setting};
 use crate::manifest::{self, Entry, Manifest};
 
 /// Items K, K+N, K+2N, … of a job (`--shard K/N`, a Slurm array task, a Kubernetes index).
@@ -248,10 +248,7 @@ fn start_values(session: &Session, job: &Job) -> BTreeMap<(String, String), f64>
 }
 
 /// The item's parameters with relative turns (`+90.0`) made absolute azimuths in [-180, 180).
-fn item_params(
-    item: &Item,
-    start: &BTreeMap<(String, String), f64>,
-) -> Vec<(String, String, String)> {
+fn item_params(item: &Item, start: &BTreeMap<(String, String), f64>) -> Vec<Setting> {
     item.params
         .iter()
         .map(|(node, param, value)| {
@@ -277,7 +274,7 @@ fn render_item(
     session: &mut Session,
     job: &Job,
     item: &Item,
-    params: &[(String, String, String)],
+    params: &[Setting],
     target: &Path,
 ) -> Result<String, String> {
     if let Some((_, files)) = &item.input {
