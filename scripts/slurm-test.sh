@@ -24,9 +24,11 @@ work=$(mktemp -d /tmp/hatchery-slurm.XXXXXX)
 host=$(hostname -s)
 conf=$work/slurm.conf
 cleanup() {
-    scontrol -f "$conf" shutdown >/dev/null 2>&1 || true
-    [ -f "$work/munged.pid" ] && kill "$(cat "$work/munged.pid")" 2>/dev/null || true
+    SLURM_CONF=$conf scontrol shutdown >/dev/null 2>&1 || true
     sleep 1
+    for pid in "$work"/slurmctld.pid "$work"/slurmd.pid "$work"/munged.pid; do
+        [ -f "$pid" ] && kill "$(cat "$pid")" 2>/dev/null || true
+    done
     rm -rf "$work"
 }
 trap cleanup EXIT

@@ -38,6 +38,13 @@ create_exception!(
     "A node that failed while rendering, or a GPU that cannot be opened."
 );
 
+create_exception!(
+    _hatchery,
+    JobError,
+    HatcheryError,
+    "A batch job file that cannot be read or expanded, or a batch run that cannot start."
+);
+
 /// A session error as the exception of what failed: graph errors as GraphError, the rest as
 /// RenderError.
 pub fn render_error(e: SessionError) -> PyErr {

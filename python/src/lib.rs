@@ -3,6 +3,7 @@
 //! same from all three. The Python half (`python/hatchery/`) turns numpy arrays into the flat
 //! buffers taken here and wraps results; this module does no array reshaping of its own.
 
+mod batch;
 mod catalogue;
 mod errors;
 mod graph;
@@ -63,6 +64,10 @@ fn _hatchery(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", py.get_type::<errors::InputError>())?;
     m.add("ParamError", py.get_type::<errors::ParamError>())?;
     m.add("RenderError", py.get_type::<errors::RenderError>())?;
+    m.add("JobError", py.get_type::<errors::JobError>())?;
+    m.add_function(wrap_pyfunction!(batch::batch_items, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_run, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_merge, m)?)?;
     m.add_class::<graph::Graph>()?;
     m.add_function(wrap_pyfunction!(catalogue::nodes, m)?)?;
     m.add_function(wrap_pyfunction!(adapter, m)?)?;
