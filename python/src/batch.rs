@@ -4,11 +4,11 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::errors::JobError;
 
-fn load(job: &PathBuf) -> PyResult<hatchery_batch::Job> {
+fn load(job: &Path) -> PyResult<hatchery_batch::Job> {
     hatchery_batch::load(job).map_err(JobError::new_err)
 }
 
