@@ -2,7 +2,7 @@
 # Installs what hatchery needs on a Debian machine: a Vulkan driver (machines without a GPU get
 # Mesa's software driver, lavapipe; nothing is installed when a driver is already there), and
 # for the editor's scripted check (scripts/editor-smoke.sh) an X server (Xvfb) and xdotool, and
-# for the Python package's tests a Python 3 with venv.
+# for the Python package's tests a Python 3 with venv, and ffmpeg for video export.
 set -euo pipefail
 
 if ! command -v cargo >/dev/null 2>&1; then
@@ -25,6 +25,8 @@ if ! have_vulkan_driver; then
 fi
 command -v Xvfb >/dev/null 2>&1 || packages+=(xvfb)
 command -v xdotool >/dev/null 2>&1 || packages+=(xdotool)
+# Video export (MP4/WebM of `hatchery render --orbit` and batch animations) goes through ffmpeg.
+command -v ffmpeg >/dev/null 2>&1 || packages+=(ffmpeg)
 # The Python package's tests (scripts/python-tests.sh) build it in a virtual environment.
 if ! command -v python3 >/dev/null 2>&1; then
     packages+=(python3 python3-venv python3-pip)

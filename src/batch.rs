@@ -59,6 +59,9 @@ pub fn command(args: Args) -> Result<i32> {
                 merged.complete,
                 path.display()
             );
+            for a in &merged.animations {
+                println!("batch: wrote {}", a.display());
+            }
             return Ok(0);
         }
         println!(
@@ -139,6 +142,16 @@ pub fn command(args: Args) -> Result<i32> {
     );
     if summary.failed > 0 {
         bail!("{} item(s) failed (see the manifest)", summary.failed);
+    }
+    // The whole job ran here: merge it (the merged manifest, the animations).
+    if shard == Shard::ALL {
+        let merged = hatchery_batch::manifest::merge(&job, &out).map_err(anyhow::Error::msg)?;
+        if let Some(problem) = merged.problems.first() {
+            bail!("{problem}");
+        }
+        for a in &merged.animations {
+            println!("batch: wrote {}", a.display());
+        }
     }
     Ok(0)
 }

@@ -4,6 +4,7 @@ mod batch;
 mod bench;
 mod catalogue;
 mod info;
+mod orbit;
 mod presets;
 
 use anyhow::{Context, Result, bail};
@@ -42,6 +43,16 @@ enum Command {
         /// Write a port's data: `node.port=file.npy` (raw floats) or `=file.png` (a picture).
         #[arg(long, value_name = "NODE.PORT=PATH")]
         dump: Vec<String>,
+        /// A turntable of N frames (the camera's azimuth a full turn) written to -o as an
+        /// animation: .mp4 (H.264) or .webm (VP9) through ffmpeg, .gif, or .png (APNG).
+        #[arg(long, value_name = "N")]
+        orbit: Option<usize>,
+        /// Frames per second of the --orbit animation.
+        #[arg(long, default_value_t = 24.0)]
+        fps: f64,
+        /// The Camera node --orbit turns (default: the graph's only one).
+        #[arg(long)]
+        camera: Option<String>,
     },
     /// Load and validate a graph without running it.
     Validate { graph: PathBuf },
@@ -123,7 +134,7 @@ enum Command {
 }
 
 #[derive(clap::Args)]
-struct FrameArgs {
+pub(crate) struct FrameArgs {
     /// Frame size in pixels.
     #[arg(long, default_value = "1024x768", value_parser = parse_size)]
     size: (u32, u32),
@@ -221,6 +232,29 @@ fn run(cli: Cli) -> Result<()> {
             output,
             frame,
             dump,
+            orbit: Some(frames),
+            fps,
+            camera,
+        } => {
+            if !dump.is_empty() {
+                bail!("--orbit writes an animation; render --dump separately");
+            }
+            orbit::render(
+                &graph,
+                output.as_deref(),
+                &frame,
+                frames,
+                fps,
+                camera.as_deref(),
+            )
+        }
+        Command::Render {
+            graph,
+            output,
+            frame,
+            dump,
+            orbit: None,
+            ..
         } => render(&graph, output.as_deref(), &frame, &dump),
         Command::Validate { graph } => {
             let registry = hatchery_nodes::registry();
@@ -352,7 +386,7 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 /// Opens a session and applies `--set` overrides.
-fn open(graph: &Path, frame: &FrameArgs) -> Result<Session> {
+pub(crate) fn open(graph: &Path, frame: &FrameArgs) -> Result<Session> {
     let (width, height) = frame.size;
     let mut session = Session::open(graph, width, height)?;
     for assignment in &frame.input {

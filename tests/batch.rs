@@ -312,3 +312,124 @@ fn bad_jobs_are_one_line_errors_naming_the_file() {
         assert_eq!(t.trim().lines().count(), 1, "{t}");
     }
 }
+
+/// `hatchery render GRAPH --orbit FRAMES --size SIZE -o OUT`, which must succeed.
+fn orbit(graph: &str, frames: &str, size: &str, out: &Path) {
+    let o = bin()
+        .args(["render", graph, "--orbit", frames, "--size", size, "-o"])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+/// The frames of an animated PNG.
+fn apng_frames(path: &Path) -> Vec<Vec<u8>> {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let n = reader
+        .info()
+        .animation_control()
+        .expect("an animated PNG")
+        .num_frames;
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    (0..n)
+        .map(|_| {
+            let info = reader.next_frame(&mut buf).unwrap();
+            buf[..info.buffer_size()].to_vec()
+        })
+        .collect()
+}
+
+#[test]
+fn orbit_animations_hold_the_batch_frames() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = common::repo_root();
+    let graph = root.join("graphs/hidden_structures.ron");
+    let apng = tmp.path().join("turn.png");
+    orbit(graph.to_str().unwrap(), "6", "96x72", &apng);
+    let frames = apng_frames(&apng);
+    assert_eq!(frames.len(), 6);
+    // The same turntable as a batch job: its PNG frames and its animation.
+    let job = job_file(
+        tmp.path(),
+        &format!(
+            "(graph: {:?}, size: (96, 72), camera: Some(Orbit(node: \"camera\", frames: 6)), \
+             output: \"f_{{frame}}.png\", animation: Some(\"turn.gif\"), fps: Some(12.0))",
+            graph.to_string_lossy()
+        ),
+    );
+    let out = tmp.path().join("batch");
+    let o = batch(&[job.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("wrote"), "{}", text(&o));
+    for (i, frame) in frames.iter().enumerate() {
+        let png = image::open(out.join(format!("f_{i}.png")))
+            .unwrap()
+            .to_rgba8();
+        assert!(
+            png.as_raw() == frame,
+            "frame {i} differs between --orbit and the batch"
+        );
+    }
+    assert!(
+        frames[0] != frames[1],
+        "the camera turned between frames 0 and 1"
+    );
+    use image::AnimationDecoder;
+    let gif = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(
+        std::fs::File::open(out.join("turn.gif")).unwrap(),
+    ))
+    .unwrap()
+    .into_frames()
+    .collect_frames()
+    .unwrap();
+    assert_eq!(gif.len(), 6);
+}
+
+#[test]
+fn orbit_video_plays_as_h264() {
+    if Command::new("ffprobe").arg("-version").output().is_err() {
+        eprintln!(
+            "SKIPPED: ffmpeg/ffprobe are not installed (scripts/install-deps.sh installs them)"
+        );
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let mp4 = tmp.path().join("turn.mp4");
+    orbit("graphs/default.ron", "8", "97x64", &mp4);
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-show_entries"])
+        .args([
+            "stream=codec_name,width,height,nb_read_frames,pix_fmt",
+            "-of",
+            "compact",
+        ])
+        .arg(&mp4)
+        .output()
+        .unwrap();
+    let info = String::from_utf8_lossy(&probe.stdout);
+    assert!(
+        info.contains("codec_name=h264")
+            && info.contains("width=98")
+            && info.contains("pix_fmt=yuv420p")
+            && info.contains("nb_read_frames=8"),
+        "{info}"
+    );
+    let o = bin()
+        .args([
+            "render",
+            "graphs/default.ron",
+            "--orbit",
+            "8",
+            "-o",
+            "x.avi",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        !o.status.success() && text(&o).contains(".mp4, .webm, .gif"),
+        "{}",
+        text(&o)
+    );
+}

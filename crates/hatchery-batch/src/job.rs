@@ -27,6 +27,14 @@ pub struct JobFile {
     /// `{frame:03}`, `{input}` (the data set's name) and `{node.param}` (the item's value).
     /// `.png` writes the picture (what SaveImage writes), `.svg` the graph's SaveSvg figure.
     pub output: String,
+    /// The camera path's frames also as an animation (.mp4, .webm, .gif, .png/.apng), one per
+    /// data set and sweep point: `{input}` and `{node.param}` placeholders, not `{frame}`.
+    /// Written by `--merge` (and at the end of an unsharded run), from the frames' PNGs.
+    #[serde(default)]
+    pub animation: Option<String>,
+    /// Frames per second of the animation (default 24).
+    #[serde(default)]
+    pub fps: Option<f64>,
 }
 
 /// A camera path over `frames` frames.
@@ -60,6 +68,8 @@ pub struct Item {
     pub frame: Option<usize>,
     /// The output, relative to the output folder.
     pub output: String,
+    /// The animation this item is a frame of, relative to the output folder.
+    pub animation: Option<String>,
 }
 
 impl Item {
@@ -88,6 +98,8 @@ pub struct Job {
     pub items: Vec<Item>,
     /// Whether outputs are SVG figures (else PNG pictures).
     pub svg: bool,
+    /// Frames per second of the animations.
+    pub fps: f64,
 }
 
 /// Loads a job file and expands its work list. Errors (one line, naming the job file): RON
@@ -144,6 +156,20 @@ pub fn expand(path: &Path, file: &JobFile) -> Result<Job, String> {
             })
             .collect()
     };
+    if let Some(animation) = &file.animation {
+        if file.camera.is_none() || svg {
+            return Err(format!(
+                "animation `{animation}` needs a camera path and .png frames"
+            ));
+        }
+        if animation.contains("{frame") || animation.contains("{index") {
+            return Err(format!(
+                "animation `{animation}`: one file holds every frame; use {{input}} or swept \
+                 {{node.param}} placeholders, not {{frame}} or {{index}}"
+            ));
+        }
+        crate::animation::format_of(Path::new(animation))?;
+    }
     let sweep = sweep_points(&file.sweep)?;
     let frames = camera_frames(file.camera.as_ref())?;
     let mut items = Vec::new();
@@ -159,8 +185,12 @@ pub fn expand(path: &Path, file: &JobFile) -> Result<Job, String> {
                     params,
                     frame: frame.0,
                     output: String::new(),
+                    animation: None,
                 };
                 item.output = fill(&file.output, &item)?;
+                if let Some(pattern) = &file.animation {
+                    item.animation = Some(fill(pattern, &item)?);
+                }
                 items.push(item);
             }
         }
@@ -181,6 +211,7 @@ pub fn expand(path: &Path, file: &JobFile) -> Result<Job, String> {
         size: (w, h),
         items,
         svg,
+        fps: file.fps.unwrap_or(24.0),
     })
 }
 

@@ -5,6 +5,7 @@
 //! every item is there once. Schedulers (Slurm arrays, Kubernetes Indexed Jobs, Dask) only start
 //! processes: this crate is what each one runs.
 
+pub mod animation;
 pub mod job;
 pub mod manifest;
 pub mod run;

@@ -131,6 +131,8 @@ pub struct Merged {
     pub problems: Vec<String>,
     /// Where the merged manifest went (when complete).
     pub written: Option<PathBuf>,
+    /// The animations written (when complete and the job makes them).
+    pub animations: Vec<PathBuf>,
 }
 
 /// Checks that every item of `job` is present once in the shard manifests in `out`, done with
@@ -218,6 +220,34 @@ pub fn merge(job: &Job, out: &Path) -> Result<Merged, String> {
         let text = serde_json::to_string_pretty(&manifest).expect("serialisable");
         write_atomic(&path, text.as_bytes())?;
         merged.written = Some(path);
+        merged.animations = animations(job, out)?;
     }
     Ok(merged)
+}
+
+/// Writes each animation of the job from its frames' PNGs (in frame order).
+fn animations(job: &Job, out: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut groups: BTreeMap<&str, Vec<&crate::job::Item>> = BTreeMap::new();
+    for item in &job.items {
+        if let Some(a) = &item.animation {
+            groups.entry(a).or_default().push(item);
+        }
+    }
+    let mut written = Vec::new();
+    for (animation, mut items) in groups {
+        items.sort_by_key(|i| i.frame);
+        let frames = items
+            .iter()
+            .map(|i| {
+                let path = out.join(&i.output);
+                image::open(&path)
+                    .map(|p| p.to_rgba8())
+                    .map_err(|e| format!("{}: {e}", path.display()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let path = out.join(animation);
+        crate::animation::write(&path, &frames, job.fps)?;
+        written.push(path);
+    }
+    Ok(written)
 }

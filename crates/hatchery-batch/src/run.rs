@@ -380,6 +380,7 @@ mod tests {
             params: vec![("cam".into(), "azimuth".into(), "+270.0".into())],
             frame: Some(3),
             output: "x.png".into(),
+            animation: None,
         };
         let start = BTreeMap::from([(("cam".to_string(), "azimuth".to_string()), 35.0)]);
         assert_eq!(item_params(&item, &start)[0].2, "-55.0");
