@@ -216,6 +216,13 @@ fn a_killed_run_resumes_without_rerendering_and_leaves_no_corrupt_file() {
     );
     let after = outputs(&out);
     assert_eq!(after.len(), 24);
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp-"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporaries left: {leftovers:?}");
     for (name, bytes) in &before {
         assert!(&after[name] == bytes, "{name} changed when resumed");
     }

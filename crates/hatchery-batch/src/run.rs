@@ -132,6 +132,7 @@ pub fn run(
     progress: &mut dyn FnMut(&Item, &Outcome, f64),
 ) -> Result<Summary, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    remove_stale_temporaries(job, out);
     let done = done_entries(out)?;
     let mut session =
         Session::open(&job.graph, job.size.0, job.size.1).map_err(|e| e.to_string())?;
@@ -212,6 +213,41 @@ pub fn run(
         progress(item, &outcome, started.elapsed().as_secs_f64());
     }
     Ok(summary)
+}
+
+/// Removes the temporary files a killed process left beside outputs (`.NAME.tmp-PID` of a
+/// process that no longer runs). Only where processes can be looked up (/proc).
+fn remove_stale_temporaries(job: &Job, out: &Path) {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let mut dirs: Vec<PathBuf> = job
+        .items
+        .iter()
+        .filter_map(|i| out.join(&i.output).parent().map(Path::to_path_buf))
+        .collect();
+    dirs.push(out.to_path_buf());
+    dirs.sort();
+    dirs.dedup();
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for path in entries.filter_map(|e| e.ok().map(|e| e.path())) {
+            let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+            let pid = name.as_deref().and_then(|n| {
+                n.starts_with('.')
+                    .then(|| n.rsplit_once(".tmp-"))
+                    .flatten()
+                    .and_then(|(_, pid)| pid.parse::<u32>().ok())
+            });
+            if let Some(pid) = pid
+                && !Path::new(&format!("/proc/{pid}")).exists()
+            {
+                let _ = std::fs::remove_file(&path);
+            }
+        }
+    }
 }
 
 /// The good entries of every manifest in `out`, by item index (the last one read wins).
