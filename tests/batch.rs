@@ -440,3 +440,37 @@ fn orbit_video_plays_as_h264() {
         text(&o)
     );
 }
+
+#[test]
+fn svg_outputs_are_the_graphs_figures() {
+    let tmp = tempfile::tempdir().unwrap();
+    let job = job_file(
+        tmp.path(),
+        &format!(
+            "(graph: {:?}, size: (128, 96), sweep: [(\"camera.azimuth\", [10, 40])], \
+             output: \"fig_{{camera.azimuth}}.svg\")",
+            common::repo_root()
+                .join("graphs/default.ron")
+                .to_string_lossy()
+        ),
+    );
+    let out = tmp.path().join("o");
+    let o = batch(&[job.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    let figures = outputs(&out);
+    assert_eq!(
+        figures.keys().collect::<Vec<_>>(),
+        ["fig_10.svg", "fig_40.svg"]
+    );
+    for (name, bytes) in &figures {
+        let svg = String::from_utf8_lossy(bytes);
+        assert!(
+            svg.contains("<svg") && svg.contains("inkscape:groupmode"),
+            "{name}"
+        );
+    }
+    assert!(
+        figures["fig_10.svg"] != figures["fig_40.svg"],
+        "the views differ"
+    );
+}
