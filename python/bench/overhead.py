@@ -63,12 +63,12 @@ for i in range(15):
     wall.append(time.perf_counter() - t)
     rust.append(g._g.last_seconds())
 ran = len(g.last_ran)
-cached = []
+cached, cached_rust = [], []
 for _ in range(15):
     t = time.perf_counter()
     g.render(size=(w, h))
     cached.append(time.perf_counter() - t)
-cached_rust = g._g.last_seconds()
+    cached_rust.append(g._g.last_seconds())
 
 med = statistics.median
 ms = lambda s: f"{s * 1000:.1f} ms"  # noqa: E731
@@ -78,6 +78,6 @@ print("| what | Python | in Rust / the CLI | ratio |")
 print("|---|---|---|---|")
 print(f"| cold: import, load, GPU, render (vs CLI in-process) | {ms(med(cold_times))} | {ms(med(cli_times))} | {med(cold_times) / med(cli_times):.2f} |")
 print(f"| re-render after one parameter change ({ran} of {len(g.nodes)} nodes ran) | {ms(med(wall))} | {ms(med(rust))} | {med(wall) / med(rust):.3f} |")
-print(f"| re-render, nothing changed | {ms(med(cached))} | {ms(cached_rust)} | {med(cached) / cached_rust:.3f} |")
+print(f"| re-render, nothing changed | {ms(med(cached))} | {ms(med(cached_rust))} | {med(cached) / med(cached_rust):.3f} |")
 print()
 print(f"Python's own share of a warm re-render: {ms(med(wall) - med(rust))} (median).")
