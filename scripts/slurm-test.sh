@@ -46,9 +46,9 @@ cpus=$(nproc)
 user=$(id -un)
 cat > "$conf" <<CONF
 ClusterName=hatchery-test
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmUser=$user
-SlurmdUser=root
+SlurmdUser=$user
 AuthType=auth/munge
 AuthInfo=socket=$work/munge/socket
 CredType=cred/munge
@@ -67,7 +67,7 @@ SlurmdSpoolDir=$work/spool
 StateSaveLocation=$work/state
 SlurmctldLogFile=$work/slurmctld.log
 SlurmdLogFile=$work/slurmd.log
-NodeName=$host CPUs=$cpus State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
 PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF=$conf
