@@ -518,11 +518,22 @@ impl EditorState {
     }
 
     /// Saves (atomically) to `path`, which becomes the current file.
+    /// Relative data paths are rewritten to name the same files from the new folder, in the
+    /// undo history too (undoing must not bring back paths relative to the old folder).
     pub fn save_as(&mut self, path: &Path) -> Result<(), String> {
         let old_recovery = self.recovery_path();
-        self.doc
-            .save(path)
+        let folder = hatchery_graph::document::folder_of(path);
+        let old_folder = self.base_dir();
+        let mut doc = self.doc.clone();
+        doc.base_dir.clone_from(&old_folder);
+        hatchery_graph::rebase::rebase_paths(&mut doc, &self.registry, &folder);
+        doc.save(path)
             .map_err(|e| format!("cannot save {}: {e}", path.display()))?;
+        for past in self.undo.iter_mut().chain(self.redo.iter_mut()) {
+            past.base_dir.clone_from(&old_folder);
+            hatchery_graph::rebase::rebase_paths(past, &self.registry, &folder);
+        }
+        self.doc = doc;
         let _ = std::fs::remove_file(old_recovery);
         self.path = Some(path.to_path_buf());
         self.doc.base_dir = self.base_dir();

@@ -206,18 +206,16 @@ impl Graph {
     }
 
     /// Writes the graph (atomically). Parameters bound to inputs given arrays keep the paths
-    /// they held; relative paths are written absolute when the file moves to another folder.
+    /// they held; relative paths are rewritten to name the same files from a new folder.
     /// Returns the names of inputs whose arrays were not saved. Raises GraphError.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<Vec<String>> {
         self.detached(py, |inner| {
             let mut doc = inner.document();
-            let folder = std::path::absolute(&path)
+            if let Some(folder) = std::path::absolute(&path)
                 .ok()
-                .and_then(|p| p.parent().map(Path::to_path_buf));
-            if let Some(base) = doc.base_dir.clone()
-                && folder.as_deref() != Some(base.as_path())
+                .and_then(|p| p.parent().map(Path::to_path_buf))
             {
-                absolute_paths(&mut doc, &base, inner.graph(), inner.registry());
+                hatchery_graph::rebase::rebase_paths(&mut doc, inner.registry(), &folder);
             }
             doc.save(&path)
                 .map_err(|e| GraphError::new_err(format!("cannot save {}: {e}", path.display())))?;
@@ -643,29 +641,4 @@ fn output_after_run(
         .output(node, port)
         .cloned()
         .map_err(|e| GraphError::new_err(e.to_string()))
-}
-
-/// Writes relative path parameters of `doc` as absolute paths under `base` (the document moves
-/// to another folder).
-fn absolute_paths(doc: &mut GraphDocument, base: &Path, graph: &GraphModel, registry: &Registry) {
-    for node in &mut doc.nodes {
-        let Some(schema) = graph.node(&node.id).and_then(|n| n.schema(registry)) else {
-            continue;
-        };
-        for spec in schema
-            .params
-            .iter()
-            .filter(|p| matches!(p.kind, hatchery_graph::ParamKind::Path))
-        {
-            if let Some(ron::Value::String(text)) = node.params.get(spec.name)
-                && !text.is_empty()
-                && !hatchery_nodes::memory_inputs::is_memory_key(text)
-                && Path::new(text).is_relative()
-            {
-                let abs = base.join(text).to_string_lossy().into_owned();
-                node.params
-                    .insert(spec.name.to_owned(), ron::Value::String(abs));
-            }
-        }
-    }
 }

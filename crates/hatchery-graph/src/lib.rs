@@ -22,6 +22,7 @@ pub mod migrate;
 pub mod organise;
 pub mod param;
 pub mod port;
+pub mod rebase;
 pub mod reroute;
 pub mod schema;
 

@@ -1417,3 +1417,38 @@ fn the_style_transfer_function_editor_moves_points_and_picks_their_styles() {
     h.run();
     assert_eq!(nodes(&h)[2].style, 2);
 }
+
+#[test]
+fn save_as_to_another_folder_keeps_naming_the_same_data_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut state = EditorState::new();
+    state.open(&repo("graphs/brain_surface.ron")).unwrap();
+    let data = |s: &EditorState| {
+        let node = s.doc().nodes.iter().find(|n| n.id == "mri").unwrap();
+        match &node.params["path"] {
+            ron::Value::String(p) => s.base_dir().unwrap().join(p).canonicalize().unwrap(),
+            other => panic!("{other:?}"),
+        }
+    };
+    let before = data(&state);
+    state
+        .set_param("camera", "azimuth", ParamValue::Float(12.0), false)
+        .unwrap();
+    let nested = dir.path().join("figures/brain");
+    std::fs::create_dir_all(&nested).unwrap();
+    state.save_as(&nested.join("brain.ron")).unwrap();
+    assert_eq!(
+        data(&state),
+        before,
+        "the MRI is still found from the new folder"
+    );
+    // Undoing after the move keeps the paths valid too.
+    assert!(state.undo());
+    assert_eq!(data(&state), before, "the undo history moved with the file");
+    let reopened = {
+        let mut s = EditorState::new();
+        s.open(&nested.join("brain.ron")).unwrap();
+        s
+    };
+    assert_eq!(data(&reopened), before);
+}
