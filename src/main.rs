@@ -4,6 +4,7 @@ mod batch;
 mod bench;
 mod catalogue;
 mod info;
+mod logging;
 mod orbit;
 mod presets;
 
@@ -198,20 +199,7 @@ fn ensure_runtime_dir() {
 fn main() {
     ensure_runtime_dir();
     let cli = Cli::parse();
-    let default_level = match cli.verbose {
-        0 => "warn",
-        1 => "info",
-        _ => "debug",
-    };
-    let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| {
-        tracing_subscriber::EnvFilter::new(format!(
-            "{default_level},wgpu_hal=error,wgpu_core=error,naga=warn"
-        ))
-    });
-    tracing_subscriber::fmt()
-        .with_env_filter(filter)
-        .with_writer(std::io::stderr)
-        .init();
+    logging::init(cli.verbose);
 
     if let Err(error) = run(cli) {
         // One line: the chain of causes joined.

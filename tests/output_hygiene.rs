@@ -1,0 +1,55 @@
+//! What the command line prints on stderr (issue 28, item 4): warnings one plain line each, no
+//! colour codes or timestamps when stderr is not a terminal (here it is a pipe).
+
+mod common;
+
+#[test]
+fn warnings_are_plain_lines_without_escape_codes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x.png");
+    // At 128×96 the default preset's labels do not fit: a warning path.
+    let o = common::hatchery(&[
+        "render",
+        "graphs/default.ron",
+        "--size",
+        "128x96",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.starts_with("warning: layout: no room in the frame")),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains('\x1b'),
+        "escape codes on a pipe: {stderr:?}"
+    );
+    // With -v the detailed format, still without colour on a pipe.
+    let o = common::hatchery(&[
+        "-v",
+        "render",
+        "graphs/default.ron",
+        "--size",
+        "128x96",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("INFO"), "{stderr}");
+    assert!(
+        !stderr.contains('\x1b'),
+        "escape codes on a pipe: {stderr:?}"
+    );
+    // An error is one line.
+    let o = common::hatchery(&["render", "graphs/nope.ron"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with("error: ") && !stderr.contains('\x1b'),
+        "{stderr}"
+    );
+}
