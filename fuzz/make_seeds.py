@@ -56,6 +56,10 @@ def nifti(dims, datatype, bitpix, data, sform=None, qform=None, pixdim=(1, 1, 1)
     return bytes(h) + b"\0\0\0\0" + data
 
 
+def mgh_seeds():
+    copy("mgh", ["tests/fixtures/world/*.mgz", "tests/fixtures/world/*.mgh"])
+
+
 def nifti_seeds():
     copy("nifti", ["tests/fixtures/world/*.nii*", "../shared/cases/*.nii*"])
     u8 = bytes(range(8))
@@ -361,6 +365,7 @@ if __name__ == "__main__":
     if os.path.isdir(OUT):
         shutil.rmtree(OUT)
     nifti_seeds()
+    mgh_seeds()
     vti_seeds()
     nrrd_seeds()
     metaimage_seeds()

@@ -113,6 +113,63 @@ def write_nifti_oblique(out) -> dict:
                        "float32, rotated sform (code 2) and qform (code 1)")
 
 
+def write_nifti2(out) -> dict:
+    """NIfTI-2 (540-byte header, 64-bit dims, double transforms), as nibabel writes it."""
+    import nibabel
+    affine = np.eye(4)
+    affine[:3, :3] = rotation([0.2, 1.0, -0.3], 20.0) @ np.diag([-1.1, 1.4, 1.8])
+    affine[:3, 3] = [9.0, -5.0, 3.0]
+    img = nibabel.Nifti2Image(anatomy().astype(np.int16), affine)
+    img.set_sform(affine, code=2)
+    img.set_qform(affine, code=1)
+    nibabel.save(img, out / "nifti2_oblique.nii.gz")
+    back = nibabel.load(out / "nifti2_oblique.nii.gz")
+    assert isinstance(back, nibabel.Nifti2Image)
+    return entry("nifti2_oblique.nii.gz", "nifti2", f"nibabel {nibabel.__version__}", "nibabel",
+                 back.get_fdata(), back.affine, "int16, NIfTI-2, rotated sform and qform, x negated")
+
+
+def write_nifti2_big_endian(out) -> dict:
+    """NIfTI-2 stored big-endian (header and voxels byte-swapped), float32, axis-aligned."""
+    import nibabel
+    affine = np.diag([0.9, 1.1, 1.3, 1.0])
+    affine[:3, 3] = [-4.0, 2.0, -7.0]
+    header = nibabel.Nifti2Header().as_byteswapped(">")
+    img = nibabel.Nifti2Image(anatomy().astype(">f4"), affine, header=header)
+    img.set_sform(affine, code=1)
+    nibabel.save(img, out / "nifti2_big_endian.nii")
+    back = nibabel.load(out / "nifti2_big_endian.nii")
+    assert back.header.endianness == ">", "written big-endian"
+    return entry("nifti2_big_endian.nii", "nifti2", f"nibabel {nibabel.__version__}", "nibabel",
+                 back.get_fdata(), back.affine, "float32 big-endian NIfTI-2, sform code 1")
+
+
+# --- FreeSurfer MGH / MGZ (nibabel writes and reads: vox2ras from Mdc, delta and c_ras) ---------
+
+
+def write_mgh(out, name, data, affine, note) -> dict:
+    import nibabel
+    nibabel.save(nibabel.MGHImage(data, affine), out / name)
+    back = nibabel.load(out / name)
+    return entry(name, "mgh", f"nibabel {nibabel.__version__}", "nibabel",
+                 back.get_fdata(), back.affine, note)
+
+
+def write_mgz(out) -> dict:
+    affine = np.eye(4)
+    affine[:3, :3] = rotation([-0.4, 0.3, 1.0], 28.0) @ np.diag([1.3, 0.9, 1.6])
+    affine[:3, 3] = [-6.0, 11.0, 4.0]
+    return write_mgh(out, "freesurfer_oblique.mgz", anatomy().astype(np.float32), affine,
+                     "float32 MGZ (gzip), rotated vox2ras")
+
+
+def write_mgh_coronal(out) -> dict:
+    """FreeSurfer's conformed orientation (LIA: i → −R, j → −S, k → +A), uint8, uncompressed."""
+    affine = np.array([[-1.0, 0, 0, 10.0], [0, 0, 1.0, -8.0], [0, -1.0, 0, 6.0], [0, 0, 0, 1]])
+    return write_mgh(out, "freesurfer_coronal.mgh", anatomy(), affine,
+                     "uint8 MGH, FreeSurfer's coronal LIA orientation")
+
+
 # --- ITK formats (SimpleITK writes and reads; ITK's physical space is LPS) ---------------------
 
 
@@ -255,6 +312,10 @@ WRITERS = [
     write_nifti_ras,
     write_nifti_las,
     write_nifti_oblique,
+    write_nifti2,
+    write_nifti2_big_endian,
+    write_mgz,
+    write_mgh_coronal,
     write_nrrd,
     write_nhdr,
     write_mha,

@@ -57,8 +57,9 @@ pub type Target = fn(&Scratch, &[u8]) -> Result<(), String>;
 
 /// Every hatchery-data target by name (the fuzz target names, and the folder names under
 /// `fuzz/corpus` and `fuzz/regressions`).
-pub const TARGETS: [(&str, Target); 10] = [
+pub const TARGETS: [(&str, Target); 11] = [
     ("nifti", nifti),
+    ("mgh", mgh),
     ("vti", vti),
     ("nrrd", nrrd),
     ("metaimage", metaimage),
@@ -70,9 +71,18 @@ pub const TARGETS: [(&str, Target); 10] = [
     ("stl", stl),
 ];
 
-/// A single-file NIfTI-1 volume (gzip or not, told by the content).
+/// A single-file NIfTI-1 or NIfTI-2 volume (gzip or not, told by the content).
 pub fn nifti(s: &Scratch, data: &[u8]) -> Result<(), String> {
     check_volume(load_nifti(&s.file("nifti", "input.nii", data)))
+}
+
+/// A FreeSurfer MGH volume (MGZ when gzip, told by the content).
+pub fn mgh(s: &Scratch, data: &[u8]) -> Result<(), String> {
+    check_volume(hatchery_data::mgh_file::load_mgh(&s.file(
+        "mgh",
+        "input.mgz",
+        data,
+    )))
 }
 
 /// A VTK XML ImageData file, its default array.

@@ -1,12 +1,13 @@
-//! NIfTI-1 volumes (`.nii`, `.nii.gz`).
+//! NIfTI-1 and NIfTI-2 volumes (`.nii`, `.nii.gz`).
 
 use std::fs::File;
 use std::io::{self, BufRead, BufReader, Read};
 use std::path::Path;
 
-use nifti::{InMemNiftiVolume, IntoNdArray, NiftiError, NiftiHeader, NiftiType};
+use nifti::NiftiType;
 
 use crate::geometry::Geometry;
+use crate::nifti_header::{self, Header, HeaderError};
 use crate::raw_voxels;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
@@ -14,10 +15,8 @@ use crate::{DataError, VolumeData};
 /// Volumes claiming more voxels than this are refused before anything is allocated.
 pub const MAX_VOXELS: u64 = 1 << 30;
 
-/// Size of the NIfTI-1 header proper; voxel data starts at `vox_offset` (>= 352) after it.
-const HEADER_SIZE: u64 = 348;
-
-/// Loads a single-file NIfTI-1 volume, gzip-compressed or not (detected from the content).
+/// Loads a single-file NIfTI-1 or NIfTI-2 volume, gzip-compressed or not (both detected from
+/// the content; NIfTI-2 has 64-bit dims and double-precision transforms, the rules are the same).
 ///
 /// * Every integer and float datatype is read (u/i 8, 16, 32, 64, f32, f64). u8, i8, u16, i16
 ///   and f32 stay in their type (one byte per voxel for uint8); the wider types become f32.
@@ -46,17 +45,21 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     let read_error = |e: io::Error| stream_error(path, gzip, e);
 
     // Header first: everything is validated before any voxel memory is allocated.
-    let header = NiftiHeader::from_reader(&mut source).map_err(|e| match e {
-        NiftiError::Io(e) => read_error(e),
-        NiftiError::InvalidFormat => {
-            DataError::format(path, "not a NIfTI-1 file (bad header size or magic)")
+    let header = nifti_header::read(&mut source).map_err(|e| match e {
+        HeaderError::Io(e) => read_error(e),
+        HeaderError::NotNifti => DataError::format(
+            path,
+            "not a NIfTI file (the header size is neither 348, NIfTI-1, nor 540, NIfTI-2, or \
+             the magic is wrong)",
+        ),
+        HeaderError::Other(message) => {
+            DataError::format(path, format!("bad NIfTI header: {message}"))
         }
-        other => DataError::format(path, format!("bad NIfTI header: {other}")),
     })?;
     let layout = check_header(path, &header)?;
 
     // Skip the extensions between the header and the voxel data.
-    let skip = layout.data_offset - HEADER_SIZE;
+    let skip = layout.data_offset - header.size;
     let skipped = io::copy(&mut (&mut source).take(skip), &mut io::sink()).map_err(read_error)?;
     if skipped < skip {
         return Err(truncated(path, gzip));
@@ -97,28 +100,44 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
         ));
     }
 
-    let voxels = match native_voxels(layout.datatype, raw, header.endianness) {
-        // Slope 0 means "no scaling" (check_header turns unusable slopes into 0).
-        Ok(voxels) if layout.slope == 0.0 => voxels,
-        Ok(voxels) => voxels.rescaled(layout.slope as f64, layout.intercept as f64),
-        // Types kept as f32 (32/64-bit integers, f64): decoded by the nifti crate.
-        Err(raw) => Voxels::F32(f32_voxels(path, &layout, raw, header.endianness)?),
-    };
+    let voxels = decode_voxels(
+        layout.datatype,
+        raw,
+        header.big_endian,
+        layout.slope,
+        layout.intercept,
+    );
     let mut volume = VolumeData::from_voxels(layout.dims, layout.geometry, voxels)
         .map_err(|e| e.in_file(path))?;
     volume.stored_type = stored_type_name(layout.datatype);
-    volume.placement = layout.placement;
+    volume.placement = if header.version == 2 {
+        format!("NIfTI-2 {}", layout.placement)
+    } else {
+        layout.placement
+    };
     Ok(volume)
+}
+
+/// Voxel bytes as voxels: 8- and 16-bit integers and f32 in their own type, the wider types
+/// (32/64-bit integers, f64) as f32; `slope` 0 means no scaling, else `v · slope + intercept`
+/// (which makes f32). Shared with the MGH reader.
+pub(crate) fn decode_voxels(
+    datatype: NiftiType,
+    raw: Vec<u8>,
+    big: bool,
+    slope: f64,
+    intercept: f64,
+) -> Voxels {
+    match native_voxels(datatype, raw, big) {
+        Ok(voxels) if slope == 0.0 => voxels,
+        Ok(voxels) => voxels.rescaled(slope, intercept),
+        Err(raw) => Voxels::F32(wide_voxels(datatype, &raw, big, slope, intercept)),
+    }
 }
 
 /// The voxel bytes of the 8- and 16-bit integer and f32 types in their own type (the u8 buffer
 /// is kept as is); other types are handed back.
-fn native_voxels(
-    datatype: NiftiType,
-    raw: Vec<u8>,
-    endianness: nifti::Endianness,
-) -> Result<Voxels, Vec<u8>> {
-    let big = endianness == nifti::Endianness::Big;
+fn native_voxels(datatype: NiftiType, raw: Vec<u8>, big: bool) -> Result<Voxels, Vec<u8>> {
     let two = |b: &[u8]| if big { [b[1], b[0]] } else { [b[0], b[1]] };
     let four = |b: &[u8]| {
         if big {
@@ -149,37 +168,46 @@ fn native_voxels(
     })
 }
 
-/// Decodes the wider types to f32 with the nifti crate (scaling applied).
-fn f32_voxels(
-    path: &Path,
-    layout: &Layout,
-    raw: Vec<u8>,
-    endianness: nifti::Endianness,
-) -> Result<Vec<f32>, DataError> {
-    let [nx, ny, nz] = layout.dims;
-    let raw_dim = [3, nx as u16, ny as u16, nz as u16, 1, 1, 1, 1];
-    let volume = InMemNiftiVolume::from_raw_fields(
-        raw_dim,
-        layout.datatype,
-        layout.slope,
-        layout.intercept,
-        raw,
-        endianness,
-    )
-    .map_err(|e| DataError::format(path, format!("bad voxel data: {e}")))?;
-    // Fortran order: x varies fastest in memory, which is our layout. Reversing the axes makes
-    // that the logical (row-major) order too, so iteration is in our order either way.
-    let array = volume
-        .into_ndarray::<f32>()
-        .map_err(|e| DataError::format(path, format!("cannot convert voxel data: {e}")))?
-        .reversed_axes();
-    Ok(match array.as_slice() {
-        Some(slice) => slice.to_vec(),
-        None => array.iter().copied().collect(),
-    })
+/// Decodes the wider types (32/64-bit integers, f64) to f32, scaling in f64 first.
+fn wide_voxels(datatype: NiftiType, raw: &[u8], big: bool, slope: f64, intercept: f64) -> Vec<f32> {
+    fn word<const N: usize>(b: &[u8], big: bool) -> [u8; N] {
+        let mut w: [u8; N] = b.try_into().expect("chunk of N bytes");
+        if big {
+            w.reverse();
+        }
+        w
+    }
+    let (slope, intercept) = if slope == 0.0 {
+        (1.0, 0.0)
+    } else {
+        (slope, intercept)
+    };
+    let scaled = |v: f64| (v * slope + intercept) as f32;
+    match datatype {
+        NiftiType::Uint32 => raw
+            .chunks_exact(4)
+            .map(|b| scaled(f64::from(u32::from_le_bytes(word(b, big)))))
+            .collect(),
+        NiftiType::Int32 => raw
+            .chunks_exact(4)
+            .map(|b| scaled(f64::from(i32::from_le_bytes(word(b, big)))))
+            .collect(),
+        NiftiType::Uint64 => raw
+            .chunks_exact(8)
+            .map(|b| scaled(u64::from_le_bytes(word(b, big)) as f64))
+            .collect(),
+        NiftiType::Int64 => raw
+            .chunks_exact(8)
+            .map(|b| scaled(i64::from_le_bytes(word(b, big)) as f64))
+            .collect(),
+        _ => raw
+            .chunks_exact(8)
+            .map(|b| scaled(f64::from_le_bytes(word(b, big))))
+            .collect(),
+    }
 }
 
-fn stored_type_name(t: NiftiType) -> &'static str {
+pub(crate) fn stored_type_name(t: NiftiType) -> &'static str {
     use NiftiType::*;
     match t {
         Uint8 => "uint8",
@@ -200,16 +228,16 @@ struct Layout {
     dims: [u32; 3],
     voxels: u64,
     datatype: NiftiType,
-    slope: f32,
-    intercept: f32,
+    slope: f64,
+    intercept: f64,
     geometry: Geometry,
     /// Which header rule placed the voxels.
     placement: String,
     data_offset: u64,
 }
 
-fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
-    if &h.magic == nifti::header::MAGIC_CODE_NI1 {
+fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
+    if h.pair {
         return Err(DataError::unsupported(
             path,
             "separate .hdr/.img NIfTI pairs are not supported, use a single .nii or .nii.gz file",
@@ -222,18 +250,22 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
             format!("invalid dimension count dim[0] = {rank}"),
         ));
     }
-    // dims are signed 16-bit in the file; the nifti crate reads them unsigned, so negative ones
-    // show up as values above i16::MAX.
-    let dims: [u32; 3] = std::array::from_fn(|i| {
-        let d = if i < rank as usize { h.dim[i + 1] } else { 1 };
-        d as u32
-    });
-    if let Some(d) = dims.iter().find(|&&d| d > i16::MAX as u32) {
+    let dims_signed: [i64; 3] =
+        std::array::from_fn(|i| if i < rank as usize { h.dim[i + 1] } else { 1 });
+    if let Some(d) = dims_signed.iter().find(|&&d| d < 0) {
         return Err(DataError::format(
             path,
-            format!("negative dimension {} in header", *d as u16 as i16),
+            format!("negative dimension {d} in header"),
         ));
     }
+    if let Some(d) = dims_signed.iter().find(|&&d| d > i64::from(u32::MAX)) {
+        return Err(DataError::TooLarge {
+            path: path.to_path_buf(),
+            voxels: *d as u64,
+            limit: MAX_VOXELS,
+        });
+    }
+    let dims = dims_signed.map(|d| d as u32);
     if dims.iter().any(|&d| d < 2) {
         return Err(DataError::unsupported(
             path,
@@ -244,19 +276,13 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
     }
     // dim[4] counts volumes (time points), dim[5] values per voxel (intent vectors), dim[6..7]
     // further volume axes.
-    let extra = |i: usize| {
-        if i <= rank as usize {
-            h.dim[i] as i16
-        } else {
-            1
-        }
-    };
+    let extra = |i: usize| if i <= rank as usize { h.dim[i] } else { 1 };
     if (4..=7).any(|i| extra(i) < 1) {
         return Err(DataError::format(
             path,
             format!(
                 "dim[4..7] must be at least 1, the header has {:?}",
-                h.dim[4..].iter().map(|&d| d as i16).collect::<Vec<_>>()
+                &h.dim[4..]
             ),
         ));
     }
@@ -271,29 +297,21 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
             ),
         ));
     }
-    let volumes = [4, 6, 7].iter().map(|&i| extra(i) as u64).product::<u64>();
-    let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
-    if voxels > MAX_VOXELS {
-        return Err(DataError::TooLarge {
-            path: path.to_path_buf(),
-            voxels,
-            limit: MAX_VOXELS,
-        });
-    }
+    let volumes = [4, 6, 7]
+        .iter()
+        .map(|&i| extra(i) as u64)
+        .fold(1u64, u64::saturating_mul);
+    let voxels = voxel_count(path, dims)?;
 
-    let datatype = h
-        .data_type()
-        .map_err(|_| DataError::format(path, format!("unknown datatype code {}", h.datatype)))?;
-    use NiftiType::*;
-    if !matches!(
-        datatype,
-        Uint8 | Int8 | Uint16 | Int16 | Uint32 | Int32 | Uint64 | Int64 | Float32 | Float64
-    ) {
-        return Err(DataError::unsupported(
+    let datatype = nifti_header::datatype(h.datatype).ok_or_else(|| {
+        DataError::unsupported(
             path,
-            format!("datatype {datatype:?} is not supported, only integer and float scalars are"),
-        ));
-    }
+            format!(
+                "datatype code {} is not supported, only integer and float scalars are",
+                h.datatype
+            ),
+        )
+    })?;
 
     // Per the standard a zero slope means "no scaling"; we treat a non-finite one the same way.
     let (slope, intercept) = if h.scl_slope.is_finite() && h.scl_slope != 0.0 {
@@ -322,13 +340,13 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
     // vox_offset is a float in the format; it must leave room for the 4-byte extender. Some
     // writers leave it 0 for single files, meaning "right after the extender".
     let offset = h.vox_offset;
-    if !offset.is_finite() || offset < 0.0 || offset > (1u64 << 31) as f32 {
+    if !offset.is_finite() || offset < 0.0 || offset > (1u64 << 31) as f64 {
         return Err(DataError::format(
             path,
             format!("invalid vox_offset {offset}"),
         ));
     }
-    let data_offset = (offset as u64).max(HEADER_SIZE + 4);
+    let data_offset = (offset as u64).max(h.size + 4);
 
     Ok(Layout {
         dims,
@@ -344,10 +362,10 @@ fn check_header(path: &Path, h: &NiftiHeader) -> Result<Layout, DataError> {
 
 /// The voxel → world transform by the standard's rules (nifti1.h, "3 different methods"), as
 /// nibabel's `get_best_affine` applies them, and a note of which rule was used.
-fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), DataError> {
+fn nifti_geometry(path: &Path, h: &Header) -> Result<(Geometry, String), DataError> {
     // Voxel sizes are magnitudes: the sign of pixdim[1..3] never mirrors (see load_nifti).
     let pixdim = |i: usize| {
-        let s = h.pixdim[i] as f64;
+        let s = h.pixdim[i];
         if s.is_finite() && s != 0.0 {
             s.abs()
         } else {
@@ -364,8 +382,7 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
         format!("; negative {} taken as the magnitude", negative.join(", "))
     };
     if h.sform_code > 0 {
-        let rows = [h.srow_x, h.srow_y, h.srow_z].map(|r| r.map(f64::from));
-        match Geometry::from_affine(rows) {
+        match Geometry::from_affine(h.srow) {
             Ok(g) => return Ok((g, format!("sform (sform_code {})", h.sform_code))),
             Err(e) if h.qform_code <= 0 => {
                 return Err(DataError::format(path, format!("bad sform: {e}")));
@@ -376,7 +393,7 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
     if h.qform_code > 0 {
         // Quaternion (b, c, d) with a = sqrt(1 - b² - c² - d²); a sum above 1 (rounding in
         // writers) is renormalised with a = 0, as nifti1_io does.
-        let (mut b, mut c, mut d) = (h.quatern_b as f64, h.quatern_c as f64, h.quatern_d as f64);
+        let [mut b, mut c, mut d] = h.quatern;
         let sum = b * b + c * c + d * d;
         let a = if sum > 1.0 {
             let n = sum.sqrt();
@@ -404,7 +421,7 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
         ];
         let qfac = if h.pixdim[0] < 0.0 { -1.0 } else { 1.0 };
         let zoom = [pixdim(1), pixdim(2), qfac * pixdim(3)];
-        let offset = [h.quatern_x, h.quatern_y, h.quatern_z].map(f64::from);
+        let offset = h.qoffset;
         let rows: [[f64; 4]; 3] = std::array::from_fn(|row| {
             [
                 r[row][0] * zoom[0],
@@ -427,7 +444,20 @@ fn nifti_geometry(path: &Path, h: &NiftiHeader) -> Result<(Geometry, String), Da
     ))
 }
 
-fn truncated(path: &Path, gzip: bool) -> DataError {
+/// The voxel count of `dims`; TooLarge above [`MAX_VOXELS`] (refused before any allocation).
+pub(crate) fn voxel_count(path: &Path, dims: [u32; 3]) -> Result<u64, DataError> {
+    let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
+    if voxels > MAX_VOXELS {
+        return Err(DataError::TooLarge {
+            path: path.to_path_buf(),
+            voxels,
+            limit: MAX_VOXELS,
+        });
+    }
+    Ok(voxels)
+}
+
+pub(crate) fn truncated(path: &Path, gzip: bool) -> DataError {
     DataError::format(
         path,
         if gzip {
@@ -440,7 +470,7 @@ fn truncated(path: &Path, gzip: bool) -> DataError {
 
 /// Reading errors from a (possibly gzip) stream: end-of-file and decoder errors are format
 /// problems of the file, the rest are I/O errors.
-fn stream_error(path: &Path, gzip: bool, e: io::Error) -> DataError {
+pub(crate) fn stream_error(path: &Path, gzip: bool, e: io::Error) -> DataError {
     match e.kind() {
         io::ErrorKind::UnexpectedEof => truncated(path, gzip),
         io::ErrorKind::InvalidInput | io::ErrorKind::InvalidData if gzip => {

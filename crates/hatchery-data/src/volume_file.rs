@@ -12,8 +12,9 @@ use crate::{DataError, VolumeData};
 
 /// File name endings [`load_volume`] reads (matched case-insensitively); folders are read as
 /// DICOM series too.
-pub const VOLUME_ENDINGS: [&str; 10] = [
-    ".nii", ".nii.gz", ".vti", ".nrrd", ".nhdr", ".mha", ".mhd", ".tif", ".tiff", ".dcm",
+pub const VOLUME_ENDINGS: [&str; 12] = [
+    ".nii", ".nii.gz", ".mgz", ".mgh", ".vti", ".nrrd", ".nhdr", ".mha", ".mhd", ".tif", ".tiff",
+    ".dcm",
 ];
 
 /// Choices a user can make when loading a volume (the VolumeFile node's parameters).
@@ -45,6 +46,8 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         load_dicom_series(path)
     } else if name.ends_with(".nii") || name.ends_with(".nii.gz") {
         load_nifti(path)
+    } else if name.ends_with(".mgz") || name.ends_with(".mgh") {
+        crate::mgh_file::load_mgh(path)
     } else if name.ends_with(".vti") {
         load_vti(path, options.array.as_deref())
     } else if name.ends_with(".nrrd") || name.ends_with(".nhdr") {

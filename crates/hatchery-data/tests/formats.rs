@@ -144,7 +144,7 @@ fn every_fixture_lands_where_its_writer_put_it() {
         assert!(!v.placement.is_empty(), "{name}");
         formats.push(entry["format"].as_str().unwrap().to_string());
     }
-    for format in ["nifti", "nrrd", "metaimage", "tiff", "vti"] {
+    for format in ["nifti", "nifti2", "mgh", "nrrd", "metaimage", "tiff", "vti"] {
         assert!(
             formats.iter().any(|f| f == format),
             "no {format} fixture was checked"
@@ -161,6 +161,9 @@ fn stored_types_and_placement_notes() {
         ("sitk.mha", "uint8", "LPS"),
         ("sitk.mhd", "int16", "LPS"),
         ("imagej_stack.tif", "uint16", "ImageJ"),
+        ("nifti2_oblique.nii.gz", "int16", "NIfTI-2 sform"),
+        ("freesurfer_oblique.mgz", "float32", "MGH vox2ras"),
+        ("freesurfer_coronal.mgh", "uint8", "MGH vox2ras"),
     ];
     for (name, stored, note) in cases {
         let v = load_volume(&dir.join(name)).unwrap();

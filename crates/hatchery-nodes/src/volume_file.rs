@@ -14,7 +14,8 @@ impl Node<Value, Ctx> for VolumeFileNode {
         NodeSchema {
             kind: "VolumeFile",
             category: "Data",
-            doc: "Reads a volume: NIfTI-1 (.nii, .nii.gz, scl_slope/scl_inter applied), VTK \
+            doc: "Reads a volume: NIfTI-1 or NIfTI-2 (.nii, .nii.gz, scl_slope/scl_inter \
+                  applied), FreeSurfer MGH/MGZ (.mgh, .mgz), VTK \
                   XML image data (.vti), NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd), a \
                   multi-page TIFF stack (.tif) or a DICOM series (a folder, or one .dcm of it). \
                   The file's voxel → world transform (origin, spacing, direction; NIfTI \
