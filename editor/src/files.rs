@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 /// Extensions of the volumes `VolumeFile` reads (`.nii.gz` ends in `gz`); see
 /// `hatchery_data::volume_file::VOLUME_ENDINGS`.
 pub const VOLUME_EXTENSIONS: &[&str] = &[
-    "nii", "gz", "vti", "nrrd", "nhdr", "mha", "mhd", "tif", "tiff", "dcm",
+    "nii", "gz", "mgz", "mgh", "vti", "nrrd", "nhdr", "mha", "mhd", "tif", "tiff", "dcm",
 ];
 /// Extensions of the meshes `MeshFile` reads.
 pub const MESH_EXTENSIONS: &[&str] = &["obj", "ply", "stl"];
@@ -120,7 +120,7 @@ impl FilePicker {
         let filter = match kind {
             Some(FileKind::Graph) => Some(("Graphs (.ron)", vec!["ron"])),
             Some(FileKind::Volume) => Some((
-                "Volumes (.nii, .nii.gz, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm)",
+                "Volumes (.nii, .nii.gz, .mgz, .mgh, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm)",
                 VOLUME_EXTENSIONS.to_vec(),
             )),
             Some(FileKind::Mesh) => Some(("Meshes (.obj, .ply, .stl)", MESH_EXTENSIONS.to_vec())),

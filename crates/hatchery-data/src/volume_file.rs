@@ -102,7 +102,7 @@ mod tests {
             assert!(matches!(e, DataError::Unsupported { .. }), "{name}: {e}");
             let e = e.to_string();
             assert!(e.starts_with(&path.display().to_string()), "{e}");
-            assert!(e.contains(".nii, .nii.gz, .vti, .nrrd"), "{e}");
+            assert!(e.contains(".nii, .nii.gz, .mgz, .mgh, .vti, .nrrd"), "{e}");
         }
 
         // A folder is a DICOM series (this one has none).

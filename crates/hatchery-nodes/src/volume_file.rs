@@ -59,7 +59,7 @@ impl Node<Value, Ctx> for VolumeFileNode {
         let path = p.path("path");
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
-                "parameter `path` is empty: name a volume file (.nii, .nii.gz, .vti, .nrrd, \
+                "parameter `path` is empty: name a volume file (.nii, .nii.gz, .mgz, .vti, .nrrd, \
                  .mha, .tif, ...) or a DICOM folder",
             ));
         }
