@@ -65,6 +65,9 @@ pub fn describe(path: &Path) -> Result<String> {
             &v.placement
         }
     );
+    for warning in &v.warnings {
+        out += &format!("  warning: {warning}\n");
+    }
     out += &format!(
         "  stored type: {} (kept as {})\n",
         v.stored_type,

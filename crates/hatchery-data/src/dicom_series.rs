@@ -25,7 +25,7 @@ use glam::{DMat3, DVec3};
 use self::pixels::{PixelFormat, append, pixel_format, read_pixels, with_capacity};
 
 use crate::geometry::Geometry;
-use crate::nifti_file::MAX_VOXELS;
+use crate::nifti_file::voxel_count;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
@@ -48,9 +48,10 @@ const SAME_TOLERANCE: f64 = 1e-4;
 /// file's SeriesInstanceUID are read from its folder). Sub-folders are not searched.
 ///
 /// * **Files**: every regular file with the `DICM` marker at byte 128 is read as DICOM (others,
-///   e.g. `.txt`, are skipped); those without an image (no Rows, e.g. DICOMDIR, reports) are
-///   skipped too. A file with the marker that cannot be parsed is an error, so that a damaged
-///   slice never silently leaves a gap.
+///   e.g. `.txt`, are skipped); those without an image (no Rows, e.g. DICOMDIR, reports) and
+///   those with the marker that do not parse (a truncated file of another series) are skipped,
+///   with one warning line naming them ([`VolumeData::warnings`]). A slice of the series that is
+///   missing shows as a gap in the positions (below), never silently.
 /// * **Series**: files are grouped by SeriesInstanceUID. For a folder with several series the
 ///   one with the most slices is read and the others are named in `placement`; a tie is an
 ///   error listing the series (pass one of its files to choose).
@@ -59,6 +60,10 @@ const SAME_TOLERANCE: f64 = 1e-4;
 ///   follows the row cosines (ImageOrientationPatient[0..3]) with spacing PixelSpacing[1], j the
 ///   column cosines ([3..6]) with spacing PixelSpacing[0], k follows n with the mean distance
 ///   between slices. Units: mm, world RAS+ (DICOM's LPS with x and y negated).
+/// * **Uneven spacing** (a gap, missing slices): the slices are resampled to the median step
+///   along the normal, each new slice interpolated linearly between the two around it (as
+///   Slicer regularises an acquisition geometry; ITK would use one spacing for all), float32,
+///   with a one-line warning naming the widest gap.
 /// * **Voxels**: one sample per pixel (MONOCHROME1/2), BitsAllocated 8, 16 or 32, signed or
 ///   unsigned, BitsStored <= BitsAllocated (HighBit = BitsStored − 1). 8- and 16-bit values stay
 ///   in their type unless rescaled; 32-bit ones become float32. RescaleSlope/RescaleIntercept
@@ -72,10 +77,10 @@ const SAME_TOLERANCE: f64 = 1e-4;
 /// Errors (a [`DataError`] naming the folder or the offending file): no DICOM image in the
 /// folder; fewer than 2 slices, or fewer than 2 rows or columns; a missing or malformed
 /// geometry attribute; slices that disagree in size, orientation, spacing or pixel format;
-/// two slices at one position (several echoes or time points in one series); non-uniform
-/// slice spacing (missing slices) or slices not stacked along their normal (gantry tilt);
+/// two slices at one position (several echoes or time points in one series: steps under 2 % of
+/// the median step); slices not stacked along their normal (gantry tilt);
 /// other compressed pixel data (named by its transfer syntax); colour or palette images; multi-frame
-/// files; more than [`MAX_VOXELS`] voxels; truncated pixel data.
+/// files; more than [`crate::nifti_file::MAX_VOXELS`] voxels; truncated pixel data.
 pub fn load_dicom_series(path: &Path) -> Result<VolumeData, DataError> {
     let (folder, wanted) = if path.is_dir() {
         (path.to_path_buf(), None)
@@ -92,23 +97,33 @@ pub fn load_dicom_series(path: &Path) -> Result<VolumeData, DataError> {
         (folder, Some(text(&header, tags::SERIES_INSTANCE_UID)))
     };
 
-    let series = find_series(&folder)?;
+    let (series, skipped) = find_series(&folder)?;
     let (uid, files, note) = choose_series(&folder, series, wanted)?;
     let stack = Stack::new(&folder, &files)?;
     let voxels = stack.read_voxels()?;
-    let dims = [stack.columns, stack.rows, stack.slices.len() as u32];
+    let dims = [stack.columns, stack.rows, stack.output_slices() as u32];
     let mut volume =
         VolumeData::from_voxels(dims, stack.geometry, voxels).map_err(|e| e.in_file(&folder))?;
     volume.placement = format!(
-        "DICOM ImagePositionPatient/ImageOrientationPatient (LPS), {} slices, series {uid}{}{note}",
+        "DICOM ImagePositionPatient/ImageOrientationPatient (LPS), {} slices, series {uid}{}{}{note}",
         stack.slices.len(),
-        stack.rescale_note()
+        stack.rescale_note(),
+        if stack.resample.is_some() {
+            ", resampled to uniform spacing"
+        } else {
+            ""
+        }
     );
+    volume.warnings.extend(stack.resample.clone());
+    volume.warnings.extend(skipped.warning());
     Ok(volume)
 }
 
-/// The image files of each series in `folder`, by SeriesInstanceUID, in file-name order.
-fn find_series(folder: &Path) -> Result<BTreeMap<String, Vec<Header>>, DataError> {
+/// The image files of each series in `folder`, by SeriesInstanceUID, in file-name order, and
+/// what was skipped: files with the DICM marker that do not parse (a truncated file of another
+/// series, say) by name with the reason, and how many DICOM objects hold no image (DICOMDIR,
+/// reports).
+fn find_series(folder: &Path) -> Result<(BTreeMap<String, Vec<Header>>, Skipped), DataError> {
     let entries = std::fs::read_dir(folder).map_err(|e| DataError::io(folder, e))?;
     let mut paths = Vec::new();
     for entry in entries {
@@ -121,23 +136,77 @@ fn find_series(folder: &Path) -> Result<BTreeMap<String, Vec<Header>>, DataError
     paths.sort();
     let looked_at = paths.len();
     let mut series: BTreeMap<String, Vec<Header>> = BTreeMap::new();
+    let mut skipped = Skipped::default();
     for path in paths {
-        let Some(object) = read_header(&path)? else {
-            continue;
+        let object = match read_header(&path) {
+            Ok(Some(object)) => object,
+            Ok(None) => continue,
+            Err(e) => {
+                skipped.unreadable.push((file_name(&path), e.to_string()));
+                continue;
+            }
         };
         if object.element_opt(tags::ROWS).ok().flatten().is_none() {
+            skipped.without_image += 1;
             continue;
         }
         let uid = text(&object, tags::SERIES_INSTANCE_UID);
         series.entry(uid).or_default().push(Header { path, object });
     }
     if series.is_empty() {
+        let why = match skipped.unreadable.first() {
+            Some((_, reason)) => format!(
+                "; {} DICOM file(s) could not be read, e.g. {reason}",
+                skipped.unreadable.len()
+            ),
+            None => String::new(),
+        };
         return Err(DataError::format(
             folder,
-            format!("no DICOM image files in this folder (files looked at: {looked_at})"),
+            format!("no DICOM image files in this folder (files looked at: {looked_at}){why}"),
         ));
     }
-    Ok(series)
+    Ok((series, skipped))
+}
+
+/// Files of a folder that are not read as slices.
+#[derive(Default)]
+struct Skipped {
+    /// (file name, why) of files with the DICM marker that do not parse.
+    unreadable: Vec<(String, String)>,
+    /// DICOM objects without an image.
+    without_image: usize,
+}
+
+impl Skipped {
+    /// One warning line, or None when nothing but non-DICOM files was skipped.
+    fn warning(&self) -> Option<String> {
+        if self.unreadable.is_empty() && self.without_image == 0 {
+            return None;
+        }
+        let mut parts = Vec::new();
+        if !self.unreadable.is_empty() {
+            let names: Vec<&str> = self.unreadable.iter().map(|(n, _)| n.as_str()).collect();
+            let why = &self.unreadable[0].1;
+            parts.push(format!(
+                "{} unreadable ({}; {})",
+                self.unreadable.len(),
+                names.join(", "),
+                why.rsplit(": ").next().unwrap_or(why)
+            ));
+        }
+        if self.without_image > 0 {
+            parts.push(format!(
+                "{} without an image (DICOMDIR, reports, …)",
+                self.without_image
+            ));
+        }
+        Some(format!(
+            "skipped {} DICOM file(s) that are not slices of this series: {}",
+            self.unreadable.len() + self.without_image,
+            parts.join(", ")
+        ))
+    }
 }
 
 /// The series to read: `wanted`, else the one with the most slices. Also returns a note for
@@ -196,6 +265,16 @@ fn choose_series(
 struct Header {
     path: PathBuf,
     object: DefaultDicomObject,
+}
+
+/// Whether `path` is a DICOM file by its content: the `DICM` marker at byte 128 (files on
+/// export media often have no ending: `IM000001`).
+pub fn is_dicom_file(path: &Path) -> bool {
+    let mut head = [0u8; 132];
+    File::open(path)
+        .and_then(|mut f| f.read_exact(&mut head))
+        .is_ok()
+        && &head[128..] == b"DICM"
 }
 
 /// Reads the attributes of a DICOM file up to its pixel data; `None` for files without the
@@ -350,6 +429,10 @@ struct Stack {
     columns: u32,
     format: PixelFormat,
     geometry: Geometry,
+    /// The slice spacing of the volume (mm).
+    spacing: f64,
+    /// When the slices are not evenly spaced: the warning saying they were resampled.
+    resample: Option<String>,
 }
 
 impl Stack {
@@ -389,14 +472,7 @@ impl Stack {
         }
         let normal = row_dir.cross(col_dir).normalize();
 
-        let voxels = rows as u64 * columns as u64 * files.len() as u64;
-        if voxels > MAX_VOXELS {
-            return Err(DataError::TooLarge {
-                path: folder.to_path_buf(),
-                voxels,
-                limit: MAX_VOXELS,
-            });
-        }
+        voxel_count(folder, [columns as u32, rows as u32, files.len() as u32])?;
 
         let mut slices = Vec::with_capacity(files.len());
         for header in files {
@@ -473,7 +549,7 @@ impl Stack {
             ));
         }
         slices.sort_by(|a, b| a.along_normal.total_cmp(&b.along_normal));
-        let slice_spacing = check_stack(folder, &slices, normal)?;
+        let (slice_spacing, resample) = check_stack(folder, &slices, normal)?;
 
         let geometry = Geometry::from_lps(
             // PixelSpacing is (between rows, between columns): j first, then i.
@@ -481,17 +557,42 @@ impl Stack {
             DMat3::from_cols(row_dir, col_dir, normal),
             slices[0].position.to_array(),
         );
-        Ok(Stack {
+        let stack = Stack {
             slices,
             rows: rows as u32,
             columns: columns as u32,
             format,
             geometry,
-        })
+            spacing: slice_spacing,
+            resample,
+        };
+        // A wide gap resamples to many slices.
+        voxel_count(
+            folder,
+            [stack.columns, stack.rows, stack.output_slices() as u32],
+        )?;
+        Ok(stack)
     }
 
-    /// The voxels of all slices in order, rescaled.
+    /// Slices of the volume: the files', or the resampled count (checked against MAX_VOXELS
+    /// in [`Stack::new`]).
+    fn output_slices(&self) -> usize {
+        match self.resample {
+            None => self.slices.len(),
+            Some(_) => {
+                let first = self.slices[0].along_normal;
+                let last = self.slices[self.slices.len() - 1].along_normal;
+                ((last - first) / self.spacing).round() as usize + 1
+            }
+        }
+    }
+
+    /// The voxels of all slices in order, rescaled; resampled along the normal when the slices
+    /// are unevenly spaced.
     fn read_voxels(&self) -> Result<Voxels, DataError> {
+        if self.resample.is_some() {
+            return self.read_resampled();
+        }
         let per_slice = self.rows as usize * self.columns as usize;
         let total = per_slice * self.slices.len();
         let uniform_rescale = self
@@ -528,6 +629,45 @@ impl Stack {
         })
     }
 
+    /// Uneven slices resampled to `spacing` along the normal: each output slice is the linear
+    /// interpolation of the two file slices around its position (what Slicer's regularisation
+    /// of the acquisition geometry does), float32.
+    fn read_resampled(&self) -> Result<Voxels, DataError> {
+        let per_slice = self.rows as usize * self.columns as usize;
+        let mut files = Vec::with_capacity(self.slices.len());
+        for slice in &self.slices {
+            let voxels = read_pixels(
+                &slice.path,
+                &slice.transfer_syntax,
+                [self.rows, self.columns],
+                self.format,
+            )?;
+            files.push(voxels.rescaled(slice.slope, slice.intercept).into_f32());
+        }
+        let first = self.slices[0].along_normal;
+        let count = self.output_slices();
+        let mut out = Vec::new();
+        out.try_reserve_exact(per_slice * count).map_err(|_| {
+            DataError::format(&self.slices[0].path, "cannot allocate the resampled volume")
+        })?;
+        let mut below = 0;
+        for k in 0..count {
+            let at = first + k as f64 * self.spacing;
+            while below + 2 < self.slices.len() && self.slices[below + 1].along_normal <= at {
+                below += 1;
+            }
+            let (a, b) = (&self.slices[below], &self.slices[below + 1]);
+            let t = ((at - a.along_normal) / (b.along_normal - a.along_normal)).clamp(0.0, 1.0);
+            let (va, vb) = (&files[below], &files[below + 1]);
+            out.extend(
+                va.iter()
+                    .zip(vb)
+                    .map(|(x, y)| (*x as f64 * (1.0 - t) + *y as f64 * t) as f32),
+            );
+        }
+        Ok(Voxels::F32(out))
+    }
+
     /// What `placement` says about rescaling.
     fn rescale_note(&self) -> String {
         let first = &self.slices[0];
@@ -545,35 +685,33 @@ impl Stack {
     }
 }
 
-/// Checks that the sorted slices are evenly spaced along `normal` and lie on the line through
-/// the first one along it (no gantry tilt); returns the slice spacing in mm.
-fn check_stack(folder: &Path, slices: &[Slice], normal: DVec3) -> Result<f64, DataError> {
+/// Checks the sorted slices along `normal`: no two at one position (measured against the median
+/// spacing, which a gap does not inflate), all on the line through the first (no gantry tilt).
+/// Returns the slice spacing in mm — the mean of even steps, else the median — and, when the
+/// steps are uneven (a gap, missing slices), the warning that the volume is resampled.
+fn check_stack(
+    folder: &Path,
+    slices: &[Slice],
+    normal: DVec3,
+) -> Result<(f64, Option<String>), DataError> {
     let n = slices.len();
-    let spacing = (slices[n - 1].along_normal - slices[0].along_normal) / (n - 1) as f64;
-    let tolerance = (spacing * STACK_TOLERANCE).max(STACK_TOLERANCE_MM);
+    let steps: Vec<f64> = slices
+        .windows(2)
+        .map(|p| p[1].along_normal - p[0].along_normal)
+        .collect();
+    let mut sorted = steps.clone();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted[sorted.len() / 2];
+    let tolerance = (median * STACK_TOLERANCE).max(STACK_TOLERANCE_MM);
     // Duplicates first: they also make the spacing look non-uniform, which would mislead.
-    for pair in slices.windows(2) {
-        let step = pair[1].along_normal - pair[0].along_normal;
-        if step < tolerance {
+    for (pair, step) in slices.windows(2).zip(&steps) {
+        if *step < tolerance {
             return Err(DataError::unsupported(
                 folder,
                 format!(
-                    "{} and {} lie at the same position ({step:.4} mm apart along the normal); \
-                     series with several echoes, phases or time points are not supported",
-                    file_name(&pair[0].path),
-                    file_name(&pair[1].path)
-                ),
-            ));
-        }
-    }
-    for pair in slices.windows(2) {
-        let step = pair[1].along_normal - pair[0].along_normal;
-        if (step - spacing).abs() > tolerance {
-            return Err(DataError::unsupported(
-                folder,
-                format!(
-                    "slice spacing is not uniform: {} to {} is {step:.4} mm, the mean is \
-                     {spacing:.4} mm (missing slices?)",
+                    "{} and {} lie at the same position ({step:.4} mm apart along the normal, \
+                     the median step is {median:.4} mm); series with several echoes, phases or \
+                     time points are not supported",
                     file_name(&pair[0].path),
                     file_name(&pair[1].path)
                 ),
@@ -595,7 +733,34 @@ fn check_stack(folder: &Path, slices: &[Slice], normal: DVec3) -> Result<f64, Da
             ));
         }
     }
-    Ok(spacing)
+    let uneven: Vec<usize> = (0..steps.len())
+        .filter(|&i| (steps[i] - median).abs() > tolerance)
+        .collect();
+    let Some(&widest) = uneven
+        .iter()
+        .max_by(|&&a, &&b| steps[a].total_cmp(&steps[b]))
+    else {
+        let mean = (slices[n - 1].along_normal - slices[0].along_normal) / (n - 1) as f64;
+        return Ok((mean, None));
+    };
+    let count =
+        ((slices[n - 1].along_normal - slices[0].along_normal) / median).round() as usize + 1;
+    let others = if uneven.len() > 1 {
+        format!(" ({} uneven steps in all)", uneven.len())
+    } else {
+        String::new()
+    };
+    Ok((
+        median,
+        Some(format!(
+            "slice spacing is not uniform: {} to {} is {:.4} mm where the median step is \
+             {median:.4} mm{others}; resampled to {count} slices {median:.4} mm apart along the \
+             normal (linear between neighbouring slices)",
+            file_name(&slices[widest].path),
+            file_name(&slices[widest + 1].path),
+            steps[widest]
+        )),
+    ))
 }
 
 fn file_name(path: &Path) -> String {

@@ -26,6 +26,9 @@ pub struct VolumeData {
     /// How the file's header placed the voxels (e.g. "sform (sform_code 2)"), for
     /// `hatchery info`; empty for volumes made in memory.
     pub placement: String,
+    /// What the loader worked around, one line each (a resampled slice gap, skipped files):
+    /// nodes show them as their warning.
+    pub warnings: Vec<String>,
 }
 
 impl VolumeData {
@@ -91,6 +94,7 @@ impl VolumeData {
             voxels,
             value_range,
             placement: String::new(),
+            warnings: Vec::new(),
         })
     }
 

@@ -56,11 +56,15 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         load_metaimage(path)
     } else if name.ends_with(".tif") || name.ends_with(".tiff") {
         load_tiff_stack(path)
+    } else if crate::dicom_series::is_dicom_file(path) {
+        // A slice without an ending (IM000001 on export media): its series.
+        load_dicom_series(path)
     } else {
         Err(DataError::unsupported(
             path,
             format!(
-                "unknown volume file type, supported endings are {} (or a folder of DICOM files)",
+                "unknown volume file type, supported endings are {} (or a DICOM file, told by its \
+                 content, or a folder of them)",
                 VOLUME_ENDINGS.join(", ")
             ),
         ))

@@ -20,7 +20,10 @@ fn kind_of_name(path: &Path) -> Option<&'static str> {
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    if path.is_dir() || ends_with_any(&name, &VOLUME_ENDINGS) {
+    if path.is_dir()
+        || ends_with_any(&name, &VOLUME_ENDINGS)
+        || hatchery_data::dicom_series::is_dicom_file(path)
+    {
         Some("volume")
     } else if ends_with_any(&name, &MESH_ENDINGS) {
         Some("mesh")

@@ -103,6 +103,13 @@ impl Node<Value, Ctx> for LabelFileNode {
         };
         let volume = hatchery_data::volume_file::load_volume_with(&path, &options)
             .map_err(|e| NodeError::new(e.to_string()))?;
+        if !volume.warnings.is_empty() {
+            ctx.warn(format!(
+                "{}: {}",
+                path.display(),
+                volume.warnings.join("; ")
+            ));
+        }
         let mut data = LabelData::from_volume(&volume)
             .map_err(|e| NodeError::new(format!("{}: {e}", path.display())))?;
         // 3D Slicer writes segment names into the NRRD header.

@@ -69,17 +69,19 @@ impl Node<Value, Ctx> for VolumeFileNode {
         };
         let data = hatchery_data::volume_file::load_volume_with(&path, &options)
             .map_err(|e| NodeError::new(e.to_string()))?;
+        // What the loader worked around (a resampled slice gap, skipped files) and what the
+        // values are like: one warning line for the node.
+        let mut warnings: Vec<String> = data.warnings.clone();
         if !data.has_finite_values() {
-            ctx.warn(format!(
-                "{}: no voxel holds a finite value (all are no data: NaN/inf)",
-                path.display()
-            ));
+            warnings.push("no voxel holds a finite value (all are no data: NaN/inf)".into());
         } else if data.value_range[0] == data.value_range[1] {
-            ctx.warn(format!(
-                "{}: the volume is constant ({}): nothing to tell apart",
-                path.display(),
+            warnings.push(format!(
+                "the volume is constant ({}): nothing to tell apart",
                 data.value_range[0]
             ));
+        }
+        if !warnings.is_empty() {
+            ctx.warn(format!("{}: {}", path.display(), warnings.join("; ")));
         }
         tracing::info!(
             path = %path.display(),
