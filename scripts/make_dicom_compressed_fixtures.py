@@ -3,11 +3,14 @@
 archives hold them, with other tools' encoders:
 
     python3 -m pip install pydicom python-gdcm numpy
-    python3 scripts/make_dicom_compressed_fixtures.py
+    python3 scripts/make_dicom_compressed_fixtures.py [FOLDER...]   (default: all)
 
 Out (repo root, next to tests/fixtures/world/dicom_series/):
   dicom_series_rle/    RLE Lossless (1.2.840.10008.1.2.5), pydicom's own RLE encoder
   dicom_series_jpegll/ JPEG Lossless, first-order prediction (1.2.840.10008.1.2.4.70), GDCM
+  dicom_series_rle32/  32-bit signed copies (stored values × 100), RLE Lossless by GDCM
+                       (pydicom's RLE encoder stops at 16 bits)
+  dicom_series_be32/   the same 32-bit values in Explicit VR Big Endian (OW), by pydicom
 
 Both are lossless, so crates/hatchery-data/tests/dicom.rs expects exactly the voxels and the
 geometry of the uncompressed series. The script decodes every written file again (pydicom,
@@ -20,7 +23,7 @@ from pathlib import Path
 import gdcm
 import numpy as np
 import pydicom
-from pydicom.uid import JPEGLosslessSV1, RLELossless
+from pydicom.uid import ExplicitVRBigEndian, JPEGLosslessSV1, RLELossless
 
 WORLD = Path(__file__).resolve().parent.parent / "tests" / "fixtures" / "world"
 SOURCE = WORLD / "dicom_series"
@@ -37,13 +40,46 @@ def write_rle(src: Path, out: Path) -> None:
     pydicom.dcmwrite(out, ds, enforce_file_format=True)
 
 
+def as_int32(ds):
+    """The slice as 32-bit signed samples: stored values × 100 (beyond 16 bits)."""
+    pixels = ds.pixel_array.astype(np.int32) * 100
+    ds.BitsAllocated, ds.BitsStored, ds.HighBit, ds.PixelRepresentation = 32, 32, 31, 1
+    return pixels
+
+
+def write_rle32(src: Path, out: Path) -> None:
+    ds = pydicom.dcmread(src)
+    pixels = as_int32(ds)
+    ds.file_meta.TransferSyntaxUID = pydicom.uid.ExplicitVRLittleEndian
+    ds.PixelData = pixels.astype("<i4").tobytes()
+    ds["PixelData"].VR = "OW"
+    plain = out.with_suffix(".plain")
+    pydicom.dcmwrite(plain, ds, little_endian=True, implicit_vr=False, enforce_file_format=True)
+    gdcm_change(plain, out, gdcm.TransferSyntax.RLELossless)
+    plain.unlink()
+
+
+def write_be32(src: Path, out: Path) -> None:
+    ds = pydicom.dcmread(src)
+    pixels = as_int32(ds)
+    ds.file_meta.TransferSyntaxUID = ExplicitVRBigEndian
+    ds.PixelData = pixels.astype(">i4").tobytes()
+    ds["PixelData"].VR = "OW"
+    pydicom.dcmwrite(out, ds, little_endian=False, implicit_vr=False, enforce_file_format=True)
+
+
 def write_jpeg_lossless(src: Path, out: Path) -> None:
+    gdcm_change(src, out, gdcm.TransferSyntax.JPEGLosslessProcess14_1)
+
+
+def gdcm_change(src: Path, out: Path, syntax) -> None:
+    """Re-encodes `src` into `out` in transfer syntax `syntax` with GDCM."""
     reader = gdcm.ImageReader()
     reader.SetFileName(str(src))
     if not reader.Read():
         sys.exit(f"GDCM cannot read {src}")
     change = gdcm.ImageChangeTransferSyntax()
-    change.SetTransferSyntax(gdcm.TransferSyntax(gdcm.TransferSyntax.JPEGLosslessProcess14_1))
+    change.SetTransferSyntax(gdcm.TransferSyntax(syntax))
     change.SetInput(reader.GetImage())
     if not change.Change():
         sys.exit(f"GDCM cannot compress {src}")
@@ -59,10 +95,14 @@ def main():
     sources = sorted(SOURCE.glob("*.dcm"))
     if not sources:
         sys.exit(f"no slices in {SOURCE}: run scripts/make_dicom_fixture.py first")
-    for folder, syntax, write in [
-        ("dicom_series_rle", RLELossless, write_rle),
-        ("dicom_series_jpegll", JPEGLosslessSV1, write_jpeg_lossless),
+    for folder, syntax, write, scale in [
+        ("dicom_series_rle", RLELossless, write_rle, 1),
+        ("dicom_series_jpegll", JPEGLosslessSV1, write_jpeg_lossless, 1),
+        ("dicom_series_rle32", RLELossless, write_rle32, 100),
+        ("dicom_series_be32", ExplicitVRBigEndian, write_be32, 100),
     ]:
+        if sys.argv[1:] and folder not in sys.argv[1:]:
+            continue
         out_dir = WORLD / folder
         out_dir.mkdir(exist_ok=True)
         for src in sources:
@@ -71,7 +111,8 @@ def main():
             back = pydicom.dcmread(out)
             if back.file_meta.TransferSyntaxUID != syntax:
                 sys.exit(f"{out}: written as {back.file_meta.TransferSyntaxUID}, not {syntax}")
-            if not np.array_equal(back.pixel_array, pydicom.dcmread(src).pixel_array):
+            want = pydicom.dcmread(src).pixel_array.astype(np.int64) * scale
+            if not np.array_equal(back.pixel_array.astype(np.int64), want):
                 sys.exit(f"{out}: does not decode to the pixels of {src}")
         size = sum(p.stat().st_size for p in out_dir.glob("*.dcm"))
         print(f"{folder}: {len(sources)} slices, {size} bytes, {syntax.name}")

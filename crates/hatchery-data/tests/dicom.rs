@@ -276,13 +276,7 @@ fn lossless_compressed_copies_load_the_same_volume() {
         assert!(v.voxels == native.voxels, "{folder}: voxels differ");
         assert_eq!(v.value_range, native.value_range, "{folder}");
         // The files really are compressed.
-        let first = std::fs::read_dir(fixture(folder))
-            .unwrap()
-            .next()
-            .unwrap()
-            .unwrap()
-            .path();
-        let bytes = std::fs::read(first).unwrap();
+        let bytes = first_file(folder);
         let uid = if syntax == "RLE Lossless" {
             uids::RLE_LOSSLESS
         } else {
@@ -291,6 +285,48 @@ fn lossless_compressed_copies_load_the_same_volume() {
         assert!(
             bytes.windows(uid.len()).any(|w| w == uid.as_bytes()),
             "{folder} is not {syntax}"
+        );
+    }
+}
+
+/// The bytes of one file of a fixture folder.
+fn first_file(folder: &str) -> Vec<u8> {
+    let entry = std::fs::read_dir(fixture(folder)).unwrap().next().unwrap();
+    std::fs::read(entry.unwrap().path()).unwrap()
+}
+
+/// 32-bit signed copies of the series (stored values × 100, beyond 16 bits) written by other
+/// tools (scripts/make_dicom_compressed_fixtures.py): RLE Lossless by GDCM (four byte-plane
+/// segments, which dicom-rs's decoder does not read) and Explicit VR Big Endian OW by pydicom.
+/// Both load to exactly 100 × the 16-bit series, as float32.
+#[test]
+fn thirty_two_bit_rle_and_big_endian_load_exactly() {
+    let native = load_dicom_series(&fixture("dicom_series")).unwrap();
+    let want: Vec<f32> = native.values_f32().iter().map(|v| v * 100.0).collect();
+    for (folder, uid) in [
+        ("dicom_series_rle32", uids::RLE_LOSSLESS),
+        // Explicit VR Big Endian (retired, so not named through the dictionary here).
+        ("dicom_series_be32", "1.2.840.10008.1.2.2"),
+    ] {
+        let v = load_dicom_series(&fixture(folder)).unwrap_or_else(|e| panic!("{folder}: {e}"));
+        assert_eq!(v.dims, native.dims, "{folder}");
+        assert_eq!(v.geometry, native.geometry, "{folder}");
+        assert_eq!(v.stored_type, "float32", "{folder}");
+        assert!(
+            v.values_f32().as_ref() == want.as_slice(),
+            "{folder}: voxels differ"
+        );
+        assert!(v.value_range[1] > 65535.0, "{folder}: beyond 16 bits");
+        let first = std::fs::read_dir(fixture(folder))
+            .unwrap()
+            .next()
+            .unwrap()
+            .unwrap()
+            .path();
+        let bytes = std::fs::read(first).unwrap();
+        assert!(
+            bytes.windows(uid.len()).any(|w| w == uid.as_bytes()),
+            "{folder} is not {uid}"
         );
     }
 }

@@ -21,7 +21,7 @@ use crate::DataError;
 const RLE_LOSSLESS: &str = "1.2.840.10008.1.2.5";
 /// The supported encodings, for messages.
 const SUPPORTED: &str = "uncompressed, 8-bit JPEG baseline/extended, JPEG lossless (2–16 bits) \
-                         and RLE Lossless are";
+                         and RLE Lossless (8, 16, 32 bits) are";
 
 /// Decodes the first frame of the slice at `path` (`rows` × `columns` samples of `format`) into
 /// little-endian samples of `format.bits_allocated` bits.
@@ -55,6 +55,10 @@ pub(super) fn decode_slice(
         let samples = rows as usize * columns as usize;
         check_rle(first, samples, format)
             .map_err(|m| DataError::format(path, format!("{name}: {m}")))?;
+        if format.bits_allocated == 32 {
+            // dicom-rs's RLE decoder stops at 16 bits; the segments are checked above.
+            return Ok(rle_decode(first, samples, 4));
+        }
     } else {
         check_jpeg(first, rows, columns, format).map_err(|(unsupported, m)| {
             if unsupported {
@@ -129,6 +133,53 @@ fn check_rle(fragment: &[u8], samples: usize, format: PixelFormat) -> Result<(),
         }
     }
     Ok(())
+}
+
+/// Decodes an RLE Lossless fragment whose segments [`check_rle`] checked: segment i holds byte
+/// i of every sample, most significant first (PS3.5 G.2); returns little-endian samples.
+fn rle_decode(fragment: &[u8], samples: usize, bytes_per_sample: usize) -> Vec<u8> {
+    let offset = |i: usize| {
+        let b = &fragment[4 * i..4 * i + 4];
+        u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize
+    };
+    let mut le = vec![0u8; samples * bytes_per_sample];
+    for segment in 0..bytes_per_sample {
+        let start = offset(segment + 1);
+        let end = if segment + 1 == bytes_per_sample {
+            fragment.len()
+        } else {
+            offset(segment + 2)
+        };
+        let plane = unpack_bits(&fragment[start..end], samples);
+        let byte = bytes_per_sample - 1 - segment;
+        for (s, value) in plane.into_iter().enumerate() {
+            le[s * bytes_per_sample + byte] = value;
+        }
+    }
+    le
+}
+
+/// PackBits: a header byte n < 128 copies the next n + 1 bytes, n > 128 repeats the next byte
+/// 257 − n times, 128 is a no-op; stops after `needed` bytes.
+fn unpack_bits(data: &[u8], needed: usize) -> Vec<u8> {
+    let mut out = Vec::with_capacity(needed);
+    let mut i = 0;
+    while out.len() < needed && i < data.len() {
+        let n = data[i] as usize;
+        i += 1;
+        if n < 128 {
+            let end = (i + n + 1).min(data.len());
+            out.extend_from_slice(&data[i..end]);
+            i = end;
+        } else if n > 128 {
+            if let Some(&b) = data.get(i) {
+                out.extend(std::iter::repeat_n(b, 257 - n));
+            }
+            i += 1;
+        }
+    }
+    out.resize(needed, 0);
+    out
 }
 
 /// Whether PackBits `data` decodes to at least `needed` bytes with every run complete.

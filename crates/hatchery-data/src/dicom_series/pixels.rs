@@ -123,12 +123,6 @@ pub(super) fn read_pixels(
         }
         return Ok(decode(&le[..needed], format));
     }
-    if big_endian && format.bits_allocated == 32 {
-        return Err(DataError::unsupported(
-            path,
-            "32-bit pixel data in Explicit VR Big Endian is not supported",
-        ));
-    }
     let object = open_whole(path)?;
     let element = object
         .element_opt(tags::PIXEL_DATA)
@@ -144,6 +138,15 @@ pub(super) fn read_pixels(
             .flat_map(|c| c.iter().rev().copied())
             .collect(),
         Value::Primitive(PrimitiveValue::U8(bytes)) => bytes.to_vec(),
+        // 32-bit samples as big-endian OW: the parser swapped each 16-bit word, so a sample's
+        // two words are (high, low).
+        Value::Primitive(PrimitiveValue::U16(words)) if big_endian && bytes_per_sample == 4 => {
+            words
+                .chunks_exact(2)
+                .flat_map(|w| [w[1].to_le_bytes(), w[0].to_le_bytes()])
+                .flatten()
+                .collect()
+        }
         Value::Primitive(PrimitiveValue::U16(words)) => {
             words.iter().flat_map(|w| w.to_le_bytes()).collect()
         }
