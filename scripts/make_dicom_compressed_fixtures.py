@@ -8,6 +8,7 @@ archives hold them, with other tools' encoders:
 Out (repo root, next to tests/fixtures/world/dicom_series/):
   dicom_series_rle/    RLE Lossless (1.2.840.10008.1.2.5), pydicom's own RLE encoder
   dicom_series_jpegll/ JPEG Lossless, first-order prediction (1.2.840.10008.1.2.4.70), GDCM
+  dicom_series_j2k/    JPEG 2000 Lossless (1.2.840.10008.1.2.4.90), GDCM (OpenJPEG)
   dicom_series_rle32/  32-bit signed copies (stored values × 100), RLE Lossless by GDCM
                        (pydicom's RLE encoder stops at 16 bits)
   dicom_series_be32/   the same 32-bit values in Explicit VR Big Endian (OW), by pydicom
@@ -23,7 +24,7 @@ from pathlib import Path
 import gdcm
 import numpy as np
 import pydicom
-from pydicom.uid import ExplicitVRBigEndian, JPEGLosslessSV1, RLELossless
+from pydicom.uid import ExplicitVRBigEndian, JPEG2000Lossless, JPEGLosslessSV1, RLELossless
 
 WORLD = Path(__file__).resolve().parent.parent / "tests" / "fixtures" / "world"
 SOURCE = WORLD / "dicom_series"
@@ -72,6 +73,10 @@ def write_jpeg_lossless(src: Path, out: Path) -> None:
     gdcm_change(src, out, gdcm.TransferSyntax.JPEGLosslessProcess14_1)
 
 
+def write_j2k(src: Path, out: Path) -> None:
+    gdcm_change(src, out, gdcm.TransferSyntax.JPEG2000Lossless)
+
+
 def gdcm_change(src: Path, out: Path, syntax) -> None:
     """Re-encodes `src` into `out` in transfer syntax `syntax` with GDCM."""
     reader = gdcm.ImageReader()
@@ -98,6 +103,7 @@ def main():
     for folder, syntax, write, scale in [
         ("dicom_series_rle", RLELossless, write_rle, 1),
         ("dicom_series_jpegll", JPEGLosslessSV1, write_jpeg_lossless, 1),
+        ("dicom_series_j2k", JPEG2000Lossless, write_j2k, 1),
         ("dicom_series_rle32", RLELossless, write_rle32, 100),
         ("dicom_series_be32", ExplicitVRBigEndian, write_be32, 100),
     ]:

@@ -268,6 +268,7 @@ fn lossless_compressed_copies_load_the_same_volume() {
     for (folder, syntax) in [
         ("dicom_series_rle", "RLE Lossless"),
         ("dicom_series_jpegll", "JPEG Lossless"),
+        ("dicom_series_j2k", "JPEG 2000 Lossless"),
     ] {
         let v = load_dicom_series(&fixture(folder)).unwrap_or_else(|e| panic!("{folder}: {e}"));
         assert_eq!(v.dims, native.dims, "{folder}");
@@ -277,10 +278,10 @@ fn lossless_compressed_copies_load_the_same_volume() {
         assert_eq!(v.value_range, native.value_range, "{folder}");
         // The files really are compressed.
         let bytes = first_file(folder);
-        let uid = if syntax == "RLE Lossless" {
-            uids::RLE_LOSSLESS
-        } else {
-            uids::JPEG_LOSSLESS_SV1
+        let uid = match syntax {
+            "RLE Lossless" => uids::RLE_LOSSLESS,
+            "JPEG 2000 Lossless" => uids::JPEG2000_LOSSLESS,
+            _ => uids::JPEG_LOSSLESS_SV1,
         };
         assert!(
             bytes.windows(uid.len()).any(|w| w == uid.as_bytes()),
@@ -604,13 +605,19 @@ fn colour_compressed_and_odd_files_are_refused() {
 
     // Compressed transfer syntaxes without a codec here are named.
     let mut slices = stack("1.2.3", &[0.0, 1.0]);
-    slices[1].syntax = uids::JPEG2000;
+    slices[1].syntax = uids::JPEGLS_LOSSLESS;
     let dir = write_series(&slices, |i| format!("{i}.dcm"));
     let e = error(dir.path());
     assert!(
-        e.contains("1.dcm") && e.contains("JPEG 2000") && e.contains("not supported"),
+        e.contains("1.dcm") && e.contains("JPEG-LS") && e.contains("not supported"),
         "{e}"
     );
+    // A JPEG 2000 slice whose pixel data is no codestream: an error naming the file, no panic.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices[1].syntax = uids::JPEG2000;
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(e.contains("1.dcm") && e.contains("JPEG 2000"), "{e}");
     // A JPEG slice whose pixel data is no JPEG stream: an error naming the file, no panic.
     let mut slices = stack("1.2.3", &[0.0, 1.0]);
     slices[1].syntax = uids::JPEG_BASELINE8_BIT;

@@ -20,8 +20,12 @@ use crate::DataError;
 
 const RLE_LOSSLESS: &str = "1.2.840.10008.1.2.5";
 /// The supported encodings, for messages.
-const SUPPORTED: &str = "uncompressed, 8-bit JPEG baseline/extended, JPEG lossless (2–16 bits) \
-                         and RLE Lossless (8, 16, 32 bits) are";
+const SUPPORTED: &str = "uncompressed, 8-bit JPEG baseline/extended, JPEG lossless (2–16 bits), \
+                         JPEG 2000 and RLE Lossless (8, 16, 32 bits) are";
+
+/// JPEG 2000 Image Compression (Lossless Only) and JPEG 2000 Image Compression: decoded by the
+/// pure-Rust port of OpenJPEG (dicom-rs's `openjp2` feature).
+const JPEG_2000: [&str; 2] = ["1.2.840.10008.1.2.4.90", "1.2.840.10008.1.2.4.91"];
 
 /// Decodes the first frame of the slice at `path` (`rows` × `columns` samples of `format`) into
 /// little-endian samples of `format.bits_allocated` bits.
@@ -59,6 +63,9 @@ pub(super) fn decode_slice(
             // dicom-rs's RLE decoder stops at 16 bits; the segments are checked above.
             return Ok(rle_decode(first, samples, 4));
         }
+    } else if JPEG_2000.contains(&syntax) {
+        check_j2k(first, rows, columns, format)
+            .map_err(|m| DataError::format(path, format!("{name}: {m}")))?;
     } else {
         check_jpeg(first, rows, columns, format).map_err(|(unsupported, m)| {
             if unsupported {
@@ -131,6 +138,53 @@ fn check_rle(fragment: &[u8], samples: usize, format: PixelFormat) -> Result<(),
                 "segment {i} decodes to fewer than the slice's {samples} bytes"
             ));
         }
+    }
+    Ok(())
+}
+
+/// A JPEG 2000 codestream's SIZ marker segment (ISO 15444-1 A.5.1) against the slice: the
+/// image area `Xsiz − XOsiz` × `Ysiz − YOsiz` is the slice's columns × rows, one component,
+/// whose precision fits `format.bits_allocated`; checked before the decoder sees the stream.
+fn check_j2k(stream: &[u8], rows: u32, columns: u32, format: PixelFormat) -> Result<(), String> {
+    let be32 = |o: usize| {
+        stream
+            .get(o..o + 4)
+            .map(|b| u32::from_be_bytes([b[0], b[1], b[2], b[3]]))
+    };
+    let be16 = |o: usize| {
+        stream
+            .get(o..o + 2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+    };
+    if stream.get(..4) != Some(&[0xFF, 0x4F, 0xFF, 0x51]) {
+        return Err("not a JPEG 2000 codestream (no SOC and SIZ markers at its start)".into());
+    }
+    // SIZ: Lsiz, Rsiz, then Xsiz, Ysiz, XOsiz, YOsiz, tile sizes and offsets, Csiz, Ssiz…
+    let (Some(x), Some(y), Some(x0), Some(y0), Some(components), Some(&ssiz)) = (
+        be32(8),
+        be32(12),
+        be32(16),
+        be32(20),
+        be16(40),
+        stream.get(42),
+    ) else {
+        return Err("the JPEG 2000 SIZ marker segment is cut short".into());
+    };
+    let (width, height) = (x.saturating_sub(x0), y.saturating_sub(y0));
+    if (width, height) != (columns, rows) {
+        return Err(format!(
+            "the codestream is {width}×{height}, the slice {columns}×{rows}"
+        ));
+    }
+    if components != 1 {
+        return Err(format!("{components} components, a grey image has 1"));
+    }
+    let precision = u32::from(ssiz & 0x7F) + 1;
+    if precision > format.bits_allocated {
+        return Err(format!(
+            "{precision}-bit samples do not fit BitsAllocated {}",
+            format.bits_allocated
+        ));
     }
     Ok(())
 }
@@ -321,6 +375,21 @@ mod tests {
     fn jpeg_frames_must_fit_the_slice() {
         assert!(check_jpeg(&sof(0xC3, 16, 4, 6, 1), 4, 6, GREY16).is_ok());
         assert!(check_jpeg(&sof(0xC0, 8, 4, 6, 1), 4, 6, GREY8).is_ok());
+        // JPEG 2000: SOC, SIZ with a 6×4 image area at offset (1, 2), one 12-bit component.
+        let mut siz = vec![0xFF, 0x4F, 0xFF, 0x51, 0, 41, 0, 0];
+        for v in [7u32, 6, 1, 2, 7, 6, 0, 0] {
+            siz.extend_from_slice(&v.to_be_bytes());
+        }
+        siz.extend_from_slice(&[0, 1, 11, 1, 1]);
+        assert_eq!(check_j2k(&siz, 4, 6, GREY16), Ok(()));
+        assert!(check_j2k(&siz, 4, 7, GREY16).unwrap_err().contains("6×4"));
+        assert!(check_j2k(&siz, 4, 6, GREY8).unwrap_err().contains("12-bit"));
+        assert!(
+            check_j2k(&siz[..30], 4, 6, GREY16)
+                .unwrap_err()
+                .contains("cut short")
+        );
+        assert!(check_j2k(&[0xFF, 0xD8], 4, 6, GREY16).is_err());
         let refused = |s: &[u8], f| check_jpeg(s, 4, 6, f).unwrap_err();
         // A frame larger than the slice (the codec would index past its buffer).
         assert!(!refused(&sof(0xC3, 16, 400, 6, 1), GREY16).0);
