@@ -446,7 +446,8 @@ fn nifti_geometry(path: &Path, h: &Header) -> Result<(Geometry, String), DataErr
 
 /// The voxel count of `dims`; TooLarge above [`MAX_VOXELS`] (refused before any allocation).
 pub(crate) fn voxel_count(path: &Path, dims: [u32; 3]) -> Result<u64, DataError> {
-    let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
+    // Three 32-bit dims can overflow 64 bits: saturate (a fuzzed header found it).
+    let voxels = dims.iter().fold(1u64, |n, &d| n.saturating_mul(u64::from(d)));
     if voxels > MAX_VOXELS {
         return Err(DataError::TooLarge {
             path: path.to_path_buf(),
