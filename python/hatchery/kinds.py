@@ -1635,12 +1635,13 @@ class TwoLevelRaycast:
     sparse_compositing: Literal['mip', 'over', 'sum'] = 'mip'
 
 class VolumeFile:
-    """Reads a volume: NIfTI-1 (.nii, .nii.gz, scl_slope/scl_inter applied), VTK XML image data
-        (.vti), NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd), a multi-page TIFF stack (.tif) or a
-        DICOM series (a folder, or one .dcm of it). The file's voxel → world transform (origin,
-        spacing, direction; NIfTI sform/qform) places the voxels in hatchery's RAS+ world in mm
-        (LPS formats are converted; see docs/data.md). NaN voxels are "no data". Relative paths
-        are relative to the graph file's folder.
+    """Reads a volume: NIfTI-1 or NIfTI-2 (.nii, .nii.gz, scl_slope/scl_inter applied), FreeSurfer
+        MGH/MGZ (.mgh, .mgz), VTK XML image data (.vti), NRRD (.nrrd, .nhdr), MetaImage (.mha,
+        .mhd), a multi-page TIFF stack (.tif) or a DICOM series (a folder, or one .dcm of it).
+        The file's voxel → world transform (origin, spacing, direction; NIfTI sform/qform)
+        places the voxels in hatchery's RAS+ world in mm (LPS formats are converted; see
+        docs/data.md). NaN voxels are "no data". Relative paths are relative to the graph file's
+        folder.
 
     Outputs:
         volume (Volume): the volume, in world units (mm)
