@@ -447,7 +447,9 @@ fn nifti_geometry(path: &Path, h: &Header) -> Result<(Geometry, String), DataErr
 /// The voxel count of `dims`; TooLarge above [`MAX_VOXELS`] (refused before any allocation).
 pub(crate) fn voxel_count(path: &Path, dims: [u32; 3]) -> Result<u64, DataError> {
     // Three 32-bit dims can overflow 64 bits: saturate (a fuzzed header found it).
-    let voxels = dims.iter().fold(1u64, |n, &d| n.saturating_mul(u64::from(d)));
+    let voxels = dims
+        .iter()
+        .fold(1u64, |n, &d| n.saturating_mul(u64::from(d)));
     if voxels > MAX_VOXELS {
         return Err(DataError::TooLarge {
             path: path.to_path_buf(),
