@@ -188,6 +188,13 @@ class Graph:
         """The graph as RON text."""
         return self._g.to_ron()
 
+    def copy(self) -> "Graph":
+        """An independent graph with the same nodes, parameters and folder (one per worker of a
+        thread pool sweeps in parallel). Inputs given arrays are not copied: the copy has their
+        files; give it the arrays again."""
+        base = os.path.dirname(os.path.abspath(self.path)) if self.path else None
+        return Graph.from_ron(self.to_ron(), base_dir=base)
+
     def validate(self) -> None:
         """Checks the graph as a file is checked; raises GraphError listing every problem."""
         self._g.validate()

@@ -77,6 +77,19 @@ def test_export_svg_and_run_write_files(repo, tmp_path):
         assert g.get("vector", "path") == before
 
 
+def test_copies_render_in_parallel_as_the_original(repo):
+    g = hatchery.Graph.load(repo / "graphs" / "shaded_surface.ron")
+    copies = [g.copy() for _ in range(3)]
+    for k, c in enumerate(copies):
+        c["camera"]["azimuth"] = 20.0 * k
+    with ThreadPoolExecutor(max_workers=3) as pool:
+        pictures = list(pool.map(lambda c: c.render(size=(48, 36)), copies))
+    for k, picture in enumerate(pictures):
+        g["camera"]["azimuth"] = 20.0 * k
+        assert (picture == g.render(size=(48, 36))).all()
+    assert g.get("camera", "azimuth") == 40.0 and copies[0].get("camera", "azimuth") == 0.0
+
+
 def test_threads_render_without_deadlock_and_as_one_thread_does(repo):
     g = hatchery.Graph.load(repo / "graphs" / "shaded_surface.ron")
     other = hatchery.Graph.load(repo / "graphs" / "hidden_structures.ron")
