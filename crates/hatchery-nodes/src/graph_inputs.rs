@@ -108,8 +108,15 @@ mod tests {
             e.starts_with("input `volume`: cannot read") && e.contains("no.nii"),
             "{e}"
         );
-        // A folder is a DICOM series.
+        // A folder is a DICOM series; a file without an ending is one by its DICM marker.
         assert!(check_input_file("volume", InputKind::Volume, dir.path()).is_ok());
+        let slice = dir.path().join("IM000001");
+        let mut bytes = vec![0u8; 128];
+        bytes.extend_from_slice(b"DICM");
+        std::fs::write(&slice, &bytes).unwrap();
+        assert!(check_input_file("volume", InputKind::Volume, &slice).is_ok());
+        std::fs::write(dir.path().join("README"), "notes").unwrap();
+        assert!(check_input_file("volume", InputKind::Volume, &dir.path().join("README")).is_err());
         assert!(check_input_file("mesh", InputKind::Mesh, dir.path()).is_err());
     }
 }
