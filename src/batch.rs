@@ -6,12 +6,27 @@ use hatchery_batch::{Outcome, Shard};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
+/// The command's arguments (docs/batch.md).
+#[derive(clap::Args)]
 pub struct Args {
+    /// The job file (RON).
     pub job: PathBuf,
+    /// Where outputs and manifests go (default: the job file's folder).
+    #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Render items K, K+N, K+2N, … (default: the shard a Slurm array or Kubernetes
+    /// Indexed Job gives through the environment, else all).
+    #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
+    /// The number of shards where the environment gives only an index
+    /// (`JOB_COMPLETION_INDEX`); also HATCHERY_SHARD_COUNT.
+    #[arg(long, value_name = "N")]
     pub shard_count: Option<usize>,
+    /// Check that every item is present once in the manifests and write manifest.json.
+    #[arg(long)]
     pub merge: bool,
+    /// Print the work list (index, output, data set, parameters) and exit.
+    #[arg(long)]
     pub list: bool,
 }
 

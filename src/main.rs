@@ -105,26 +105,7 @@ enum Command {
     Info { file: PathBuf },
     /// Render a batch job: a parameter sweep, camera path and data sets over one graph, this
     /// process's shard of it (docs/batch.md).
-    Batch {
-        job: PathBuf,
-        /// Where outputs and manifests go (default: the job file's folder).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Render items K, K+N, K+2N, … (default: the shard a Slurm array or Kubernetes
-        /// Indexed Job gives through the environment, else all).
-        #[arg(long, value_name = "K/N")]
-        shard: Option<String>,
-        /// The number of shards where the environment gives only an index
-        /// (`JOB_COMPLETION_INDEX`); also HATCHERY_SHARD_COUNT.
-        #[arg(long, value_name = "N")]
-        shard_count: Option<usize>,
-        /// Check that every item is present once in the manifests and write manifest.json.
-        #[arg(long)]
-        merge: bool,
-        /// Print the work list (index, output, data set, parameters) and exit.
-        #[arg(long)]
-        list: bool,
-    },
+    Batch(batch::Args),
     /// Rewrite a graph file in the canonical layout (what saving writes).
     Fmt {
         graph: PathBuf,
@@ -326,22 +307,8 @@ fn run(cli: Cli) -> Result<()> {
             }
             bench::run(&graphs, &mut sessions, &scenarios, &size, frames.max(1))
         }
-        Command::Batch {
-            job,
-            out,
-            shard,
-            shard_count,
-            merge,
-            list,
-        } => {
-            let code = batch::command(batch::Args {
-                job,
-                out,
-                shard,
-                shard_count,
-                merge,
-                list,
-            })?;
+        Command::Batch(args) => {
+            let code = batch::command(args)?;
             if code != 0 {
                 std::process::exit(code);
             }

@@ -45,6 +45,13 @@ fn outputs(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         .collect()
 }
 
+/// `hatchery batch JOB --out OUT --merge` (`args` = [JOB, "--out", OUT]), which must succeed.
+fn merged(args: &[&str]) -> std::process::Output {
+    let o = batch(&[args, &["--merge"]].concat());
+    assert!(o.status.success(), "{}", text(&o));
+    o
+}
+
 fn job_file(dir: &Path, body: &str) -> PathBuf {
     let path = dir.join("job.ron");
     std::fs::write(&path, body).unwrap();
@@ -71,8 +78,7 @@ fn two_shards_equal_the_unsharded_run_byte_for_byte() {
     // The four quarters are four different pictures.
     let distinct: std::collections::BTreeSet<_> = a.values().collect();
     assert_eq!(distinct.len(), 4);
-    let o = batch(&[job, "--out", shards.to_str().unwrap(), "--merge"]);
-    assert!(o.status.success(), "{}", text(&o));
+    let o = merged(&[job, "--out", shards.to_str().unwrap()]);
     assert!(
         text(&o).contains("all 4 items present once"),
         "{}",
@@ -140,13 +146,7 @@ fn shards_come_from_slurm_and_kubernetes_environments() {
         .unwrap();
     assert!(o.status.success(), "{}", text(&o));
     assert_eq!(outputs(&out).len(), 4);
-    let o = batch(&[
-        "jobs/default_turntable.ron",
-        "--out",
-        out.to_str().unwrap(),
-        "--merge",
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    merged(&["jobs/default_turntable.ron", "--out", out.to_str().unwrap()]);
 }
 
 #[test]
@@ -226,13 +226,7 @@ fn a_killed_run_resumes_without_rerendering_and_leaves_no_corrupt_file() {
     for (name, bytes) in &before {
         assert!(&after[name] == bytes, "{name} changed when resumed");
     }
-    let o = batch(&[
-        job.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--merge",
-    ]);
-    assert!(o.status.success(), "{}", text(&o));
+    merged(&[job.to_str().unwrap(), "--out", out.to_str().unwrap()]);
 }
 
 #[test]

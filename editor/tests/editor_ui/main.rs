@@ -880,16 +880,7 @@ fn the_viewport_renders_off_the_ui_thread_and_output_pins_show_thumbnails_and_ti
         let mut all: Vec<egui::Rect> = h.get_all_by_label(label).map(|n| n.rect()).collect();
         all.sort_by(|a, b| a.left().total_cmp(&b.left()));
         let at = h.state().canvas_transform * all[0].center();
-        h.event(egui::Event::PointerMoved(at));
-        for pressed in [true, false] {
-            h.event(egui::Event::PointerButton {
-                pos: at,
-                button: egui::PointerButton::Primary,
-                pressed,
-                modifiers: Modifiers::NONE,
-            });
-            h.step();
-        }
+        click_stepped(h, at);
     }
     click_leftmost(&mut h, "image");
     let port = ("shaded".to_string(), "image".to_string());
