@@ -199,9 +199,19 @@ def metaimage_seeds():
 def dicom_seeds():
     files = sorted(glob.glob("tests/fixtures/world/dicom_series/*.dcm"))
     copy("dicom", files[:3])
-    # Compressed pixel data (RLE, JPEG Lossless with VR UN attributes): single files for the
-    # header paths, pairs (a series) for the codecs, which only a stack of two slices reaches.
-    for folder in ("dicom_series_rle", "dicom_series_jpegll"):
+    # Compressed pixel data (RLE, JPEG Lossless with VR UN attributes, JPEG 2000, JPEG-LS, 32-bit)
+    # and private UN sequences: single files for the header paths, pairs (a series) for the
+    # codecs, which only a stack of two slices reaches.
+    for folder in (
+        "dicom_series_rle",
+        "dicom_series_jpegll",
+        "dicom_series_j2k",
+        "dicom_series_rle32",
+        "dicom_series_be32",
+        "dicom_series_jls",
+        "dicom_series_jlsnear",
+        "dicom_series_un_sequence",
+    ):
         pair = []
         for path in sorted(glob.glob(f"tests/fixtures/world/{folder}/*.dcm"))[:2]:
             with open(path, "rb") as f:

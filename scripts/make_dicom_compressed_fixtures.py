@@ -12,10 +12,13 @@ Out (repo root, next to tests/fixtures/world/dicom_series/):
   dicom_series_rle32/  32-bit signed copies (stored values × 100), RLE Lossless by GDCM
                        (pydicom's RLE encoder stops at 16 bits)
   dicom_series_be32/   the same 32-bit values in Explicit VR Big Endian (OW), by pydicom
+  dicom_series_jls/    JPEG-LS Lossless (1.2.840.10008.1.2.4.80), GDCM (CharLS)
+  dicom_series_jlsnear/ JPEG-LS Near-Lossless (1.2.840.10008.1.2.4.81), NEAR = 3, GDCM (CharLS)
 
-Both are lossless, so crates/hatchery-data/tests/dicom.rs expects exactly the voxels and the
-geometry of the uncompressed series. The script decodes every written file again (pydicom,
-which uses GDCM for JPEG) and fails unless it gives back the original pixels.
+All but the near-lossless one are lossless, so crates/hatchery-data/tests/dicom.rs expects
+exactly the voxels and the geometry of the uncompressed series. The script decodes every written
+file again (pydicom, which uses GDCM for JPEG) and fails unless it gives back the original pixels
+(near-lossless: within NEAR of them, and not all equal to them).
 """
 
 import sys
@@ -24,7 +27,14 @@ from pathlib import Path
 import gdcm
 import numpy as np
 import pydicom
-from pydicom.uid import ExplicitVRBigEndian, JPEG2000Lossless, JPEGLosslessSV1, RLELossless
+from pydicom.uid import (
+    ExplicitVRBigEndian,
+    JPEG2000Lossless,
+    JPEGLosslessSV1,
+    JPEGLSLossless,
+    JPEGLSNearLossless,
+    RLELossless,
+)
 
 WORLD = Path(__file__).resolve().parent.parent / "tests" / "fixtures" / "world"
 SOURCE = WORLD / "dicom_series"
@@ -77,8 +87,23 @@ def write_j2k(src: Path, out: Path) -> None:
     gdcm_change(src, out, gdcm.TransferSyntax.JPEG2000Lossless)
 
 
-def gdcm_change(src: Path, out: Path, syntax) -> None:
-    """Re-encodes `src` into `out` in transfer syntax `syntax` with GDCM."""
+def write_jls(src: Path, out: Path) -> None:
+    gdcm_change(src, out, gdcm.TransferSyntax.JPEGLSLossless)
+
+
+NEAR = 3
+
+
+def write_jls_near(src: Path, out: Path) -> None:
+    codec = gdcm.JPEGLSCodec()
+    codec.SetLossless(False)
+    codec.SetLossyError(NEAR)
+    gdcm_change(src, out, gdcm.TransferSyntax.JPEGLSNearLossless, codec)
+
+
+def gdcm_change(src: Path, out: Path, syntax, codec=None) -> None:
+    """Re-encodes `src` into `out` in transfer syntax `syntax` with GDCM (with `codec`'s
+    settings where given)."""
     reader = gdcm.ImageReader()
     reader.SetFileName(str(src))
     if not reader.Read():
@@ -86,6 +111,8 @@ def gdcm_change(src: Path, out: Path, syntax) -> None:
     change = gdcm.ImageChangeTransferSyntax()
     change.SetTransferSyntax(gdcm.TransferSyntax(syntax))
     change.SetInput(reader.GetImage())
+    if codec is not None:
+        change.SetUserCodec(codec)
     if not change.Change():
         sys.exit(f"GDCM cannot compress {src}")
     writer = gdcm.ImageWriter()
@@ -106,11 +133,14 @@ def main():
         ("dicom_series_j2k", JPEG2000Lossless, write_j2k, 1),
         ("dicom_series_rle32", RLELossless, write_rle32, 100),
         ("dicom_series_be32", ExplicitVRBigEndian, write_be32, 100),
+        ("dicom_series_jls", JPEGLSLossless, write_jls, 1),
+        ("dicom_series_jlsnear", JPEGLSNearLossless, write_jls_near, 1),
     ]:
         if sys.argv[1:] and folder not in sys.argv[1:]:
             continue
         out_dir = WORLD / folder
         out_dir.mkdir(exist_ok=True)
+        lossy = False
         for src in sources:
             out = out_dir / src.name
             write(src, out)
@@ -118,8 +148,15 @@ def main():
             if back.file_meta.TransferSyntaxUID != syntax:
                 sys.exit(f"{out}: written as {back.file_meta.TransferSyntaxUID}, not {syntax}")
             want = pydicom.dcmread(src).pixel_array.astype(np.int64) * scale
-            if not np.array_equal(back.pixel_array.astype(np.int64), want):
+            got = back.pixel_array.astype(np.int64)
+            if syntax == JPEGLSNearLossless:
+                if np.abs(got - want).max() > NEAR:
+                    sys.exit(f"{out}: decodes further than {NEAR} from the pixels of {src}")
+                lossy |= not np.array_equal(got, want)
+            elif not np.array_equal(got, want):
                 sys.exit(f"{out}: does not decode to the pixels of {src}")
+        if syntax == JPEGLSNearLossless and not lossy:
+            sys.exit(f"{folder}: near-lossless coding gave back every pixel exactly")
         size = sum(p.stat().st_size for p in out_dir.glob("*.dcm"))
         print(f"{folder}: {len(sources)} slices, {size} bytes, {syntax.name}")
 

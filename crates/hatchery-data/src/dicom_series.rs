@@ -6,8 +6,9 @@
 //! they are turned into hatchery's RAS+ world by [`Geometry::from_lps`].
 //!
 //! Native pixel data is decoded here from its bytes; compressed pixel data by the transfer
-//! syntax's codec (8-bit JPEG baseline/extended, JPEG lossless, RLE Lossless; see `compressed`);
-//! other compressed syntaxes (12-bit JPEG, JPEG-LS, JPEG 2000, ...) are refused by name.
+//! syntax's codec (8-bit JPEG baseline/extended, JPEG lossless, JPEG 2000, RLE Lossless; see
+//! `compressed`) or, for JPEG-LS, by `jpeg_ls`; other compressed syntaxes (12-bit JPEG, MPEG video,
+//! ...) are refused by name.
 
 use std::collections::BTreeMap;
 use std::error::Error;
@@ -19,6 +20,7 @@ use dicom_core::VR;
 use dicom_core::dictionary::DataDictionary;
 use dicom_core::value::PrimitiveValue;
 use dicom_dictionary_std::{StandardDataDictionary, tags};
+use dicom_object::file::ReadPreamble;
 use dicom_object::{DefaultDicomObject, OpenFileOptions, Tag};
 use glam::{DMat3, DVec3};
 
@@ -30,6 +32,7 @@ use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
 mod compressed;
+mod jpeg_ls;
 mod lengths;
 mod pixels;
 
@@ -294,19 +297,41 @@ fn read_header(path: &Path) -> Result<Option<DefaultDicomObject>, DataError> {
     if filled < head.len() || &head[128..] != b"DICM" {
         return Ok(None);
     }
-    lengths::check_lengths(path)?;
-    OpenFileOptions::new()
-        .read_until(tags::PIXEL_DATA)
-        .open_file(path)
-        .map(Some)
-        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))
+    parse(path, true).map(Some)
 }
 
 /// Reads a whole DICOM file, pixel data included (after [`read_header`] checked it).
 fn open_whole(path: &Path) -> Result<DefaultDicomObject, DataError> {
-    OpenFileOptions::new()
-        .open_file(path)
-        .map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))
+    parse(path, false)
+}
+
+/// Parses a DICOM file (up to its pixel data if `header_only`) after checking its lengths;
+/// undefined-length UN elements, which dicom-parser would read in the wrong VR encoding, are
+/// left out of the bytes it parses (see `lengths`).
+fn parse(path: &Path, header_only: bool) -> Result<DefaultDicomObject, DataError> {
+    let cuts = lengths::check_lengths(path)?;
+    let options = if header_only {
+        OpenFileOptions::new().read_until(tags::PIXEL_DATA)
+    } else {
+        OpenFileOptions::new()
+    };
+    let parsed = if cuts.is_empty() {
+        options.open_file(path)
+    } else {
+        let bytes = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
+        let mut kept = Vec::with_capacity(bytes.len());
+        let mut from = 0;
+        for cut in &cuts {
+            // The walk's positions lie in the file, in ascending order.
+            kept.extend_from_slice(&bytes[from..cut.start as usize]);
+            from = cut.end as usize;
+        }
+        kept.extend_from_slice(&bytes[from..]);
+        options
+            .read_preamble(ReadPreamble::Always)
+            .from_reader(kept.as_slice())
+    };
+    parsed.map_err(|e| DataError::format(path, format!("unreadable DICOM file: {}", chain(&e))))
 }
 
 /// An error and its causes on one line (dicom-rs errors say the most in their sources).

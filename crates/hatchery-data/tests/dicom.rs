@@ -258,7 +258,8 @@ fn error(dir: &Path) -> String {
 }
 
 /// The fixture series compressed by other tools' encoders (scripts/
-/// make_dicom_compressed_fixtures.py: RLE Lossless by pydicom, JPEG Lossless by GDCM) loads to
+/// make_dicom_compressed_fixtures.py: RLE Lossless by pydicom, JPEG Lossless, JPEG 2000 and
+/// JPEG-LS Lossless by GDCM, the last with CharLS) loads to
 /// exactly the voxels and placement of the uncompressed series. GDCM writes some text attributes
 /// of the 4 slices that were implicit VR with VR UN (SeriesInstanceUID, SOPInstanceUID,
 /// Modality, ...): they are read by their dictionary VR, as pydicom and GDCM read them.
@@ -269,6 +270,7 @@ fn lossless_compressed_copies_load_the_same_volume() {
         ("dicom_series_rle", "RLE Lossless"),
         ("dicom_series_jpegll", "JPEG Lossless"),
         ("dicom_series_j2k", "JPEG 2000 Lossless"),
+        ("dicom_series_jls", "JPEG-LS Lossless"),
     ] {
         let v = load_dicom_series(&fixture(folder)).unwrap_or_else(|e| panic!("{folder}: {e}"));
         assert_eq!(v.dims, native.dims, "{folder}");
@@ -281,6 +283,7 @@ fn lossless_compressed_copies_load_the_same_volume() {
         let uid = match syntax {
             "RLE Lossless" => uids::RLE_LOSSLESS,
             "JPEG 2000 Lossless" => uids::JPEG2000_LOSSLESS,
+            "JPEG-LS Lossless" => uids::JPEGLS_LOSSLESS,
             _ => uids::JPEG_LOSSLESS_SV1,
         };
         assert!(
@@ -288,6 +291,51 @@ fn lossless_compressed_copies_load_the_same_volume() {
             "{folder} is not {syntax}"
         );
     }
+}
+
+/// JPEG-LS Near-Lossless (NEAR = 3, by GDCM with CharLS): every voxel within 3 of the
+/// uncompressed series, some not equal to it (so the stream really was lossy and decoded as
+/// such), the geometry the same.
+#[test]
+fn near_lossless_jpeg_ls_loads_within_its_error_bound() {
+    let native = load_dicom_series(&fixture("dicom_series")).unwrap();
+    let v = load_dicom_series(&fixture("dicom_series_jlsnear")).unwrap();
+    assert_eq!(v.dims, native.dims);
+    assert_eq!(v.geometry, native.geometry);
+    assert_eq!(v.stored_type, native.stored_type);
+    let (a, b) = (v.values_f32(), native.values_f32());
+    let worst = a
+        .iter()
+        .zip(b.iter())
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f32::max);
+    assert!(worst <= 3.0, "worst voxel {worst} from the native series");
+    assert!(worst > 0.0, "no voxel differs: not near-lossless data");
+    assert!(
+        first_file("dicom_series_jlsnear")
+            .windows(22)
+            .any(|w| w == uids::JPEGLS_NEAR_LOSSLESS.as_bytes())
+    );
+}
+
+/// Slices holding a private undefined-length sequence stored as VR UN, whose items are in
+/// implicit VR (PS3.5 6.2.2) inside an explicit-VR file (scripts/
+/// make_dicom_private_sequence_fixture.py; pydicom and SimpleITK read them): the series loads
+/// to exactly the voxels and placement of the uncompressed one.
+#[test]
+fn a_private_undefined_length_un_sequence_is_read_in_implicit_vr() {
+    let native = load_dicom_series(&fixture("dicom_series")).unwrap();
+    let v = load_dicom_series(&fixture("dicom_series_un_sequence")).unwrap();
+    assert_eq!(v.dims, native.dims);
+    assert_eq!(v.geometry, native.geometry);
+    assert!(v.voxels == native.voxels, "voxels differ");
+    assert!(v.warnings.is_empty(), "{:?}", v.warnings);
+    let un_undefined = b"\x09\x00\x01\x10UN\x00\x00\xff\xff\xff\xff";
+    assert!(
+        first_file("dicom_series_un_sequence")
+            .windows(12)
+            .any(|w| w == un_undefined)
+    );
 }
 
 /// The bytes of one file of a fixture folder.
@@ -605,13 +653,19 @@ fn colour_compressed_and_odd_files_are_refused() {
 
     // Compressed transfer syntaxes without a codec here are named.
     let mut slices = stack("1.2.3", &[0.0, 1.0]);
-    slices[1].syntax = uids::JPEGLS_LOSSLESS;
+    slices[1].syntax = uids::MPEG2MPML;
     let dir = write_series(&slices, |i| format!("{i}.dcm"));
     let e = error(dir.path());
     assert!(
-        e.contains("1.dcm") && e.contains("JPEG-LS") && e.contains("not supported"),
+        e.contains("1.dcm") && e.contains("MPEG2") && e.contains("not supported"),
         "{e}"
     );
+    // A JPEG-LS slice whose pixel data is no JPEG-LS stream: an error naming the file.
+    let mut slices = stack("1.2.3", &[0.0, 1.0]);
+    slices[1].syntax = uids::JPEGLS_LOSSLESS;
+    let dir = write_series(&slices, |i| format!("{i}.dcm"));
+    let e = error(dir.path());
+    assert!(e.contains("1.dcm") && e.contains("JPEG-LS"), "{e}");
     // A JPEG 2000 slice whose pixel data is no codestream: an error naming the file, no panic.
     let mut slices = stack("1.2.3", &[0.0, 1.0]);
     slices[1].syntax = uids::JPEG2000;
@@ -740,4 +794,26 @@ fn pixel_formats_and_rescaling() {
         (v.stored_type, v.value_range),
         ("float32", [70000.0, 70000.0])
     );
+}
+
+/// A transfer syntax UID padded with a newline instead of a space is implicit VR to dicom-rs
+/// (it trims all whitespace), so the length check reads the file in implicit VR too: the
+/// element declaring ~3 GB is refused by name instead of allocated (found by the dicom2 fuzz
+/// target; its input is a pair whose first file is this one).
+#[test]
+fn a_syntax_uid_padded_with_a_newline_is_checked_in_the_vr_dicom_rs_reads() {
+    let pair = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../fuzz/regressions/dicom2/syntax_uid_ending_in_newline"),
+    )
+    .unwrap();
+    let first = u16::from_le_bytes([pair[0], pair[1]]) as usize;
+    let file = &pair[2..(2 + first).min(pair.len())];
+    assert!(file.windows(18).any(|w| w == b"1.2.840.10008.1.2\n"));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a.dcm"), file).unwrap();
+    let e = load_dicom_series(&dir.path().join("a.dcm"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("(0000,4400) declares 2986344448 bytes"), "{e}");
 }

@@ -1,5 +1,6 @@
 //! Compressed (encapsulated) pixel data of one slice, decoded by the transfer syntax's codec
-//! from dicom-transfer-syntax-registry: JPEG (jpeg-decoder) and RLE Lossless.
+//! from dicom-transfer-syntax-registry: JPEG (jpeg-decoder), JPEG 2000 (openjp2) and RLE
+//! Lossless; JPEG-LS by [`super::jpeg_ls`].
 //!
 //! The codecs trust their input: a JPEG frame larger than the slice, or an RLE header with
 //! segments outside its fragment, makes them index out of bounds (panic), and jpeg-decoder
@@ -12,16 +13,17 @@ use std::path::Path;
 
 use dicom_dictionary_std::tags;
 use dicom_encoding::Codec;
+use dicom_object::DefaultDicomObject;
 use dicom_transfer_syntax_registry::{TransferSyntaxIndex, TransferSyntaxRegistry};
 
 use super::pixels::PixelFormat;
-use super::{chain, open_whole};
+use super::{chain, jpeg_ls, open_whole};
 use crate::DataError;
 
 const RLE_LOSSLESS: &str = "1.2.840.10008.1.2.5";
 /// The supported encodings, for messages.
 const SUPPORTED: &str = "uncompressed, 8-bit JPEG baseline/extended, JPEG lossless (2–16 bits), \
-                         JPEG 2000 and RLE Lossless (8, 16, 32 bits) are";
+                         JPEG-LS, JPEG 2000 and RLE Lossless (8, 16, 32 bits) are";
 
 /// JPEG 2000 Image Compression (Lossless Only) and JPEG 2000 Image Compression: decoded by the
 /// pure-Rust port of OpenJPEG (dicom-rs's `openjp2` feature).
@@ -37,6 +39,13 @@ pub(super) fn decode_slice(
 ) -> Result<Vec<u8>, DataError> {
     let ts = TransferSyntaxRegistry.get(syntax);
     let name = ts.map_or("an unknown transfer syntax", |ts| ts.name());
+    if jpeg_ls::JPEG_LS.contains(&syntax) {
+        // A single-frame slice: its fragments together are the frame's stream (PS3.5 A.4).
+        let object = open_whole(path)?;
+        let stream: Vec<u8> = fragments(path, &object, name)?.concat();
+        return jpeg_ls::decode(&stream, rows, columns, format)
+            .map_err(|m| DataError::format(path, format!("{name}: {m}")));
+    }
     let Some(Codec::EncapsulatedPixelData(Some(reader), _)) = ts.map(|ts| ts.codec()) else {
         return Err(DataError::unsupported(
             path,
@@ -47,14 +56,7 @@ pub(super) fn decode_slice(
         ));
     };
     let object = open_whole(path)?;
-    let fragments = object
-        .element_opt(tags::PIXEL_DATA)
-        .ok()
-        .flatten()
-        .and_then(|e| e.value().fragments())
-        .filter(|f| !f.is_empty())
-        .ok_or_else(|| DataError::format(path, format!("{name} pixel data without fragments")))?;
-    let first = fragments[0].as_slice();
+    let first = fragments(path, &object, name)?[0].as_slice();
     if syntax == RLE_LOSSLESS {
         let samples = rows as usize * columns as usize;
         check_rle(first, samples, format)
@@ -89,6 +91,22 @@ pub(super) fn decode_slice(
             format!("corrupt {name} pixel data (its decoder failed)"),
         )),
     }
+}
+
+/// The non-empty list of fragments of the encapsulated PixelData of `object` (read from `path`,
+/// in transfer syntax `name`).
+fn fragments<'a>(
+    path: &Path,
+    object: &'a DefaultDicomObject,
+    name: &str,
+) -> Result<&'a [Vec<u8>], DataError> {
+    object
+        .element_opt(tags::PIXEL_DATA)
+        .ok()
+        .flatten()
+        .and_then(|e| e.value().fragments())
+        .filter(|f| !f.is_empty())
+        .ok_or_else(|| DataError::format(path, format!("{name} pixel data without fragments")))
 }
 
 /// RLE Lossless (PS3.5 G.3): a 64-byte header of 15 segment offsets, one segment per byte of

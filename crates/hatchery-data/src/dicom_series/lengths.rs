@@ -7,9 +7,16 @@
 //! whose declared lengths exceed what is left of it, or whose sequences nest deeper than
 //! [`MAX_DEPTH`]. Undefined-length values are walked as dicom-parser reads them: PixelData as
 //! fragments, every other one as a sequence of items.
+//!
+//! One exception: an undefined-length element of VR UN in an explicit-VR data set (a private
+//! sequence some exports hold) is a sequence encoded in implicit VR little endian (PS3.5
+//! 6.2.2), which dicom-parser reads in the data set's explicit VR instead, taking value lengths
+//! for VRs. The walk reads it in implicit VR and returns where it lies, so that the file can be
+//! parsed without it (see `super::parse`): no attribute hatchery reads is such a sequence.
 
 use std::fs::File;
 use std::io::{self, BufReader, Read};
+use std::ops::Range;
 
 use std::path::Path;
 
@@ -33,8 +40,10 @@ const TRANSFER_SYNTAX: (u16, u16) = (0x0002, 0x0010);
 /// Explicit VR Big Endian (retired, so not in `uids`).
 const EXPLICIT_VR_BIG_ENDIAN: &str = "1.2.840.10008.1.2.2";
 
-/// Checks a file that has the `DICM` marker at byte 128.
-pub(super) fn check_lengths(path: &Path) -> Result<(), DataError> {
+/// Checks a file that has the `DICM` marker at byte 128; returns the byte ranges of the
+/// undefined-length UN elements to leave out when parsing it (in ascending order; none in a
+/// deflated data set, whose bytes are not the file's).
+pub(super) fn check_lengths(path: &Path) -> Result<Vec<Range<u64>>, DataError> {
     let io_error = |e: io::Error| DataError::io(path, e);
     let file = File::open(path).map_err(io_error)?;
     let file_len = file.metadata().map_err(io_error)?.len();
@@ -52,35 +61,38 @@ pub(super) fn check_lengths(path: &Path) -> Result<(), DataError> {
     // other lengths than dicom-rs reads.
     let mut syntax = String::new();
     let walk = Walk::new(path, Encoding::ExplicitLittle);
+    let none = |r: Result<(), DataError>| r.map(|()| Vec::new());
     let header = match walk.header(&mut input) {
         Ok(h) => h,
-        Err(e) => return walk.ended(e),
+        Err(e) => return none(walk.ended(e)),
     };
     if header.tag != (0x0002, 0x0000) || header.len != 4 {
         // dicom-rs refuses such a file itself.
-        return Ok(());
+        return Ok(Vec::new());
     }
     let mut value = [0u8; 4];
     if let Err(e) = input.read_exact(&mut value) {
-        return walk.ended(e);
+        return none(walk.ended(e));
     }
     let group_end = input.pos + u64::from(u32::from_le_bytes(value));
     while input.pos < group_end {
         let header = match walk.header(&mut input) {
             Ok(h) => h,
-            Err(e) => return walk.ended(e),
+            Err(e) => return none(walk.ended(e)),
         };
         walk.check_length(&input, header)?;
         if header.tag == TRANSFER_SYNTAX && header.len <= 1024 {
             let mut value = vec![0; header.len as usize];
             if let Err(e) = input.read_exact(&mut value) {
-                return walk.ended(e);
+                return none(walk.ended(e));
             }
+            // Trimmed as dicom-object and its transfer syntax registry trim it (any trailing
+            // whitespace, not only the padding space: a "…1.2\n" is implicit VR to them).
             syntax = String::from_utf8_lossy(&value)
-                .trim_end_matches(['\0', ' '])
+                .trim_end_matches(|c: char| c.is_whitespace() || c == '\0')
                 .to_string();
         } else if let Err(e) = input.skip(header.len.into()) {
-            return walk.ended(e);
+            return none(walk.ended(e));
         }
     }
 
@@ -92,7 +104,7 @@ pub(super) fn check_lengths(path: &Path) -> Result<(), DataError> {
             // data set, at most deflate's best ratio larger.
             let left = input.end - input.pos;
             let Reader::File(file) = input.reader else {
-                return Ok(());
+                return Ok(Vec::new());
             };
             input = Input {
                 reader: Reader::Inflated(Box::new(flate2::bufread::DeflateDecoder::new(file))),
@@ -106,7 +118,13 @@ pub(super) fn check_lengths(path: &Path) -> Result<(), DataError> {
         _ => Encoding::ExplicitLittle,
     };
     let mut walk = Walk::new(path, encoding);
-    walk.data_set(&mut input)
+    walk.data_set(&mut input)?;
+    walk.finish(file_len);
+    Ok(if matches!(input.reader, Reader::File(_)) {
+        walk.cuts
+    } else {
+        Vec::new()
+    })
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -163,15 +181,26 @@ impl Input {
     }
 }
 
+/// An open sequence or item.
+struct Open {
+    /// Where it ends (`None`: undefined length, ended by a delimiter).
+    end: Option<u64>,
+    /// A sequence (holding items) rather than an item (holding elements).
+    sequence: bool,
+    /// An undefined-length UN sequence read in implicit VR: where its header starts, and the
+    /// encoding of the data set around it (restored at its end).
+    un: Option<(u64, Encoding)>,
+}
+
 /// The walk through a data set: open sequences and items, and whether the current undefined
 /// length value holds pixel data fragments.
 struct Walk<'a> {
     path: &'a Path,
     encoding: Encoding,
-    /// Where each open sequence or item ends (`None`: undefined length, ended by a delimiter),
-    /// and whether it is a sequence (holding items) rather than an item (holding elements).
-    open: Vec<(Option<u64>, bool)>,
+    open: Vec<Open>,
     fragments: bool,
+    /// The undefined-length UN elements to leave out (see the module's comment).
+    cuts: Vec<Range<u64>>,
 }
 
 impl<'a> Walk<'a> {
@@ -181,6 +210,7 @@ impl<'a> Walk<'a> {
             encoding,
             open: Vec::new(),
             fragments: false,
+            cuts: Vec::new(),
         }
     }
 
@@ -295,28 +325,66 @@ impl<'a> Walk<'a> {
     }
 
     fn open(&mut self, input: &Input, len: u32, sequence: bool) -> Result<(), DataError> {
+        self.open_with(input, len, sequence, None)
+    }
+
+    fn open_with(
+        &mut self,
+        input: &Input,
+        len: u32,
+        sequence: bool,
+        un: Option<(u64, Encoding)>,
+    ) -> Result<(), DataError> {
         if self.open.len() >= MAX_DEPTH {
             return Err(DataError::unsupported(
                 self.path,
                 format!("DICOM sequences nested more than {MAX_DEPTH} deep"),
             ));
         }
-        self.open.push((
-            (len != UNDEFINED).then(|| input.pos + u64::from(len)),
+        self.open.push(Open {
+            end: (len != UNDEFINED).then(|| input.pos + u64::from(len)),
             sequence,
-        ));
+            un,
+        });
         Ok(())
+    }
+
+    /// Closes the innermost open sequence or item; the end of an undefined-length UN sequence
+    /// restores the encoding around it and cuts it.
+    fn close(&mut self, input: &Input) {
+        if let Some(Open {
+            un: Some((start, encoding)),
+            ..
+        }) = self.open.pop()
+        {
+            self.encoding = encoding;
+            self.cuts.push(start..input.pos);
+        }
+    }
+
+    /// After the walk: an undefined-length UN sequence still open (the file ends inside it) is
+    /// cut to the end of the file, which dicom-parser would otherwise read in the wrong VR
+    /// encoding, unchecked.
+    fn finish(&mut self, end: u64) {
+        if let Some(&Open {
+            un: Some((start, _)),
+            ..
+        }) = self.open.iter().find(|o| o.un.is_some())
+        {
+            self.cuts.push(start..end);
+        }
     }
 
     fn data_set(&mut self, input: &mut Input) -> Result<(), DataError> {
         loop {
             // Close the defined-length sequences and items that end here.
-            while let Some(&(Some(end), _)) = self.open.last() {
+            while let Some(&Open { end: Some(end), .. }) = self.open.last() {
                 if input.pos < end {
                     break;
                 }
-                self.open.pop();
+                self.close(input);
             }
+            let start = input.pos;
             let header = match self.header(input) {
                 Ok(h) => h,
                 Err(e) => return self.ended(e),
@@ -324,7 +392,7 @@ impl<'a> Walk<'a> {
             // A sequence holds items only (PS3.5 7.5); dicom-parser's recovery from anything
             // else is not modelled here, and it once allocated a 4 GB value after such a header.
             if !self.fragments
-                && matches!(self.open.last(), Some((_, true)))
+                && matches!(self.open.last(), Some(Open { sequence: true, .. }))
                 && !matches!(header.tag, ITEM | SEQUENCE_END)
             {
                 let (group, element) = header.tag;
@@ -347,22 +415,41 @@ impl<'a> Walk<'a> {
                     false
                 }
                 ITEM_END => {
-                    if matches!(self.open.last(), Some((None, false))) {
-                        self.open.pop();
+                    if let Some(Open {
+                        end: None,
+                        sequence: false,
+                        ..
+                    }) = self.open.last()
+                    {
+                        self.close(input);
                     }
                     false
                 }
                 SEQUENCE_END => {
                     if self.fragments {
                         self.fragments = false;
-                    } else if matches!(self.open.last(), Some((None, true))) {
-                        self.open.pop();
+                    } else if let Some(Open {
+                        end: None,
+                        sequence: true,
+                        ..
+                    }) = self.open.last()
+                    {
+                        self.close(input);
                     }
                     false
                 }
                 _ if header.len == UNDEFINED => {
                     if header.tag == PIXEL_DATA {
                         self.fragments = true;
+                    } else if &header.vr == b"UN"
+                        && self.encoding != Encoding::ImplicitLittle
+                        && self.open.iter().all(|o| o.end.is_none())
+                    {
+                        // Only where it can be cut (nothing around it has a defined length the
+                        // cut would make wrong); elsewhere walked as dicom-parser reads it.
+                        let around = self.encoding;
+                        self.open_with(input, header.len, true, Some((start, around)))?;
+                        self.encoding = Encoding::ImplicitLittle;
                     } else {
                         // dicom-parser reads every other undefined-length element (an OB or UN
                         // too, whatever its VR) as a sequence of data set items: walk it so.
