@@ -22,6 +22,10 @@ use std::io::{self, Write};
 pub enum Layer {
     /// The raster picture (`id="picture"`).
     Picture,
+    /// Traced lines the picture draws under its surfaces, e.g. hidden edges under hatching
+    /// (`id="covered-lines"`): hidden (`display:none`), so that the figure stays the picture,
+    /// and there for an illustrator to show or restyle.
+    CoveredLines,
     /// Hatching strokes, one open path each (`id="strokes"`): a layer of their own, so that an
     /// illustrator can hide or restyle the hatching apart from the outlines.
     Strokes,
@@ -37,8 +41,9 @@ pub enum Layer {
 
 impl Layer {
     /// All layers in drawing order.
-    pub const ALL: [Layer; 6] = [
+    pub const ALL: [Layer; 7] = [
         Layer::Picture,
+        Layer::CoveredLines,
         Layer::Strokes,
         Layer::Lines,
         Layer::Leaders,
@@ -50,6 +55,7 @@ impl Layer {
     pub fn id(self) -> &'static str {
         match self {
             Layer::Picture => "picture",
+            Layer::CoveredLines => "covered-lines",
             Layer::Strokes => "strokes",
             Layer::Lines => "lines",
             Layer::Leaders => "leaders",
@@ -62,6 +68,7 @@ impl Layer {
     pub fn label(self) -> &'static str {
         match self {
             Layer::Picture => "Picture",
+            Layer::CoveredLines => "Covered lines (hidden)",
             Layer::Strokes => "Hatching",
             Layer::Lines => "Lines",
             Layer::Leaders => "Leader lines",
@@ -385,6 +392,9 @@ impl SvgDocument {
             g.push_attribute(("id", layer.id()));
             g.push_attribute(("inkscape:groupmode", "layer"));
             g.push_attribute(("inkscape:label", layer.label()));
+            if layer == Layer::CoveredLines {
+                g.push_attribute(("style", "display:none"));
+            }
             w.write_event(Event::Start(g))?;
             if layer == Layer::Picture
                 && let Some(png) = &self.picture

@@ -106,9 +106,20 @@ fn document_structure_texts_and_positions() {
     let ids: Vec<&str> = layers.iter().map(|g| g.attribute("id").unwrap()).collect();
     assert_eq!(
         ids,
-        ["picture", "strokes", "lines", "leaders", "arrows", "labels"]
+        [
+            "picture",
+            "covered-lines",
+            "strokes",
+            "lines",
+            "leaders",
+            "arrows",
+            "labels"
+        ]
     );
+    // Covered lines are hidden (the figure stays the picture); the others show.
     for g in &layers {
+        let hidden = g.attribute("style") == Some("display:none");
+        assert_eq!(hidden, g.attribute("id") == Some("covered-lines"));
         assert_eq!(g.tag_name().name(), "g");
         assert_eq!(g.attribute((inkscape, "groupmode")), Some("layer"));
         assert!(g.attribute((inkscape, "label")).is_some());
@@ -123,7 +134,7 @@ fn document_structure_texts_and_positions() {
             .unwrap()
             .starts_with("data:image/png;base64,iVBORw0KGgo")
     );
-    let text_nodes: Vec<_> = layers[5]
+    let text_nodes: Vec<_> = layers[6]
         .children()
         .filter(|n| n.has_tag_name("text"))
         .collect();
@@ -139,7 +150,7 @@ fn document_structure_texts_and_positions() {
         );
         assert_eq!(node.attribute("paint-order"), Some("stroke"));
     }
-    let leaders: Vec<_> = layers[3]
+    let leaders: Vec<_> = layers[4]
         .children()
         .filter(|n| n.has_tag_name("path"))
         .collect();

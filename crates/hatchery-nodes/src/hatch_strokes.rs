@@ -58,6 +58,8 @@ pub struct Strokes {
     max_strokes: u32,
     /// Stroke width in the middle, px (the ends taper).
     pub width: f32,
+    /// Fraction of a stroke's length over which each end tapers to nothing (0: none).
+    pub taper: f32,
     /// Frame width × height, px.
     pub frame: (u32, u32),
     lines: OnceLock<Result<Vec<StrokeLine>, String>>,
@@ -494,6 +496,7 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             slots,
             max_strokes,
             width: p.f32("width"),
+            taper: p.f32("taper"),
             frame: (width, height),
             lines: OnceLock::new(),
         };

@@ -7,12 +7,15 @@ use std::sync::OnceLock;
 /// The label font's family name, as SVG text names it (with generic fallbacks).
 pub const FAMILY: &str = "'Ubuntu Light', Ubuntu, 'DejaVu Sans', sans-serif";
 
+/// The label font's file (TrueType), e.g. for an SVG renderer's font database, so that an
+/// SVG's <text> is set in the font the picture's labels were.
+pub fn data() -> &'static [u8] {
+    epaint_default_fonts::UBUNTU_LIGHT
+}
+
 fn font() -> &'static FontRef<'static> {
     static FONT: OnceLock<FontRef<'static>> = OnceLock::new();
-    FONT.get_or_init(|| {
-        FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT)
-            .expect("the bundled font parses")
-    })
+    FONT.get_or_init(|| FontRef::try_from_slice(data()).expect("the bundled font parses"))
 }
 
 /// Width and height (pixels) of `text` set at `size` pixels: the advance widths with kerning,
@@ -67,6 +70,14 @@ pub fn rasterize(
             }
         });
     }
+}
+
+/// The SVG `font-size` (the em size, pixels) of text set here at `size` pixels: ab_glyph's
+/// `PxScale` is the height from descent to ascent, SVG's font size the em square, so the same
+/// glyphs in an SVG need `size × units_per_em / (ascent − descent)`.
+pub fn svg_font_size(size: f32) -> f32 {
+    let f = font();
+    size * f.units_per_em().unwrap_or(1000.0) / f.height_unscaled()
 }
 
 /// The baseline's distance below a label box's top edge at `size` pixels (the ascent).

@@ -100,15 +100,22 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 "colour of the hatching `strokes`",
             ),
         ]);
-        for (color_name, width_name) in [
-            ("color1", "width1"),
-            ("color2", "width2"),
-            ("color3", "width3"),
+        for (color_name, width_name, shown_name) in [
+            ("color1", "width1", "shown1"),
+            ("color2", "width2", "shown2"),
+            ("color3", "width3", "shown3"),
         ] {
             params.push(ParamSpec::color(
                 color_name,
                 [0.0, 0.0, 0.0, 1.0],
                 "stroke colour of the lines traced from this input",
+            ));
+            params.push(ParamSpec::bool(
+                shown_name,
+                true,
+                "these lines visible over the picture; off: in the hidden 'Covered lines' \
+                 layer, for lines the picture draws under its surfaces (hidden edges under \
+                 hatching), so that the SVG shows what the PNG does",
             ));
             params.push(ParamSpec::float(
                 width_name,
@@ -124,8 +131,8 @@ impl Node<Value, Ctx> for SaveSvgNode {
             doc: "Writes an SVG figure whose Inkscape layers are: the picture (the `image` as an \
                   embedded PNG), lines (each `lines` mask's region above 0.5, traced by \
                   marching squares and simplified, as a filled path in its own colour, or its \
-                  outlines as strokes), hatching `strokes` as \
-                  open polylines in a layer of their own, leader lines, arrows, and labels as <text> (from laid-out `annotations`). Open it in \
+                  outlines as strokes; a lines input with `shown` off goes to a hidden layer), \
+                  hatching `strokes` as their tapered outlines in a layer of their own, leader lines, arrows, and labels as <text> (from laid-out `annotations`). Open it in \
                   Inkscape or Illustrator to edit lines and text. `hatchery render -o x.svg` \
                   replaces the path. Relative paths are relative to the graph file's folder.",
             inputs: vec![
@@ -195,14 +202,24 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 p.f32(&format!("width{}", i + 1)),
             );
             let lines = trace_mask(&a.data, w, h, 0.5, p.f32("simplify"));
+            let layer = if p.bool(&format!("shown{}", i + 1)) {
+                Layer::Lines
+            } else {
+                Layer::CoveredLines
+            };
             if p.choice("lines_as") == "outlines" {
                 for line in &lines {
-                    doc.polyline(line, stroke);
+                    let style = PathStyle {
+                        fill: None,
+                        stroke: Some(stroke),
+                    };
+                    doc.path(layer, line.into(), style);
                 }
             } else {
                 // One filled shape per input: outer contours and holes run in opposite
-                // directions, so the non-zero rule leaves the holes open; the thin stroke of the
-                // same colour keeps hairlines visible.
+                // directions, so the non-zero rule leaves the holes open. The traced region is
+                // the mask's extent (the 0.5 level between pixel centres), so the fill alone is
+                // as wide as the picture's line; no stroke widens it.
                 let mut d = PathData::new();
                 for line in &lines {
                     let Some((first, rest)) = line.points.split_first() else {
@@ -214,17 +231,11 @@ impl Node<Value, Ctx> for SaveSvgNode {
                     }
                     d = d.close();
                 }
-                doc.path(
-                    Layer::Lines,
-                    d,
-                    PathStyle {
-                        fill: Some((stroke.color, 1.0)),
-                        stroke: Some(Stroke {
-                            width: stroke.width.min(1.0),
-                            ..stroke
-                        }),
-                    },
-                );
+                let style = PathStyle {
+                    fill: Some((stroke.color, 1.0)),
+                    stroke: None,
+                };
+                doc.path(layer, d, style);
             }
         }
         if let Some(s) = inputs.get("strokes") {
@@ -238,22 +249,19 @@ impl Node<Value, Ctx> for SaveSvgNode {
                     ),
                 ));
             }
-            let stroke = Stroke::new(color(p.color("strokes_color")), s.width);
+            let ink = color(p.color("strokes_color"));
             for line in s
                 .lines(&ctx.gpu)
                 .map_err(|e| NodeError::at_port("strokes", e))?
             {
-                let line = hatchery_annotation::Polyline {
-                    points: line.points.clone(),
-                    closed: false,
+                let style = PathStyle {
+                    fill: Some((ink, 1.0)),
+                    stroke: None,
                 };
                 doc.path(
                     Layer::Strokes,
-                    (&line).into(),
-                    PathStyle {
-                        fill: None,
-                        stroke: Some(stroke),
-                    },
+                    ribbon(&line.points, s.width, s.taper),
+                    style,
                 );
             }
         }
@@ -263,7 +271,7 @@ impl Node<Value, Ctx> for SaveSvgNode {
             let halo = p.f32("halo_width");
             let style = LabelStyle {
                 font_family: label_font::FAMILY.to_owned(),
-                font_size: placed.font_size,
+                font_size: label_font::svg_font_size(placed.font_size),
                 fill: color(p.color("text_color")),
                 halo: (halo > 0.0).then(|| Stroke::new(color(p.color("halo_color")), 2.0 * halo)),
             };
@@ -300,6 +308,30 @@ impl Node<Value, Ctx> for SaveSvgNode {
         tracing::info!(path = %path.display(), "SVG written");
         Ok(vec![])
     }
+}
+
+/// A hatching stroke as the filled outline HatchStrokes draws (hatch_strokes.wgsl): `width`
+/// wide in the middle, each end tapering to nothing over `taper` of its points; an SVG stroke
+/// has one width, so the outline is drawn instead, offset along each point's normal.
+fn ribbon(points: &[Vec2], width: f32, taper: f32) -> PathData {
+    let n = points.len();
+    let half = |k: usize| {
+        let t = k as f32 / (n.max(2) - 1) as f32;
+        let scale = if taper > 0.0 {
+            (t.min(1.0 - t) / taper).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        0.5 * width * scale
+    };
+    let offset = |k: usize| {
+        let along = points[(k + 1).min(n - 1)] - points[k.saturating_sub(1)];
+        let normal = Vec2::new(-along.y, along.x).normalize_or_zero();
+        normal * half(k)
+    };
+    let left = (0..n).map(|k| points[k] + offset(k));
+    let right = (0..n).rev().map(|k| points[k] - offset(k));
+    polygon(&left.chain(right).collect::<Vec<_>>())
 }
 
 /// A closed path through `points`.
