@@ -319,18 +319,43 @@ fn a_frame_too_narrow_for_a_label_leaves_it_out_rather_than_cut() {
     }
 }
 
-/// The frog's organs are labelled by name in the two-level preset (its LabelFile reads the
-/// names table; the labels are the object table's drawn rows).
+/// The frog's organs are labelled by name in the two-level and importance presets (their
+/// LabelFile reads the names table; the labels are the object table's drawn rows), and the
+/// labelled picture is the one they save.
 #[test]
-fn the_two_level_frog_labels_its_organs_by_name() {
-    let preset = common::repo_root().join("graphs/two_level_frog.ron");
-    let mut session = hatchery_nodes::Session::open(&preset, 240, 180).unwrap();
-    session.run(&["layout"]).unwrap();
-    let hatchery_nodes::Value::Annotations(a) = session.output("layout", "annotations").unwrap()
-    else {
-        panic!("layout.annotations is not annotations");
-    };
-    let mut names: Vec<&str> = a.anchors.iter().map(|x| x.text.as_str()).collect();
-    names.sort();
-    assert_eq!(names, ["liver", "lung", "skeleton", "stomach"]);
+fn the_frog_presets_label_their_organs_by_name() {
+    for (preset, want) in [
+        (
+            "two_level_frog",
+            &["liver", "lung", "skeleton", "stomach"][..],
+        ),
+        (
+            "importance_frog_aimc",
+            &["large intestine", "liver", "lung", "skeleton", "stomach"],
+        ),
+        (
+            "importance_frog_mimp",
+            &["large intestine", "liver", "lung", "skeleton", "stomach"],
+        ),
+        (
+            "importance_frog_vpimc",
+            &["large intestine", "liver", "lung", "skeleton", "stomach"],
+        ),
+    ] {
+        let path = common::repo_root().join(format!("graphs/{preset}.ron"));
+        let mut session = hatchery_nodes::Session::open(&path, 240, 180).unwrap();
+        session.run(&["layout"]).unwrap();
+        let hatchery_nodes::Value::Annotations(a) =
+            session.output("layout", "annotations").unwrap()
+        else {
+            panic!("{preset}: layout.annotations is not annotations");
+        };
+        let mut names: Vec<&str> = a.anchors.iter().map(|x| x.text.as_str()).collect();
+        names.sort();
+        assert_eq!(names, want, "{preset}");
+        // The labelled picture is what the preset saves.
+        let saver = common::savers(&session).pop().unwrap();
+        let sources = session.graph.input_sources(&saver);
+        assert_eq!(sources[&0].0, "labelled", "{preset}");
+    }
 }

@@ -1207,11 +1207,12 @@ class SaveImage:
 class SaveSvg:
     """Writes an SVG figure whose Inkscape layers are: the picture (the `image` as an embedded
         PNG), lines (each `lines` mask's region above 0.5, traced by marching squares and
-        simplified, as a filled path in its own colour, or its outlines as strokes), hatching
-        `strokes` as open polylines in a layer of their own, leader lines, arrows, and labels as
-        <text> (from laid-out `annotations`). Open it in Inkscape or Illustrator to edit lines
-        and text. `hatchery render -o x.svg` replaces the path. Relative paths are relative to
-        the graph file's folder.
+        simplified, as a filled path in its own colour, or its outlines as strokes; a lines
+        input with `shown` off goes to a hidden layer), hatching `strokes` as their tapered
+        outlines in a layer of their own, leader lines, arrows, and labels as <text> (from laid-
+        out `annotations`). Open it in Inkscape or Illustrator to edit lines and text. `hatchery
+        render -o x.svg` replaces the path. Relative paths are relative to the graph file's
+        folder.
 
     Inputs:
         image (Image, optional): the picture
@@ -1252,12 +1253,21 @@ class SaveSvg:
             `strokes`
         color1 (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): stroke colour of the lines traced
             from this input
+        shown1 (bool; default True): these lines visible over the picture; off: in the hidden
+            'Covered lines' layer, for lines the picture draws under its surfaces (hidden edges
+            under hatching), so that the SVG shows what the PNG does
         width1 (float in [0.1, 50]; default 1.5): stroke width of those lines, pixels
         color2 (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): stroke colour of the lines traced
             from this input
+        shown2 (bool; default True): these lines visible over the picture; off: in the hidden
+            'Covered lines' layer, for lines the picture draws under its surfaces (hidden edges
+            under hatching), so that the SVG shows what the PNG does
         width2 (float in [0.1, 50]; default 1.5): stroke width of those lines, pixels
         color3 (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): stroke colour of the lines traced
             from this input
+        shown3 (bool; default True): these lines visible over the picture; off: in the hidden
+            'Covered lines' layer, for lines the picture draws under its surfaces (hidden edges
+            under hatching), so that the SVG shows what the PNG does
         width3 (float in [0.1, 50]; default 1.5): stroke width of those lines, pixels
 
     """
@@ -1281,10 +1291,13 @@ class SaveSvg:
     curvature: float = 0.5
     strokes_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     color1: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    shown1: bool = True
     width1: float = 1.5
     color2: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    shown2: bool = True
     width2: float = 1.5
     color3: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+    shown3: bool = True
     width3: float = 1.5
 
 class SecondaryGeometry:
