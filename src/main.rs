@@ -486,8 +486,13 @@ fn render(graph: &Path, output: Option<&Path>, frame: &FrameArgs, dumps: &[Strin
                 .map_err(|e| anyhow::anyhow!("{what}: {e}"))?,
             // A camera for other renderers (benches/peers): eye, target, up, field of view.
             "json" => match session.output(node, port)? {
-                hatchery_nodes::Value::Camera(camera) => std::fs::write(path, camera.to_json())
-                    .with_context(|| format!("{what}: cannot write the file"))?,
+                hatchery_nodes::Value::Camera(camera) => {
+                    hatchery_graph::atomic::write_bytes_atomically(
+                        path,
+                        camera.to_json().as_bytes(),
+                    )
+                    .with_context(|| format!("{what}: cannot write the file"))?
+                }
                 other => bail!(
                     "{what}: .json is written for cameras; this is a {} (use .npy or .png)",
                     other.port_type()

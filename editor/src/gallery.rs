@@ -127,10 +127,8 @@ impl Thumbnails {
                 let result = render(&preset).and_then(|picture| {
                     std::fs::create_dir_all(file.parent().unwrap_or(Path::new(".")))
                         .map_err(|e| e.to_string())?;
-                    // Written whole, then renamed: a reader never sees half a picture.
-                    let part = file.with_extension("part.png");
-                    picture.save(&part).map_err(|e| e.to_string())?;
-                    std::fs::rename(&part, &file).map_err(|e| e.to_string())
+                    // Atomically: a reader never sees half a picture.
+                    hatchery_nodes::export::write_png(&picture, &file).map_err(|e| e.to_string())
                 });
                 if tx.send((file, result)).is_err() {
                     return;

@@ -47,9 +47,8 @@ impl LayoutDump {
         }
         self.rects.clear();
         if text != self.written {
-            // Written whole and renamed, so a reader never sees half a file.
-            let tmp = file.with_extension("tmp");
-            if std::fs::write(&tmp, &text).is_ok() && std::fs::rename(&tmp, file).is_ok() {
+            // Atomically, so a reader never sees half a file.
+            if hatchery_graph::atomic::write_bytes_atomically(file, text.as_bytes()).is_ok() {
                 self.written = text;
             }
         }

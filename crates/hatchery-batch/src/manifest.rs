@@ -91,26 +91,16 @@ pub fn file_sha256(path: &Path) -> Option<String> {
     std::fs::read(path).ok().map(|b| sha256(&b))
 }
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed to disk,
-/// renamed over the target. A killed process leaves the old file or none, never half of one.
+/// Writes `bytes` to `path` atomically (hatchery_graph::atomic), making its folder first. A
+/// killed process leaves the old file or none, never half of one.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    use std::io::Write;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
     if let Some(dir) = dir {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     }
-    let tmp = temp_beside(path);
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        format!("cannot write {}: {e}", path.display())
-    })
+    hatchery_graph::atomic::write_bytes_atomically(path, bytes)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 /// A temporary name beside `path` (hidden, with this process's id).

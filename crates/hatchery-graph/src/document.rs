@@ -10,7 +10,6 @@ use serde::Deserialize;
 use serde::de::{Deserializer, Error as _, MapAccess, Visitor};
 use std::collections::BTreeMap;
 use std::fmt::{self, Write as _};
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The newest graph file format version this build reads and writes.
@@ -358,29 +357,10 @@ impl GraphDocument {
         self.nodes.iter().find(|n| n.id == id)
     }
 
-    /// Writes the canonical text atomically: a temporary file in the same folder, flushed to
-    /// disk, then renamed over the target, so a crash never leaves a half-written graph.
+    /// Writes the canonical text atomically ([`crate::atomic::write_atomically`]), so a crash
+    /// never leaves a half-written graph.
     pub fn save(&self, path: &Path) -> std::io::Result<()> {
-        let text = self.to_ron_string();
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or("graph.ron");
-        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-        let result = (|| {
-            let mut file = std::fs::File::create(&tmp)?;
-            file.write_all(text.as_bytes())?;
-            file.sync_all()?;
-            std::fs::rename(&tmp, path)
-        })();
-        if result.is_err() {
-            let _ = std::fs::remove_file(&tmp);
-        }
-        result
+        crate::atomic::write_bytes_atomically(path, self.to_ron_string().as_bytes())
     }
 }
 

@@ -10,6 +10,7 @@
 // so their size is not worth boxing.
 #![allow(clippy::result_large_err)]
 
+pub mod atomic;
 pub mod document;
 pub mod edit;
 pub mod error;

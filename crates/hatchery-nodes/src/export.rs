@@ -293,7 +293,19 @@ pub fn write_npy(path: &Path, array: &Array) -> std::io::Result<()> {
     for v in &array.data {
         out.extend_from_slice(&v.to_le_bytes());
     }
-    std::fs::File::create(path)?.write_all(&out)
+    hatchery_graph::atomic::write_bytes_atomically(path, &out)
+}
+
+/// Writes `picture` as a PNG file, atomically (hatchery_graph::atomic: the old file or the
+/// complete new one, never a partial one). Errors: the folder or the encoder.
+pub fn write_png(picture: &image::RgbaImage, path: &Path) -> std::io::Result<()> {
+    hatchery_graph::atomic::write_atomically(path, |file| {
+        let mut out = std::io::BufWriter::new(file);
+        picture
+            .write_to(&mut out, image::ImageFormat::Png)
+            .map_err(std::io::Error::other)?;
+        out.flush()
+    })
 }
 
 /// Reads back what [`write_npy`] wrote (shape and data); used by tests.

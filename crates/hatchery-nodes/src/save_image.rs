@@ -42,8 +42,7 @@ impl Node<Value, Ctx> for SaveImageNode {
             .gpu
             .read_texture(&image.texture)
             .map_err(|e| NodeError::new(e.to_string()))?;
-        export::image_to_rgba8(&pixels)
-            .save_with_format(&path, image::ImageFormat::Png)
+        export::write_png(&export::image_to_rgba8(&pixels), &path)
             .map_err(|e| NodeError::new(format!("cannot write {}: {e}", path.display())))?;
         tracing::info!(path = %path.display(), "image written");
         Ok(vec![])

@@ -301,10 +301,12 @@ impl Node<Value, Ctx> for SaveSvgNode {
             conventions(&mut doc, selection, camera, (width, height), p)?;
         }
         let path = p.path("path");
-        let file = std::fs::File::create(&path)
-            .map_err(|e| NodeError::new(format!("cannot write {}: {e}", path.display())))?;
-        doc.write_to(std::io::BufWriter::new(file))
-            .map_err(|e| NodeError::new(format!("cannot write {}: {e}", path.display())))?;
+        hatchery_graph::atomic::write_atomically(&path, |file| {
+            let mut out = std::io::BufWriter::new(file);
+            doc.write_to(&mut out)?;
+            std::io::Write::flush(&mut out)
+        })
+        .map_err(|e| NodeError::new(format!("cannot write {}: {e}", path.display())))?;
         tracing::info!(path = %path.display(), "SVG written");
         Ok(vec![])
     }

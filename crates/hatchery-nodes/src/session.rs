@@ -234,8 +234,7 @@ impl Session {
         let value = self.evaluate(node, port)?;
         let picture = crate::export::to_rgba8(&value, &self.ctx.gpu)
             .map_err(|e| SessionError::Other(format!("{node}.{port}: {e}")))?;
-        picture
-            .save_with_format(path, image::ImageFormat::Png)
+        crate::export::write_png(&picture, path)
             .map_err(|e| SessionError::Other(format!("cannot write {}: {e}", path.display())))
     }
 
