@@ -1500,7 +1500,7 @@ class StyleSet:
     """A list of lit-sphere styles (sphere maps indexed by the eye-space normal, §3.1): `styles`
         names them in order, comma-separated — procedural ones (shaded, toon2, toon3, gooch,
         metal, ink_rim, flat), each optionally tinted as name:r,g,b, or a path to a square PNG
-        with a power-of-two size (relative to the graph file). Style k of a
+        or JPEG with a power-of-two size (relative to the graph file). Style k of a
         StyleTransferFunction is the k-th entry. Each keeps its own mip chain.
 
     Outputs:
@@ -1508,7 +1508,7 @@ class StyleSet:
 
     Parameters:
         styles (text; default 'shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9'):
-            styles in order: name[:r,g,b] or a PNG path
+            styles in order: name[:r,g,b] or a PNG or JPEG path
 
     """
 

@@ -20,14 +20,14 @@ impl Node<Value, Ctx> for StyleSetNode {
             doc: "A list of lit-sphere styles (sphere maps indexed by the eye-space normal, §3.1): \
                   `styles` names them in order, comma-separated — procedural ones (shaded, toon2, \
                   toon3, gooch, metal, ink_rim, flat), each optionally tinted as name:r,g,b, or a path \
-                  to a square PNG with a power-of-two size (relative to the graph file). Style k of a \
+                  to a square PNG or JPEG with a power-of-two size (relative to the graph file). Style k of a \
                   StyleTransferFunction is the k-th entry. Each keeps its own mip chain.",
             inputs: vec![],
             outputs: vec![PortSpec::output("styles", PortType::StyleSet, "the styles")],
             params: vec![ParamSpec::text(
                 "styles",
                 "shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9",
-                "styles in order: name[:r,g,b] or a PNG path",
+                "styles in order: name[:r,g,b] or a PNG or JPEG path",
             )],
             frame_dependent: false,
             sink: false,
@@ -43,7 +43,8 @@ impl Node<Value, Ctx> for StyleSetNode {
         let mut names = Vec::new();
         let mut maps = Vec::new();
         for entry in split_entries(p.text("styles")) {
-            let map = if entry.to_ascii_lowercase().ends_with(".png") {
+            let lower = entry.to_ascii_lowercase();
+            let map = if [".png", ".jpg", ".jpeg"].iter().any(|e| lower.ends_with(e)) {
                 let path = resolve(p, &entry);
                 let picture = image::open(&path)
                     .map_err(|e| NodeError::new(format!("style {}: {e}", path.display())))?
@@ -124,7 +125,7 @@ fn procedural(entry: &str) -> Result<LitSphere, NodeError> {
     let (name, colour) = parse_procedural(entry).map_err(NodeError::new)?;
     lit_sphere::procedural(&name, SIZE, colour).ok_or_else(|| {
         NodeError::new(format!(
-            "unknown style `{name}` (procedural styles: {}; or a .png path)",
+            "unknown style `{name}` (procedural styles: {}; or a .png or .jpg path)",
             lit_sphere::STYLES.join(", ")
         ))
     })
