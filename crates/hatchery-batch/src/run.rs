@@ -347,14 +347,12 @@ fn render_item(
             std::fs::create_dir_all(dir)
                 .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         }
-        let tmp = manifest::temp_beside(target);
+        // SaveSvg writes atomically itself (hatchery_graph::atomic): straight to the target.
         session
-            .set_param_text(saver, "path", &tmp.to_string_lossy())
+            .set_param_text(saver, "path", &target.to_string_lossy())
             .map_err(|e| e.to_string())?;
         session.run(&[saver]).map_err(|e| named(session, e))?;
-        let bytes = std::fs::read(&tmp).map_err(|e| format!("{}: {e}", tmp.display()))?;
-        std::fs::rename(&tmp, target)
-            .map_err(|e| format!("cannot write {}: {e}", target.display()))?;
+        let bytes = std::fs::read(target).map_err(|e| format!("{}: {e}", target.display()))?;
         Ok(manifest::sha256(&bytes))
     } else {
         let picture = session
