@@ -19,16 +19,8 @@ fn every_preset_loads_validates_and_renders() {
             path.display()
         );
         for saver in savers {
-            let (source, port) = {
-                let sources = session.graph.input_sources(&saver);
-                let (node, port) = sources[&0];
-                (node.to_owned(), port)
-            };
-            session
-                .run(&[&source])
+            let picture = common::saver_input(&mut session, &saver)
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let value = session.executor.output(&source, port).unwrap().clone();
-            let picture = export::to_rgba8(&value, &session.ctx.gpu).unwrap();
             let fraction = common::non_background_fraction(&picture);
             if !(0.005..0.98).contains(&fraction) {
                 let saved = common::save_failure(&format!("preset_{saver}"), &picture);

@@ -185,3 +185,37 @@ pub fn hatchery(args: &[&str]) -> std::process::Output {
         .output()
         .expect("hatchery runs")
 }
+
+/// The largest channel difference between two pictures of one size, and where: (difference,
+/// x, y). Panics when the sizes differ (a test compares renders of one size).
+pub fn worst_channel(a: &image::RgbaImage, b: &image::RgbaImage) -> (u8, u32, u32) {
+    assert_eq!(
+        a.dimensions(),
+        b.dimensions(),
+        "pictures of different sizes"
+    );
+    let mut worst = (0u8, 0, 0);
+    for (x, y, p) in a.enumerate_pixels() {
+        let q = b.get_pixel(x, y);
+        for c in 0..4 {
+            let d = p[c].abs_diff(q[c]);
+            if d > worst.0 {
+                worst = (d, x, y);
+            }
+        }
+    }
+    worst
+}
+
+/// What SaveImage node `saver` of `session` would write, rendered without writing it (its
+/// input, as RGBA8). Errors: the render's, naming the node that failed.
+pub fn saver_input(session: &mut Session, saver: &str) -> Result<image::RgbaImage, String> {
+    let (source, port) = {
+        let sources = session.graph.input_sources(saver);
+        let (node, port) = sources[&0];
+        (node.to_owned(), port)
+    };
+    session.run(&[&source]).map_err(|e| e.to_string())?;
+    let value = session.executor.output(&source, port).unwrap().clone();
+    hatchery_nodes::export::to_rgba8(&value, &session.ctx.gpu).map_err(|e| e.to_string())
+}

@@ -20,6 +20,7 @@ pub mod graph;
 pub mod inputs;
 mod locate;
 pub mod migrate;
+pub mod node_params;
 pub mod organise;
 pub mod param;
 pub mod port;
@@ -34,6 +35,7 @@ pub use error::{ErrorKind, GraphError, GraphErrors};
 pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Registry};
 pub use graph::{Graph, NodeInstance};
 pub use inputs::{GraphInput, InputDoc, InputKind};
+pub use node_params::{DataValue, ParamField};
 pub use param::{ParamKind, ParamSpec, ParamValue, Params, RelativeValue};
 pub use port::PortType;
 pub use schema::{

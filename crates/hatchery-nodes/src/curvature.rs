@@ -8,7 +8,7 @@ use crate::value::Image;
 use crate::{Ctx, Value};
 use hatchery_gpu::GpuError;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -26,6 +26,14 @@ pub const CURVATURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Flo
 
 /// θ of a pixel without a surface (outside [−π/2, π/2)): shaders test θ1 < −5.
 pub const NO_SURFACE: f32 = -10.0;
+
+hatchery_graph::node_params! {
+    /// The parameters of `Curvature`.
+    pub struct CurvatureParams {
+        /// finite-difference step of the Hessian, voxels (of the smallest spacing)
+        pub step: f32 = 1.0, range(0.25, 8.0);
+    }
+}
 
 pub struct CurvatureNode;
 
@@ -57,13 +65,7 @@ impl Node<Value, Ctx> for CurvatureNode {
                 PortType::Image,
                 "(κ1, κ2, θ1, θ2) per pixel (data, not colour)",
             )],
-            params: vec![ParamSpec::float(
-                "step",
-                1.0,
-                0.25,
-                8.0,
-                "finite-difference step of the Hessian, voxels (of the smallest spacing)",
-            )],
+            params: CurvatureParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -83,7 +85,7 @@ impl Node<Value, Ctx> for CurvatureNode {
             CURVATURE_FORMAT,
             &gbuffer,
             &volume,
-            p.f32("step"),
+            CurvatureParams::read(p)?.step,
             None,
         )?;
         Ok(vec![Value::Image(Arc::new(Image { texture: output }))])

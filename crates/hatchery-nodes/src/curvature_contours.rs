@@ -7,7 +7,7 @@ use crate::screen_pass::MASK_FORMAT;
 use crate::value::Mask;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -15,6 +15,16 @@ crate::uniform_block! {
     /// `ContourParams` of shaders/curvature_contours.wgsl: (thickness px, 0, 0, 0).
     pub struct ContourUniforms in "curvature_contours" as "ContourParams" {
         pub options: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `CurvatureContours`.
+    pub struct CurvatureContoursParams {
+        /// contour width, pixels
+        pub thickness: f32 = 2.0, range(0.25, 32.0);
+        /// finite-difference step of the Hessian, voxels (as Curvature's)
+        pub step: f32 = 1.0, range(0.25, 8.0);
     }
 }
 
@@ -47,16 +57,7 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
                 PortType::Mask,
                 "1 on the contours",
             )],
-            params: vec![
-                ParamSpec::float("thickness", 2.0, 0.25, 32.0, "contour width, pixels"),
-                ParamSpec::float(
-                    "step",
-                    1.0,
-                    0.25,
-                    8.0,
-                    "finite-difference step of the Hessian, voxels (as Curvature's)",
-                ),
-            ],
+            params: CurvatureContoursParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -68,10 +69,11 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = CurvatureContoursParams::read(p)?;
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let uniforms = ContourUniforms {
-            options: [p.f32("thickness"), 0.0, 0.0, 0.0],
+            options: [params.thickness, 0.0, 0.0, 0.0],
         };
         let mask = surface_pass(
             ctx,
@@ -79,7 +81,7 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
             MASK_FORMAT,
             &gbuffer,
             &volume,
-            p.f32("step"),
+            params.step,
             Some(bytemuck::bytes_of(&uniforms)),
         )?;
         Ok(vec![Value::Mask(Arc::new(Mask { texture: mask }))])

@@ -3,10 +3,26 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
-const COMPARISONS: &[&str] = &["a<=b", "a<b", "a>=b", "a>b"];
+hatchery_graph::param_choice! {
+    /// The depth comparison of layer a with layer b; the code is the shader's constant.
+    pub enum Comparison {
+        LessEqual = "a<=b",
+        Less = "a<b",
+        GreaterEqual = "a>=b",
+        Greater = "a>b",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `DepthTestMask`.
+    pub struct DepthTestMaskParams {
+        /// the comparison
+        pub compare: Comparison = Comparison::LessEqual;
+    }
+}
 
 pub struct DepthTestMaskNode;
 
@@ -27,12 +43,7 @@ impl Node<Value, Ctx> for DepthTestMaskNode {
                 PortType::Mask,
                 "the test result, 0 or 1",
             )],
-            params: vec![ParamSpec::choice(
-                "compare",
-                "a<=b",
-                COMPARISONS,
-                "the comparison",
-            )],
+            params: DepthTestMaskParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -54,10 +65,7 @@ impl Fusable for DepthTestMaskNode {
     }
 
     fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
-        let op = COMPARISONS
-            .iter()
-            .position(|c| *c == p.choice("compare"))
-            .unwrap_or(0);
+        let op = DepthTestMaskParams::read(p)?.compare as u32;
         Ok(Stage {
             library: "depth_test_mask",
             function: "depth_test_mask",

@@ -3,7 +3,7 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
@@ -14,6 +14,16 @@ crate::uniform_block! {
         pub options: [f32; 4],
         pub inverse_proj: [[f32; 4]; 4],
         pub frame: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `DiffuseIntensity`.
+    pub struct DiffuseIntensityParams {
+        /// value where the layer has no surface
+        pub empty: f32 = 1.0, range(0.0, 1.0);
+        /// light back faces with the flipped normal
+        pub two_sided: bool = false;
     }
 }
 
@@ -36,20 +46,7 @@ impl Node<Value, Ctx> for DiffuseIntensityNode {
                 PortType::Mask,
                 "intensity in [0, 1]",
             )],
-            params: vec![
-                ParamSpec::float(
-                    "empty",
-                    1.0,
-                    0.0,
-                    1.0,
-                    "value where the layer has no surface",
-                ),
-                ParamSpec::bool(
-                    "two_sided",
-                    false,
-                    "light back faces with the flipped normal",
-                ),
-            ],
+            params: DiffuseIntensityParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -73,11 +70,12 @@ impl Fusable for DiffuseIntensityNode {
     fn stage(&self, ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?;
         let light = inputs.require("light")?.light("light")?;
+        let params = DiffuseIntensityParams::read(p)?;
         let l = light.view_direction(&gbuffer.camera);
         let (w, h) = ctx.size();
         let uniforms = DiffuseUniforms {
             light_dir: [l.x, l.y, l.z, 0.0],
-            options: [p.f32("empty"), 0.0, 0.0, 0.0],
+            options: [params.empty, 0.0, 0.0, 0.0],
             inverse_proj: gbuffer.camera.proj.inverse().to_cols_array_2d(),
             frame: [
                 w as f32,
@@ -96,12 +94,12 @@ impl Fusable for DiffuseIntensityNode {
             uniform: Some(("Diffuse", bytemuck::bytes_of(&uniforms).to_vec())),
             // The depth is read for two-sided lighting only.
             args: vec![
-                if p.bool("two_sided") {
+                if params.two_sided {
                     Arg::At("gbuffer")
                 } else {
                     Arg::NormalAt("gbuffer")
                 },
-                Arg::Constant(p.bool("two_sided").to_string()),
+                Arg::Constant(params.two_sided.to_string()),
             ],
             output: PortType::Mask,
         })

@@ -3,13 +3,21 @@
 use crate::screen_pass;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
     /// `Fill` of shaders/fill.wgsl: the straight (not premultiplied) RGBA colour.
     pub struct FillUniforms in "fill" as "Fill" {
         pub color: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `Fill`.
+    pub struct FillParams {
+        /// the colour
+        pub color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
     }
 }
 
@@ -28,11 +36,7 @@ impl Node<Value, Ctx> for FillNode {
                 PortType::Image,
                 "the filled frame",
             )],
-            params: vec![ParamSpec::color(
-                "color",
-                [1.0, 1.0, 1.0, 1.0],
-                "the colour",
-            )],
+            params: FillParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -50,7 +54,7 @@ impl Node<Value, Ctx> for FillNode {
             &[],
             &[],
             Some(bytemuck::bytes_of(&FillUniforms {
-                color: p.color("color"),
+                color: FillParams::read(p)?.color,
             })),
         )?])
     }

@@ -3,7 +3,7 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
@@ -12,6 +12,18 @@ crate::uniform_block! {
     pub struct HalftoneUniforms in "halftone" as "Halftone" {
         pub params: [f32; 4],
         pub rotation: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `Halftone`.
+    pub struct HalftoneParams {
+        /// rotation of the pattern, degrees
+        pub theta: f32 = 20.0, range(-360.0, 360.0);
+        /// cell size n in pixels
+        pub cell: f32 = 4.0, range(1.0, 256.0);
+        /// intensity below which cross-hatching appears
+        pub c_cross: f32 = 0.9, range(0.0, 1.0);
     }
 }
 
@@ -36,23 +48,7 @@ impl Node<Value, Ctx> for HalftoneNode {
                 PortType::Mask,
                 "1 = paper, 0 = ink",
             )],
-            params: vec![
-                ParamSpec::float(
-                    "theta",
-                    20.0,
-                    -360.0,
-                    360.0,
-                    "rotation of the pattern, degrees",
-                ),
-                ParamSpec::float("cell", 4.0, 1.0, 256.0, "cell size n in pixels"),
-                ParamSpec::float(
-                    "c_cross",
-                    0.9,
-                    0.0,
-                    1.0,
-                    "intensity below which cross-hatching appears",
-                ),
-            ],
+            params: HalftoneParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -74,9 +70,10 @@ impl Fusable for HalftoneNode {
     }
 
     fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
-        let theta = p.f32("theta").to_radians();
+        let p = HalftoneParams::read(p)?;
+        let theta = p.theta.to_radians();
         let uniforms = HalftoneUniforms {
-            params: [theta, p.f32("cell"), p.f32("c_cross"), 0.0],
+            params: [theta, p.cell, p.c_cross, 0.0],
             rotation: [theta.cos(), theta.sin(), 0.0, 0.0],
         };
         Ok(Stage {

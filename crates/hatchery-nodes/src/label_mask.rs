@@ -5,9 +5,19 @@ use crate::value::Volume;
 use crate::{Ctx, Value};
 use hatchery_data::labels;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// The parameters of `LabelMask`.
+    pub struct LabelMaskParams {
+        /// labels to select: "3", "3, 7", "1-29", "2-4, 9"
+        pub labels: String = "1";
+        /// Gaussian sigma in voxels (0 = hard mask)
+        pub smooth: f32 = 1.0, range(0.0, 8.0);
+    }
+}
 
 pub struct LabelMaskNode;
 
@@ -39,20 +49,7 @@ impl Node<Value, Ctx> for LabelMaskNode {
                 PortType::Volume,
                 "the selected objects, values in [0, 1]",
             )],
-            params: vec![
-                ParamSpec::text(
-                    "labels",
-                    "1",
-                    "labels to select: \"3\", \"3, 7\", \"1-29\", \"2-4, 9\"",
-                ),
-                ParamSpec::float(
-                    "smooth",
-                    1.0,
-                    0.0,
-                    8.0,
-                    "Gaussian sigma in voxels (0 = hard mask)",
-                ),
-            ],
+            params: LabelMaskParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -64,6 +61,7 @@ impl Node<Value, Ctx> for LabelMaskNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = LabelMaskParams::read(p)?;
         let from_labels;
         let mut names = std::collections::BTreeMap::new();
         let data = match (inputs.get("objects"), inputs.get("volume")) {
@@ -91,7 +89,7 @@ impl Node<Value, Ctx> for LabelMaskNode {
             }
         };
         // Objects may be named where the labels name them ("liver, 13").
-        let text = hatchery_data::segmentation::ids_for_names(p.text("labels"), ',', None, &names)
+        let text = hatchery_data::segmentation::ids_for_names(&params.labels, ',', None, &names)
             .map_err(|e| NodeError::new(format!("parameter `labels`: {e}")))?;
         let wanted = labels::parse_label_list(&text)
             .map_err(|e| NodeError::new(format!("parameter `labels`: {e}")))?;
@@ -104,7 +102,7 @@ impl Node<Value, Ctx> for LabelMaskNode {
                 present.join(", ")
             )));
         }
-        let mask = labels::label_mask(data, &wanted, p.f32("smooth"))
+        let mask = labels::label_mask(data, &wanted, params.smooth)
             .map_err(|e| NodeError::new(e.to_string()))?;
         Ok(vec![Value::Volume(Arc::new(Volume::new(mask)))])
     }

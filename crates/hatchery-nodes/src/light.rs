@@ -4,7 +4,7 @@ use crate::camera::Camera;
 use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -30,6 +30,30 @@ impl Light {
     }
 }
 
+hatchery_graph::param_choice! {
+    /// The space a light direction is given in.
+    pub enum LightSpace {
+        View = "view",
+        World = "world",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `Light`.
+    pub struct LightParams {
+        /// vector towards the light (normalised)
+        pub direction: [f32; 3] = [0.4, 0.5, 1.0];
+        /// space the direction is given in
+        pub space: LightSpace = LightSpace::View;
+        /// light colour (alpha unused)
+        pub color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+        /// scale of the diffuse and specular terms
+        pub intensity: f32 = 1.0, range(0.0, 100.0);
+        /// ambient term added everywhere
+        pub ambient: f32 = 0.15, range(0.0, 1.0);
+    }
+}
+
 pub struct LightNode;
 
 impl Node<Value, Ctx> for LightNode {
@@ -41,28 +65,7 @@ impl Node<Value, Ctx> for LightNode {
                   illustration); in world space it stays fixed to the data.",
             inputs: vec![],
             outputs: vec![PortSpec::output("light", PortType::Light, "the light")],
-            params: vec![
-                ParamSpec::vec3(
-                    "direction",
-                    [0.4, 0.5, 1.0],
-                    "vector towards the light (normalised)",
-                ),
-                ParamSpec::choice(
-                    "space",
-                    "view",
-                    &["view", "world"],
-                    "space the direction is given in",
-                ),
-                ParamSpec::color("color", [1.0, 1.0, 1.0, 1.0], "light colour (alpha unused)"),
-                ParamSpec::float(
-                    "intensity",
-                    1.0,
-                    0.0,
-                    100.0,
-                    "scale of the diffuse and specular terms",
-                ),
-                ParamSpec::float("ambient", 0.15, 0.0, 1.0, "ambient term added everywhere"),
-            ],
+            params: LightParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -74,19 +77,20 @@ impl Node<Value, Ctx> for LightNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let direction = Vec3::from(p.vec3("direction"));
+        let p = LightParams::read(p)?;
+        let direction = Vec3::from(p.direction);
         if direction.length_squared() < 1e-12 {
             return Err(NodeError::new(
                 "parameter `direction` must not be the zero vector",
             ));
         }
-        let c = p.color("color");
+        let c = p.color;
         let light = Light {
             direction: direction.normalize(),
-            view_space: p.choice("space") == "view",
+            view_space: p.space == LightSpace::View,
             color: [c[0], c[1], c[2]],
-            intensity: p.f32("intensity"),
-            ambient: p.f32("ambient"),
+            intensity: p.intensity,
+            ambient: p.ambient,
         };
         Ok(vec![Value::Light(Arc::new(light))])
     }

@@ -3,10 +3,28 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
-const OPERATIONS: &[&str] = &["and", "or", "min", "add", "subtract", "a_not_b"];
+hatchery_graph::param_choice! {
+    /// How two masks combine; the code is the shader's `op` constant.
+    pub enum Operation {
+        And = "and",
+        Or = "or",
+        Min = "min",
+        Add = "add",
+        Subtract = "subtract",
+        ANotB = "a_not_b",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `MaskCombine`.
+    pub struct MaskCombineParams {
+        /// how to combine
+        pub operation: Operation = Operation::And;
+    }
+}
 
 pub struct MaskCombineNode;
 
@@ -23,12 +41,7 @@ impl Node<Value, Ctx> for MaskCombineNode {
                 PortSpec::input("b", PortType::Mask, "second mask"),
             ],
             outputs: vec![PortSpec::output("mask", PortType::Mask, "the result")],
-            params: vec![ParamSpec::choice(
-                "operation",
-                "and",
-                OPERATIONS,
-                "how to combine",
-            )],
+            params: MaskCombineParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -50,10 +63,7 @@ impl Fusable for MaskCombineNode {
     }
 
     fn stage(&self, _ctx: &mut Ctx, _inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
-        let op = OPERATIONS
-            .iter()
-            .position(|o| *o == p.choice("operation"))
-            .unwrap_or(0);
+        let op = MaskCombineParams::read(p)?.operation as u32;
         Ok(Stage {
             library: "mask_combine",
             function: "mask_combine",

@@ -5,9 +5,23 @@ use crate::{Ctx, Value};
 use glam::{EulerRot, Mat3, Quat, Vec3};
 use hatchery_data::MeshData;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// The parameters of `MeshTransform`.
+    pub struct MeshTransformParams {
+        /// scale per axis (non-zero)
+        pub scale: [f32; 3] = [1.0, 1.0, 1.0];
+        /// Euler angles about x, y, z in degrees
+        pub rotate: [f32; 3] = [0.0, 0.0, 0.0];
+        /// offset, world units
+        pub translate: [f32; 3] = [0.0, 0.0, 0.0];
+        /// point normals the other way
+        pub flip_normals: bool = false;
+    }
+}
 
 pub struct MeshTransformNode;
 
@@ -29,16 +43,7 @@ impl Node<Value, Ctx> for MeshTransformNode {
                 PortType::Mesh,
                 "the transformed mesh",
             )],
-            params: vec![
-                ParamSpec::vec3("scale", [1.0, 1.0, 1.0], "scale per axis (non-zero)"),
-                ParamSpec::vec3(
-                    "rotate",
-                    [0.0, 0.0, 0.0],
-                    "Euler angles about x, y, z in degrees",
-                ),
-                ParamSpec::vec3("translate", [0.0, 0.0, 0.0], "offset, world units"),
-                ParamSpec::bool("flip_normals", false, "point normals the other way"),
-            ],
+            params: MeshTransformParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -51,18 +56,19 @@ impl Node<Value, Ctx> for MeshTransformNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let mesh = inputs.require("mesh")?.mesh("mesh")?;
-        let scale = Vec3::from(p.vec3("scale"));
+        let p = MeshTransformParams::read(p)?;
+        let scale = Vec3::from(p.scale);
         if scale.abs().min_element() < 1e-12 {
             return Err(NodeError::new(
                 "parameter `scale` must be non-zero on every axis",
             ));
         }
-        let [rx, ry, rz] = p.vec3("rotate").map(f32::to_radians);
+        let [rx, ry, rz] = p.rotate.map(f32::to_radians);
         let rotation = Quat::from_euler(EulerRot::ZYX, rz, ry, rx);
-        let translate = Vec3::from(p.vec3("translate"));
+        let translate = Vec3::from(p.translate);
         // Normals transform with the inverse transpose: rotation · (1/scale).
         let normal_matrix = Mat3::from_quat(rotation) * Mat3::from_diagonal(scale.recip());
-        let flip = if p.bool("flip_normals") { -1.0 } else { 1.0 };
+        let flip = if p.flip_normals { -1.0 } else { 1.0 };
         // A mirroring scale reverses the winding; flipping normals reverses it again.
         let mirrored = (scale.x * scale.y * scale.z < 0.0) != (flip < 0.0);
 

@@ -3,7 +3,7 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
@@ -11,6 +11,14 @@ crate::uniform_block! {
     /// image replaces it is a constant of the pass).
     pub struct MixUniforms in "mix_by_mask" as "MixParams" {
         pub color: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `MixByMask`.
+    pub struct MixByMaskParams {
+        /// colour mixed in when `over` is not connected
+        pub color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
     }
 }
 
@@ -34,11 +42,7 @@ impl Node<Value, Ctx> for MixByMaskNode {
                 PortType::Image,
                 "the mixed image",
             )],
-            params: vec![ParamSpec::color(
-                "color",
-                [0.0, 0.0, 0.0, 1.0],
-                "colour mixed in when `over` is not connected",
-            )],
+            params: MixByMaskParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -60,7 +64,7 @@ impl Fusable for MixByMaskNode {
     }
 
     fn stage(&self, _ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
-        let c = p.color("color");
+        let c = MixByMaskParams::read(p)?.color;
         let uniforms = MixUniforms {
             color: [c[0] * c[3], c[1] * c[3], c[2] * c[3], c[3]],
         };

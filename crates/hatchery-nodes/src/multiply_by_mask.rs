@@ -3,8 +3,16 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
+
+hatchery_graph::node_params! {
+    /// The parameters of `MultiplyByMask`.
+    pub struct MultiplyByMaskParams {
+        /// multiply by 1 − mask instead
+        pub invert: bool = false;
+    }
+}
 
 pub struct MultiplyByMaskNode;
 
@@ -24,11 +32,7 @@ impl Node<Value, Ctx> for MultiplyByMaskNode {
                 PortType::Image,
                 "the darkened image",
             )],
-            params: vec![ParamSpec::bool(
-                "invert",
-                false,
-                "multiply by 1 − mask instead",
-            )],
+            params: MultiplyByMaskParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -57,7 +61,7 @@ impl Fusable for MultiplyByMaskNode {
             args: vec![
                 Arg::At("image"),
                 Arg::At("mask"),
-                Arg::Constant(p.bool("invert").to_string()),
+                Arg::Constant(MultiplyByMaskParams::read(p)?.invert.to_string()),
             ],
             output: PortType::Image,
         })

@@ -5,7 +5,7 @@ use crate::screen_pass;
 use crate::value::Mask;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -14,6 +14,16 @@ crate::uniform_block! {
     /// valleys, 0).
     pub struct RidgeValleyUniforms in "ridge_valley" as "RidgeValley" {
         pub options: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `RidgeValley`.
+    pub struct RidgeValleyParams {
+        /// smallest |κ| of a line, world units⁻¹
+        pub threshold: f32 = 1.0, range(0.0, 1.0e6);
+        /// line width, pixels (up to 3)
+        pub thickness: f32 = 1.5, range(0.5, 3.0);
     }
 }
 
@@ -40,16 +50,7 @@ impl Node<Value, Ctx> for RidgeValleyNode {
                 PortSpec::output("ridges", PortType::Mask, "1 on ridge lines"),
                 PortSpec::output("valleys", PortType::Mask, "1 on valley lines"),
             ],
-            params: vec![
-                ParamSpec::float(
-                    "threshold",
-                    1.0,
-                    0.0,
-                    1.0e6,
-                    "smallest |κ| of a line, world units⁻¹",
-                ),
-                ParamSpec::float("thickness", 1.5, 0.5, 3.0, "line width, pixels (up to 3)"),
-            ],
+            params: RidgeValleyParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -61,12 +62,13 @@ impl Node<Value, Ctx> for RidgeValleyNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = RidgeValleyParams::read(p)?;
         let curvature = inputs.require("curvature")?.image("curvature")?.clone();
         let size = (curvature.texture.width(), curvature.texture.height());
         let mut outputs = Vec::new();
         for kind in [0.0, 1.0] {
             let uniforms = RidgeValleyUniforms {
-                options: [p.f32("threshold"), p.f32("thickness"), kind, 0.0],
+                options: [params.threshold, params.thickness, kind, 0.0],
             };
             let mask = screen_pass::render(
                 ctx,

@@ -2,8 +2,16 @@
 
 use crate::{Ctx, Value, export};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
+
+hatchery_graph::node_params! {
+    /// The parameters of `SaveImage`.
+    pub struct SaveImageParams {
+        /// the PNG file to write
+        pub path: std::path::PathBuf = "hatchery.png";
+    }
+}
 
 pub struct SaveImageNode;
 
@@ -20,11 +28,7 @@ impl Node<Value, Ctx> for SaveImageNode {
                 "the picture to write",
             )],
             outputs: vec![],
-            params: vec![ParamSpec::path(
-                "path",
-                "hatchery.png",
-                "the PNG file to write",
-            )],
+            params: SaveImageParams::specs(),
             frame_dependent: true,
             sink: true,
         }
@@ -37,7 +41,7 @@ impl Node<Value, Ctx> for SaveImageNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let image = inputs.require("image")?.image("image")?;
-        let path = p.path("path");
+        let path = SaveImageParams::read(p)?.path;
         let pixels = ctx
             .gpu
             .read_texture(&image.texture)

@@ -3,10 +3,18 @@
 
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
 const INPUTS: [&str; 4] = ["image1", "image2", "image3", "image4"];
+
+hatchery_graph::node_params! {
+    /// The parameters of `SelectImage`.
+    pub struct SelectImageParams {
+        /// which input to pass through
+        pub select: i64 = 1, range(1, 4);
+    }
+}
 
 pub struct SelectImageNode;
 
@@ -26,13 +34,7 @@ impl Node<Value, Ctx> for SelectImageNode {
                 PortType::Image,
                 "the selected image",
             )],
-            params: vec![ParamSpec::int(
-                "select",
-                1,
-                1,
-                4,
-                "which input to pass through",
-            )],
+            params: SelectImageParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -44,7 +46,7 @@ impl Node<Value, Ctx> for SelectImageNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let port = INPUTS[(p.int("select") - 1).clamp(0, 3) as usize];
+        let port = INPUTS[(SelectImageParams::read(p)?.select - 1).clamp(0, 3) as usize];
         let value = inputs
             .get(port)
             .ok_or_else(|| NodeError::at_port(port, "the selected input is not connected"))?;

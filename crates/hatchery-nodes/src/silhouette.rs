@@ -4,7 +4,7 @@
 use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 
 crate::uniform_block! {
@@ -16,7 +16,41 @@ crate::uniform_block! {
     }
 }
 
-pub const PIP_MODES: &[&str] = &["none", "constant", "texture", "noise", "dots"];
+hatchery_graph::param_choice! {
+    /// Perturbation P(x, y) of the sampling positions (Yuan & Chen 2005, §6); the code is the
+    /// shader's `mode` constant.
+    pub enum PipMode {
+        None = "none",
+        Constant = "constant",
+        Texture = "texture",
+        Noise = "noise",
+        Dots = "dots",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `Silhouette`.
+    pub struct SilhouetteParams {
+        /// threshold on the Sobel depth-gradient magnitude
+        pub depth_threshold: f32 = 0.001, range(0.0, 100.0);
+        /// threshold on the summed neighbour normal dot products
+        pub normal_threshold: f32 = 3.98, range(-4.0, 4.0);
+        /// detect depth discontinuities (eq. 3)
+        pub use_depth: bool = true;
+        /// detect normal discontinuities (eq. 4–5)
+        pub use_normals: bool = true;
+        /// perturbation P(x, y) of the sampling positions
+        pub pip: PipMode = PipMode::None;
+        /// P's scale in pixels (the constant for `constant`)
+        pub pip_amount: f32 = 1.0, range(0.0, 16.0);
+        /// pattern size in pixels for `noise` and `dots`
+        pub pip_scale: f32 = 8.0, range(1.0, 256.0);
+        /// seed of the `noise` pattern
+        pub pip_seed: i64 = 0, range(0, 1_000_000);
+        /// grey-scale PNG tiled over the frame for `texture`
+        pub pip_texture: std::path::PathBuf = "";
+    }
+}
 
 pub struct SilhouetteNode;
 
@@ -36,54 +70,7 @@ impl Node<Value, Ctx> for SilhouetteNode {
                 PortType::Mask,
                 "1 on silhouettes, 0 elsewhere",
             )],
-            params: vec![
-                ParamSpec::float(
-                    "depth_threshold",
-                    0.001,
-                    0.0,
-                    100.0,
-                    "threshold on the Sobel depth-gradient magnitude",
-                ),
-                ParamSpec::float(
-                    "normal_threshold",
-                    3.98,
-                    -4.0,
-                    4.0,
-                    "threshold on the summed neighbour normal dot products",
-                ),
-                ParamSpec::bool("use_depth", true, "detect depth discontinuities (eq. 3)"),
-                ParamSpec::bool(
-                    "use_normals",
-                    true,
-                    "detect normal discontinuities (eq. 4–5)",
-                ),
-                ParamSpec::choice(
-                    "pip",
-                    "none",
-                    PIP_MODES,
-                    "perturbation P(x, y) of the sampling positions",
-                ),
-                ParamSpec::float(
-                    "pip_amount",
-                    1.0,
-                    0.0,
-                    16.0,
-                    "P's scale in pixels (the constant for `constant`)",
-                ),
-                ParamSpec::float(
-                    "pip_scale",
-                    8.0,
-                    1.0,
-                    256.0,
-                    "pattern size in pixels for `noise` and `dots`",
-                ),
-                ParamSpec::int("pip_seed", 0, 0, 1_000_000, "seed of the `noise` pattern"),
-                ParamSpec::path(
-                    "pip_texture",
-                    "",
-                    "grey-scale PNG tiled over the frame for `texture`",
-                ),
-            ],
+            params: SilhouetteParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -111,34 +98,20 @@ impl Fusable for SilhouetteNode {
 
     fn stage(&self, ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError> {
         inputs.require("gbuffer")?.gbuffer("gbuffer")?;
-        let mode = PIP_MODES
-            .iter()
-            .position(|m| *m == p.choice("pip"))
-            .unwrap_or(0);
-        let pattern = if PIP_MODES[mode] == "texture" {
-            let path = p.path("pip_texture");
-            if path.as_os_str().is_empty() {
+        let p = SilhouetteParams::read(p)?;
+        let pattern = if p.pip == PipMode::Texture {
+            if p.pip_texture.as_os_str().is_empty() {
                 return Err(NodeError::new(
                     "pip \"texture\" needs parameter `pip_texture` (a PNG file)",
                 ));
             }
-            ctx.file_texture(&path).map_err(NodeError::new)?
+            ctx.file_texture(&p.pip_texture).map_err(NodeError::new)?
         } else {
             ctx.blank_texture()
         };
         let uniforms = SilhouetteUniforms {
-            thresholds: [
-                p.f32("depth_threshold"),
-                p.f32("normal_threshold"),
-                0.0,
-                0.0,
-            ],
-            pip: [
-                0.0,
-                p.f32("pip_amount"),
-                p.f32("pip_scale"),
-                p.int("pip_seed") as f32,
-            ],
+            thresholds: [p.depth_threshold, p.normal_threshold, 0.0, 0.0],
+            pip: [0.0, p.pip_amount, p.pip_scale, p.pip_seed as f32],
         };
         // The mode and switches as constants (shaders/silhouette.wgsl says why).
         Ok(Stage {
@@ -148,9 +121,9 @@ impl Fusable for SilhouetteNode {
             args: vec![
                 Arg::Textures("gbuffer"),
                 Arg::Texture(pattern),
-                Arg::Constant(mode.to_string()),
-                Arg::Constant(p.bool("use_depth").to_string()),
-                Arg::Constant(p.bool("use_normals").to_string()),
+                Arg::Constant((p.pip as u32).to_string()),
+                Arg::Constant(p.use_depth.to_string()),
+                Arg::Constant(p.use_normals.to_string()),
             ],
             output: PortType::Mask,
         })
