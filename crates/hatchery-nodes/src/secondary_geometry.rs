@@ -6,7 +6,7 @@ use crate::screen_pass::MASK_FORMAT;
 use crate::value::{GBuffer, Mask};
 use crate::{Ctx, Value, mesh_pass};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -16,6 +16,18 @@ crate::uniform_block! {
     pub struct SecondaryUniforms in "secondary_geometry" as "Secondary" {
         pub light_dir: [f32; 4],
         pub factors: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `SecondaryGeometry`.
+    pub struct SecondaryGeometryParams {
+        /// attenuation behind one layer (α)
+        pub alpha: f32 = 0.7, range(0.0, 1.0);
+        /// attenuation behind two layers (β < α)
+        pub beta: f32 = 0.21, range(0.0, 1.0);
+        /// light back faces with the flipped normal
+        pub two_sided: bool = true;
     }
 }
 
@@ -60,21 +72,7 @@ impl Node<Value, Ctx> for SecondaryGeometryNode {
                 PortSpec::output("intensity", PortType::Mask, "attenuated intensity I_S"),
                 PortSpec::output("gbuffer", PortType::GBuffer, "depth and normal of S"),
             ],
-            params: vec![
-                ParamSpec::float("alpha", 0.7, 0.0, 1.0, "attenuation behind one layer (α)"),
-                ParamSpec::float(
-                    "beta",
-                    0.21,
-                    0.0,
-                    1.0,
-                    "attenuation behind two layers (β < α)",
-                ),
-                ParamSpec::bool(
-                    "two_sided",
-                    true,
-                    "light back faces with the flipped normal",
-                ),
-            ],
+            params: SecondaryGeometryParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -105,10 +103,11 @@ impl Node<Value, Ctx> for SecondaryGeometryNode {
             .map_err(|e| NodeError::new(e.to_string()))?;
         let gpu = &ctx.gpu;
         let l = light.view_direction(&camera);
-        let two_sided = if p.bool("two_sided") { 1.0 } else { 0.0 };
+        let own = SecondaryGeometryParams::read(p)?;
+        let two_sided = if own.two_sided { 1.0 } else { 0.0 };
         let params = SecondaryUniforms {
             light_dir: [l.x, l.y, l.z, 0.0],
-            factors: [p.f32("alpha"), p.f32("beta"), two_sided, 0.0],
+            factors: [own.alpha, own.beta, two_sided, 0.0],
         };
         let camera_buf = camera.uniform_buffer(gpu);
         let params_buf = gpu.buffer_init(

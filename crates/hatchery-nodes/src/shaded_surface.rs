@@ -3,7 +3,7 @@
 use crate::value::Image;
 use crate::{Ctx, Value, mesh_pass};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -17,6 +17,22 @@ crate::uniform_block! {
         pub light_dir: [f32; 4],
         pub light_color: [f32; 4],
         pub params: [f32; 4],
+    }
+}
+
+hatchery_graph::node_params! {
+    /// The parameters of `ShadedSurface`.
+    pub struct ShadedSurfaceParams {
+        /// surface colour (alpha = opacity)
+        pub color: [f32; 4] = [0.85, 0.78, 0.7, 1.0];
+        /// colour where there is no surface
+        pub background: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+        /// strength of the specular highlight
+        pub specular: f32 = 0.25, range(0.0, 10.0);
+        /// Blinn–Phong exponent
+        pub shininess: f32 = 32.0, range(1.0, 1024.0);
+        /// light back faces with the flipped normal
+        pub two_sided: bool = true;
     }
 }
 
@@ -39,31 +55,7 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
                 PortType::Image,
                 "the shaded picture",
             )],
-            params: vec![
-                ParamSpec::color(
-                    "color",
-                    [0.85, 0.78, 0.7, 1.0],
-                    "surface colour (alpha = opacity)",
-                ),
-                ParamSpec::color(
-                    "background",
-                    [1.0, 1.0, 1.0, 1.0],
-                    "colour where there is no surface",
-                ),
-                ParamSpec::float(
-                    "specular",
-                    0.25,
-                    0.0,
-                    10.0,
-                    "strength of the specular highlight",
-                ),
-                ParamSpec::float("shininess", 32.0, 1.0, 1024.0, "Blinn–Phong exponent"),
-                ParamSpec::bool(
-                    "two_sided",
-                    true,
-                    "light back faces with the flipped normal",
-                ),
-            ],
+            params: ShadedSurfaceParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -75,6 +67,7 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = ShadedSurfaceParams::read(p)?;
         let mesh = inputs.require("mesh")?.mesh("mesh")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let light = inputs.require("light")?.light("light")?.clone();
@@ -91,7 +84,7 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
         let gpu = &ctx.gpu;
         let l = light.view_direction(&camera);
         let shading = ShadingUniform {
-            base_color: p.color("color"),
+            base_color: params.color,
             light_dir: [l.x, l.y, l.z, 0.0],
             light_color: [
                 light.color[0],
@@ -101,9 +94,9 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
             ],
             params: [
                 light.ambient,
-                p.f32("specular"),
-                p.f32("shininess"),
-                if p.bool("two_sided") { 1.0 } else { 0.0 },
+                params.specular,
+                params.shininess,
+                if params.two_sided { 1.0 } else { 0.0 },
             ],
         };
         let camera_buf = camera.uniform_buffer(gpu);
@@ -126,7 +119,7 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
                 },
             ],
         });
-        let bg = p.color("background").map(f64::from);
+        let bg = params.background.map(f64::from);
         // Premultiplied background.
         let clear = wgpu::Color {
             r: bg[0] * bg[3],
