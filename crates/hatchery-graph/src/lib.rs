@@ -35,7 +35,7 @@ pub use error::{ErrorKind, GraphError, GraphErrors};
 pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Registry};
 pub use graph::{Graph, NodeInstance};
 pub use inputs::{GraphInput, InputDoc, InputKind};
-pub use node_params::{DataValue, ParamField};
+pub use node_params::{DataValue, FilePath, Group, ParamField};
 pub use param::{ParamKind, ParamSpec, ParamValue, Params, RelativeValue};
 pub use port::PortType;
 pub use schema::{

@@ -21,12 +21,12 @@ pub trait ParamField: Sized {
     /// The spec of a field `name` with `default`, `range` (`[min, max]`, numbers only) and
     /// one-line `doc`. Panics when a number has no range: a declaration bug, caught by every
     /// test that builds the registry.
-    fn spec(
+    fn specs(
         name: &'static str,
         default: Self::Default,
         range: Option<[f64; 2]>,
         doc: &'static str,
-    ) -> ParamSpec;
+    ) -> Vec<ParamSpec>;
     /// The field's value in `params` (validated against the same spec by the loader).
     /// Errors only when `params` did not come from this spec (a bug): the message names it.
     fn read(params: &Params, name: &'static str) -> Result<Self, String>;
@@ -44,9 +44,9 @@ fn value<'a>(params: &'a Params, name: &str) -> Result<&'a ParamValue, String> {
 
 impl ParamField for f64 {
     type Default = f64;
-    fn spec(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
+    fn specs(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> Vec<ParamSpec> {
         let [min, max] = range_of(name, r);
-        ParamSpec::float(name, d, min, max, doc)
+        vec![ParamSpec::float(name, d, min, max, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -59,8 +59,8 @@ impl ParamField for f64 {
 
 impl ParamField for f32 {
     type Default = f64;
-    fn spec(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
-        f64::spec(name, d, r, doc)
+    fn specs(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> Vec<ParamSpec> {
+        f64::specs(name, d, r, doc)
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         f64::read(params, name).map(|x| x as f32)
@@ -69,9 +69,9 @@ impl ParamField for f32 {
 
 impl ParamField for i64 {
     type Default = i64;
-    fn spec(name: &'static str, d: i64, r: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
+    fn specs(name: &'static str, d: i64, r: Option<[f64; 2]>, doc: &'static str) -> Vec<ParamSpec> {
         let [min, max] = range_of(name, r);
-        ParamSpec::int(name, d, min as i64, max as i64, doc)
+        vec![ParamSpec::int(name, d, min as i64, max as i64, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -83,13 +83,13 @@ impl ParamField for i64 {
 
 impl ParamField for u32 {
     type Default = i64;
-    fn spec(name: &'static str, d: i64, r: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
+    fn specs(name: &'static str, d: i64, r: Option<[f64; 2]>, doc: &'static str) -> Vec<ParamSpec> {
         let [min, max] = range_of(name, r);
         assert!(
             min >= 0.0 && max <= u32::MAX as f64,
             "`{name}`: range beyond u32"
         );
-        i64::spec(name, d, r, doc)
+        i64::specs(name, d, r, doc)
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         let i = i64::read(params, name)?;
@@ -99,8 +99,13 @@ impl ParamField for u32 {
 
 impl ParamField for bool {
     type Default = bool;
-    fn spec(name: &'static str, d: bool, _: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
-        ParamSpec::bool(name, d, doc)
+    fn specs(
+        name: &'static str,
+        d: bool,
+        _: Option<[f64; 2]>,
+        doc: &'static str,
+    ) -> Vec<ParamSpec> {
+        vec![ParamSpec::bool(name, d, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -113,8 +118,13 @@ impl ParamField for bool {
 /// RGBA, channels in [0, 1].
 impl ParamField for [f32; 4] {
     type Default = [f64; 4];
-    fn spec(name: &'static str, d: [f64; 4], _: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
-        ParamSpec::color(name, d, doc)
+    fn specs(
+        name: &'static str,
+        d: [f64; 4],
+        _: Option<[f64; 2]>,
+        doc: &'static str,
+    ) -> Vec<ParamSpec> {
+        vec![ParamSpec::color(name, d, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -126,8 +136,13 @@ impl ParamField for [f32; 4] {
 
 impl ParamField for [f32; 3] {
     type Default = [f64; 3];
-    fn spec(name: &'static str, d: [f64; 3], _: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
-        ParamSpec::vec3(name, d, doc)
+    fn specs(
+        name: &'static str,
+        d: [f64; 3],
+        _: Option<[f64; 2]>,
+        doc: &'static str,
+    ) -> Vec<ParamSpec> {
+        vec![ParamSpec::vec3(name, d, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -140,13 +155,13 @@ impl ParamField for [f32; 3] {
 /// A file path; relative paths resolve against the graph file's folder, empty stays empty.
 impl ParamField for PathBuf {
     type Default = &'static str;
-    fn spec(
+    fn specs(
         name: &'static str,
         d: &'static str,
         _: Option<[f64; 2]>,
         doc: &'static str,
-    ) -> ParamSpec {
-        ParamSpec::path(name, d, doc)
+    ) -> Vec<ParamSpec> {
+        vec![ParamSpec::path(name, d, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -156,15 +171,48 @@ impl ParamField for PathBuf {
     }
 }
 
-impl ParamField for String {
+/// A file path as written in the graph file (`written`: the key a loader caches by, the text
+/// a user sees) and resolved against the graph file's folder (`resolved`; empty stays empty).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FilePath {
+    pub written: String,
+    pub resolved: PathBuf,
+}
+
+impl FilePath {
+    /// Whether no file is named (the written text is blank).
+    pub fn is_blank(&self) -> bool {
+        self.written.trim().is_empty()
+    }
+}
+
+impl ParamField for FilePath {
     type Default = &'static str;
-    fn spec(
+    fn specs(
         name: &'static str,
         d: &'static str,
         _: Option<[f64; 2]>,
         doc: &'static str,
-    ) -> ParamSpec {
-        ParamSpec::text(name, d, doc)
+    ) -> Vec<ParamSpec> {
+        vec![ParamSpec::path(name, d, doc)]
+    }
+    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+        Ok(FilePath {
+            written: String::read(params, name)?,
+            resolved: PathBuf::read(params, name)?,
+        })
+    }
+}
+
+impl ParamField for String {
+    type Default = &'static str;
+    fn specs(
+        name: &'static str,
+        d: &'static str,
+        _: Option<[f64; 2]>,
+        doc: &'static str,
+    ) -> Vec<ParamSpec> {
+        vec![ParamSpec::text(name, d, doc)]
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -185,8 +233,11 @@ pub enum DataValue {
 
 impl ParamField for DataValue {
     type Default = f64;
-    fn spec(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> ParamSpec {
-        f64::spec(name, d, r, doc).relative()
+    fn specs(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> Vec<ParamSpec> {
+        f64::specs(name, d, r, doc)
+            .into_iter()
+            .map(ParamSpec::relative)
+            .collect()
     }
     fn read(params: &Params, name: &'static str) -> Result<Self, String> {
         match value(params, name)? {
@@ -195,6 +246,12 @@ impl ParamField for DataValue {
         }
     }
 }
+
+/// The default of a group field: a parameter struct declared with
+/// [`node_params!`](crate::node_params) whose parameters several kinds share (the Blinn–Phong
+/// coefficients of the ray casters), written `pub phong: PhongParams = Group;`.
+#[derive(Clone, Copy, Debug)]
+pub struct Group;
 
 /// A field's doc comment lines (`#[doc = " …"]`) as one line of text, stored once.
 pub fn doc_text(lines: &[&str]) -> &'static str {
@@ -221,7 +278,8 @@ pub fn doc_text(lines: &[&str]) -> &'static str {
 /// Each field: doc comment (the parameter's one-line doc), name, [`ParamField`] type, default,
 /// then `range(min, max)` for numbers and optionally `reads(InputKind::…)` for a path a graph
 /// input may bind. Generates `specs()` (for the kind's schema, in declaration order) and
-/// `read(&Params) -> Result<Self, NodeError>`.
+/// `read(&Params) -> Result<Self, NodeError>`. A field whose type is another such struct, with
+/// default [`Group`], puts that struct's parameters in its place.
 #[macro_export]
 macro_rules! node_params {
     (
@@ -246,17 +304,18 @@ macro_rules! node_params {
             /// The parameters' specs, in declaration order (the kind's `NodeSchema::params`).
             #[allow(unused_mut)]
             pub fn specs() -> Vec<$crate::ParamSpec> {
-                vec![$({
+                let mut specs = Vec::new();
+                $({
                     let range: Option<[f64; 2]> = None $(.or(Some([$min as f64, $max as f64])))?;
-                    let mut spec = <$ty as $crate::node_params::ParamField>::spec(
+                    let field = <$ty as $crate::node_params::ParamField>::specs(
                         stringify!($field),
                         $default,
                         range,
                         $crate::node_params::doc_text(&[$($doc),*]),
                     );
-                    $( spec = spec.reads($reads); )?
-                    spec
-                }),*]
+                    specs.extend(field.into_iter()$(.map(|s| s.reads($reads)))?);
+                })*
+                specs
             }
 
             /// Reads a node's validated parameters. Errors name a parameter `params` lacks or
@@ -267,6 +326,23 @@ macro_rules! node_params {
                     $( $field: <$ty as $crate::node_params::ParamField>::read(params, stringify!($field))
                         .map_err($crate::NodeError::new)?, )*
                 })
+            }
+        }
+
+        /// A parameter struct is itself a field of another: its parameters in place (a group
+        /// shared by several kinds, declared `pub name: Group = Group;`).
+        impl $crate::node_params::ParamField for $name {
+            type Default = $crate::node_params::Group;
+            fn specs(
+                _: &'static str,
+                _: $crate::node_params::Group,
+                _: Option<[f64; 2]>,
+                _: &'static str,
+            ) -> Vec<$crate::ParamSpec> {
+                $name::specs()
+            }
+            fn read(params: &$crate::Params, _: &'static str) -> Result<Self, String> {
+                $name::read(params).map_err(|e| e.message)
             }
         }
     };
@@ -309,13 +385,13 @@ macro_rules! param_choice {
 
         impl $crate::node_params::ParamField for $name {
             type Default = $name;
-            fn spec(
+            fn specs(
                 name: &'static str,
                 default: $name,
                 _: Option<[f64; 2]>,
                 doc: &'static str,
-            ) -> $crate::ParamSpec {
-                $crate::ParamSpec::choice(name, default.name(), Self::NAMES, doc)
+            ) -> Vec<$crate::ParamSpec> {
+                vec![$crate::ParamSpec::choice(name, default.name(), Self::NAMES, doc)]
             }
             fn read(params: &$crate::Params, name: &'static str) -> Result<Self, String> {
                 match params.get(name) {
@@ -355,6 +431,44 @@ mod tests {
             /// an iso value
             pub iso: crate::node_params::DataValue = 0.0, range(-1e12, 1e12);
         }
+    }
+
+    crate::node_params! {
+        /// Parameters shared by several kinds.
+        pub struct Shared {
+            /// a gain
+            pub gain: f32 = 2.0, range(0.0, 4.0);
+        }
+    }
+
+    crate::node_params! {
+        /// A kind using the shared group between its own parameters.
+        pub struct WithGroup {
+            /// first
+            pub first: bool = true;
+            pub shared: Shared = crate::node_params::Group;
+            /// a file as written and resolved
+            pub file: crate::FilePath = "";
+        }
+    }
+
+    #[test]
+    fn a_group_puts_its_parameters_in_place() {
+        let names: Vec<_> = WithGroup::specs().iter().map(|s| s.name).collect();
+        assert_eq!(names, ["first", "gain", "file"]);
+        let values: BTreeMap<String, ParamValue> = [
+            ("first".to_owned(), ParamValue::Bool(false)),
+            ("gain".to_owned(), ParamValue::Float(3.0)),
+            ("file".to_owned(), ParamValue::Path("data/a.nii".into())),
+        ]
+        .into();
+        let base: std::sync::Arc<std::path::Path> = std::path::Path::new("/g").into();
+        let read = WithGroup::read(&Params::new(values, Some(base))).unwrap();
+        assert!(!read.first);
+        assert_eq!(read.shared.gain, 3.0);
+        assert_eq!(read.file.written, "data/a.nii");
+        assert_eq!(read.file.resolved, std::path::Path::new("/g/data/a.nii"));
+        assert!(!read.file.is_blank());
     }
 
     #[test]

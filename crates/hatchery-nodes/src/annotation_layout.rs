@@ -12,7 +12,7 @@ use hatchery_annotation::{
     project_footprint,
 };
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::{Arc, Mutex};
 
@@ -85,6 +85,23 @@ fn mask_boundary(mask: &export::Array) -> Vec<Vec2> {
     points
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `AnnotationLayout`.
+    pub struct AnnotationLayoutParams {
+        /// label text size, pixels
+        pub font_size: f32 = 13.0, range(6.0, 96.0);
+        /// distance of the labels from the hull, pixels
+        pub margin: f32 = 10.0, range(0.0, 200.0);
+        /// iterations of the swap/shift loop before labels are left out
+        pub max_iterations: u32 = 300, range(1, 10000);
+        /// with a gbuffer: an anchor this far (world units) behind the surface still counts as
+        /// visible
+        pub depth_tolerance: f32 = 5.0, range(0.0, 1.0e6);
+        /// start from the previous layout (labels move little between frames)
+        pub coherent: bool = true;
+    }
+}
+
 pub struct AnnotationLayoutNode;
 
 impl Node<Value, Ctx> for AnnotationLayoutNode {
@@ -121,36 +138,7 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
                 PortType::Annotations,
                 "the anchors with their labels placed",
             )],
-            params: vec![
-                ParamSpec::float("font_size", 13.0, 6.0, 96.0, "label text size, pixels"),
-                ParamSpec::float(
-                    "margin",
-                    10.0,
-                    0.0,
-                    200.0,
-                    "distance of the labels from the hull, pixels",
-                ),
-                ParamSpec::int(
-                    "max_iterations",
-                    300,
-                    1,
-                    10000,
-                    "iterations of the swap/shift loop before labels are left out",
-                ),
-                ParamSpec::float(
-                    "depth_tolerance",
-                    5.0,
-                    0.0,
-                    1.0e6,
-                    "with a gbuffer: an anchor this far (world units) behind the surface \
-                     still counts as visible",
-                ),
-                ParamSpec::bool(
-                    "coherent",
-                    true,
-                    "start from the previous layout (labels move little between frames)",
-                ),
-            ],
+            params: AnnotationLayoutParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -162,6 +150,7 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = AnnotationLayoutParams::read(p)?;
         let annotations = inputs.require("annotations")?.annotations("annotations")?;
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let frame = Vec2::new(camera.width as f32, camera.height as f32);
@@ -180,7 +169,7 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
                     ),
                 ));
             }
-            hide_occluded(&camera, &mut projected, &depth, p.f32("depth_tolerance"));
+            hide_occluded(&camera, &mut projected, &depth, params.depth_tolerance);
         }
         let hull_points = match inputs.get("footprint") {
             Some(m) => {
@@ -218,15 +207,15 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
                 convex_hull(&project_footprint(&points, view_proj, frame))
             }
         };
-        let font_size = p.f32("font_size");
+        let font_size = params.font_size;
         let sizes: Vec<Vec2> = annotations
             .anchors
             .iter()
             .map(|a| label_size(&a.text, font_size))
             .collect();
-        let params = LayoutParams {
-            margin: p.f32("margin"),
-            max_iterations: p.int("max_iterations").clamp(1, 10000) as u32,
+        let layout_params = LayoutParams {
+            margin: params.margin,
+            max_iterations: params.max_iterations.clamp(1, 10000),
             ..LayoutParams::default()
         };
         // The previous layout of this node, for temporal coherence.
@@ -244,9 +233,16 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
         let texts: Vec<String> = annotations.anchors.iter().map(|a| a.text.clone()).collect();
         let previous = memory
             .as_ref()
-            .filter(|(t, f, _)| p.bool("coherent") && *t == texts && *f == frame)
+            .filter(|(t, f, _)| params.coherent && *t == texts && *f == frame)
             .map(|(_, _, l)| l);
-        let mut placed = layout(&projected, &sizes, &hull_points, frame, &params, previous);
+        let mut placed = layout(
+            &projected,
+            &sizes,
+            &hull_points,
+            frame,
+            &layout_params,
+            previous,
+        );
         *memory = Some((texts, frame, placed.clone()));
         // A label the frame cuts is worse than none (a narrow frame around a wide hull).
         let mut cut = Vec::new();

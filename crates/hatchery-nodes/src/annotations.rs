@@ -8,7 +8,7 @@ use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_annotation::{Anchor, Layout, ProjectedAnchor};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -91,6 +91,14 @@ pub fn parse_anchor_list(text: &str) -> Result<Vec<Anchor>, String> {
         .collect()
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `AnnotationList`.
+    pub struct AnnotationListParams {
+        /// "x y z: text; …" in world units
+        pub anchors: String = "0 0 0: centre";
+    }
+}
+
 pub struct AnnotationListNode;
 
 impl Node<Value, Ctx> for AnnotationListNode {
@@ -106,11 +114,7 @@ impl Node<Value, Ctx> for AnnotationListNode {
                 PortType::Annotations,
                 "the anchors",
             )],
-            params: vec![ParamSpec::text(
-                "anchors",
-                "0 0 0: centre",
-                "\"x y z: text; …\" in world units",
-            )],
+            params: AnnotationListParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -122,7 +126,8 @@ impl Node<Value, Ctx> for AnnotationListNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let anchors = parse_anchor_list(p.text("anchors"))
+        let params = AnnotationListParams::read(p)?;
+        let anchors = parse_anchor_list(&params.anchors)
             .map_err(|e| NodeError::new(format!("parameter `anchors`: {e}")))?;
         let bounds = vec![None; anchors.len()];
         Ok(vec![Value::Annotations(Arc::new(Annotations {
@@ -218,6 +223,14 @@ fn anchors_for(labels: &Labels, ids: &[u16]) -> (Vec<Anchor>, Vec<Option<[Vec3; 
     (anchors, bounds)
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `AnnotationsFromLabels`.
+    pub struct AnnotationsFromLabelsParams {
+        /// label ids to annotate, e.g. "10, 13" (empty: the drawn objects, or all)
+        pub objects: String = "";
+    }
+}
+
 pub struct AnnotationsFromLabelsNode;
 
 impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
@@ -244,11 +257,7 @@ impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
                 PortType::Annotations,
                 "one anchor per object",
             )],
-            params: vec![ParamSpec::text(
-                "objects",
-                "",
-                "label ids to annotate, e.g. \"10, 13\" (empty: the drawn objects, or all)",
-            )],
+            params: AnnotationsFromLabelsParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -260,12 +269,13 @@ impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = AnnotationsFromLabelsParams::read(p)?;
         let labels = inputs.require("labels")?.labels("labels")?.clone();
         let styles = match inputs.get("styles") {
             Some(v) => Some(v.object_styles("styles")?.clone()),
             None => None,
         };
-        let listed = p.text("objects").trim();
+        let listed = params.objects.trim();
         let ids: Vec<u16> = if !listed.is_empty() {
             let mut ids: Vec<u16> = Vec::new();
             for s in listed

@@ -5,7 +5,7 @@ use crate::{Ctx, Value};
 use glam::camera::rh::{proj::directx, view::look_at_mat4};
 use glam::{Mat4, Vec3};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -167,6 +167,56 @@ crate::uniform_block! {
     }
 }
 
+hatchery_graph::param_choice! {
+    /// Projection type.
+    pub enum Projection { Perspective = "perspective", Orthographic = "orthographic" }
+}
+
+hatchery_graph::param_choice! {
+    /// World axis that points up on screen.
+    pub enum Up { Y = "y", Z = "z" }
+}
+
+hatchery_graph::param_choice! {
+    /// Fit: frame the connected data; fixed: use target and distance (also when nothing is
+    /// connected).
+    pub enum Framing { Fit = "fit", Fixed = "fixed" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `Camera`.
+    pub struct CameraParams {
+        /// rotation around the up axis, degrees
+        pub azimuth: f32 = 30.0, range(-360.0, 360.0);
+        /// angle above the horizontal plane, degrees
+        pub elevation: f32 = 20.0, range(-90.0, 90.0);
+        /// distance from the target, world units
+        pub distance: f32 = 3.5, range(1e-4, 1e6);
+        /// point looked at, world units
+        pub target: [f32; 3] = [0.0, 0.0, 0.0];
+        /// field of view across the frame's shorter side (the height of a wide frame), degrees
+        pub fov: f32 = 40.0, range(1.0, 170.0);
+        /// projection type
+        pub projection: Projection = Projection::Perspective;
+        /// world axis that points up on screen
+        pub up: Up = Up::Y;
+        /// near clipping distance
+        pub near: f32 = 0.05, range(1e-5, 1e6);
+        /// far clipping distance
+        pub far: f32 = 100.0, range(1e-4, 1e7);
+        /// fit: frame the connected data; fixed: use target and distance (also when nothing is
+        /// connected)
+        pub framing: Framing = Framing::Fit;
+        /// framing: the fraction of the frame's width or height the data fills (above 1: closer,
+        /// part of the data)
+        pub fill: f32 = 0.8, range(0.05, 20.0);
+        /// framing: target shift to the right, in frame widths (shorter side)
+        pub pan_x: f32 = 0.0, range(-10.0, 10.0);
+        /// framing: target shift upwards, in frame heights (shorter side)
+        pub pan_y: f32 = 0.0, range(-10.0, 10.0);
+    }
+}
+
 pub struct CameraNode;
 
 impl Node<Value, Ctx> for CameraNode {
@@ -202,78 +252,7 @@ impl Node<Value, Ctx> for CameraNode {
                 PortType::Camera,
                 "view and projection for the frame",
             )],
-            params: vec![
-                ParamSpec::float(
-                    "azimuth",
-                    30.0,
-                    -360.0,
-                    360.0,
-                    "rotation around the up axis, degrees",
-                ),
-                ParamSpec::float(
-                    "elevation",
-                    20.0,
-                    -90.0,
-                    90.0,
-                    "angle above the horizontal plane, degrees",
-                ),
-                ParamSpec::float(
-                    "distance",
-                    3.5,
-                    1e-4,
-                    1e6,
-                    "distance from the target, world units",
-                ),
-                ParamSpec::vec3("target", [0.0, 0.0, 0.0], "point looked at, world units"),
-                ParamSpec::float(
-                    "fov",
-                    40.0,
-                    1.0,
-                    170.0,
-                    "field of view across the frame's shorter side (the height of a wide frame), degrees",
-                ),
-                ParamSpec::choice(
-                    "projection",
-                    "perspective",
-                    &["perspective", "orthographic"],
-                    "projection type",
-                ),
-                ParamSpec::choice(
-                    "up",
-                    "y",
-                    &["y", "z"],
-                    "world axis that points up on screen",
-                ),
-                ParamSpec::float("near", 0.05, 1e-5, 1e6, "near clipping distance"),
-                ParamSpec::float("far", 100.0, 1e-4, 1e7, "far clipping distance"),
-                ParamSpec::choice(
-                    "framing",
-                    "fit",
-                    &["fit", "fixed"],
-                    "fit: frame the connected data; fixed: use target and distance (also when nothing is connected)",
-                ),
-                ParamSpec::float(
-                    "fill",
-                    0.8,
-                    0.05,
-                    20.0,
-                    "framing: the fraction of the frame's width or height the data fills (above 1: closer, part of the data)",
-                ),
-                ParamSpec::float(
-                    "pan_x",
-                    0.0,
-                    -10.0,
-                    10.0,
-                    "framing: target shift to the right, in frame widths (shorter side)",
-                ),
-                ParamSpec::float(
-                    "pan_y",
-                    0.0,
-                    -10.0,
-                    10.0,
-                    "framing: target shift upwards, in frame heights (shorter side)",
-                ),
-            ],
+            params: CameraParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -285,16 +264,17 @@ impl Node<Value, Ctx> for CameraNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = CameraParams::read(p)?;
         let (width, height) = ctx.size();
-        let orthographic = p.choice("projection") == "orthographic";
+        let orthographic = params.projection == Projection::Orthographic;
         let (az, el, fov, up_z) = (
-            p.f32("azimuth"),
-            p.f32("elevation"),
-            p.f32("fov"),
-            p.choice("up") == "z",
+            params.azimuth,
+            params.elevation,
+            params.fov,
+            params.up == Up::Z,
         );
         // The data's outline is only gathered when the camera frames it.
-        let framing = if p.choice("framing") == "fit" {
+        let framing = if params.framing == Framing::Fit {
             crate::framing::frame_points(
                 &framed_points(inputs)?,
                 az,
@@ -303,9 +283,9 @@ impl Node<Value, Ctx> for CameraNode {
                 fov,
                 width as f32 / height as f32,
                 orthographic,
-                p.f32("fill"),
-                [p.f32("pan_x"), p.f32("pan_y")],
-                (p.f32("near"), p.f32("far"), p.f32("distance")),
+                params.fill,
+                [params.pan_x, params.pan_y],
+                (params.near, params.far, params.distance),
             )
         } else {
             None
@@ -313,13 +293,13 @@ impl Node<Value, Ctx> for CameraNode {
         let (target, distance, near, far) = match framing {
             Some(f) => (f.target, f.distance, f.near, f.far),
             None => {
-                let (near, far) = (p.f32("near"), p.f32("far"));
+                let (near, far) = (params.near, params.far);
                 if near >= far {
                     return Err(NodeError::new(format!(
                         "near ({near}) must be less than far ({far})"
                     )));
                 }
-                (Vec3::from(p.vec3("target")), p.f32("distance"), near, far)
+                (Vec3::from(params.target), params.distance, near, far)
             }
         };
         let mut camera = Camera::orbit(

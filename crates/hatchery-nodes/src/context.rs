@@ -43,7 +43,10 @@ impl RenderContext {
             resolved: BTreeMap::new(),
             memory: HashMap::new(),
             image_kernel: crate::raycast::Kernel::choose(
-                &std::env::var("HATCHERY_IMAGE_KERNEL").unwrap_or_default(),
+                std::env::var("HATCHERY_IMAGE_KERNEL")
+                    .ok()
+                    .and_then(|k| crate::raycast::KernelChoice::from_name(&k))
+                    .unwrap_or(crate::raycast::KernelChoice::Auto),
                 &gpu,
             ),
             gpu,

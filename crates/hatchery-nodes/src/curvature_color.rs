@@ -6,11 +6,9 @@ use crate::screen_pass::{self, IMAGE_FORMAT};
 use crate::value::{Image, TransferFunction};
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    FilePath, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
-
-const MEASURES: &[&str] = &["curvedness", "k1", "k2", "mean", "gaussian", "k1_k2"];
 
 /// Texels per side of the built-in (κ1, κ2) map.
 pub const SHAPE_MAP_SIZE: u32 = 65;
@@ -88,14 +86,39 @@ crate::uniform_block! {
     }
 }
 
-fn measure_code(name: &str) -> f32 {
-    match name {
-        "k1" => 0.0,
-        "k2" => 1.0,
-        "mean" => 2.0,
-        "gaussian" => 3.0,
-        "k1_k2" => 5.0,
-        _ => 4.0,
+/// The shader's code for a measure (shaders/curvature_color.wgsl).
+fn measure_code(measure: Measure) -> f32 {
+    match measure {
+        Measure::K1 => 0.0,
+        Measure::K2 => 1.0,
+        Measure::Mean => 2.0,
+        Measure::Gaussian => 3.0,
+        Measure::Curvedness => 4.0,
+        Measure::K1K2 => 5.0,
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// Which curvature the colour shows (k1_k2: the 2-D map).
+    pub enum Measure {
+        Curvedness = "curvedness",
+        K1 = "k1",
+        K2 = "k2",
+        Mean = "mean",
+        Gaussian = "gaussian",
+        K1K2 = "k1_k2",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `CurvatureColor`.
+    pub struct CurvatureColorParams {
+        /// which curvature the colour shows (k1_k2: the 2-D map)
+        pub measure: Measure = Measure::Curvedness;
+        /// k1_k2: a 2-D transfer function image (PNG, …); empty = the built-in map
+        pub map: FilePath = "";
+        /// k1_k2: |κ| at the map's edges, world units⁻¹
+        pub range: f32 = 0.25, range(1e-9, 1e9);
     }
 }
 
@@ -129,26 +152,7 @@ impl Node<Value, Ctx> for CurvatureColorNode {
                 PortType::Image,
                 "premultiplied colour",
             )],
-            params: vec![
-                ParamSpec::choice(
-                    "measure",
-                    "curvedness",
-                    MEASURES,
-                    "which curvature the colour shows (k1_k2: the 2-D map)",
-                ),
-                ParamSpec::path(
-                    "map",
-                    "",
-                    "k1_k2: a 2-D transfer function image (PNG, …); empty = the built-in map",
-                ),
-                ParamSpec::float(
-                    "range",
-                    0.25,
-                    1e-9,
-                    1e9,
-                    "k1_k2: |κ| at the map's edges, world units⁻¹",
-                ),
-            ],
+            params: CurvatureColorParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -160,8 +164,9 @@ impl Node<Value, Ctx> for CurvatureColorNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = CurvatureColorParams::read(p)?;
         let curvature = inputs.require("curvature")?.image("curvature")?.clone();
-        let two_d = p.choice("measure") == "k1_k2";
+        let two_d = params.measure == Measure::K1K2;
         let (lut, domain) = if two_d {
             (ctx.blank_texture(), [0.0, 1.0])
         } else {
@@ -196,7 +201,7 @@ impl Node<Value, Ctx> for CurvatureColorNode {
         };
         let map = if !two_d {
             ctx.blank_texture()
-        } else if p.text("map").trim().is_empty() {
+        } else if params.map.is_blank() {
             ctx.cached("curvature_color.shape_map", |gpu| {
                 Ok(gpu.texture_2d_init(
                     "shape map",
@@ -210,15 +215,15 @@ impl Node<Value, Ctx> for CurvatureColorNode {
             .as_ref()
             .clone()
         } else {
-            ctx.file_texture(&p.path("map"))
+            ctx.file_texture(&params.map.resolved)
                 .map_err(|e| NodeError::new(format!("param `map`: {e}")))?
         };
         let uniforms = CurvatureColorUniforms {
             options: [
-                measure_code(p.choice("measure")),
+                measure_code(params.measure),
                 domain[0],
                 domain[1],
-                p.f32("range"),
+                params.range,
             ],
         };
         let size = (curvature.texture.width(), curvature.texture.height());

@@ -6,7 +6,7 @@ use crate::screen_pass::{self, MASK_FORMAT};
 use crate::value::Mask;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -17,6 +17,29 @@ crate::uniform_block! {
         pub inv_view_proj: [[f32; 4]; 4],
         pub frame: [f32; 4],
         pub options: [f32; 4],
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// The principal direction of the larger or of the smaller |κ|.
+    pub enum Direction { MaxCurvature = "max_curvature", MinCurvature = "min_curvature" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `CurvatureFlow`.
+    pub struct CurvatureFlowParams {
+        /// streamline length, pixels
+        pub length: f32 = 20.0, range(2.0, 200.0);
+        /// integration step, pixels
+        pub step: f32 = 1.0, range(0.25, 4.0);
+        /// the principal direction of the larger or of the smaller |κ|
+        pub direction: Direction = Direction::MaxCurvature;
+        /// noise cell size on the surface, world units (about a pixel's footprint)
+        pub grain: f32 = 1.0, range(1e-6, 1e6);
+        /// streak contrast
+        pub contrast: f32 = 1.0, range(0.0, 4.0);
+        /// average output (e.g. 0.8 to multiply a colour image by the streaks)
+        pub mean: f32 = 0.5, range(0.0, 1.0);
     }
 }
 
@@ -47,31 +70,7 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
                 PortType::Mask,
                 "streaks along the principal direction",
             )],
-            params: vec![
-                ParamSpec::float("length", 20.0, 2.0, 200.0, "streamline length, pixels"),
-                ParamSpec::float("step", 1.0, 0.25, 4.0, "integration step, pixels"),
-                ParamSpec::choice(
-                    "direction",
-                    "max_curvature",
-                    &["max_curvature", "min_curvature"],
-                    "the principal direction of the larger or of the smaller |κ|",
-                ),
-                ParamSpec::float(
-                    "grain",
-                    1.0,
-                    1e-6,
-                    1e6,
-                    "noise cell size on the surface, world units (about a pixel's footprint)",
-                ),
-                ParamSpec::float("contrast", 1.0, 0.0, 4.0, "streak contrast"),
-                ParamSpec::float(
-                    "mean",
-                    0.5,
-                    0.0,
-                    1.0,
-                    "average output (e.g. 0.8 to multiply a colour image by the streaks)",
-                ),
-            ],
+            params: CurvatureFlowParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -83,6 +82,7 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = CurvatureFlowParams::read(p)?;
         let curvature = inputs.require("curvature")?.image("curvature")?.clone();
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         gbuffer_sized(
@@ -93,24 +93,24 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
         )?;
         let camera = &gbuffer.camera;
         let size = (camera.width, camera.height);
-        let step = p.f32("step");
+        let step = params.step;
         let uniforms = FlowUniforms {
             inv_view_proj: camera.view_proj().inverse().to_cols_array_2d(),
             frame: [
                 size.0 as f32,
                 size.1 as f32,
-                (0.5 * p.f32("length") / step).ceil().clamp(1.0, 256.0),
+                (0.5 * params.length / step).ceil().clamp(1.0, 256.0),
                 step,
             ],
             options: [
-                p.f32("grain"),
-                if p.choice("direction") == "min_curvature" {
+                params.grain,
+                if params.direction == Direction::MinCurvature {
                     1.0
                 } else {
                     0.0
                 },
-                p.f32("contrast"),
-                p.f32("mean"),
+                params.contrast,
+                params.mean,
             ],
         };
         let flow = screen_pass::render(

@@ -12,9 +12,24 @@ use crate::value::{GBuffer, Mesh};
 use crate::{Ctx, Value, camera::Camera};
 use hatchery_gpu::GpuContext;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::param_choice! {
+    /// Auto: one pass where the adapter has 64-bit atomics, else two; peel: always the two passes
+    /// of GBuffer + DepthPeel (to compare).
+    pub enum Method { Auto = "auto", Peel = "peel" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `DepthLayers`.
+    pub struct DepthLayersParams {
+        /// auto: one pass where the adapter has 64-bit atomics, else two; peel: always the two
+        /// passes of GBuffer + DepthPeel (to compare)
+        pub method: Method = Method::Auto;
+    }
+}
 
 pub struct DepthLayersNode;
 
@@ -58,13 +73,7 @@ impl Node<Value, Ctx> for DepthLayersNode {
                     "depth + normal of the surface behind it",
                 ),
             ],
-            params: vec![ParamSpec::choice(
-                "method",
-                "auto",
-                &["auto", "peel"],
-                "auto: one pass where the adapter has 64-bit atomics, else two; peel: always \
-                 the two passes of GBuffer + DepthPeel (to compare)",
-            )],
+            params: DepthLayersParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -76,10 +85,11 @@ impl Node<Value, Ctx> for DepthLayersNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = DepthLayersParams::read(p)?;
         let mesh = inputs.require("mesh")?.mesh("mesh")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let able = single_pass_possible(&ctx.gpu, camera.width, camera.height);
-        let (first, second) = if able && p.choice("method") == "auto" {
+        let (first, second) = if able && params.method == Method::Auto {
             single_pass(ctx, &mesh, &camera)?
         } else {
             let first = render_layer(ctx, &mesh, &camera, None)?;

@@ -13,7 +13,7 @@ use crate::{Ctx, Value};
 use glam::Vec2;
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::{Arc, OnceLock};
 
@@ -179,6 +179,38 @@ impl HatchPipelines {
     }
 }
 
+hatchery_graph::param_choice! {
+    /// The principal direction of the larger or of the smaller |κ|.
+    pub enum Direction { MaxCurvature = "max_curvature", MinCurvature = "min_curvature" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `HatchStrokes`.
+    pub struct HatchStrokesParams {
+        /// chance that a seed at full darkness draws a stroke
+        pub density: f32 = 0.05, range(0.0, 1.0);
+        /// stroke length, pixels (at most 256 RK4 steps)
+        pub length: f32 = 24.0, range(2.0, 256.0);
+        /// stroke width in the middle, pixels
+        pub width: f32 = 1.2, range(0.25, 8.0);
+        /// fraction of the length over which each end thins to nothing
+        pub taper: f32 = 0.3, range(0.0, 0.5);
+        /// RK4 step, pixels
+        pub step: f32 = 1.0, range(0.25, 4.0);
+        /// the principal direction of the larger or of the smaller |κ|
+        pub direction: Direction = Direction::MaxCurvature;
+        /// darkness above which a second stroke crosses the first (1 = never)
+        pub cross_hatching: f32 = 0.6, range(0.0, 1.0);
+        /// visibility and fold test: depth difference allowed, as a fraction of the seed mesh's
+        /// bounding-box diagonal
+        pub depth_tolerance: f32 = 0.01, range(0.0, 1.0);
+        /// most strokes drawn
+        pub max_strokes: u32 = 20000, range(1, 1_000_000);
+        /// varies the random numbers
+        pub seed: u32 = 0, range(0, 1 << 20);
+    }
+}
+
 pub struct HatchStrokesNode;
 
 impl Node<Value, Ctx> for HatchStrokesNode {
@@ -220,60 +252,7 @@ impl Node<Value, Ctx> for HatchStrokesNode {
                 PortSpec::output("mask", PortType::Mask, "stroke coverage"),
                 PortSpec::output("strokes", PortType::Strokes, "the strokes as polylines"),
             ],
-            params: vec![
-                ParamSpec::float(
-                    "density",
-                    0.05,
-                    0.0,
-                    1.0,
-                    "chance that a seed at full darkness draws a stroke",
-                ),
-                ParamSpec::float(
-                    "length",
-                    24.0,
-                    2.0,
-                    256.0,
-                    "stroke length, pixels (at most 256 RK4 steps)",
-                ),
-                ParamSpec::float(
-                    "width",
-                    1.2,
-                    0.25,
-                    8.0,
-                    "stroke width in the middle, pixels",
-                ),
-                ParamSpec::float(
-                    "taper",
-                    0.3,
-                    0.0,
-                    0.5,
-                    "fraction of the length over which each end thins to nothing",
-                ),
-                ParamSpec::float("step", 1.0, 0.25, 4.0, "RK4 step, pixels"),
-                ParamSpec::choice(
-                    "direction",
-                    "max_curvature",
-                    &["max_curvature", "min_curvature"],
-                    "the principal direction of the larger or of the smaller |κ|",
-                ),
-                ParamSpec::float(
-                    "cross_hatching",
-                    0.6,
-                    0.0,
-                    1.0,
-                    "darkness above which a second stroke crosses the first (1 = never)",
-                ),
-                ParamSpec::float(
-                    "depth_tolerance",
-                    0.01,
-                    0.0,
-                    1.0,
-                    "visibility and fold test: depth difference allowed, as a fraction of \
-                     the seed mesh's bounding-box diagonal",
-                ),
-                ParamSpec::int("max_strokes", 20000, 1, 1_000_000, "most strokes drawn"),
-                ParamSpec::int("seed", 0, 0, 1 << 20, "varies the random numbers"),
-            ],
+            params: HatchStrokesParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -285,6 +264,7 @@ impl Node<Value, Ctx> for HatchStrokesNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = HatchStrokesParams::read(p)?;
         let curvature = inputs.require("curvature")?.image("curvature")?.clone();
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let seeds = inputs.require("seeds")?.mesh("seeds")?.clone();
@@ -326,10 +306,10 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             .data
             .bounds()
             .map_or(1.0, |(lo, hi)| (hi - lo).length().max(1e-6));
-        let step = p.f32("step");
-        let steps = ((0.5 * p.f32("length") / step).ceil() as u32).clamp(1, MAX_STEPS);
+        let step = params.step;
+        let steps = ((0.5 * params.length / step).ceil() as u32).clamp(1, MAX_STEPS);
         let slots = 2 * steps + 1;
-        let max_strokes = (p.int("max_strokes").max(1) as u32).min(
+        let max_strokes = params.max_strokes.max(1).min(
             (ctx.gpu.device.limits().max_storage_buffer_binding_size / (8 * slots as u64)).max(1)
                 as u32,
         );
@@ -339,19 +319,19 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             inv_proj: camera.proj.inverse().to_cols_array_2d(),
             frame: [width as f32, height as f32, step, steps as f32],
             options: [
-                p.f32("density"),
-                if p.f32("cross_hatching") >= 1.0 {
+                params.density,
+                if params.cross_hatching >= 1.0 {
                     2.0
                 } else {
-                    p.f32("cross_hatching")
+                    params.cross_hatching
                 },
-                p.f32("depth_tolerance") * diagonal,
+                params.depth_tolerance * diagonal,
                 0.0,
             ],
             shape: [
-                p.f32("width"),
-                p.f32("taper"),
-                if p.choice("direction") == "min_curvature" {
+                params.width,
+                params.taper,
+                if params.direction == Direction::MinCurvature {
                     1.0
                 } else {
                     0.0
@@ -361,7 +341,7 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             counts: [
                 vertex_count,
                 u32::from(tone.is_some()),
-                (p.int("seed") as u32).wrapping_mul(0x9E37_79B9),
+                params.seed.wrapping_mul(0x9E37_79B9),
                 0,
             ],
         };
@@ -495,8 +475,8 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             points,
             slots,
             max_strokes,
-            width: p.f32("width"),
-            taper: p.f32("taper"),
+            width: params.width,
+            taper: params.taper,
             frame: (width, height),
             lines: OnceLock::new(),
         };

@@ -15,12 +15,10 @@ use crate::value::{Importance, ImportanceMethod, ObjectStyle};
 use crate::{Ctx, Value};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
-const METHODS: &[&str] = &["mimp", "aimc_image", "aimc_object", "vpimc"];
-const COUNTERSINKS: &[&str] = &["conical", "cylindrical"];
 /// Drawn objects that can take part in the importance sum (one bit each per pixel).
 const MAX_OBJECTS: usize = 32;
 
@@ -148,10 +146,10 @@ impl ImportancePipelines {
 }
 
 /// The focus: `requested` if it is drawn, else (0) the drawn object of highest importance.
-fn focus_object(styles: &[ObjectStyle], requested: i64) -> Result<u16, NodeError> {
+fn focus_object(styles: &[ObjectStyle], requested: u32) -> Result<u16, NodeError> {
     let drawn: Vec<&ObjectStyle> = styles.iter().filter(|s| s.enabled).collect();
     if requested > 0 {
-        return match drawn.iter().find(|s| i64::from(s.id) == requested) {
+        return match drawn.iter().find(|s| u32::from(s.id) == requested) {
             Some(s) => Ok(s.id),
             None => Err(NodeError::new(format!(
                 "parameter `focus`: object {requested} is not drawn by the object table (drawn: {})",
@@ -168,6 +166,47 @@ fn focus_object(styles: &[ObjectStyle], requested: i64) -> Result<u16, NodeError
         .max_by(|a, b| a.importance.total_cmp(&b.importance))
         .map(|s| s.id)
         .ok_or_else(|| NodeError::at_port("styles", "no object of the table is drawn"))
+}
+
+hatchery_graph::param_choice! {
+    /// Importance compositing: mimp, aimc_image, aimc_object, vpimc.
+    pub enum Method {
+        Mimp = "mimp",
+        AimcImage = "aimc_image",
+        AimcObject = "aimc_object",
+        Vpimc = "vpimc",
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// Conical (eq. 1) or cylindrical (the footprint swept along the rays).
+    pub enum Countersink { Conical = "conical", Cylindrical = "cylindrical" }
+}
+
+hatchery_graph::param_choice! {
+    /// Object membership, as TwoLevelRaycast's.
+    pub enum Boundary { Filtered = "filtered", Point = "point" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `ImportanceCompositing`.
+    pub struct ImportanceCompositingParams {
+        /// importance compositing: mimp, aimc_image, aimc_object, vpimc
+        pub method: Method = Method::Mimp;
+        /// the focus object's id (0: the drawn object of highest importance)
+        pub focus: u32 = 0, range(0, 65535);
+        /// conical (eq. 1) or cylindrical (the footprint swept along the rays)
+        pub countersink: Countersink = Countersink::Conical;
+        /// s_c of eq. 1: depth per unit of image-space distance (both in world units)
+        pub slope: f32 = 1.0, range(0.05, 20.0);
+        /// image-space AImC: dilate and average the footprints over this radius (pixels) for smooth
+        /// transitions between levels of sparseness
+        pub transition: f32 = 0.0, range(0.0, 64.0);
+        /// sample distance along the rays in voxels (of the smallest spacing)
+        pub step: f32 = 0.5, range(0.05, 8.0);
+        /// object membership, as TwoLevelRaycast's
+        pub boundary: Boundary = Boundary::Filtered;
+    }
 }
 
 pub struct ImportanceCompositingNode;
@@ -208,55 +247,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
                 PortType::Importance,
                 "footprint, countersink and importance sums of this view",
             )],
-            params: vec![
-                ParamSpec::choice(
-                    "method",
-                    "mimp",
-                    METHODS,
-                    "importance compositing: mimp, aimc_image, aimc_object, vpimc",
-                ),
-                ParamSpec::int(
-                    "focus",
-                    0,
-                    0,
-                    65535,
-                    "the focus object's id (0: the drawn object of highest importance)",
-                ),
-                ParamSpec::choice(
-                    "countersink",
-                    "conical",
-                    COUNTERSINKS,
-                    "conical (eq. 1) or cylindrical (the footprint swept along the rays)",
-                ),
-                ParamSpec::float(
-                    "slope",
-                    1.0,
-                    0.05,
-                    20.0,
-                    "s_c of eq. 1: depth per unit of image-space distance (both in world units)",
-                ),
-                ParamSpec::float(
-                    "transition",
-                    0.0,
-                    0.0,
-                    64.0,
-                    "image-space AImC: dilate and average the footprints over this radius \
-                     (pixels) for smooth transitions between levels of sparseness",
-                ),
-                ParamSpec::float(
-                    "step",
-                    0.5,
-                    0.05,
-                    8.0,
-                    "sample distance along the rays in voxels (of the smallest spacing)",
-                ),
-                ParamSpec::choice(
-                    "boundary",
-                    "filtered",
-                    &["filtered", "point"],
-                    "object membership, as TwoLevelRaycast's",
-                ),
-            ],
+            params: ImportanceCompositingParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -268,16 +259,17 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = ImportanceCompositingParams::read(p)?;
         let labels = inputs.require("labels")?.labels("labels")?.clone();
         let styles = inputs.require("styles")?.object_styles("styles")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
-        let method = match p.choice("method") {
-            "aimc_image" => ImportanceMethod::AimcImage,
-            "aimc_object" => ImportanceMethod::AimcObject,
-            "vpimc" => ImportanceMethod::Vpimc,
-            _ => ImportanceMethod::Mimp,
+        let method = match params.method {
+            Method::Mimp => ImportanceMethod::Mimp,
+            Method::AimcImage => ImportanceMethod::AimcImage,
+            Method::AimcObject => ImportanceMethod::AimcObject,
+            Method::Vpimc => ImportanceMethod::Vpimc,
         };
-        let focus = focus_object(&styles, p.int("focus"))?;
+        let focus = focus_object(&styles, params.focus)?;
         let drawn: Vec<&ObjectStyle> = styles.iter().filter(|s| s.enabled).collect();
         if drawn.len() > MAX_OBJECTS {
             ctx.warn(format!(
@@ -302,7 +294,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             geometry: &l.geometry,
             value_range: [0.0, 1.0],
         };
-        let options = RayOptions::plain(p.f32("step"), false, 1.0, glam::Vec3::Z, Kernel::Compute);
+        let options = RayOptions::plain(params.step, false, 1.0, glam::Vec3::Z, Kernel::Compute);
         let info = TableInfo {
             skip_empty: true,
             ..TableInfo::plain()
@@ -312,7 +304,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let two_level = TwoLevelUniforms {
             options: [
                 0.0,
-                if p.choice("boundary") == "point" {
+                if params.boundary == Boundary::Point {
                     0.0
                 } else {
                     1.0
@@ -323,10 +315,10 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             ..Default::default()
         };
         let proj_y = camera.proj.y_axis.y;
-        let slope = if p.choice("countersink") == "cylindrical" {
+        let slope = if params.countersink == Countersink::Cylindrical {
             0.0
         } else {
-            p.f32("slope")
+            params.slope
         };
         let params = ImportanceUniforms {
             frame: [
@@ -338,7 +330,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             view: [
                 2.0 / (proj_y * h as f32),
                 if method == ImportanceMethod::AimcImage {
-                    p.f32("transition").round()
+                    params.transition.round()
                 } else {
                     0.0
                 },

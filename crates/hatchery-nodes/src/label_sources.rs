@@ -7,7 +7,8 @@ use crate::value::Labels;
 use crate::{Ctx, Value};
 use hatchery_data::segmentation::{self, LabelData};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    DataValue, FilePath, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType,
+    executor::Node,
 };
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -34,6 +35,18 @@ fn finish_shared(ctx: &mut Ctx, what: &str, data: Arc<LabelData>) -> Result<Vec<
     Ok(vec![Value::Labels(Arc::new(Labels::shared(data)))])
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `LabelFile`.
+    pub struct LabelFileParams {
+        /// the label map file, or a DICOM folder
+        pub path: FilePath = "", reads(hatchery_graph::InputKind::Labels);
+        /// the named data array to read (VTK); empty: the active scalars
+        pub array: String = "";
+        /// object names: CSV `id,name` or ITK-SNAP label file (optional)
+        pub names: FilePath = "", reads(hatchery_graph::InputKind::Names);
+    }
+}
+
 pub struct LabelFileNode;
 
 impl Node<Value, Ctx> for LabelFileNode {
@@ -48,21 +61,7 @@ impl Node<Value, Ctx> for LabelFileNode {
                   .seg.nrrd header); objects without a name are called \"object N\".",
             inputs: vec![],
             outputs: vec![labels_output()],
-            params: vec![
-                ParamSpec::path("path", "", "the label map file, or a DICOM folder")
-                    .reads(hatchery_graph::InputKind::Labels),
-                ParamSpec::text(
-                    "array",
-                    "",
-                    "the named data array to read (VTK); empty: the active scalars",
-                ),
-                ParamSpec::path(
-                    "names",
-                    "",
-                    "object names: CSV `id,name` or ITK-SNAP label file (optional)",
-                )
-                .reads(hatchery_graph::InputKind::Names),
-            ],
+            params: LabelFileParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -74,7 +73,8 @@ impl Node<Value, Ctx> for LabelFileNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let key = p.text("path");
+        let params = LabelFileParams::read(p)?;
+        let key = params.path.written.as_str();
         if memory_inputs::is_memory_key(key) {
             let mut data = match ctx.memory(key) {
                 Some(InputData::Labels(l)) => l.clone(),
@@ -82,7 +82,7 @@ impl Node<Value, Ctx> for LabelFileNode {
                 None => return Err(memory_inputs::missing(key)),
             };
             // Names given with the array win over a names table (which names the rest).
-            let table = names_table(ctx, p)?;
+            let table = names_table(ctx, &params.names)?;
             if !table.is_empty() {
                 let given = data.objects.clone();
                 let labels = Arc::make_mut(&mut data);
@@ -91,13 +91,13 @@ impl Node<Value, Ctx> for LabelFileNode {
             }
             return finish_shared(ctx, "labels in memory", data);
         }
-        let path = p.path("path");
+        let path = params.path.resolved.clone();
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
                 "parameter `path` is empty: name a label map (.nii.gz, .vti, .nrrd, ...)",
             ));
         }
-        let array = p.text("array").trim();
+        let array = params.array.trim();
         let options = hatchery_data::volume_file::LoadOptions {
             array: (!array.is_empty()).then(|| array.to_owned()),
         };
@@ -119,14 +119,14 @@ impl Node<Value, Ctx> for LabelFileNode {
                 .map_err(|e| NodeError::new(e.to_string()))?;
             data.name_objects(&table);
         }
-        data.name_objects(&names_table(ctx, p)?);
+        data.name_objects(&names_table(ctx, &params.names)?);
         finish(ctx, &path.display().to_string(), data)
     }
 }
 
 /// The `names` table: from its file, or from memory (a `memory:` key); empty when not set.
-fn names_table(ctx: &Ctx, p: &Params) -> Result<BTreeMap<u16, String>, NodeError> {
-    let key = p.text("names");
+fn names_table(ctx: &Ctx, names: &FilePath) -> Result<BTreeMap<u16, String>, NodeError> {
+    let key = names.written.as_str();
     if memory_inputs::is_memory_key(key) {
         return match ctx.memory(key) {
             Some(InputData::Names(n)) => Ok(n.as_ref().clone()),
@@ -134,11 +134,10 @@ fn names_table(ctx: &Ctx, p: &Params) -> Result<BTreeMap<u16, String>, NodeError
             None => Err(memory_inputs::missing(key)),
         };
     }
-    let names = p.path("names");
-    if names.as_os_str().is_empty() {
+    if names.resolved.as_os_str().is_empty() {
         return Ok(BTreeMap::new());
     }
-    segmentation::read_names(&names).map_err(|e| NodeError::new(e.to_string()))
+    segmentation::read_names(&names.resolved).map_err(|e| NodeError::new(e.to_string()))
 }
 
 /// The names an in-memory label map was given (not the "object N" placeholders).
@@ -184,6 +183,15 @@ pub fn parse_intervals(
     Ok(intervals)
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `LabelsFromThreshold`.
+    pub struct LabelsFromThresholdParams {
+        /// "lo..hi: id; …" in data units; bounds may be "percentile(P)", "range(F)" or "otsu" of
+        /// the volume
+        pub intervals: String = "80..140: 1; 140..256: 2";
+    }
+}
+
 pub struct LabelsFromThresholdNode;
 
 impl Node<Value, Ctx> for LabelsFromThresholdNode {
@@ -199,11 +207,7 @@ impl Node<Value, Ctx> for LabelsFromThresholdNode {
                 "the scalar field",
             )],
             outputs: vec![labels_output()],
-            params: vec![ParamSpec::text(
-                "intervals",
-                "80..140: 1; 140..256: 2",
-                "\"lo..hi: id; …\" in data units; bounds may be \"percentile(P)\", \"range(F)\" or \"otsu\" of the volume",
-            )],
+            params: LabelsFromThresholdParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -215,14 +219,26 @@ impl Node<Value, Ctx> for LabelsFromThresholdNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = LabelsFromThresholdParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
-        let intervals = parse_intervals(p.text("intervals"), Some(&volume.data))
+        let intervals = parse_intervals(&params.intervals, Some(&volume.data))
             .map_err(|e| NodeError::new(format!("parameter `intervals`: {e}")))?;
         finish(
             ctx,
             "LabelsFromThreshold",
             segmentation::threshold(&volume.data, &intervals),
         )
+    }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `LabelsFromMaps`.
+    pub struct LabelsFromMapsParams {
+        /// smallest value that makes a voxel part of an object (data units of map a, or
+        /// "percentile(P)", "range(F)", "otsu" of map a)
+        pub floor: DataValue = 128.0, range(-1e12, 1e12);
+        /// object names, "a name, b name, …" (optional)
+        pub names: String = "";
     }
 }
 
@@ -242,21 +258,7 @@ impl Node<Value, Ctx> for LabelsFromMapsNode {
                 PortSpec::optional("c", PortType::Volume, "map of object 3"),
             ],
             outputs: vec![labels_output()],
-            params: vec![
-                ParamSpec::float(
-                    "floor",
-                    128.0,
-                    -1e12,
-                    1e12,
-                    "smallest value that makes a voxel part of an object (data units of map a, or \"percentile(P)\", \"range(F)\", \"otsu\" of map a)",
-                )
-                .relative(),
-                ParamSpec::text(
-                    "names",
-                    "",
-                    "object names, \"a name, b name, …\" (optional)",
-                ),
-            ],
+            params: LabelsFromMapsParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -268,6 +270,7 @@ impl Node<Value, Ctx> for LabelsFromMapsNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = LabelsFromMapsParams::read(p)?;
         let mut maps = vec![inputs.require("a")?.volume("a")?.clone()];
         for port in ["b", "c"] {
             if let Some(v) = inputs.get(port) {
@@ -275,11 +278,11 @@ impl Node<Value, Ctx> for LabelsFromMapsNode {
             }
         }
         let data: Vec<&hatchery_data::VolumeData> = maps.iter().map(|m| &*m.data).collect();
-        let floor = crate::relative::data_value(ctx, p, "floor", data[0])?;
+        let floor = crate::relative::data_value(ctx, "floor", params.floor, data[0])?;
         let mut labels =
             segmentation::from_maps(&data, floor).map_err(|e| NodeError::new(e.to_string()))?;
-        let names: std::collections::BTreeMap<u16, String> = p
-            .text("names")
+        let names: std::collections::BTreeMap<u16, String> = params
+            .names
             .split(',')
             .map(str::trim)
             .enumerate()

@@ -3,9 +3,18 @@
 use crate::value::Mesh;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    DataValue, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// Parameters of `MarchingCubes`.
+    pub struct MarchingCubesParams {
+        /// iso value, in the volume's units, or relative to its values: "percentile(60)",
+        /// "range(0.3)", "otsu"
+        pub iso: DataValue = 0.0, range(-1e12, 1e12);
+    }
+}
 
 pub struct MarchingCubesNode;
 
@@ -27,7 +36,7 @@ impl Node<Value, Ctx> for MarchingCubesNode {
                 PortType::Mesh,
                 "the iso-surface in world units",
             )],
-            params: vec![crate::relative::iso_param()],
+            params: MarchingCubesParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -40,7 +49,8 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
         let volume = inputs.require("volume")?.volume("volume")?;
-        let iso = crate::relative::data_value(ctx, p, "iso", &volume.data)?;
+        let params = MarchingCubesParams::read(p)?;
+        let iso = crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?;
         let range = volume.data.value_range;
         // No surface is a warning, not an error (issue 9 item 4): the picture renders without it
         // and the node says why, as for an iso value that crosses no cell.

@@ -3,9 +3,17 @@
 use crate::value::Mesh;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    FilePath, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// Parameters of `MeshFile`.
+    pub struct MeshFileParams {
+        /// the mesh file
+        pub path: FilePath = "", reads(hatchery_graph::InputKind::Mesh);
+    }
+}
 
 pub struct MeshFileNode;
 
@@ -19,9 +27,7 @@ impl Node<Value, Ctx> for MeshFileNode {
                   file's folder.",
             inputs: vec![],
             outputs: vec![PortSpec::output("mesh", PortType::Mesh, "the mesh")],
-            params: vec![
-                ParamSpec::path("path", "", "the mesh file").reads(hatchery_graph::InputKind::Mesh),
-            ],
+            params: MeshFileParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -33,7 +39,8 @@ impl Node<Value, Ctx> for MeshFileNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let key = p.text("path");
+        let params = MeshFileParams::read(p)?;
+        let key = params.path.written.as_str();
         if crate::memory_inputs::is_memory_key(key) {
             return match ctx.memory(key) {
                 Some(crate::memory_inputs::InputData::Mesh(m)) => {
@@ -43,7 +50,7 @@ impl Node<Value, Ctx> for MeshFileNode {
                 None => Err(crate::memory_inputs::missing(key)),
             };
         }
-        let path = p.path("path");
+        let path = params.path.resolved.clone();
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
                 "parameter `path` is empty: name an .obj, .ply or .stl file",

@@ -6,7 +6,7 @@ use crate::value::{Compositing, ObjectStyle, RenderMode, TransferFunction};
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::{TransferFunction1D, TransferFunction1D as Tf};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -170,6 +170,14 @@ fn pick<T: Copy>(word: Option<&str>, table: &[(&str, T)], what: &str) -> Result<
         })
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `ObjectStyles`.
+    pub struct ObjectStylesParams {
+        /// "ID: mode compositing [tf=…] [iso=…] [importance=…] [off]; …"
+        pub objects: String = "1: shaded_dvr over";
+    }
+}
+
 pub struct ObjectStylesNode;
 
 impl Node<Value, Ctx> for ObjectStylesNode {
@@ -205,11 +213,7 @@ impl Node<Value, Ctx> for ObjectStylesNode {
                 PortType::ObjectStyles,
                 "per-object transfer function, rendering and compositing mode",
             )],
-            params: vec![ParamSpec::text(
-                "objects",
-                "1: shaded_dvr over",
-                "\"ID: mode compositing [tf=…] [iso=…] [importance=…] [off]; …\"",
-            )],
+            params: ObjectStylesParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -221,6 +225,7 @@ impl Node<Value, Ctx> for ObjectStylesNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = ObjectStylesParams::read(p)?;
         let labels = inputs.require("labels")?.labels("labels")?.clone();
         let range = match inputs.get("volume") {
             Some(v) => v.volume("volume")?.data.value_range,
@@ -251,7 +256,7 @@ impl Node<Value, Ctx> for ObjectStylesNode {
             Some(f) => f,
             None => preset("grey_ramp").map_err(NodeError::new)?,
         };
-        let rows = parse_rows(&named_rows(p.text("objects"), &labels.data.objects)?)
+        let rows = parse_rows(&named_rows(params.objects.as_str(), &labels.data.objects)?)
             .map_err(|e| NodeError::new(format!("`objects`: {e}")))?;
         let mut styles = Vec::new();
         for row in rows {

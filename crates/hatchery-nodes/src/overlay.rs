@@ -25,7 +25,7 @@ use crate::{Ctx, Value};
 use glam::Vec2;
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -499,14 +499,32 @@ fn pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, GpuError> {
 }
 
 /// Reads a width parameter (pixels) and rejects non-finite values by name.
-pub fn pixels(p: &Params, name: &str) -> Result<f32, NodeError> {
-    let v = p.f32(name);
+/// Parameter `name`'s value `v` as a length in pixels (finite, not negative).
+pub fn pixels(name: &str, v: f32) -> Result<f32, NodeError> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
     } else {
         Err(NodeError::new(format!(
             "parameter `{name}`: {v} is not a length in pixels"
         )))
+    }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `AnnotationOverlay`.
+    pub struct AnnotationOverlayParams {
+        /// label text colour
+        pub text_color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// colour of the halo around the text (alpha 0: none)
+        pub halo_color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+        /// halo width around the glyphs, pixels
+        pub halo_width: f32 = 2.0, range(0.0, MAX_HALO as f64);
+        /// leader line and anchor dot colour (alpha times the label's opacity)
+        pub leader_color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
+        /// leader line width, pixels
+        pub leader_width: f32 = 1.0, range(0.0, 16.0);
+        /// radius of the dot at the anchor, pixels (0: none)
+        pub dot_radius: f32 = 2.5, range(0.0, 32.0);
     }
 }
 
@@ -535,34 +553,7 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
                 PortType::Image,
                 "the picture with the labels",
             )],
-            params: vec![
-                ParamSpec::color("text_color", [0.0, 0.0, 0.0, 1.0], "label text colour"),
-                ParamSpec::color(
-                    "halo_color",
-                    [1.0, 1.0, 1.0, 1.0],
-                    "colour of the halo around the text (alpha 0: none)",
-                ),
-                ParamSpec::float(
-                    "halo_width",
-                    2.0,
-                    0.0,
-                    MAX_HALO as f64,
-                    "halo width around the glyphs, pixels",
-                ),
-                ParamSpec::color(
-                    "leader_color",
-                    [0.2, 0.2, 0.2, 1.0],
-                    "leader line and anchor dot colour (alpha times the label's opacity)",
-                ),
-                ParamSpec::float("leader_width", 1.0, 0.0, 16.0, "leader line width, pixels"),
-                ParamSpec::float(
-                    "dot_radius",
-                    2.5,
-                    0.0,
-                    32.0,
-                    "radius of the dot at the anchor, pixels (0: none)",
-                ),
-            ],
+            params: AnnotationOverlayParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -574,6 +565,7 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = AnnotationOverlayParams::read(p)?;
         let image = inputs.require("image")?.image("image")?.clone();
         let annotations: Arc<Annotations> = inputs
             .require("annotations")?
@@ -591,11 +583,11 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
             ));
         }
         let (halo_width, leader_width, dot_radius) = (
-            pixels(p, "halo_width")?,
-            pixels(p, "leader_width")?,
-            pixels(p, "dot_radius")?,
+            pixels("halo_width", params.halo_width)?,
+            pixels("leader_width", params.leader_width)?,
+            pixels("dot_radius", params.dot_radius)?,
         );
-        let leader_color = p.color("leader_color");
+        let leader_color = params.leader_color;
         let with_opacity = |o: f32| {
             let mut c = leader_color;
             c[3] *= o.clamp(0.0, 1.0);
@@ -631,8 +623,8 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
                 &anchor.text,
                 placed.font_size,
                 origin,
-                p.color("text_color"),
-                p.color("halo_color"),
+                params.text_color,
+                params.halo_color,
                 halo_width,
             );
         }

@@ -4,9 +4,34 @@ use crate::value::Volume;
 use crate::{Ctx, Value};
 use hatchery_data::procedural;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::param_choice! {
+    /// Which field to generate.
+    pub enum Shape {
+        Shells = "shells",
+        Sphere = "sphere",
+        Torus = "torus",
+        EngineBlock = "engine_block",
+        Pistons = "pistons",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `ProceduralVolume`.
+    pub struct ProceduralVolumeParams {
+        /// which field to generate
+        pub shape: Shape = Shape::Shells;
+        /// voxels along each axis
+        pub resolution: u32 = 96, range(4, 512);
+        /// sphere radius, or torus major radius
+        pub radius: f32 = 0.7, range(0.01, 1.0);
+        /// torus tube radius
+        pub minor_radius: f32 = 0.25, range(0.01, 1.0);
+    }
+}
 
 pub struct ProceduralVolumeNode;
 
@@ -25,23 +50,7 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
                 PortType::Volume,
                 "the generated scalar field",
             )],
-            params: vec![
-                ParamSpec::choice(
-                    "shape",
-                    "shells",
-                    &["shells", "sphere", "torus", "engine_block", "pistons"],
-                    "which field to generate",
-                ),
-                ParamSpec::int("resolution", 96, 4, 512, "voxels along each axis"),
-                ParamSpec::float(
-                    "radius",
-                    0.7,
-                    0.01,
-                    1.0,
-                    "sphere radius, or torus major radius",
-                ),
-                ParamSpec::float("minor_radius", 0.25, 0.01, 1.0, "torus tube radius"),
-            ],
+            params: ProceduralVolumeParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -53,13 +62,14 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        let res = p.int("resolution") as u32;
-        let data = match p.choice("shape") {
-            "sphere" => procedural::sphere(res, p.f32("radius")),
-            "torus" => procedural::torus(res, p.f32("radius"), p.f32("minor_radius")),
-            "engine_block" => procedural::engine_block(res),
-            "pistons" => procedural::pistons(res),
-            _ => procedural::shells(res),
+        let params = ProceduralVolumeParams::read(p)?;
+        let res = params.resolution;
+        let data = match params.shape {
+            Shape::Sphere => procedural::sphere(res, params.radius),
+            Shape::Torus => procedural::torus(res, params.radius, params.minor_radius),
+            Shape::EngineBlock => procedural::engine_block(res),
+            Shape::Pistons => procedural::pistons(res),
+            Shape::Shells => procedural::shells(res),
         }
         .map_err(|e| NodeError::new(e.to_string()))?;
         Ok(vec![Value::Volume(Arc::new(Volume::new(data)))])

@@ -4,19 +4,7 @@
 
 use crate::Ctx;
 use hatchery_data::{VolumeData, value_stats};
-use hatchery_graph::{NodeError, ParamSpec, Params, RelativeValue};
-
-/// The `iso` parameter of surface extraction (default 0): data units, or relative to the data.
-pub fn iso_param() -> ParamSpec {
-    ParamSpec::float(
-        "iso",
-        0.0,
-        -1e12,
-        1e12,
-        "iso value, in the volume's units, or relative to its values: \"percentile(60)\", \"range(0.3)\", \"otsu\"",
-    )
-    .relative()
-}
+use hatchery_graph::{DataValue, NodeError, RelativeValue};
 
 /// Resolves `r` against `volume`'s values. Errors: a volume with no finite value, or a constant
 /// one for Otsu (there are no two classes to separate).
@@ -35,17 +23,18 @@ pub fn resolve(r: RelativeValue, volume: &VolumeData) -> Result<f32, String> {
     }
 }
 
-/// The number of data-value parameter `name` (see [`hatchery_graph::ParamSpec::relative`]),
-/// resolved against `volume` when it is given relatively (and recorded on `ctx`).
+/// The number of data-value parameter `name` (see [`hatchery_graph::ParamSpec::relative`])
+/// whose value is `value`, resolved against `volume` when it is given relatively (and recorded
+/// on `ctx`).
 pub fn data_value(
     ctx: &mut Ctx,
-    p: &Params,
     name: &str,
+    value: DataValue,
     volume: &VolumeData,
 ) -> Result<f32, NodeError> {
-    match p.data_value(name) {
-        Ok(v) => Ok(v as f32),
-        Err(r) => {
+    match value {
+        DataValue::Number(v) => Ok(v as f32),
+        DataValue::Relative(r) => {
             let v = resolve(r, volume)
                 .map_err(|e| NodeError::new(format!("parameter `{name}`: {e}")))?;
             tracing::info!("{name} = {r} = {v}");

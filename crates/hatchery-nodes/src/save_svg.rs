@@ -10,8 +10,9 @@ use hatchery_annotation::{
     Color, LabelStyle, Layer, PathData, PathStyle, Stroke, SvgDocument, signed_area, trace_mask,
 };
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
+use std::path::PathBuf;
 
 /// The line inputs (masks) and their parameters' suffix.
 const LINES: [&str; 3] = ["lines1", "lines2", "lines3"];
@@ -21,110 +22,95 @@ fn color(c: [f32; 4]) -> Color {
     Color(byte(c[0]), byte(c[1]), byte(c[2]))
 }
 
+hatchery_graph::param_choice! {
+    /// Traced masks as filled shapes or as stroked outlines.
+    pub enum LinesAs { Shapes = "shapes", Outlines = "outlines" }
+}
+
+hatchery_graph::param_choice! {
+    /// Whose world box to draw.
+    pub enum Boxes { None = "none", Ghost = "ghost", Selection = "selection", Both = "both" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `SaveSvg`; `color`/`shown`/`width` 1–3 belong to inputs `lines1`–`lines3`.
+    pub struct SaveSvgParams {
+        /// the SVG file to write
+        pub path: PathBuf = "figure.svg";
+        /// embed the `image` as a PNG layer under the lines
+        pub embed_picture: bool = true;
+        /// traced masks as filled shapes (the mask's exact extent, one path per input) or as
+        /// stroked outlines (one path per contour)
+        pub lines_as: LinesAs = LinesAs::Shapes;
+        /// Douglas–Peucker tolerance of the traced lines, pixels
+        pub simplify: f32 = 0.5, range(0.0, 10.0);
+        /// label text colour
+        pub text_color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// label halo colour
+        pub halo_color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+        /// label halo width, pixels (0: none)
+        pub halo_width: f32 = 2.0, range(0.0, 20.0);
+        /// leader line colour
+        pub leader_color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
+        /// leader line width, pixels
+        pub leader_width: f32 = 1.0, range(0.1, 20.0);
+        /// with `selection`: the arrow ghost → selection
+        pub arrow: bool = true;
+        /// with `selection`: the fan between their rectangles
+        pub fan: bool = false;
+        /// with `selection`: whose world box to draw
+        pub boxes: Boxes = Boxes::None;
+        /// colour of the arrow, fan and boxes
+        pub convention_color: [f32; 4] = [0.8, 0.1, 0.1, 1.0];
+        /// line width of the arrow, fan and boxes, pixels
+        pub convention_width: f32 = 2.0, range(0.1, 32.0);
+        /// the arrow's bend per pixel of depth difference (as Arrow's)
+        pub curvature: f32 = 0.5, range(0.0, 4.0);
+        /// colour of the hatching `strokes`
+        pub strokes_color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// stroke colour of the lines traced from this input
+        pub color1: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// these lines visible over the picture; off: in the hidden 'Covered lines' layer, for lines
+        /// the picture draws under its surfaces (hidden edges under hatching), so that the SVG
+        /// shows what the PNG does
+        pub shown1: bool = true;
+        /// stroke width of those lines, pixels
+        pub width1: f32 = 1.5, range(0.1, 50.0);
+        /// stroke colour of the lines traced from this input
+        pub color2: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// these lines visible over the picture; off: in the hidden 'Covered lines' layer, for lines
+        /// the picture draws under its surfaces (hidden edges under hatching), so that the SVG
+        /// shows what the PNG does
+        pub shown2: bool = true;
+        /// stroke width of those lines, pixels
+        pub width2: f32 = 1.5, range(0.1, 50.0);
+        /// stroke colour of the lines traced from this input
+        pub color3: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// these lines visible over the picture; off: in the hidden 'Covered lines' layer, for lines
+        /// the picture draws under its surfaces (hidden edges under hatching), so that the SVG
+        /// shows what the PNG does
+        pub shown3: bool = true;
+        /// stroke width of those lines, pixels
+        pub width3: f32 = 1.5, range(0.1, 50.0);
+    }
+}
+
+impl SaveSvgParams {
+    /// The stroke and whether it is shown of the lines traced from input `lines{k + 1}`.
+    fn line(&self, k: usize) -> (Stroke, bool) {
+        let (c, w, shown) = match k {
+            0 => (self.color1, self.width1, self.shown1),
+            1 => (self.color2, self.width2, self.shown2),
+            _ => (self.color3, self.width3, self.shown3),
+        };
+        (Stroke::new(color(c), w), shown)
+    }
+}
+
 pub struct SaveSvgNode;
 
 impl Node<Value, Ctx> for SaveSvgNode {
     fn schema(&self) -> NodeSchema {
-        let mut params = vec![
-            ParamSpec::path("path", "figure.svg", "the SVG file to write"),
-            ParamSpec::bool(
-                "embed_picture",
-                true,
-                "embed the `image` as a PNG layer under the lines",
-            ),
-            ParamSpec::choice(
-                "lines_as",
-                "shapes",
-                &["shapes", "outlines"],
-                "traced masks as filled shapes (the mask's exact extent, one path per input) or \
-                 as stroked outlines (one path per contour)",
-            ),
-            ParamSpec::float(
-                "simplify",
-                0.5,
-                0.0,
-                10.0,
-                "Douglas–Peucker tolerance of the traced lines, pixels",
-            ),
-            ParamSpec::color("text_color", [0.0, 0.0, 0.0, 1.0], "label text colour"),
-            ParamSpec::color("halo_color", [1.0, 1.0, 1.0, 1.0], "label halo colour"),
-            ParamSpec::float(
-                "halo_width",
-                2.0,
-                0.0,
-                20.0,
-                "label halo width, pixels (0: none)",
-            ),
-            ParamSpec::color("leader_color", [0.2, 0.2, 0.2, 1.0], "leader line colour"),
-            ParamSpec::float("leader_width", 1.0, 0.1, 20.0, "leader line width, pixels"),
-        ];
-        params.extend([
-            ParamSpec::bool(
-                "arrow",
-                true,
-                "with `selection`: the arrow ghost → selection",
-            ),
-            ParamSpec::bool(
-                "fan",
-                false,
-                "with `selection`: the fan between their rectangles",
-            ),
-            ParamSpec::choice(
-                "boxes",
-                "none",
-                &["none", "ghost", "selection", "both"],
-                "with `selection`: whose world box to draw",
-            ),
-            ParamSpec::color(
-                "convention_color",
-                [0.8, 0.1, 0.1, 1.0],
-                "colour of the arrow, fan and boxes",
-            ),
-            ParamSpec::float(
-                "convention_width",
-                2.0,
-                0.1,
-                32.0,
-                "line width of the arrow, fan and boxes, pixels",
-            ),
-            ParamSpec::float(
-                "curvature",
-                0.5,
-                0.0,
-                4.0,
-                "the arrow's bend per pixel of depth difference (as Arrow's)",
-            ),
-            ParamSpec::color(
-                "strokes_color",
-                [0.0, 0.0, 0.0, 1.0],
-                "colour of the hatching `strokes`",
-            ),
-        ]);
-        for (color_name, width_name, shown_name) in [
-            ("color1", "width1", "shown1"),
-            ("color2", "width2", "shown2"),
-            ("color3", "width3", "shown3"),
-        ] {
-            params.push(ParamSpec::color(
-                color_name,
-                [0.0, 0.0, 0.0, 1.0],
-                "stroke colour of the lines traced from this input",
-            ));
-            params.push(ParamSpec::bool(
-                shown_name,
-                true,
-                "these lines visible over the picture; off: in the hidden 'Covered lines' \
-                 layer, for lines the picture draws under its surfaces (hidden edges under \
-                 hatching), so that the SVG shows what the PNG does",
-            ));
-            params.push(ParamSpec::float(
-                width_name,
-                1.5,
-                0.1,
-                50.0,
-                "stroke width of those lines, pixels",
-            ));
-        }
         NodeSchema {
             kind: "SaveSvg",
             category: "Output",
@@ -163,7 +149,7 @@ impl Node<Value, Ctx> for SaveSvgNode {
                 ),
             ],
             outputs: vec![],
-            params,
+            params: SaveSvgParams::specs(),
             frame_dependent: true,
             sink: true,
         }
@@ -175,10 +161,11 @@ impl Node<Value, Ctx> for SaveSvgNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = SaveSvgParams::read(p)?;
         let (width, height) = ctx.size();
         let mut doc = SvgDocument::new(width as f32, height as f32);
         if let Some(image) = inputs.get("image")
-            && p.bool("embed_picture")
+            && params.embed_picture
         {
             let image = image.image("image")?;
             let pixels = ctx
@@ -197,17 +184,14 @@ impl Node<Value, Ctx> for SaveSvgNode {
             };
             let a = export::to_array(mask, &ctx.gpu).map_err(|e| NodeError::at_port(port, e))?;
             let (h, w) = (a.shape[0], a.shape[1]);
-            let stroke = Stroke::new(
-                color(p.color(&format!("color{}", i + 1))),
-                p.f32(&format!("width{}", i + 1)),
-            );
-            let lines = trace_mask(&a.data, w, h, 0.5, p.f32("simplify"));
-            let layer = if p.bool(&format!("shown{}", i + 1)) {
+            let (stroke, shown) = params.line(i);
+            let lines = trace_mask(&a.data, w, h, 0.5, params.simplify);
+            let layer = if shown {
                 Layer::Lines
             } else {
                 Layer::CoveredLines
             };
-            if p.choice("lines_as") == "outlines" {
+            if params.lines_as == LinesAs::Outlines {
                 for line in &lines {
                     let style = PathStyle {
                         fill: None,
@@ -249,7 +233,7 @@ impl Node<Value, Ctx> for SaveSvgNode {
                     ),
                 ));
             }
-            let ink = color(p.color("strokes_color"));
+            let ink = color(params.strokes_color);
             for line in s
                 .lines(&ctx.gpu)
                 .map_err(|e| NodeError::at_port("strokes", e))?
@@ -268,14 +252,14 @@ impl Node<Value, Ctx> for SaveSvgNode {
         if let Some(a) = inputs.get("annotations") {
             let a = a.annotations("annotations")?;
             let placed = a.placed("annotations")?;
-            let halo = p.f32("halo_width");
+            let halo = params.halo_width;
             let style = LabelStyle {
                 font_family: label_font::FAMILY.to_owned(),
                 font_size: label_font::svg_font_size(placed.font_size),
-                fill: color(p.color("text_color")),
-                halo: (halo > 0.0).then(|| Stroke::new(color(p.color("halo_color")), 2.0 * halo)),
+                fill: color(params.text_color),
+                halo: (halo > 0.0).then(|| Stroke::new(color(params.halo_color), 2.0 * halo)),
             };
-            let leader = Stroke::new(color(p.color("leader_color")), p.f32("leader_width"));
+            let leader = Stroke::new(color(params.leader_color), params.leader_width);
             let ascent = label_font::ascent(placed.font_size);
             for label in placed.layout.shown() {
                 doc.leader(
@@ -298,10 +282,10 @@ impl Node<Value, Ctx> for SaveSvgNode {
                     NodeError::at_port("camera", "`selection` needs the camera of the picture")
                 })?
                 .camera("camera")?;
-            conventions(&mut doc, selection, camera, (width, height), p)?;
+            conventions(&mut doc, selection, camera, (width, height), &params)?;
         }
-        let path = p.path("path");
-        hatchery_graph::atomic::write_atomically(&path, |file| {
+        let path = &params.path;
+        hatchery_graph::atomic::write_atomically(path, |file| {
             let mut out = std::io::BufWriter::new(file);
             doc.write_to(&mut out)?;
             std::io::Write::flush(&mut out)
@@ -362,18 +346,18 @@ fn conventions(
     selection: &crate::annotations::Annotations,
     camera: &crate::camera::Camera,
     frame: (u32, u32),
-    p: &Params,
+    p: &SaveSvgParams,
 ) -> Result<(), NodeError> {
     use crate::visual_conventions::{arrow_shape, box_edges, fan_shape};
     let at_port = |e: NodeError| NodeError::at_port("selection", e.message);
-    let color = color(p.color("convention_color"));
-    let width = p.f32("convention_width");
+    let color = color(p.convention_color);
+    let width = p.convention_width;
     let stroke = Stroke::new(color, width);
     let stroked = PathStyle {
         fill: None,
         stroke: Some(stroke),
     };
-    if p.bool("fan")
+    if p.fan
         && let Some(fan) = fan_shape(selection, camera, frame).map_err(at_port)?
     {
         let mut fill = polygon(&fan.hull);
@@ -400,11 +384,11 @@ fn conventions(
             );
         }
     }
-    let which: &[usize] = match p.choice("boxes") {
-        "ghost" => &[0],
-        "selection" => &[1],
-        "both" => &[0, 1],
-        _ => &[],
+    let which: &[usize] = match p.boxes {
+        Boxes::Ghost => &[0],
+        Boxes::Selection => &[1],
+        Boxes::Both => &[0, 1],
+        Boxes::None => &[],
     };
     for [a, b] in box_edges(selection, camera, frame, which).map_err(at_port)? {
         doc.path(
@@ -413,9 +397,9 @@ fn conventions(
             stroked,
         );
     }
-    if p.bool("arrow")
+    if p.arrow
         && let Some((shaft, head)) =
-            arrow_shape(selection, camera, frame, width, p.f32("curvature")).map_err(at_port)?
+            arrow_shape(selection, camera, frame, width, p.curvature).map_err(at_port)?
     {
         let mut d = PathData::new();
         for (i, &q) in shaft.iter().enumerate() {

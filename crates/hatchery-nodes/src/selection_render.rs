@@ -5,7 +5,7 @@
 
 use crate::annotations::Annotations;
 use crate::camera::Camera;
-use crate::raycast::{KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo};
+use crate::raycast::{Kernel, KernelChoice, RayOptions, RayPipelines, RayUniforms, TableInfo};
 use crate::value::{Image, Labels, TransferFunction};
 use crate::{Ctx, Value};
 use glam::{EulerRot, Mat3, Mat4, Vec3, Vec4Swizzles};
@@ -13,13 +13,9 @@ use hatchery_data::lighting;
 use hatchery_data::transfer_function::{LUT_SIZE, TransferFunction1D};
 use hatchery_gpu::GpuError;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
-
-const PLACEMENTS: &[&str] = &["integrated", "pinned", "decoupled"];
-const CUTAWAYS: &[&str] = &["ghost", "selection", "both", "none"];
-const SHADINGS: &[&str] = &["phong_contour", "phong", "cartoon", "metal", "none"];
 
 crate::uniform_block! {
     /// `Selection` of shaders/selection_render.wgsl.
@@ -32,15 +28,16 @@ crate::uniform_block! {
     }
 }
 
-/// How the selection is placed (§6.3).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Placement {
-    /// Moved by `translate`/`rotate` in the world: it follows the view like the scene.
-    Integrated,
-    /// Its centre stays at the screen point `pin`; it turns with the view like the scene.
-    Pinned,
-    /// Its centre stays at `pin` and its orientation is fixed relative to the viewer.
-    Decoupled,
+hatchery_graph::param_choice! {
+    /// How the selection is placed (§6.3).
+    pub enum Placement {
+        /// Moved by `translate`/`rotate` in the world: it follows the view like the scene.
+        Integrated = "integrated",
+        /// Its centre stays at the screen point `pin`; it turns with the view like the scene.
+        Pinned = "pinned",
+        /// Its centre stays at `pin` and its orientation is fixed relative to the viewer.
+        Decoupled = "decoupled",
+    }
 }
 
 /// The selection transform T (world → world, the source selection to where it is shown) for
@@ -195,6 +192,60 @@ fn color_tf(
     }
 }
 
+hatchery_graph::param_choice! {
+    /// Whose far side the background is cut in front of.
+    pub enum Cutaway {
+        Ghost = "ghost",
+        Selection = "selection",
+        Both = "both",
+        None = "none",
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// Lighting transfer function (eq. 8) or none (its names are the lighting models').
+    pub enum Shading {
+        PhongContour = "phong_contour",
+        Phong = "phong",
+        Cartoon = "cartoon",
+        Metal = "metal",
+        None = "none",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `SelectionRender`.
+    pub struct SelectionRenderParams {
+        /// label ids of the selection, e.g. "10" or "10, 11"
+        pub objects: String = "1";
+        /// integrated: the selection's move, world units
+        pub translate: [f32; 3] = [0.0, 0.0, 0.0];
+        /// rotation about the selection's centre, XYZ Euler degrees (world axes; view axes when
+        /// decoupled)
+        pub rotate: [f32; 3] = [0.0, 0.0, 0.0];
+        /// integrated, pinned or decoupled (§6.3)
+        pub placement: Placement = Placement::Integrated;
+        /// pinned/decoupled: the centre's screen position, fraction of the width from the left
+        pub pin_x: f32 = 0.75, range(0.0, 1.0);
+        /// pinned/decoupled: fraction of the height from the top
+        pub pin_y: f32 = 0.3, range(0.0, 1.0);
+        /// whose far side the background is cut in front of
+        pub cutaway: Cutaway = Cutaway::Ghost;
+        /// 0: no ghosting … 1: full cutaway
+        pub ghosting: f32 = 0.7, range(0.0, 1.0);
+        /// lighting transfer function (eq. 8) or none
+        pub shading: Shading = Shading::PhongContour;
+        /// sample distance in voxels (of the smallest spacing)
+        pub step: f32 = 0.5, range(0.05, 8.0);
+        /// jitter the first sample per pixel
+        pub jitter: bool = true;
+        /// stop a ray at this opacity (1 = never)
+        pub early_termination: f32 = 0.99, range(0.5, 1.0);
+        /// GPU path: fragment shader or compute kernel (same picture)
+        pub kernel: KernelChoice = KernelChoice::Auto;
+    }
+}
+
 pub struct SelectionRenderNode;
 
 impl Node<Value, Ctx> for SelectionRenderNode {
@@ -253,83 +304,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
                      (for Arrow, Fan, BoundingBox and labels)",
                 ),
             ],
-            params: vec![
-                ParamSpec::text(
-                    "objects",
-                    "1",
-                    "label ids of the selection, e.g. \"10\" or \"10, 11\"",
-                ),
-                ParamSpec::vec3(
-                    "translate",
-                    [0.0, 0.0, 0.0],
-                    "integrated: the selection's move, world units",
-                ),
-                ParamSpec::vec3(
-                    "rotate",
-                    [0.0, 0.0, 0.0],
-                    "rotation about the selection's centre, XYZ Euler degrees (world axes; view axes when decoupled)",
-                ),
-                ParamSpec::choice(
-                    "placement",
-                    "integrated",
-                    PLACEMENTS,
-                    "integrated, pinned or decoupled (§6.3)",
-                ),
-                ParamSpec::float(
-                    "pin_x",
-                    0.75,
-                    0.0,
-                    1.0,
-                    "pinned/decoupled: the centre's screen position, fraction of the width from the left",
-                ),
-                ParamSpec::float(
-                    "pin_y",
-                    0.3,
-                    0.0,
-                    1.0,
-                    "pinned/decoupled: fraction of the height from the top",
-                ),
-                ParamSpec::choice(
-                    "cutaway",
-                    "ghost",
-                    CUTAWAYS,
-                    "whose far side the background is cut in front of",
-                ),
-                ParamSpec::float(
-                    "ghosting",
-                    0.7,
-                    0.0,
-                    1.0,
-                    "0: no ghosting … 1: full cutaway",
-                ),
-                ParamSpec::choice(
-                    "shading",
-                    "phong_contour",
-                    SHADINGS,
-                    "lighting transfer function (eq. 8) or none",
-                ),
-                ParamSpec::float(
-                    "step",
-                    0.5,
-                    0.05,
-                    8.0,
-                    "sample distance in voxels (of the smallest spacing)",
-                ),
-                ParamSpec::bool("jitter", true, "jitter the first sample per pixel"),
-                ParamSpec::float(
-                    "early_termination",
-                    0.99,
-                    0.5,
-                    1.0,
-                    "stop a ray at this opacity (1 = never)",
-                ),
-                ParamSpec::choice(
-                    "kernel",
-                    "auto",
-                    KERNELS,
-                    "GPU path: fragment shader or compute kernel (same picture)",
-                ),
-            ],
+            params: SelectionRenderParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -341,6 +316,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = SelectionRenderParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let labels = inputs.require("labels")?.labels("labels")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
@@ -349,7 +325,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         let ghost = color_tf(inputs, "tf_ghost")?.unwrap_or_else(|| background.clone());
         let selected = color_tf(inputs, "tf_selection")?.unwrap_or_else(|| background.clone());
         let text = hatchery_data::segmentation::ids_for_names(
-            p.text("objects"),
+            params.objects.as_str(),
             ',',
             None,
             &labels.data.objects,
@@ -368,27 +344,23 @@ impl Node<Value, Ctx> for SelectionRenderNode {
                     .join(", ")
             ))
         })?;
-        let placement = match p.choice("placement") {
-            "pinned" => Placement::Pinned,
-            "decoupled" => Placement::Decoupled,
-            _ => Placement::Integrated,
-        };
+        let placement = params.placement;
         let transform = selection_transform(
             &camera,
             placement,
             centre,
-            Vec3::from(p.vec3("translate")),
-            Vec3::from(p.vec3("rotate")),
-            [p.f32("pin_x"), p.f32("pin_y")],
+            Vec3::from(params.translate),
+            Vec3::from(params.rotate),
+            [params.pin_x, params.pin_y],
         );
         let v = &volume.data;
-        let shading = p.choice("shading");
-        let shaded = shading != "none";
-        let kernel = Kernel::choose(p.choice("kernel"), &ctx.gpu);
+        let shading = params.shading.name();
+        let shaded = params.shading != Shading::None;
+        let kernel = Kernel::choose(params.kernel, &ctx.gpu);
         let options = RayOptions::plain(
-            p.f32("step"),
-            p.bool("jitter"),
-            p.f32("early_termination"),
+            params.step,
+            params.jitter,
+            params.early_termination,
             crate::raycast::light_direction(inputs, &camera)?,
             kernel,
         );
@@ -414,18 +386,19 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             max_gradient,
             volume_texture.texel_range,
         );
-        let cutaway = match p.choice("cutaway") {
-            "ghost" => 1.0,
-            "selection" => 2.0,
-            "both" => 3.0,
-            _ => 0.0,
+        // shaders/selection_render.wgsl's codes.
+        let cutaway = match params.cutaway {
+            Cutaway::Ghost => 1.0,
+            Cutaway::Selection => 2.0,
+            Cutaway::Both => 3.0,
+            Cutaway::None => 0.0,
         };
         let to_voxel = v.geometry.to_voxel().as_mat4();
         let selection = SelectionUniforms {
             to_source: (to_voxel * transform.inverse()).to_cols_array_2d(),
             rotation: Mat4::from_mat3(Mat3::from_mat4(transform)).to_cols_array_2d(),
             options: [
-                p.f32("ghosting"),
+                params.ghosting,
                 cutaway,
                 if shaded { 1.0 } else { 0.0 },
                 0.0,

@@ -4,9 +4,17 @@ use crate::value::StyleSet;
 use crate::{Ctx, Value};
 use hatchery_data::lit_sphere::{self, LitSphere};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// Parameters of `StyleSet`.
+    pub struct StyleSetParams {
+        /// styles in order: name[:r,g,b] or a PNG or JPEG path
+        pub styles: String = "shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9";
+    }
+}
 
 pub struct StyleSetNode;
 
@@ -24,11 +32,7 @@ impl Node<Value, Ctx> for StyleSetNode {
                   StyleTransferFunction is the k-th entry. Each keeps its own mip chain.",
             inputs: vec![],
             outputs: vec![PortSpec::output("styles", PortType::StyleSet, "the styles")],
-            params: vec![ParamSpec::text(
-                "styles",
-                "shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9",
-                "styles in order: name[:r,g,b] or a PNG or JPEG path",
-            )],
+            params: StyleSetParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -40,9 +44,10 @@ impl Node<Value, Ctx> for StyleSetNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = StyleSetParams::read(p)?;
         let mut names = Vec::new();
         let mut maps = Vec::new();
-        for entry in split_entries(p.text("styles")) {
+        for entry in split_entries(params.styles.as_str()) {
             let lower = entry.to_ascii_lowercase();
             let map = if [".png", ".jpg", ".jpeg"].iter().any(|e| lower.ends_with(e)) {
                 let path = resolve(p, &entry);

@@ -5,9 +5,20 @@ use crate::value::TransferFunction;
 use crate::{Ctx, Value};
 use hatchery_data::style::StyleTransferFunction;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// Parameters of `StyleTransferFunction`.
+    pub struct StyleTransferFunctionParams {
+        /// value: style opacity; … (every object); a value may be relative to the connected volume:
+        /// "percentile(P)", "range(F)", "otsu"
+        pub nodes: String = "40: 0 0.02; 90: 1 0.3; 160: 2 1.0";
+        /// per object of a label volume (§4.2): "LABEL = value: style opacity; … | LABEL = …"
+        pub label_nodes: String = "";
+    }
+}
 
 pub struct StyleTransferFunctionNode;
 
@@ -35,18 +46,7 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
                 PortType::TransferFunction,
                 "the style transfer function",
             )],
-            params: vec![
-                ParamSpec::text(
-                    "nodes",
-                    "40: 0 0.02; 90: 1 0.3; 160: 2 1.0",
-                    "value: style opacity; … (every object); a value may be relative to the connected volume: \"percentile(P)\", \"range(F)\", \"otsu\"",
-                ),
-                ParamSpec::text(
-                    "label_nodes",
-                    "",
-                    "per object of a label volume (§4.2): \"LABEL = value: style opacity; … | LABEL = …\"",
-                ),
-            ],
+            params: StyleTransferFunctionParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -58,17 +58,18 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = StyleTransferFunctionParams::read(p)?;
         let styles = inputs.require("styles")?.style_set("styles")?.clone();
         let volume = match inputs.get("volume") {
             Some(v) => Some(v.volume("volume")?.clone()),
             None => None,
         };
         let text = crate::relative::resolve_point_values(
-            p.text("nodes"),
+            params.nodes.as_str(),
             volume.as_ref().map(|v| &*v.data),
         )
         .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
-        if text != p.text("nodes") {
+        if text != params.nodes.as_str() {
             ctx.note_resolved("nodes", text.clone());
         }
         let nodes = StyleTransferFunction::parse(&text)
@@ -76,8 +77,8 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
         let function = StyleTransferFunction::from_nodes(&nodes, styles.maps.len())
             .map_err(|e| NodeError::new(format!("parameter `nodes`: {e}")))?;
         let mut per_label = Vec::new();
-        for row in p
-            .text("label_nodes")
+        for row in params
+            .label_nodes
             .split('|')
             .map(str::trim)
             .filter(|r| !r.is_empty())

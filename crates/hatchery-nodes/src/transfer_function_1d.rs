@@ -4,20 +4,38 @@ use crate::value::TransferFunction;
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::{self as tf, TransferFunction1D};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
-pub struct TransferFunction1DNode;
+hatchery_graph::param_choice! {
+    /// A preset, or `custom` to use `points`.
+    pub enum Preset {
+        Custom = "custom",
+        GreyRamp = "grey_ramp",
+        Bone = "bone",
+        SkinBone = "skin_bone",
+        BrainMri = "brain_mri",
+        Rainbow = "rainbow",
+    }
+}
 
-const PRESETS: &[&str] = &[
-    "custom",
-    "grey_ramp",
-    "bone",
-    "skin_bone",
-    "brain_mri",
-    "rainbow",
-];
+hatchery_graph::node_params! {
+    /// Parameters of `TransferFunction1D`.
+    pub struct TransferFunction1DParams {
+        /// a preset, or `custom` to use `points`
+        pub preset: Preset = Preset::GreyRamp;
+        /// control points for `custom`; a value may be relative to the connected volume
+        /// ("percentile(5): 0 0 0 0", "range(0.5): …", "otsu: …")
+        pub points: String = "0: 0 0 0 0; 255: 1 1 1 1";
+        /// value range of presets when no volume is connected
+        pub range_min: f32 = 0.0, range(-1e12, 1e12);
+        /// value range of presets when no volume is connected
+        pub range_max: f32 = 255.0, range(-1e12, 1e12);
+    }
+}
+
+pub struct TransferFunction1DNode;
 
 impl Node<Value, Ctx> for TransferFunction1DNode {
     fn schema(&self) -> NodeSchema {
@@ -37,33 +55,7 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
                 PortType::TransferFunction,
                 "the transfer function",
             )],
-            params: vec![
-                ParamSpec::choice(
-                    "preset",
-                    "grey_ramp",
-                    PRESETS,
-                    "a preset, or `custom` to use `points`",
-                ),
-                ParamSpec::text(
-                    "points",
-                    "0: 0 0 0 0; 255: 1 1 1 1",
-                    "control points for `custom`; a value may be relative to the connected volume (\"percentile(5): 0 0 0 0\", \"range(0.5): …\", \"otsu: …\")",
-                ),
-                ParamSpec::float(
-                    "range_min",
-                    0.0,
-                    -1e12,
-                    1e12,
-                    "value range of presets when no volume is connected",
-                ),
-                ParamSpec::float(
-                    "range_max",
-                    255.0,
-                    -1e12,
-                    1e12,
-                    "value range of presets when no volume is connected",
-                ),
-            ],
+            params: TransferFunction1DParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -75,30 +67,31 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = TransferFunction1DParams::read(p)?;
         let volume = match inputs.get("volume") {
             Some(v) => Some(v.volume("volume")?.clone()),
             None => None,
         };
         let range = match &volume {
             Some(v) => v.data.value_range,
-            None => [p.f32("range_min"), p.f32("range_max")],
+            None => [params.range_min, params.range_max],
         };
-        let points = match p.choice("preset") {
-            "custom" => {
+        let points = match params.preset {
+            Preset::Custom => {
                 let text = crate::relative::resolve_point_values(
-                    p.text("points"),
+                    params.points.as_str(),
                     volume.as_ref().map(|v| &*v.data),
                 )
                 .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?;
-                if text != p.text("points") {
+                if text != params.points.as_str() {
                     // The editor's curve shows relative points where they resolved to.
                     ctx.note_resolved("points", text.clone());
                 }
                 tf::TransferFunction1D::parse_points(&text)
                     .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?
             }
-            name => TransferFunction1D::preset(name, range)
-                .ok_or_else(|| NodeError::new(format!("unknown preset `{name}`")))?,
+            preset => TransferFunction1D::preset(preset.name(), range)
+                .ok_or_else(|| NodeError::new(format!("unknown preset `{}`", preset.name())))?,
         };
         let function = TransferFunction1D::from_points(&points)
             .map_err(|e| NodeError::new(format!("parameter `points`: {e}")))?;

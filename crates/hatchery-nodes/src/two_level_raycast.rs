@@ -5,7 +5,7 @@
 use crate::camera::Camera;
 use crate::importance_compositing::ImportancePipelines;
 use crate::raycast::{
-    KERNELS, Kernel, RayOptions, RayPipelines, RayUniforms, TableInfo, phong_params, phong_values,
+    Kernel, KernelChoice, PhongParams, RayOptions, RayPipelines, RayUniforms, TableInfo,
 };
 use crate::value::{
     Compositing, Image, Importance, ImportanceMethod, Labels, ObjectStyle, RenderMode,
@@ -14,29 +14,22 @@ use crate::{Ctx, Value};
 use hatchery_data::transfer_function::LUT_SIZE;
 use hatchery_gpu::GpuError;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    Group, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
-const GLOBAL: &[&str] = &["over", "mip", "sum"];
-const BOUNDARIES: &[&str] = &["filtered", "point"];
-const NORMALS: &[&str] = &["data", "objects"];
-const SPARSENESS: &[&str] = &["opacity", "saturation", "screen_door", "style"];
-const SPARSE_MODES: &[&str] = &["contours", "dvr", "shaded_dvr", "tone", "mip"];
-const SPARSE_COMPOSITINGS: &[&str] = &["mip", "over", "sum"];
-
-fn sparse_codes(mode: &str, compositing: &str) -> [f32; 2] {
+fn sparse_codes(mode: SparseMode, compositing: SparseCompositing) -> [f32; 2] {
     let mode = match mode {
-        "dvr" => RenderMode::Dvr,
-        "shaded_dvr" => RenderMode::ShadedDvr,
-        "tone" => RenderMode::Tone,
-        "mip" => RenderMode::Mip,
-        _ => RenderMode::Contours,
+        SparseMode::Dvr => RenderMode::Dvr,
+        SparseMode::ShadedDvr => RenderMode::ShadedDvr,
+        SparseMode::Tone => RenderMode::Tone,
+        SparseMode::Mip => RenderMode::Mip,
+        SparseMode::Contours => RenderMode::Contours,
     };
     let compositing = match compositing {
-        "over" => Compositing::Over,
-        "sum" => Compositing::Sum,
-        _ => Compositing::Mip,
+        SparseCompositing::Over => Compositing::Over,
+        SparseCompositing::Sum => Compositing::Sum,
+        SparseCompositing::Mip => Compositing::Mip,
     };
     [mode_code(mode), compositing_code(compositing)]
 }
@@ -253,11 +246,86 @@ pub(crate) fn check_labels_grid(
     Ok(())
 }
 
+hatchery_graph::param_choice! {
+    /// Global compositing of the segments.
+    pub enum Global { Over = "over", Mip = "mip", Sum = "sum" }
+}
+
+hatchery_graph::param_choice! {
+    /// Object membership: filtered binary masks (§2.3) or the nearest voxel's id.
+    pub enum Boundary { Filtered = "filtered", Point = "point" }
+}
+
+hatchery_graph::param_choice! {
+    /// Shading normals from the data's gradient, or from each object's filtered mask (for label
+    /// maps without intensities).
+    pub enum Normals { Data = "data", Objects = "objects" }
+}
+
+hatchery_graph::param_choice! {
+    /// With `importance` (AImC): how a level of sparseness S shows — opacity × S, opacity and
+    /// colour saturation × S, a screen door keeping S of the voxels, or a sparse rendering style
+    /// where S < 1.
+    pub enum Sparseness {
+        Opacity = "opacity",
+        Saturation = "saturation",
+        ScreenDoor = "screen_door",
+        Style = "style",
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// The sparse style's rendering mode.
+    pub enum SparseMode {
+        Contours = "contours",
+        Dvr = "dvr",
+        ShadedDvr = "shaded_dvr",
+        Tone = "tone",
+        Mip = "mip",
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// The sparse style's local compositing.
+    pub enum SparseCompositing { Mip = "mip", Over = "over", Sum = "sum" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `TwoLevelRaycast`.
+    pub struct TwoLevelRaycastParams {
+        /// global compositing of the segments
+        pub global: Global = Global::Over;
+        /// object membership: filtered binary masks (§2.3) or the nearest voxel's id
+        pub boundary: Boundary = Boundary::Filtered;
+        /// shading normals from the data's gradient, or from each object's filtered mask (for label
+        /// maps without intensities)
+        pub normals: Normals = Normals::Data;
+        /// sample distance in voxels (of the smallest spacing)
+        pub step: f32 = 0.5, range(0.05, 8.0);
+        pub phong: PhongParams = Group;
+        /// jitter the first sample per pixel
+        pub jitter: bool = true;
+        /// stop a ray at this opacity with global over (1 = never)
+        pub early_termination: f32 = 0.99, range(0.5, 1.0);
+        /// jump over 8³-voxel bricks that no drawn object reaches — same picture, fewer samples
+        pub skip_empty: bool = true;
+        /// GPU path: fragment shader or compute kernel (same picture)
+        pub kernel: KernelChoice = KernelChoice::Auto;
+        /// with `importance` (AImC): how a level of sparseness S shows — opacity × S, opacity and
+        /// colour saturation × S, a screen door keeping S of the voxels, or a sparse rendering
+        /// style where S < 1
+        pub sparseness: Sparseness = Sparseness::Opacity;
+        /// the sparse style's rendering mode
+        pub sparse_mode: SparseMode = SparseMode::Contours;
+        /// the sparse style's local compositing
+        pub sparse_compositing: SparseCompositing = SparseCompositing::Mip;
+    }
+}
+
 pub struct TwoLevelRaycastNode;
 
 impl Node<Value, Ctx> for TwoLevelRaycastNode {
     fn schema(&self) -> NodeSchema {
-        let [ambient, diffuse, specular, exponent] = phong_params();
         NodeSchema {
             kind: "TwoLevelRaycast",
             category: "Volume",
@@ -292,78 +360,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                     "depth and normal of the first visible segment",
                 ),
             ],
-            params: vec![
-                ParamSpec::choice(
-                    "global",
-                    "over",
-                    GLOBAL,
-                    "global compositing of the segments",
-                ),
-                ParamSpec::choice(
-                    "boundary",
-                    "filtered",
-                    BOUNDARIES,
-                    "object membership: filtered binary masks (§2.3) or the nearest voxel's id",
-                ),
-                ParamSpec::choice(
-                    "normals",
-                    "data",
-                    NORMALS,
-                    "shading normals from the data's gradient, or from each object's filtered \
-                     mask (for label maps without intensities)",
-                ),
-                ParamSpec::float(
-                    "step",
-                    0.5,
-                    0.05,
-                    8.0,
-                    "sample distance in voxels (of the smallest spacing)",
-                ),
-                ambient,
-                diffuse,
-                specular,
-                exponent,
-                ParamSpec::bool("jitter", true, "jitter the first sample per pixel"),
-                ParamSpec::float(
-                    "early_termination",
-                    0.99,
-                    0.5,
-                    1.0,
-                    "stop a ray at this opacity with global over (1 = never)",
-                ),
-                ParamSpec::bool(
-                    "skip_empty",
-                    true,
-                    "jump over 8³-voxel bricks that no drawn object reaches — same picture, \
-                     fewer samples",
-                ),
-                ParamSpec::choice(
-                    "kernel",
-                    "auto",
-                    KERNELS,
-                    "GPU path: fragment shader or compute kernel (same picture)",
-                ),
-                ParamSpec::choice(
-                    "sparseness",
-                    "opacity",
-                    SPARSENESS,
-                    "with `importance` (AImC): how a level of sparseness S shows — opacity × S, \
-                     opacity and colour saturation × S, a screen door keeping S of the voxels, \
-                     or a sparse rendering style where S < 1",
-                ),
-                ParamSpec::choice(
-                    "sparse_mode",
-                    "contours",
-                    SPARSE_MODES,
-                    "the sparse style's rendering mode",
-                ),
-                ParamSpec::choice(
-                    "sparse_compositing",
-                    "mip",
-                    SPARSE_COMPOSITINGS,
-                    "the sparse style's local compositing",
-                ),
-            ],
+            params: TwoLevelRaycastParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -375,6 +372,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = TwoLevelRaycastParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let labels = inputs.require("labels")?.labels("labels")?.clone();
         let mut styles: Vec<ObjectStyle> =
@@ -386,21 +384,21 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         if !styles.iter().any(|s| s.enabled) {
             ctx.warn("no object of the table is enabled: the picture is empty");
         }
-        let kernel = Kernel::choose(p.choice("kernel"), &ctx.gpu);
+        let kernel = Kernel::choose(params.kernel, &ctx.gpu);
         let options = RayOptions {
             shading: 1,
-            phong: phong_values(p),
+            phong: params.phong.values(),
             ..RayOptions::plain(
-                p.f32("step"),
-                p.bool("jitter"),
-                p.f32("early_termination"),
+                params.step,
+                params.jitter,
+                params.early_termination,
                 crate::raycast::light_direction(inputs, &camera)?,
                 kernel,
             )
         };
         let info = TableInfo {
             shading: 1.0,
-            skip_empty: p.bool("skip_empty"),
+            skip_empty: params.skip_empty,
             ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
@@ -415,7 +413,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let contours = styles
             .iter()
             .any(|s| s.enabled && s.mode == RenderMode::Contours);
-        let object_normals = p.choice("normals") == "objects";
+        let object_normals = params.normals == Normals::Objects;
         // A mask's central difference across a 0 → 1 step is at most 0.5 per voxel.
         let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
         let max_gradient = match (object_normals, contours) {
@@ -442,17 +440,11 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 ),
             ));
         }
-        let global = GLOBAL
-            .iter()
-            .position(|g| *g == p.choice("global"))
-            .unwrap_or(0);
-        let filtered = p.choice("boundary") != "point";
-        let level = SPARSENESS
-            .iter()
-            .position(|g| *g == p.choice("sparseness"))
-            .unwrap_or(0);
+        let global = params.global as u32;
+        let filtered = params.boundary != Boundary::Point;
+        let level = params.sparseness as u32;
         let [sparse_mode, sparse_local] =
-            sparse_codes(p.choice("sparse_mode"), p.choice("sparse_compositing"));
+            sparse_codes(params.sparse_mode, params.sparse_compositing);
         let two_level = |first_pass: bool| TwoLevelUniforms {
             options: [
                 global as f32,

@@ -15,7 +15,7 @@ use crate::{Ctx, Value};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use hatchery_annotation::{box_corners, convex_hull};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
 
@@ -196,6 +196,18 @@ pub fn arrow_path(from: Vec2, to: Vec2, bulge: f32, samples: usize) -> Vec<Vec2>
         .collect()
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `Arrow`.
+    pub struct ArrowParams {
+        /// arrow colour
+        pub color: [f32; 4] = [0.8, 0.1, 0.1, 1.0];
+        /// shaft width, pixels
+        pub width: f32 = 2.0, range(0.1, 32.0);
+        /// greatest distance from the chord per pixel of depth difference
+        pub curvature: f32 = 0.5, range(0.0, 4.0);
+    }
+}
+
 pub struct ArrowNode;
 
 impl Node<Value, Ctx> for ArrowNode {
@@ -214,17 +226,7 @@ impl Node<Value, Ctx> for ArrowNode {
                   straight arrow.",
             inputs: ports("anchor 0 = ghost, anchor 1 = selection (world positions)"),
             outputs: output(),
-            params: vec![
-                ParamSpec::color("color", [0.8, 0.1, 0.1, 1.0], "arrow colour"),
-                ParamSpec::float("width", 2.0, 0.1, 32.0, "shaft width, pixels"),
-                ParamSpec::float(
-                    "curvature",
-                    0.5,
-                    0.0,
-                    4.0,
-                    "greatest distance from the chord per pixel of depth difference",
-                ),
-            ],
+            params: ArrowParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -236,10 +238,11 @@ impl Node<Value, Ctx> for ArrowNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = ArrowParams::read(p)?;
         let (image, annotations, camera) = inputs_of(inputs)?;
-        let width = pixels(p, "width")?;
-        let curvature = pixels(p, "curvature")?;
-        let color = p.color("color");
+        let width = pixels("width", params.width)?;
+        let curvature = pixels("curvature", params.curvature)?;
+        let color = params.color;
         let (w, h) = (image.texture.width(), image.texture.height());
         let mut canvas = Canvas::new(w, h);
         let Some((shaft, head)) = arrow_shape(&annotations, &camera, (w, h), width, curvature)?
@@ -331,6 +334,18 @@ pub fn fan_bridges(a: (Vec2, Vec2), b: (Vec2, Vec2)) -> (Vec<Vec2>, Vec<[Vec2; 2
     (hull, bridges)
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `Fan`.
+    pub struct FanParams {
+        /// outline and line colour
+        pub color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
+        /// line width, pixels
+        pub width: f32 = 1.5, range(0.1, 32.0);
+        /// colour between the rectangles (alpha 0: no fill)
+        pub fill: [f32; 4] = [0.3, 0.3, 0.3, 0.15];
+    }
+}
+
 pub struct FanNode;
 
 impl Node<Value, Ctx> for FanNode {
@@ -346,15 +361,7 @@ impl Node<Value, Ctx> for FanNode {
                   translucent fill between them that leaves both rectangles' insides clear.",
             inputs: ports("anchor 0 = ghost, anchor 1 = selection, with world boxes as bounds"),
             outputs: output(),
-            params: vec![
-                ParamSpec::color("color", [0.2, 0.2, 0.2, 1.0], "outline and line colour"),
-                ParamSpec::float("width", 1.5, 0.1, 32.0, "line width, pixels"),
-                ParamSpec::color(
-                    "fill",
-                    [0.3, 0.3, 0.3, 0.15],
-                    "colour between the rectangles (alpha 0: no fill)",
-                ),
-            ],
+            params: FanParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -366,9 +373,10 @@ impl Node<Value, Ctx> for FanNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = FanParams::read(p)?;
         let (image, annotations, camera) = inputs_of(inputs)?;
-        let width = pixels(p, "width")?;
-        let color = p.color("color");
+        let width = pixels("width", params.width)?;
+        let color = params.color;
         let (w, h) = (image.texture.width(), image.texture.height());
         let mut canvas = Canvas::new(w, h);
         let Some(fan) = fan_shape(&annotations, &camera, (w, h))? else {
@@ -376,7 +384,7 @@ impl Node<Value, Ctx> for FanNode {
             return draw(ctx, canvas, &image);
         };
         let [ghost, selection] = fan.rects;
-        canvas.convex_polygon(&fan.hull, p.color("fill"), [Some(ghost), Some(selection)]);
+        canvas.convex_polygon(&fan.hull, params.fill, [Some(ghost), Some(selection)]);
         for (lo, hi) in fan.rects {
             canvas.rect_outline(lo, hi, width, color);
         }
@@ -415,6 +423,23 @@ pub fn fan_shape(
     }))
 }
 
+hatchery_graph::param_choice! {
+    /// Whose box to draw.
+    pub enum Which { Ghost = "ghost", Selection = "selection", Both = "both" }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `BoundingBox`.
+    pub struct BoundingBoxParams {
+        /// whose box to draw
+        pub which: Which = Which::Selection;
+        /// edge colour
+        pub color: [f32; 4] = [0.1, 0.4, 0.9, 1.0];
+        /// edge width, pixels
+        pub width: f32 = 1.0, range(0.1, 32.0);
+    }
+}
+
 pub struct BoundingBoxNode;
 
 impl Node<Value, Ctx> for BoundingBoxNode {
@@ -428,16 +453,7 @@ impl Node<Value, Ctx> for BoundingBoxNode {
                   the near plane; all edges are drawn (no occlusion).",
             inputs: ports("anchor 0 = ghost, anchor 1 = selection, with world boxes as bounds"),
             outputs: output(),
-            params: vec![
-                ParamSpec::choice(
-                    "which",
-                    "selection",
-                    &["ghost", "selection", "both"],
-                    "whose box to draw",
-                ),
-                ParamSpec::color("color", [0.1, 0.4, 0.9, 1.0], "edge colour"),
-                ParamSpec::float("width", 1.0, 0.1, 32.0, "edge width, pixels"),
-            ],
+            params: BoundingBoxParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -449,14 +465,15 @@ impl Node<Value, Ctx> for BoundingBoxNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = BoundingBoxParams::read(p)?;
         let (image, annotations, camera) = inputs_of(inputs)?;
-        let which: &[usize] = match p.choice("which") {
-            "ghost" => &[0],
-            "both" => &[0, 1],
-            _ => &[1],
+        let which: &[usize] = match params.which {
+            Which::Ghost => &[0],
+            Which::Both => &[0, 1],
+            Which::Selection => &[1],
         };
-        let width = pixels(p, "width")?;
-        let color = p.color("color");
+        let width = pixels("width", params.width)?;
+        let color = params.color;
         let (w, h) = (image.texture.width(), image.texture.height());
         let mut canvas = Canvas::new(w, h);
         for [u, v] in box_edges(&annotations, &camera, (w, h), which)? {

@@ -3,9 +3,20 @@
 use crate::value::Volume;
 use crate::{Ctx, Value};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    FilePath, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
+
+hatchery_graph::node_params! {
+    /// Parameters of `VolumeFile`.
+    pub struct VolumeFileParams {
+        /// the volume file, or a folder holding a DICOM series
+        pub path: FilePath = "", reads(hatchery_graph::InputKind::Volume);
+        /// the named data array to read from a file with several (VTK); empty: the file's active
+        /// scalars, else the first array
+        pub array: String = "";
+    }
+}
 
 pub struct VolumeFileNode;
 
@@ -28,20 +39,7 @@ impl Node<Value, Ctx> for VolumeFileNode {
                 PortType::Volume,
                 "the volume, in world units (mm)",
             )],
-            params: vec![
-                ParamSpec::path(
-                    "path",
-                    "",
-                    "the volume file, or a folder holding a DICOM series",
-                )
-                .reads(hatchery_graph::InputKind::Volume),
-                ParamSpec::text(
-                    "array",
-                    "",
-                    "the named data array to read from a file with several (VTK); empty: the \
-                     file's active scalars, else the first array",
-                ),
-            ],
+            params: VolumeFileParams::specs(),
             frame_dependent: false,
             sink: false,
         }
@@ -53,17 +51,18 @@ impl Node<Value, Ctx> for VolumeFileNode {
         _inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
-        if let Some(volume) = memory_volume(ctx, p.text("path"))? {
+        let params = VolumeFileParams::read(p)?;
+        if let Some(volume) = memory_volume(ctx, params.path.written.as_str())? {
             return Ok(vec![Value::Volume(Arc::new(volume))]);
         }
-        let path = p.path("path");
+        let path = params.path.resolved.clone();
         if path.as_os_str().is_empty() {
             return Err(NodeError::new(
                 "parameter `path` is empty: name a volume file (.nii, .nii.gz, .mgz, .vti, .nrrd, \
                  .mha, .tif, ...) or a DICOM folder",
             ));
         }
-        let array = p.text("array").trim();
+        let array = params.array.as_str().trim();
         let options = hatchery_data::volume_file::LoadOptions {
             array: (!array.is_empty()).then(|| array.to_owned()),
         };

@@ -11,8 +11,7 @@ use crate::value::{Image, Mask};
 use crate::{Ctx, Value};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, OwnSchema, ParamSpec, ParamValue, Params, PortType,
-    executor::Node,
+    NodeError, NodeInputs, NodeSchema, OwnSchema, ParamValue, Params, PortType, executor::Node,
 };
 use reflect::{MemberType, Reflection, Resource};
 use std::collections::HashMap;
@@ -53,6 +52,16 @@ struct Cached {
     last_good: Option<Arc<Reflection>>,
 }
 
+hatchery_graph::node_params! {
+    /// The declared parameter of `CustomShader`; the rest follow its shader's declarations
+    /// (`own_schema`) and are read by those names.
+    pub struct CustomShaderParams {
+        /// the WGSL file (relative to the graph file's folder); ports and parameters follow its
+        /// declarations
+        pub shader: PathBuf = "";
+    }
+}
+
 #[derive(Default)]
 pub struct CustomShaderNode {
     files: Mutex<HashMap<PathBuf, Cached>>,
@@ -86,7 +95,9 @@ impl CustomShaderNode {
     }
 
     fn shader_path(params: &Params) -> Result<PathBuf, String> {
-        let path = params.path("shader");
+        let path = CustomShaderParams::read(params)
+            .map_err(|e| e.message)?
+            .shader;
         if path.as_os_str().is_empty() {
             return Err("no shader file: set `shader` to a .wgsl file".into());
         }
@@ -102,11 +113,7 @@ impl Node<Value, Ctx> for CustomShaderNode {
             doc: DOC,
             inputs: vec![],
             outputs: vec![],
-            params: vec![ParamSpec::path(
-                "shader",
-                "",
-                "the WGSL file (relative to the graph file's folder); ports and parameters follow its declarations",
-            )],
+            params: CustomShaderParams::specs(),
             frame_dependent: true,
             sink: false,
         }

@@ -15,14 +15,10 @@ use crate::camera::Camera;
 use crate::value::Image;
 use crate::{Ctx, Value};
 use glam::Vec3;
-use hatchery_data::lighting;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, ParamSpec, Params, PortSpec, PortType, executor::Node,
+    DataValue, Group, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
-
-const MODES: &[&str] = &["dvr", "mip", "iso"];
-const SHADINGS: &[&str] = &["none", "phong", "lighting", "context_preserving"];
 
 /// What one ray-casting pass needs besides the volume and the camera.
 pub struct RayOptions<'a> {
@@ -109,41 +105,45 @@ pub enum Kernel {
     Compute,
 }
 
-pub const KERNELS: &[&str] = &["auto", "fragment", "compute"];
+hatchery_graph::param_choice! {
+    /// The `kernel` parameter of the ray casters: a GPU path, or `auto`.
+    pub enum KernelChoice { Auto = "auto", Fragment = "fragment", Compute = "compute" }
+}
 
 impl Kernel {
-    /// The path for parameter value `name` on `gpu`. `auto` picks the fragment path, the faster
-    /// one measured on lavapipe, except on adapters whose graphics pipeline runs on part of the
-    /// chip only (NVIDIA's H100/H200 compute parts), where compute is many times faster
+    /// The path for `choice` on `gpu`. `auto` picks the fragment path, the faster one measured
+    /// on lavapipe, except on adapters whose graphics pipeline runs on part of the chip only
+    /// (NVIDIA's H100/H200 compute parts), where compute is many times faster
     /// (docs/benchmarks.md).
-    pub fn choose(name: &str, gpu: &hatchery_gpu::GpuContext) -> Kernel {
-        match name {
-            "fragment" => Kernel::Fragment,
-            "compute" => Kernel::Compute,
-            _ if gpu.is_compute_part() => Kernel::Compute,
-            _ => Kernel::Fragment,
+    pub fn choose(choice: KernelChoice, gpu: &hatchery_gpu::GpuContext) -> Kernel {
+        match choice {
+            KernelChoice::Fragment => Kernel::Fragment,
+            KernelChoice::Compute => Kernel::Compute,
+            KernelChoice::Auto if gpu.is_compute_part() => Kernel::Compute,
+            KernelChoice::Auto => Kernel::Fragment,
         }
     }
 }
 
-/// The Blinn–Phong parameters of eq. 3 (c_a, c_d, c_s, c_e), shared by the ray casters.
-pub fn phong_params() -> [ParamSpec; 4] {
-    [
-        ParamSpec::float("ambient", 0.15, 0.0, 1.0, "c_a of eq. 3"),
-        ParamSpec::float("diffuse", 0.85, 0.0, 4.0, "c_d of eq. 3"),
-        ParamSpec::float("specular", 0.4, 0.0, 4.0, "c_s of eq. 3"),
-        ParamSpec::float("exponent", 32.0, 1.0, 512.0, "c_e of eq. 3"),
-    ]
+hatchery_graph::node_params! {
+    /// The Blinn–Phong parameters of eq. 3 (c_a, c_d, c_s, c_e), shared by the ray casters.
+    pub struct PhongParams {
+        /// c_a of eq. 3
+        pub ambient: f32 = 0.15, range(0.0, 1.0);
+        /// c_d of eq. 3
+        pub diffuse: f32 = 0.85, range(0.0, 4.0);
+        /// c_s of eq. 3
+        pub specular: f32 = 0.4, range(0.0, 4.0);
+        /// c_e of eq. 3
+        pub exponent: f32 = 32.0, range(1.0, 512.0);
+    }
 }
 
-/// The values of [`phong_params`].
-pub fn phong_values(p: &Params) -> [f32; 4] {
-    [
-        p.f32("ambient"),
-        p.f32("diffuse"),
-        p.f32("specular"),
-        p.f32("exponent"),
-    ]
+impl PhongParams {
+    /// (c_a, c_d, c_s, c_e), the order of the `Ray` block's `phong`.
+    pub fn values(&self) -> [f32; 4] {
+        [self.ambient, self.diffuse, self.specular, self.exponent]
+    }
 }
 
 /// The view-space direction towards the light: the `light` input's, else a headlight.
@@ -154,11 +154,85 @@ pub fn light_direction(inputs: &NodeInputs<Value>, camera: &Camera) -> Result<Ve
     })
 }
 
+hatchery_graph::param_choice! {
+    /// Compositing.
+    pub enum Mode { Dvr = "dvr", Mip = "mip", Iso = "iso" }
+}
+
+hatchery_graph::param_choice! {
+    /// Shading (style TFs always use their styles).
+    pub enum Shading {
+        None = "none",
+        Phong = "phong",
+        Lighting = "lighting",
+        ContextPreserving = "context_preserving",
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// Lighting transfer function for `lighting`.
+    pub enum LightingModel {
+        Phong = "phong",
+        PhongContour = "phong_contour",
+        Cartoon = "cartoon",
+        Metal = "metal",
+    }
+}
+
+hatchery_graph::node_params! {
+    /// Parameters of `Raycast`.
+    pub struct RaycastParams {
+        /// compositing
+        pub mode: Mode = Mode::Dvr;
+        /// iso value for mode iso (data units, or "percentile(P)", "range(F)", "otsu")
+        pub iso: DataValue = 0.5, range(-1e12, 1e12);
+        /// sample distance in voxels (of the smallest spacing)
+        pub step: f32 = 0.5, range(0.05, 8.0);
+        /// shading (style TFs always use their styles)
+        pub shading: Shading = Shading::Phong;
+        /// lighting transfer function for `lighting`
+        pub lighting_model: LightingModel = LightingModel::PhongContour;
+        pub phong: PhongParams = Group;
+        /// κt of eq. 5: how deep to look inside (0 = plain DVR)
+        pub kappa_t: f32 = 0.0, range(0.0, 1000.0);
+        /// κs of eq. 5: sharpness of the cut
+        pub kappa_s: f32 = 0.5, range(0.0, 100.0);
+        /// context_preserving: Schlick's rational approximation of eq. 5's two exponentiations (the
+        /// paper's §6, eq. 6–7) instead of pow
+        pub fast_exponent: bool = false;
+        /// style contours (§3.3)
+        pub contours: bool = true;
+        /// contour thickness T, world units
+        pub thickness: f32 = 2.0, range(0.0, 1000.0);
+        /// illustrative transparency (eq. 2) for styles
+        pub transparency: bool = true;
+        /// bias of the style mip level
+        pub mip_bias: f32 = 0.0, range(-4.0, 8.0);
+        /// jitter the first sample per pixel (hides wood-grain artefacts)
+        pub jitter: bool = true;
+        /// global alpha ρ (Yuan & Chen §5): every sample's opacity × ρ (DVR), so embedded strokes
+        /// show through
+        pub rho: f32 = 1.0, range(0.0, 1.0);
+        /// colour of embedded strokes
+        pub stroke_color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+        /// stop a ray at this opacity (1 = never)
+        pub early_termination: f32 = 0.99, range(0.5, 1.0);
+        /// accumulated opacity that defines the G-buffer depth
+        pub hit_opacity: f32 = 0.5, range(0.001, 1.0);
+        /// jump over 8³-voxel bricks that cannot change the picture (DVR: values the transfer
+        /// function makes transparent; iso: all below the iso value) — same picture, fewer samples.
+        /// MIP never skips: its plain loop is faster
+        pub skip_empty: bool = true;
+        /// GPU path: fragment shader or compute kernel (same picture); auto picks the faster one
+        /// for the adapter
+        pub kernel: KernelChoice = KernelChoice::Auto;
+    }
+}
+
 pub struct RaycastNode;
 
 impl Node<Value, Ctx> for RaycastNode {
     fn schema(&self) -> NodeSchema {
-        let [ambient, diffuse, specular, exponent] = phong_params();
         NodeSchema {
             kind: "Raycast",
             category: "Volume",
@@ -206,120 +280,7 @@ impl Node<Value, Ctx> for RaycastNode {
                     "depth and normal where opacity first reaches `hit_opacity`",
                 ),
             ],
-            params: vec![
-                ParamSpec::choice("mode", "dvr", MODES, "compositing"),
-                ParamSpec::float(
-                    "iso",
-                    0.5,
-                    -1e12,
-                    1e12,
-                    "iso value for mode iso (data units, or \"percentile(P)\", \"range(F)\", \"otsu\")",
-                )
-                .relative(),
-                ParamSpec::float(
-                    "step",
-                    0.5,
-                    0.05,
-                    8.0,
-                    "sample distance in voxels (of the smallest spacing)",
-                ),
-                ParamSpec::choice(
-                    "shading",
-                    "phong",
-                    SHADINGS,
-                    "shading (style TFs always use their styles)",
-                ),
-                ParamSpec::choice(
-                    "lighting_model",
-                    "phong_contour",
-                    lighting::LIGHTING_MODELS,
-                    "lighting transfer function for `lighting`",
-                ),
-                ambient,
-                diffuse,
-                specular,
-                exponent,
-                ParamSpec::float(
-                    "kappa_t",
-                    0.0,
-                    0.0,
-                    1000.0,
-                    "κt of eq. 5: how deep to look inside (0 = plain DVR)",
-                ),
-                ParamSpec::float(
-                    "kappa_s",
-                    0.5,
-                    0.0,
-                    100.0,
-                    "κs of eq. 5: sharpness of the cut",
-                ),
-                ParamSpec::bool(
-                    "fast_exponent",
-                    false,
-                    "context_preserving: Schlick's rational approximation of eq. 5's two \
-                     exponentiations (the paper's §6, eq. 6–7) instead of pow",
-                ),
-                ParamSpec::bool("contours", true, "style contours (§3.3)"),
-                ParamSpec::float(
-                    "thickness",
-                    2.0,
-                    0.0,
-                    1000.0,
-                    "contour thickness T, world units",
-                ),
-                ParamSpec::bool(
-                    "transparency",
-                    true,
-                    "illustrative transparency (eq. 2) for styles",
-                ),
-                ParamSpec::float("mip_bias", 0.0, -4.0, 8.0, "bias of the style mip level"),
-                ParamSpec::bool(
-                    "jitter",
-                    true,
-                    "jitter the first sample per pixel (hides wood-grain artefacts)",
-                ),
-                ParamSpec::float(
-                    "rho",
-                    1.0,
-                    0.0,
-                    1.0,
-                    "global alpha ρ (Yuan & Chen §5): every sample's opacity × ρ (DVR), so \
-                     embedded strokes show through",
-                ),
-                ParamSpec::color(
-                    "stroke_color",
-                    [0.0, 0.0, 0.0, 1.0],
-                    "colour of embedded strokes",
-                ),
-                ParamSpec::float(
-                    "early_termination",
-                    0.99,
-                    0.5,
-                    1.0,
-                    "stop a ray at this opacity (1 = never)",
-                ),
-                ParamSpec::float(
-                    "hit_opacity",
-                    0.5,
-                    0.001,
-                    1.0,
-                    "accumulated opacity that defines the G-buffer depth",
-                ),
-                ParamSpec::bool(
-                    "skip_empty",
-                    true,
-                    "jump over 8³-voxel bricks that cannot change the picture (DVR: values the \
-                     transfer function makes transparent; iso: all below the iso value) — same \
-                     picture, fewer samples. MIP never skips: its plain loop is faster",
-                ),
-                ParamSpec::choice(
-                    "kernel",
-                    "auto",
-                    KERNELS,
-                    "GPU path: fragment shader or compute kernel (same picture); auto picks \
-                     the faster one for the adapter",
-                ),
-            ],
+            params: RaycastParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -331,36 +292,31 @@ impl Node<Value, Ctx> for RaycastNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = RaycastParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let tf = inputs.require("tf")?.transfer_function("tf")?.clone();
         let options = RayOptions {
-            mode: MODES
-                .iter()
-                .position(|m| *m == p.choice("mode"))
-                .unwrap_or(0),
-            iso: crate::relative::data_value(ctx, p, "iso", &volume.data)?,
-            step_voxels: p.f32("step"),
-            shading: SHADINGS
-                .iter()
-                .position(|s| *s == p.choice("shading"))
-                .unwrap_or(0),
-            lighting_model: p.choice("lighting_model"),
-            phong: phong_values(p),
-            kappa: [p.f32("kappa_t"), p.f32("kappa_s")],
-            contours: p.bool("contours"),
-            thickness: p.f32("thickness"),
-            transparency: p.bool("transparency"),
-            mip_bias: p.f32("mip_bias"),
-            jitter: p.bool("jitter"),
-            early_termination: p.f32("early_termination"),
-            skip_empty: p.bool("skip_empty"),
-            kernel: Kernel::choose(p.choice("kernel"), &ctx.gpu),
-            hit_opacity: p.f32("hit_opacity"),
+            mode: params.mode as usize,
+            iso: crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?,
+            step_voxels: params.step,
+            shading: params.shading as usize,
+            lighting_model: params.lighting_model.name(),
+            phong: params.phong.values(),
+            kappa: [params.kappa_t, params.kappa_s],
+            contours: params.contours,
+            thickness: params.thickness,
+            transparency: params.transparency,
+            mip_bias: params.mip_bias,
+            jitter: params.jitter,
+            early_termination: params.early_termination,
+            skip_empty: params.skip_empty,
+            kernel: Kernel::choose(params.kernel, &ctx.gpu),
+            hit_opacity: params.hit_opacity,
             light_view: light_direction(inputs, &camera)?,
-            rho: p.f32("rho"),
+            rho: params.rho,
             embed: false,
-            fast_exponent: p.bool("fast_exponent"),
+            fast_exponent: params.fast_exponent,
         };
         let labels = inputs
             .get("labels")
@@ -370,7 +326,7 @@ impl Node<Value, Ctx> for RaycastNode {
             (Some(m), Some(g)) => Some(Strokes {
                 mask: m.mask("strokes")?.clone(),
                 depth: g.gbuffer("strokes_depth")?.clone(),
-                color: p.color("stroke_color"),
+                color: params.stroke_color,
             }),
             (None, None) => None,
             (Some(_), None) => {
@@ -406,6 +362,17 @@ impl Node<Value, Ctx> for RaycastNode {
     }
 }
 
+hatchery_graph::node_params! {
+    /// Parameters of `IsoSurfaceRaycast`.
+    pub struct IsoSurfaceRaycastParams {
+        /// iso value, in the volume's units, or relative to its values: "percentile(60)",
+        /// "range(0.3)", "otsu"
+        pub iso: DataValue = 0.0, range(-1e12, 1e12);
+        /// sample distance in voxels
+        pub step: f32 = 0.25, range(0.05, 8.0);
+    }
+}
+
 pub struct IsoSurfaceRaycastNode;
 
 impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
@@ -425,10 +392,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
                 PortType::GBuffer,
                 "depth + normal of the iso-surface",
             )],
-            params: vec![
-                crate::relative::iso_param(),
-                ParamSpec::float("step", 0.25, 0.05, 8.0, "sample distance in voxels"),
-            ],
+            params: IsoSurfaceRaycastParams::specs(),
             frame_dependent: true,
             sink: false,
         }
@@ -440,12 +404,13 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = IsoSurfaceRaycastParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let options = RayOptions {
-            mode: 2,
-            iso: crate::relative::data_value(ctx, p, "iso", &volume.data)?,
-            step_voxels: p.f32("step"),
+            mode: Mode::Iso as usize,
+            iso: crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?,
+            step_voxels: params.step,
             shading: 0,
             lighting_model: "phong",
             phong: [0.0, 1.0, 0.0, 1.0],
@@ -459,12 +424,25 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             hit_opacity: 1.0,
             light_view: Vec3::Z,
             skip_empty: true,
-            kernel: Kernel::choose("auto", &ctx.gpu),
+            kernel: Kernel::choose(KernelChoice::Auto, &ctx.gpu),
             rho: 1.0,
             embed: false,
             fast_exponent: false,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::LightingModel;
+
+    #[test]
+    fn lighting_models_match_the_data_crates_tables() {
+        assert_eq!(
+            LightingModel::NAMES,
+            hatchery_data::lighting::LIGHTING_MODELS
+        );
     }
 }
