@@ -32,7 +32,7 @@ fn validate(name: &str, source: &str) {
 fn every_shader_program_validates() {
     let programs = hatchery_nodes::shaders::programs();
     assert!(!programs.is_empty());
-    for (name, _) in &programs {
+    for (name, _) in programs {
         validate(name, &hatchery_nodes::shaders::source(name).unwrap());
     }
 }
@@ -135,7 +135,7 @@ fn every_uniform_buffer_in_every_program_has_a_typed_rust_block() {
             assert!(
                 layouts
                     .iter()
-                    .any(|l| l.program == program && l.wgsl_struct == ty),
+                    .any(|l| l.program == *program && l.wgsl_struct == ty),
                 "program {program}: `var<uniform> {}: {ty}` has no typed block in \
                  hatchery_nodes::uniforms::all()",
                 global.name.clone().unwrap_or_default()

@@ -273,3 +273,8 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
         Ok(vec![Value::Annotations(Arc::new(out))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(AnnotationLayoutNode);
+}

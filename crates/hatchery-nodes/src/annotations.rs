@@ -334,6 +334,13 @@ impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
     }
 }
 
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(AnnotationListNode)
+        .node(AnnotationsFromLabelsNode);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

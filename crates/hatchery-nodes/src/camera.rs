@@ -340,3 +340,8 @@ fn framed_points(inputs: &NodeInputs<Value>) -> Result<Vec<Vec3>, NodeError> {
     }
     Ok(points)
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(CameraNode);
+}

@@ -125,3 +125,20 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
         Ok(vec![Value::Mask(Arc::new(Mask { texture: flow }))])
     }
 }
+
+const SHADER: &str = crate::shaders::shader_file!("curvature_flow.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(CurvatureFlowNode)
+        .program(
+            "curvature_flow",
+            vec![
+                ("fullscreen.wgsl", shaders::FULLSCREEN),
+                ("curvature_field.wgsl", shaders::CURVATURE_FIELD),
+                ("curvature_flow.wgsl", SHADER),
+            ],
+        )
+        .uniform(FlowUniforms::layout());
+}

@@ -257,3 +257,22 @@ fn resolve_draw(
     }
     encoder.finish()
 }
+
+const SHADER: &str = crate::shaders::shader_file!("depth_layers.wgsl");
+const RESOLVE_SHADER: &str = crate::shaders::shader_file!("depth_layers_resolve.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    use crate::uniforms::UniformLayout;
+    k.node(DepthLayersNode)
+        .program("depth_layers", shaders::mesh("depth_layers.wgsl", SHADER))
+        .program("depth_layers_resolve", shaders::screen("depth_layers_resolve.wgsl", RESOLVE_SHADER))
+        .uniform(LayersUniform::layout())
+        .uniform(UniformLayout {
+            program: "depth_layers",
+            wgsl_struct: "LayersFrame",
+            ..LayersUniform::layout()
+        })
+        .uniform_in("depth_layers", crate::camera::CameraUniform::layout());
+}

@@ -1,9 +1,9 @@
 //! `DepthTestMask`: where one layer lies in front of another (Fischer et al. 2005, eq. 10).
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 hatchery_graph::param_choice! {
@@ -26,7 +26,7 @@ hatchery_graph::node_params! {
 
 pub struct DepthTestMaskNode;
 
-impl Node<Value, Ctx> for DepthTestMaskNode {
+impl Fusable for DepthTestMaskNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "DepthTestMask",
@@ -49,17 +49,6 @@ impl Node<Value, Ctx> for DepthTestMaskNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for DepthTestMaskNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true, true]
     }
@@ -78,4 +67,13 @@ impl Fusable for DepthTestMaskNode {
             output: PortType::Mask,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("depth_test_mask.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&DepthTestMaskNode)
+        .program("depth_test_mask", shaders::screen("depth_test_mask.wgsl", SHADER));
 }

@@ -1,9 +1,9 @@
 //! `DiffuseIntensity`: max(n · l, 0) of a G-buffer layer (Fischer et al. 2005, eq. 1 and 6).
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 crate::uniform_block! {
@@ -29,7 +29,7 @@ hatchery_graph::node_params! {
 
 pub struct DiffuseIntensityNode;
 
-impl Node<Value, Ctx> for DiffuseIntensityNode {
+impl Fusable for DiffuseIntensityNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "DiffuseIntensity",
@@ -52,17 +52,6 @@ impl Node<Value, Ctx> for DiffuseIntensityNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for DiffuseIntensityNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true, true]
     }
@@ -104,4 +93,14 @@ impl Fusable for DiffuseIntensityNode {
             output: PortType::Mask,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("diffuse_intensity.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&DiffuseIntensityNode)
+        .program("diffuse_intensity", shaders::screen("diffuse_intensity.wgsl", SHADER))
+        .uniform(DiffuseUniforms::layout());
 }

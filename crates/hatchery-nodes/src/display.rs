@@ -130,6 +130,16 @@ fn upload_picture(ctx: &mut Ctx, value: &Value, size: (u32, u32)) -> Result<wgpu
         .texture_2d_init("display", size.0, size.1, DISPLAY_FORMAT, &bytes))
 }
 
+
+const SHADER: &str = crate::shaders::shader_file!("display.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.program("display", shaders::screen("display.wgsl", SHADER))
+        .uniform(DisplayUniforms::layout());
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

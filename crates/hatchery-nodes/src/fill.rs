@@ -59,3 +59,13 @@ impl Node<Value, Ctx> for FillNode {
         )?])
     }
 }
+
+const SHADER: &str = crate::shaders::shader_file!("fill.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(FillNode)
+        .program("fill", shaders::screen("fill.wgsl", SHADER))
+        .uniform(FillUniforms::layout());
+}

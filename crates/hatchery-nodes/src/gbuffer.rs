@@ -101,3 +101,13 @@ pub fn render_layer(
         camera: camera.clone(),
     })
 }
+
+const SHADER: &str = crate::shaders::shader_file!("gbuffer.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(GBufferNode)
+        .program("gbuffer", shaders::mesh("gbuffer.wgsl", SHADER))
+        .uniform(crate::camera::CameraUniform::layout());
+}

@@ -1,9 +1,9 @@
 //! `Halftone`: procedural screening of an intensity mask (Fischer et al. 2005, §3.3.2, eq. 7–9).
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 crate::uniform_block! {
@@ -29,7 +29,7 @@ hatchery_graph::node_params! {
 
 pub struct HalftoneNode;
 
-impl Node<Value, Ctx> for HalftoneNode {
+impl Fusable for HalftoneNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "Halftone",
@@ -54,17 +54,6 @@ impl Node<Value, Ctx> for HalftoneNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for HalftoneNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true]
     }
@@ -84,4 +73,14 @@ impl Fusable for HalftoneNode {
             output: PortType::Mask,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("halftone.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&HalftoneNode)
+        .program("halftone", shaders::screen("halftone.wgsl", SHADER))
+        .uniform(HalftoneUniforms::layout());
 }

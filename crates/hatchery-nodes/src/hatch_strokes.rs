@@ -486,3 +486,22 @@ impl Node<Value, Ctx> for HatchStrokesNode {
         ])
     }
 }
+
+const SHADER: &str = crate::shaders::shader_file!("hatch_strokes.wgsl");
+const MASK_COPY: &str = crate::shaders::shader_file!("mask_copy.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(HatchStrokesNode)
+        // Compute tracing plus instanced segments.
+        .program(
+            "hatch_strokes",
+            vec![
+                ("curvature_field.wgsl", shaders::CURVATURE_FIELD),
+                ("hatch_strokes.wgsl", SHADER),
+            ],
+        )
+        .program("mask_copy", shaders::screen("mask_copy.wgsl", MASK_COPY))
+        .uniform(HatchUniforms::layout());
+}

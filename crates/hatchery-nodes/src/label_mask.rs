@@ -107,3 +107,8 @@ impl Node<Value, Ctx> for LabelMaskNode {
         Ok(vec![Value::Volume(Arc::new(Volume::new(mask)))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(LabelMaskNode);
+}

@@ -293,3 +293,10 @@ impl Node<Value, Ctx> for LabelsFromMapsNode {
         finish(ctx, "LabelsFromMaps", labels)
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(LabelFileNode)
+        .node(LabelsFromThresholdNode)
+        .node(LabelsFromMapsNode);
+}

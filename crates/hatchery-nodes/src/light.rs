@@ -95,3 +95,8 @@ impl Node<Value, Ctx> for LightNode {
         Ok(vec![Value::Light(Arc::new(light))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(LightNode);
+}

@@ -78,3 +78,8 @@ impl Node<Value, Ctx> for MarchingCubesNode {
         Ok(vec![Value::Mesh(Arc::new(Mesh::new(mesh)))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(MarchingCubesNode);
+}

@@ -1,9 +1,9 @@
 //! `MaskCombine`: per-pixel logic and arithmetic of two masks.
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 hatchery_graph::param_choice! {
@@ -28,7 +28,7 @@ hatchery_graph::node_params! {
 
 pub struct MaskCombineNode;
 
-impl Node<Value, Ctx> for MaskCombineNode {
+impl Fusable for MaskCombineNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "MaskCombine",
@@ -47,17 +47,6 @@ impl Node<Value, Ctx> for MaskCombineNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for MaskCombineNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true, true]
     }
@@ -72,4 +61,13 @@ impl Fusable for MaskCombineNode {
             output: PortType::Mask,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("mask_combine.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&MaskCombineNode)
+        .program("mask_combine", shaders::screen("mask_combine.wgsl", SHADER));
 }

@@ -62,3 +62,8 @@ impl Node<Value, Ctx> for MeshFileNode {
         Ok(vec![Value::Mesh(Arc::new(Mesh::new(data)))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(MeshFileNode);
+}

@@ -1,9 +1,9 @@
 //! `MixByMask`: mix(base, over, mask) — an image or a colour blended in where a mask is set.
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 crate::uniform_block! {
@@ -24,7 +24,7 @@ hatchery_graph::node_params! {
 
 pub struct MixByMaskNode;
 
-impl Node<Value, Ctx> for MixByMaskNode {
+impl Fusable for MixByMaskNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "MixByMask",
@@ -48,17 +48,6 @@ impl Node<Value, Ctx> for MixByMaskNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for MixByMaskNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true, true, true]
     }
@@ -81,4 +70,14 @@ impl Fusable for MixByMaskNode {
             output: PortType::Image,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("mix_by_mask.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&MixByMaskNode)
+        .program("mix_by_mask", shaders::screen("mix_by_mask.wgsl", SHADER))
+        .uniform(MixUniforms::layout());
 }

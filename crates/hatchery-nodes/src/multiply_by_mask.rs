@@ -1,9 +1,9 @@
 //! `MultiplyByMask`: darkens an image by a mask (ink where the mask says so).
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 hatchery_graph::node_params! {
@@ -16,7 +16,7 @@ hatchery_graph::node_params! {
 
 pub struct MultiplyByMaskNode;
 
-impl Node<Value, Ctx> for MultiplyByMaskNode {
+impl Fusable for MultiplyByMaskNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "MultiplyByMask",
@@ -38,17 +38,6 @@ impl Node<Value, Ctx> for MultiplyByMaskNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for MultiplyByMaskNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true, true]
     }
@@ -66,4 +55,13 @@ impl Fusable for MultiplyByMaskNode {
             output: PortType::Image,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("multiply_by_mask.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&MultiplyByMaskNode)
+        .program("multiply_by_mask", shaders::screen("multiply_by_mask.wgsl", SHADER));
 }

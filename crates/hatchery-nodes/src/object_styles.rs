@@ -292,6 +292,12 @@ impl Node<Value, Ctx> for ObjectStylesNode {
     }
 }
 
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(ObjectStylesNode);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,15 +1,15 @@
 //! `Over`: one image over another (premultiplied Porter–Duff over), e.g. a volume rendering over
 //! paper, or strokes embedded over a rendering.
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 pub struct OverNode;
 
-impl Node<Value, Ctx> for OverNode {
+impl Fusable for OverNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "Over",
@@ -26,17 +26,6 @@ impl Node<Value, Ctx> for OverNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for OverNode {
     fn pointwise(&self) -> &'static [bool] {
         &[true, true]
     }
@@ -55,4 +44,13 @@ impl Fusable for OverNode {
             output: PortType::Image,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("over.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&OverNode)
+        .program("over", shaders::screen("over.wgsl", SHADER));
 }

@@ -75,3 +75,8 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
         Ok(vec![Value::Volume(Arc::new(Volume::new(data)))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(ProceduralVolumeNode);
+}

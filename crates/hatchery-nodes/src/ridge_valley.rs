@@ -84,3 +84,13 @@ impl Node<Value, Ctx> for RidgeValleyNode {
         Ok(outputs)
     }
 }
+
+const SHADER: &str = crate::shaders::shader_file!("ridge_valley.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(RidgeValleyNode)
+        .program("ridge_valley", shaders::screen("ridge_valley.wgsl", SHADER))
+        .uniform(RidgeValleyUniforms::layout());
+}

@@ -52,3 +52,8 @@ impl Node<Value, Ctx> for SaveImageNode {
         Ok(vec![])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(SaveImageNode);
+}

@@ -417,3 +417,8 @@ fn conventions(
     }
     Ok(())
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(SaveSvgNode);
+}

@@ -54,3 +54,8 @@ impl Node<Value, Ctx> for SelectImageNode {
         Ok(vec![value.clone()])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(SelectImageNode);
+}

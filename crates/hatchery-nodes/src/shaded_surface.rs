@@ -137,3 +137,14 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
         Ok(vec![Value::Image(Arc::new(Image { texture }))])
     }
 }
+
+const SHADER: &str = crate::shaders::shader_file!("shaded_surface.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(ShadedSurfaceNode)
+        .program("shaded_surface", shaders::mesh("shaded_surface.wgsl", SHADER))
+        .uniform(ShadingUniform::layout())
+        .uniform_in("shaded_surface", crate::camera::CameraUniform::layout());
+}

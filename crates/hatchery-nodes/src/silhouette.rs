@@ -1,10 +1,10 @@
 //! `Silhouette`: image-space feature lines of a G-buffer layer (Fischer et al. 2005, §3.3.1), with
 //! optional procedurally perturbed sampling (PIP, Yuan & Chen 2005, §6, eq. 2).
 
-use crate::fused_pass::{self, Arg, Fusable, Stage, StageInputs};
-use crate::{Ctx, Value};
+use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::Ctx;
 use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeSchema, Params, PortSpec, PortType, 
 };
 
 crate::uniform_block! {
@@ -54,7 +54,7 @@ hatchery_graph::node_params! {
 
 pub struct SilhouetteNode;
 
-impl Node<Value, Ctx> for SilhouetteNode {
+impl Fusable for SilhouetteNode {
     fn schema(&self) -> NodeSchema {
         NodeSchema {
             kind: "Silhouette",
@@ -76,17 +76,6 @@ impl Node<Value, Ctx> for SilhouetteNode {
         }
     }
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self, ctx, inputs, p)
-    }
-}
-
-impl Fusable for SilhouetteNode {
     /// The G-buffer is read around the pixel.
     fn pointwise(&self) -> &'static [bool] {
         &[false]
@@ -128,4 +117,14 @@ impl Fusable for SilhouetteNode {
             output: PortType::Mask,
         })
     }
+}
+
+const SHADER: &str = crate::shaders::shader_file!("silhouette.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.image_stage(&SilhouetteNode)
+        .program("silhouette", shaders::screen("silhouette.wgsl", SHADER))
+        .uniform(SilhouetteUniforms::layout());
 }

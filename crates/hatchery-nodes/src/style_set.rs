@@ -136,6 +136,12 @@ fn procedural(entry: &str) -> Result<LitSphere, NodeError> {
     })
 }
 
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(StyleSetNode);
+}
+
 #[cfg(test)]
 mod tests {
     #[test]

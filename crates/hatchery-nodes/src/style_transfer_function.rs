@@ -106,3 +106,8 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
         ))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(StyleTransferFunctionNode);
+}

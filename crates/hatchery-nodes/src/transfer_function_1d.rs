@@ -100,3 +100,8 @@ impl Node<Value, Ctx> for TransferFunction1DNode {
         ))])
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(TransferFunction1DNode);
+}

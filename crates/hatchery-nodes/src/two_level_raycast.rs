@@ -626,3 +626,14 @@ fn alpha_mean(ctx: &mut Ctx, picture: &wgpu::Texture) -> Result<wgpu::Texture, G
     ctx.submit(encoder.finish());
     Ok(stats)
 }
+
+const SHADER: &str = crate::shaders::shader_file!("two_level_raycast.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
+    k.node(TwoLevelRaycastNode)
+        .program("two_level_raycast", shaders::ray_objects("two_level_raycast.wgsl", SHADER))
+        .uniform(TwoLevelUniforms::layout())
+        .uniform_in("two_level_raycast", crate::raycast::RayUniforms::layout());
+}

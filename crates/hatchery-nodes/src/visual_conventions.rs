@@ -509,6 +509,14 @@ pub fn box_edges(
     Ok(edges)
 }
 
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(ArrowNode)
+        .node(FanNode)
+        .node(BoundingBoxNode);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

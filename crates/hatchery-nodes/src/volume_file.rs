@@ -111,3 +111,8 @@ fn memory_volume(ctx: &Ctx, text: &str) -> Result<Option<Volume>, NodeError> {
         None => Err(memory_inputs::missing(text)),
     }
 }
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(VolumeFileNode);
+}

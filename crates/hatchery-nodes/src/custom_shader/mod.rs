@@ -309,7 +309,7 @@ fn pipeline(
     shader: &Reflection,
     format: wgpu::TextureFormat,
 ) -> Result<(wgpu::RenderPipeline, wgpu::BindGroupLayout), GpuError> {
-    let vertex = gpu.shader("custom_shader_vertex", crate::shaders::CUSTOM_SHADER_VERTEX)?;
+    let vertex = gpu.shader("custom_shader_vertex", VERTEX_SHADER)?;
     let name = path.display().to_string();
     let fragment = gpu.shader(&name, &shader.source)?;
     // The layout lists every declared binding, used or not (a layout derived from the shader
@@ -408,4 +408,16 @@ fn uniform_bytes(uniform: &reflect::Uniform, params: &Params) -> Vec<u8> {
         }
     }
     bytes
+}
+
+const VERTEX_SHADER: &str = crate::shaders::shader_file!("custom_shader_vertex.wgsl");
+
+/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
+pub fn declare(k: &mut crate::kinds::Kinds) {
+    k.node(CustomShaderNode::default())
+        // The vertex stage of every CustomShader (the fragment stage is the user's file).
+        .program(
+            "custom_shader_vertex",
+            vec![("custom_shader_vertex.wgsl", VERTEX_SHADER)],
+        );
 }

@@ -17,7 +17,6 @@ use crate::raycast::Kernel;
 use crate::screen_pass::{self, IMAGE_FORMAT};
 use crate::value::{Image, Mask};
 use crate::{Ctx, Value};
-use hatchery_graph::executor::Node;
 use hatchery_graph::fusion::{Fuser, Member, Outside, Source};
 use hatchery_graph::{NodeError, NodeInputs, Params, PortType};
 use shader::build;
@@ -59,8 +58,12 @@ pub struct Stage {
     pub output: PortType,
 }
 
-/// A node kind that runs as a stage of a fused pass; its `execute` is [`execute`].
-pub trait Fusable: Node<Value, Ctx> + Sync {
+/// A node kind that runs as a stage of a fused pass. Declared with
+/// [`crate::kinds::Kinds::image_stage`], whose one `Node` implementation runs it alone with
+/// [`execute`].
+pub trait Fusable: Sync {
+    /// The kind's schema.
+    fn schema(&self) -> hatchery_graph::NodeSchema;
     /// Per input port, in schema order: whether the stage reads it only at the pixel it writes.
     fn pointwise(&self) -> &'static [bool];
     /// Textures the stage binds besides its inputs' (its `Arg::Texture`s).
@@ -72,19 +75,18 @@ pub trait Fusable: Node<Value, Ctx> + Sync {
     fn stage(&self, ctx: &mut Ctx, inputs: &StageInputs, p: &Params) -> Result<Stage, NodeError>;
 }
 
-/// The fusable node kinds.
+/// The fusable node kind `kind` (as the modules declare them, [`crate::kinds::Kinds::image_stage`]).
 pub fn fusable(kind: &str) -> Option<&'static dyn Fusable> {
-    Some(match kind {
-        "Silhouette" => &crate::silhouette::SilhouetteNode,
-        "DiffuseIntensity" => &crate::diffuse_intensity::DiffuseIntensityNode,
-        "Halftone" => &crate::halftone::HalftoneNode,
-        "MixByMask" => &crate::mix_by_mask::MixByMaskNode,
-        "MultiplyByMask" => &crate::multiply_by_mask::MultiplyByMaskNode,
-        "MaskCombine" => &crate::mask_combine::MaskCombineNode,
-        "Over" => &crate::over::OverNode,
-        "DepthTestMask" => &crate::depth_test_mask::DepthTestMaskNode,
-        _ => return None,
-    })
+    static STAGES: std::sync::OnceLock<Vec<(&'static str, &'static dyn Fusable)>> =
+        std::sync::OnceLock::new();
+    STAGES
+        .get_or_init(|| {
+            let stages = crate::kinds::Kinds::all().stages;
+            stages.into_iter().map(|s| (s.schema().kind, s)).collect()
+        })
+        .iter()
+        .find(|(k, _)| *k == kind)
+        .map(|(_, s)| *s)
 }
 
 /// A stage's inputs: values from outside the pass, and which ports are connected at all.

@@ -182,11 +182,11 @@ impl Shader {
         let mut text = String::from(crate::shaders::FULLSCREEN);
         for library in &self.libraries {
             let parts = crate::shaders::programs()
-                .into_iter()
+                .iter()
                 .find(|(name, _)| name == library)
                 .map(|(_, parts)| parts)
                 .ok_or_else(|| NodeError::new(format!("no shader library {library}")))?;
-            for (file, part) in parts {
+            for &(file, part) in parts {
                 if file != "fullscreen.wgsl" {
                     text.push_str(part);
                 }
