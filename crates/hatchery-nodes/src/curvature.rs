@@ -162,13 +162,12 @@ pub fn gbuffer_sized(
     crate::screen_pass::sized(port, texture, size, ("is ", "the G-buffer", hint))
 }
 
-const SHADER: &str = crate::shaders::shader_file!("curvature.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(CurvatureNode)
-        .program("curvature", shaders::curvature("curvature.wgsl", SHADER))
+        .program("curvature", shaders::curvature(shaders::part!("curvature.wgsl")))
         .uniform(CurvatureUniforms::layout())
         .uniform_in("curvature", crate::raycast::RayUniforms::layout());
 }

@@ -240,12 +240,11 @@ impl Node<Value, Ctx> for CurvatureColorNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("curvature_color.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(CurvatureColorNode)
-        .program("curvature_color", shaders::screen("curvature_color.wgsl", SHADER))
+        .program("curvature_color", shaders::screen(shaders::part!("curvature_color.wgsl")))
         .uniform(CurvatureColorUniforms::layout());
 }

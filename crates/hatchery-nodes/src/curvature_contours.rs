@@ -88,13 +88,12 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("curvature_contours.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(CurvatureContoursNode)
-        .program("curvature_contours", shaders::curvature("curvature_contours.wgsl", SHADER))
+        .program("curvature_contours", shaders::curvature(shaders::part!("curvature_contours.wgsl")))
         .uniform(ContourUniforms::layout())
         .uniform_in("curvature_contours", crate::raycast::RayUniforms::layout())
         .uniform_in(

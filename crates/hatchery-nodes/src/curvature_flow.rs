@@ -126,7 +126,6 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("curvature_flow.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
@@ -137,7 +136,7 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
             vec![
                 ("fullscreen.wgsl", shaders::FULLSCREEN),
                 ("curvature_field.wgsl", shaders::CURVATURE_FIELD),
-                ("curvature_flow.wgsl", SHADER),
+                shaders::part!("curvature_flow.wgsl"),
             ],
         )
         .uniform(FlowUniforms::layout());

@@ -258,16 +258,14 @@ fn resolve_draw(
     encoder.finish()
 }
 
-const SHADER: &str = crate::shaders::shader_file!("depth_layers.wgsl");
-const RESOLVE_SHADER: &str = crate::shaders::shader_file!("depth_layers_resolve.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     use crate::uniforms::UniformLayout;
     k.node(DepthLayersNode)
-        .program("depth_layers", shaders::mesh("depth_layers.wgsl", SHADER))
-        .program("depth_layers_resolve", shaders::screen("depth_layers_resolve.wgsl", RESOLVE_SHADER))
+        .program("depth_layers", shaders::mesh(shaders::part!("depth_layers.wgsl")))
+        .program("depth_layers_resolve", shaders::screen(shaders::part!("depth_layers_resolve.wgsl")))
         .uniform(LayersUniform::layout())
         .uniform(UniformLayout {
             program: "depth_layers",

@@ -61,12 +61,11 @@ impl Node<Value, Ctx> for DepthPeelNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("depth_peel.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(DepthPeelNode)
-        .program("depth_peel", shaders::mesh("depth_peel.wgsl", SHADER))
+        .program("depth_peel", shaders::mesh(shaders::part!("depth_peel.wgsl")))
         .uniform_in("depth_peel", crate::camera::CameraUniform::layout());
 }

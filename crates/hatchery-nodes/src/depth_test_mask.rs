@@ -69,11 +69,10 @@ impl Fusable for DepthTestMaskNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("depth_test_mask.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&DepthTestMaskNode)
-        .program("depth_test_mask", shaders::screen("depth_test_mask.wgsl", SHADER));
+        .program("depth_test_mask", shaders::screen(shaders::part!("depth_test_mask.wgsl")));
 }

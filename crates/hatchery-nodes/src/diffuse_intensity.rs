@@ -95,12 +95,11 @@ impl Fusable for DiffuseIntensityNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("diffuse_intensity.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&DiffuseIntensityNode)
-        .program("diffuse_intensity", shaders::screen("diffuse_intensity.wgsl", SHADER))
+        .program("diffuse_intensity", shaders::screen(shaders::part!("diffuse_intensity.wgsl")))
         .uniform(DiffuseUniforms::layout());
 }

@@ -131,12 +131,11 @@ fn upload_picture(ctx: &mut Ctx, value: &Value, size: (u32, u32)) -> Result<wgpu
 }
 
 
-const SHADER: &str = crate::shaders::shader_file!("display.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
-    k.program("display", shaders::screen("display.wgsl", SHADER))
+    k.program("display", shaders::screen(shaders::part!("display.wgsl")))
         .uniform(DisplayUniforms::layout());
 }
 

@@ -60,12 +60,11 @@ impl Node<Value, Ctx> for FillNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("fill.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(FillNode)
-        .program("fill", shaders::screen("fill.wgsl", SHADER))
+        .program("fill", shaders::screen(shaders::part!("fill.wgsl")))
         .uniform(FillUniforms::layout());
 }

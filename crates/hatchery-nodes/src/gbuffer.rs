@@ -102,12 +102,11 @@ pub fn render_layer(
     })
 }
 
-const SHADER: &str = crate::shaders::shader_file!("gbuffer.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(GBufferNode)
-        .program("gbuffer", shaders::mesh("gbuffer.wgsl", SHADER))
+        .program("gbuffer", shaders::mesh(shaders::part!("gbuffer.wgsl")))
         .uniform(crate::camera::CameraUniform::layout());
 }

@@ -75,12 +75,11 @@ impl Fusable for HalftoneNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("halftone.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&HalftoneNode)
-        .program("halftone", shaders::screen("halftone.wgsl", SHADER))
+        .program("halftone", shaders::screen(shaders::part!("halftone.wgsl")))
         .uniform(HalftoneUniforms::layout());
 }

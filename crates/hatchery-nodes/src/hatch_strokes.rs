@@ -487,8 +487,6 @@ impl Node<Value, Ctx> for HatchStrokesNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("hatch_strokes.wgsl");
-const MASK_COPY: &str = crate::shaders::shader_file!("mask_copy.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
@@ -499,9 +497,9 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
             "hatch_strokes",
             vec![
                 ("curvature_field.wgsl", shaders::CURVATURE_FIELD),
-                ("hatch_strokes.wgsl", SHADER),
+                shaders::part!("hatch_strokes.wgsl"),
             ],
         )
-        .program("mask_copy", shaders::screen("mask_copy.wgsl", MASK_COPY))
+        .program("mask_copy", shaders::screen(shaders::part!("mask_copy.wgsl")))
         .uniform(HatchUniforms::layout());
 }

@@ -524,13 +524,12 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("importance.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(ImportanceCompositingNode)
-        .program("importance", shaders::ray_objects("importance.wgsl", SHADER))
+        .program("importance", shaders::ray_objects(shaders::part!("importance.wgsl")))
         .uniform(ImportanceUniforms::layout())
         .uniform(PassUniforms::layout())
         .uniform_in(

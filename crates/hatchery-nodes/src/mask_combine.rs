@@ -63,11 +63,10 @@ impl Fusable for MaskCombineNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("mask_combine.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&MaskCombineNode)
-        .program("mask_combine", shaders::screen("mask_combine.wgsl", SHADER));
+        .program("mask_combine", shaders::screen(shaders::part!("mask_combine.wgsl")));
 }

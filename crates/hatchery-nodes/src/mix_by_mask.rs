@@ -72,12 +72,11 @@ impl Fusable for MixByMaskNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("mix_by_mask.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&MixByMaskNode)
-        .program("mix_by_mask", shaders::screen("mix_by_mask.wgsl", SHADER))
+        .program("mix_by_mask", shaders::screen(shaders::part!("mix_by_mask.wgsl")))
         .uniform(MixUniforms::layout());
 }

@@ -57,11 +57,10 @@ impl Fusable for MultiplyByMaskNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("multiply_by_mask.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&MultiplyByMaskNode)
-        .program("multiply_by_mask", shaders::screen("multiply_by_mask.wgsl", SHADER));
+        .program("multiply_by_mask", shaders::screen(shaders::part!("multiply_by_mask.wgsl")));
 }

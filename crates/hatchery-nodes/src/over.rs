@@ -46,11 +46,10 @@ impl Fusable for OverNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("over.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&OverNode)
-        .program("over", shaders::screen("over.wgsl", SHADER));
+        .program("over", shaders::screen(shaders::part!("over.wgsl")));
 }

@@ -633,13 +633,13 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
 }
 
 
-const SHADER: &str = crate::shaders::shader_file!("overlay.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
     k.node(AnnotationOverlayNode)
         // Instanced quads with their own vertex stage.
-        .program("overlay", vec![("overlay.wgsl", SHADER)])
+        .program("overlay", vec![shaders::part!("overlay.wgsl")])
         .uniform(OverlayUniforms::layout());
 }
 

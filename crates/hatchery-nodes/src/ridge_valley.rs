@@ -85,12 +85,11 @@ impl Node<Value, Ctx> for RidgeValleyNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("ridge_valley.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(RidgeValleyNode)
-        .program("ridge_valley", shaders::screen("ridge_valley.wgsl", SHADER))
+        .program("ridge_valley", shaders::screen(shaders::part!("ridge_valley.wgsl")))
         .uniform(RidgeValleyUniforms::layout());
 }

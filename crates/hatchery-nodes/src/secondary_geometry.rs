@@ -164,13 +164,12 @@ impl Node<Value, Ctx> for SecondaryGeometryNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("secondary_geometry.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(SecondaryGeometryNode)
-        .program("secondary_geometry", shaders::mesh("secondary_geometry.wgsl", SHADER))
+        .program("secondary_geometry", shaders::mesh(shaders::part!("secondary_geometry.wgsl")))
         .uniform(SecondaryUniforms::layout())
         .uniform_in("secondary_geometry", crate::camera::CameraUniform::layout());
 }

@@ -498,13 +498,12 @@ impl Node<Value, Ctx> for SelectionRenderNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("selection_render.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(SelectionRenderNode)
-        .program("selection_render", shaders::ray("selection_render.wgsl", SHADER))
+        .program("selection_render", shaders::ray(shaders::part!("selection_render.wgsl")))
         .uniform(SelectionUniforms::layout())
         .uniform_in("selection_render", crate::raycast::RayUniforms::layout());
 }

@@ -138,13 +138,12 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("shaded_surface.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(ShadedSurfaceNode)
-        .program("shaded_surface", shaders::mesh("shaded_surface.wgsl", SHADER))
+        .program("shaded_surface", shaders::mesh(shaders::part!("shaded_surface.wgsl")))
         .uniform(ShadingUniform::layout())
         .uniform_in("shaded_surface", crate::camera::CameraUniform::layout());
 }

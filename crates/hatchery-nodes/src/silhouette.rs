@@ -119,12 +119,11 @@ impl Fusable for SilhouetteNode {
     }
 }
 
-const SHADER: &str = crate::shaders::shader_file!("silhouette.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.image_stage(&SilhouetteNode)
-        .program("silhouette", shaders::screen("silhouette.wgsl", SHADER))
+        .program("silhouette", shaders::screen(shaders::part!("silhouette.wgsl")))
         .uniform(SilhouetteUniforms::layout());
 }

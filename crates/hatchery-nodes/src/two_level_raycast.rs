@@ -627,13 +627,12 @@ fn alpha_mean(ctx: &mut Ctx, picture: &wgpu::Texture) -> Result<wgpu::Texture, G
     Ok(stats)
 }
 
-const SHADER: &str = crate::shaders::shader_file!("two_level_raycast.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(TwoLevelRaycastNode)
-        .program("two_level_raycast", shaders::ray_objects("two_level_raycast.wgsl", SHADER))
+        .program("two_level_raycast", shaders::ray_objects(shaders::part!("two_level_raycast.wgsl")))
         .uniform(TwoLevelUniforms::layout())
         .uniform_in("two_level_raycast", crate::raycast::RayUniforms::layout());
 }

@@ -414,10 +414,11 @@ const VERTEX_SHADER: &str = crate::shaders::shader_file!("custom_shader_vertex.w
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
+    use crate::shaders;
     k.node(CustomShaderNode::default())
         // The vertex stage of every CustomShader (the fragment stage is the user's file).
         .program(
             "custom_shader_vertex",
-            vec![("custom_shader_vertex.wgsl", VERTEX_SHADER)],
+            vec![shaders::part!("custom_shader_vertex.wgsl")],
         );
 }

@@ -435,16 +435,14 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
 }
 
 
-const SHADER: &str = crate::shaders::shader_file!("raycast.wgsl");
-const DEPTH_FROM_TEXTURE: &str = crate::shaders::shader_file!("depth_from_texture.wgsl");
 
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(RaycastNode)
         .node(IsoSurfaceRaycastNode)
-        .program("raycast", shaders::ray("raycast.wgsl", SHADER))
-        .program("depth_from_texture", shaders::screen("depth_from_texture.wgsl", DEPTH_FROM_TEXTURE))
+        .program("raycast", shaders::ray(shaders::part!("raycast.wgsl")))
+        .program("depth_from_texture", shaders::screen(shaders::part!("depth_from_texture.wgsl")))
         .uniform(RayUniforms::layout())
         .uniform(StrokeUniforms::layout());
 }
