@@ -2,7 +2,8 @@
 //!
 //! - [`state::EditorState`]: the document, undo/redo, selection, validation errors, autosave
 //!   recovery — no egui types, testable on its own.
-//! - [`app::EditorApp`]: the egui user interface (canvas, inspector, viewport, menus).
+//! - [`app::EditorApp`]: the egui user interface; its panels (canvas, inspector, viewport,
+//!   menus) are in [`panels`].
 //! - [`preview::Preview`]: what the viewport and the pin thumbnails show, as egui textures.
 //! - [`render_worker::RenderWorker`]: the thread that runs the graph (`hatchery_nodes::Session`)
 //!   so the UI never waits for a frame.
@@ -21,6 +22,7 @@ pub mod groups;
 pub mod history_text;
 pub mod layout_dump;
 pub mod object_table;
+pub mod panels;
 pub mod picture;
 pub mod preview;
 pub mod relative_value;
