@@ -11,7 +11,7 @@
 use crate::state::EditorState;
 use egui::emath::TSTransform;
 use egui::{Color32, Pos2, Rect, Ui};
-use hatchery_graph::{EditorPos, FrameDoc, GraphDocument, organise};
+use hatchery_graph::{EditorPos, FrameDoc, GraphDocument, edit, organise};
 use std::collections::BTreeMap;
 
 /// Height of a frame's title bar (graph units).
@@ -249,7 +249,7 @@ impl EditorState {
         };
         let level = self.level.clone();
         self.apply(None, |d, _| {
-            Ok(organise::add_frame(d, min, max, level.as_deref()))
+            Ok(edit::add_frame(d, min, max, level.as_deref()))
         })
     }
 }

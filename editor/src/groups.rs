@@ -176,7 +176,7 @@ impl EditorState {
     /// Groups the selected nodes (one undo step); the new group becomes the selection.
     pub fn group_selection(&mut self) -> Result<String, String> {
         let ids: Vec<String> = self.selection.iter().cloned().collect();
-        let group = self.apply(None, |d, _| organise::group_nodes(d, &ids))?;
+        let group = self.apply(None, |d, _| edit::group_nodes(d, &ids))?;
         self.select_click(&group, crate::selection::ClickMode::Replace);
         self.status = format!("grouped {} nodes into {group}", ids.len());
         Ok(group)
@@ -192,7 +192,7 @@ impl EditorState {
         let freed = self.apply(None, |d, _| {
             let mut freed = Vec::new();
             for g in &groups {
-                freed.extend(organise::ungroup(d, g)?);
+                freed.extend(edit::ungroup(d, g)?);
             }
             Ok(freed)
         })?;

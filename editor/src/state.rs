@@ -403,7 +403,7 @@ impl EditorState {
         self.apply(None, |d, _| {
             for id in ids {
                 if d.group(id).is_some() {
-                    hatchery_graph::organise::remove_group(d, id)?;
+                    hatchery_graph::edit::remove_group(d, id)?;
                     continue;
                 }
                 edit::remove_node(d, id).ok_or_else(|| format!("no node `{id}`"))?;

@@ -2,7 +2,8 @@
 //!
 //! The document is written in one canonical layout (nodes sorted by id, parameters sorted by
 //! name, edges sorted, groups sorted by id, frames in drawing order), so that load → save
-//! reproduces a saved file byte for byte. Older files load through [`crate::migrate`].
+//! reproduces a saved file byte for byte. Files are read by [`crate::load`] (older versions through
+//! [`crate::migrate`]).
 
 use crate::error::{ErrorKind, GraphError};
 use crate::locate;
@@ -26,7 +27,7 @@ pub struct GraphDocument {
     pub description: String,
     /// The data files the graph reads, by name (version 3; see [`crate::inputs`]).
     #[serde(default)]
-    pub inputs: Vec<crate::inputs::InputDoc>,
+    pub inputs: Vec<InputDoc>,
     #[serde(default)]
     pub nodes: Vec<NodeDoc>,
     #[serde(default)]
@@ -115,11 +116,20 @@ pub struct EdgeDoc {
     pub to: (String, String),
 }
 
-/// Only the version, read first so that a file of another version is reported as such and not
-/// as a confusing syntax error.
-#[derive(Deserialize)]
-struct VersionProbe {
-    version: u32,
+/// One declared input as stored in the file.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InputDoc {
+    /// Unique among the graph's inputs; the same rules as node ids.
+    pub name: String,
+    /// `volume`, `labels`, `mesh` or `names` (see [`crate::InputKind`]).
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// One line for `hatchery inputs` and the editor's Data panel.
+    #[serde(default)]
+    pub doc: String,
+    /// The `(node, parameter)` pairs that take the input's path.
+    pub to: Vec<(String, String)>,
 }
 
 fn rgba<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 4], D::Error> {
@@ -188,50 +198,6 @@ impl Source {
 }
 
 impl GraphDocument {
-    /// Parses graph text. `path` is only used in error messages.
-    pub fn parse(text: &str, path: Option<&Path>) -> Result<(GraphDocument, Source), GraphError> {
-        let source = Source {
-            path: path.map(Path::to_path_buf),
-            text: text.to_owned(),
-        };
-        let syntax = |e: ron::error::SpannedError| GraphError {
-            file: source.path.clone(),
-            position: Some((e.span.start.line, e.span.start.col)),
-            kind: ErrorKind::Syntax {
-                message: e.code.to_string(),
-            },
-            group: None,
-        };
-        let probe: VersionProbe = ron::from_str(text).map_err(syntax)?;
-        if probe.version == 0 || probe.version > FORMAT_VERSION {
-            let offset = text.find("version");
-            return Err(source.error(
-                offset,
-                ErrorKind::UnsupportedVersion {
-                    found: probe.version,
-                    supported: FORMAT_VERSION,
-                },
-            ));
-        }
-        let doc: GraphDocument = ron::from_str(text).map_err(syntax)?;
-        Ok((crate::migrate::to_current(doc), source))
-    }
-
-    /// Reads and parses a graph file.
-    pub fn load(path: &Path) -> Result<(GraphDocument, Source), GraphError> {
-        let text = std::fs::read_to_string(path).map_err(|e| GraphError {
-            file: Some(path.to_path_buf()),
-            position: None,
-            kind: ErrorKind::Io {
-                message: format!("cannot read graph file: {e}"),
-            },
-            group: None,
-        })?;
-        let (mut doc, source) = Self::parse(&text, Some(path))?;
-        doc.base_dir = Some(folder_of(path));
-        Ok((doc, source))
-    }
-
     /// The canonical RON text of this document.
     pub fn to_ron_string(&self) -> String {
         let mut nodes: Vec<&NodeDoc> = self.nodes.iter().collect();

@@ -1,150 +1,14 @@
 //! The caching executor: pulls from target nodes in topological order and re-runs a node only
 //! when its parameters or its inputs' versions changed.
 
-use crate::fusion::{self, Fuser, Unit};
+use crate::fusion::{self, Member, Source, Unit};
 use crate::graph::{Graph, NodeInstance};
-use crate::param::Params;
-use crate::schema::{NodeError, NodeSchema, OwnSchema, SchemaLookup};
+pub use crate::registry::{ExecContext, Node, NodeInputs, Registry};
+use crate::schema::{NodeSchema, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::path::Path;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
-
-/// A node kind's behaviour. `V` is the value type flowing along edges, `C` the context
-/// (the GPU) a node runs in.
-pub trait Node<V, C>: Send + Sync {
-    fn schema(&self) -> NodeSchema;
-    /// Turns inputs into one value per output port, in the schema's order.
-    fn execute(
-        &self,
-        ctx: &mut C,
-        inputs: &NodeInputs<V>,
-        params: &Params,
-    ) -> Result<Vec<V>, NodeError>;
-    /// Whether each node of this kind reads its ports and parameters from a file
-    /// ([`Node::own_schema`]); `schema` then gives only what every such node has.
-    fn has_own_schema(&self) -> bool {
-        false
-    }
-    /// The node's own schema, from the kind's parameters (`params` holds only those of
-    /// `schema`, as written or defaulted, with the folder paths resolve against).
-    fn own_schema(&self, _params: &Params) -> Option<OwnSchema> {
-        None
-    }
-}
-
-/// Hooks the executor calls around each node; the GPU context uses them for timestamps.
-pub trait ExecContext {
-    /// Anything outside parameters and inputs that frame-dependent nodes read (the frame size).
-    fn frame_key(&self) -> u64 {
-        0
-    }
-    fn begin_node(&mut self, _node: &str) {}
-    fn end_node(&mut self, _node: &str) {}
-    /// Called at the end of a pass: GPU time per node, where the device could measure it.
-    fn finish_pass(&mut self) -> Vec<(String, Duration)> {
-        Vec::new()
-    }
-}
-
-/// A registered node kind: its schema (computed once) and its behaviour.
-type Entry<V, C> = (NodeSchema, Box<dyn Node<V, C>>);
-
-/// All node kinds, by name.
-pub struct Registry<V, C> {
-    kinds: BTreeMap<&'static str, Entry<V, C>>,
-    /// Kinds whose nodes have schemas of their own (read from a file).
-    own: BTreeSet<&'static str>,
-    /// What fuses image-space nodes into one pass, where the context can.
-    pub(crate) fuser: Option<Box<dyn Fuser<V, C>>>,
-}
-
-impl<V, C> Default for Registry<V, C> {
-    fn default() -> Self {
-        Self {
-            kinds: BTreeMap::new(),
-            own: BTreeSet::new(),
-            fuser: None,
-        }
-    }
-}
-
-impl<V, C> Registry<V, C> {
-    pub fn register(&mut self, node: impl Node<V, C> + 'static) {
-        let schema = node.schema();
-        if node.has_own_schema() {
-            self.own.insert(schema.kind);
-        }
-        self.kinds.insert(schema.kind, (schema, Box::new(node)));
-    }
-    /// Sets what fuses pointwise image-space nodes into one pass ([`crate::fusion`]).
-    pub fn set_fuser(&mut self, fuser: impl Fuser<V, C> + 'static) {
-        self.fuser = Some(Box::new(fuser));
-    }
-    pub fn node(&self, kind: &str) -> Option<&dyn Node<V, C>> {
-        self.kinds.get(kind).map(|(_, n)| n.as_ref())
-    }
-    pub fn schemas(&self) -> impl Iterator<Item = &NodeSchema> {
-        self.kinds.values().map(|(s, _)| s)
-    }
-}
-
-impl<V, C> SchemaLookup for Registry<V, C> {
-    fn schema(&self, kind: &str) -> Option<&NodeSchema> {
-        self.kinds.get(kind).map(|(s, _)| s)
-    }
-    fn kinds(&self) -> Vec<&'static str> {
-        self.kinds.keys().copied().collect()
-    }
-    fn own_schema(
-        &self,
-        kind: &str,
-        raw: &BTreeMap<String, ron::Value>,
-        base_dir: Option<&Path>,
-    ) -> Option<OwnSchema> {
-        if !self.own.contains(kind) {
-            return None;
-        }
-        let (schema, node) = self.kinds.get(kind)?;
-        // The kind's parameters (the file's name among them); the file's own are not known yet.
-        let values = schema
-            .params
-            .iter()
-            .map(|p| {
-                let value = raw.get(p.name).and_then(|r| p.convert(r).ok());
-                (
-                    p.name.to_owned(),
-                    value.unwrap_or_else(|| p.default.clone()),
-                )
-            })
-            .collect();
-        node.own_schema(&Params::new(values, base_dir.map(Arc::from)))
-    }
-}
-
-/// The values on a node's input ports, by the schema's port names.
-pub struct NodeInputs<V> {
-    names: Vec<&'static str>,
-    values: Vec<Option<V>>,
-}
-
-impl<V> NodeInputs<V> {
-    pub fn new(names: Vec<&'static str>, values: Vec<Option<V>>) -> Self {
-        Self { names, values }
-    }
-    /// An optional input: `None` when nothing is connected.
-    pub fn get(&self, name: &str) -> Option<&V> {
-        let i = self.names.iter().position(|n| *n == name)?;
-        self.values[i].as_ref()
-    }
-    /// A required input; an error naming the port when it is missing.
-    pub fn require(&self, name: &str) -> Result<&V, NodeError> {
-        self.get(name)
-            .ok_or_else(|| NodeError::at_port(name, "input is not connected"))
-    }
-}
 
 /// An execution error, naming the node and, where known, the port.
 #[derive(Clone, Debug, PartialEq)]
@@ -538,5 +402,112 @@ impl<V: Clone> Executor<V> {
     /// Drops every cached output (the next pass re-runs everything).
     pub fn clear(&mut self) {
         self.cache.clear();
+    }
+}
+
+impl<V: Clone> Executor<V> {
+    /// Runs a fused group (members in topological order with the outputs to keep) as one pass;
+    /// its times are reported on the last member.
+    pub(crate) fn run_group<C: ExecContext>(
+        &mut self,
+        graph: &Graph,
+        registry: &Registry<V, C>,
+        ctx: &mut C,
+        members: &[(&str, Vec<bool>)],
+        report: &mut PassReport,
+    ) -> Result<(), ExecError> {
+        let fuser = registry.fuser.as_deref().expect("groups only with a fuser");
+        let index: BTreeMap<&str, usize> = members
+            .iter()
+            .enumerate()
+            .map(|(i, (m, _))| (*m, i))
+            .collect();
+        let fail = |id: &str, port: Option<String>, message: String| ExecError {
+            node: id.to_owned(),
+            kind: graph.node(id).map(|n| n.kind.clone()).unwrap_or_default(),
+            port,
+            message,
+        };
+        let mut group = Vec::with_capacity(members.len());
+        for (id, keep) in members {
+            let node = graph.node(id).expect("id from the graph");
+            let (schema, _) = Self::kind_of(registry, node);
+            let sources = graph.input_sources(id);
+            let mut inputs = Vec::with_capacity(schema.inputs.len());
+            for port in 0..schema.inputs.len() {
+                inputs.push(match sources.get(&port) {
+                    None => Source::Absent,
+                    Some(&(source, out)) => match index.get(source) {
+                        Some(&member) => Source::Member { member, port: out },
+                        None => Source::External(self.output(source, out).cloned().ok_or_else(
+                            || {
+                                fail(
+                                    id,
+                                    Some(schema.inputs[port].name.to_owned()),
+                                    "the input's value was not kept (executor planning)".into(),
+                                )
+                            },
+                        )?),
+                    },
+                });
+            }
+            group.push(Member {
+                id,
+                kind: node.kind.as_str(),
+                params: &node.params,
+                inputs,
+                keep: keep.clone(),
+            });
+        }
+        let carrier = members.last().expect("groups have members").0;
+        for (id, _) in &members[..members.len() - 1] {
+            tracing::debug!(node = id, fused_into = carrier, "executing (fused)");
+            ctx.begin_node(id);
+            ctx.end_node(id);
+        }
+        tracing::debug!(
+            node = carrier,
+            members = members.len(),
+            "executing a fused pass"
+        );
+        ctx.begin_node(carrier);
+        let start = Instant::now();
+        let result = fuser.run(ctx, &group);
+        let elapsed = start.elapsed();
+        ctx.end_node(carrier);
+        let outputs = result
+            .map_err(|(i, e)| fail(members[i.min(members.len() - 1)].0, e.port, e.message))?;
+        if outputs.len() != members.len() {
+            return Err(fail(carrier, None, "the fused pass lost members".into()));
+        }
+        let ids: Vec<String> = members.iter().map(|(m, _)| (*m).to_owned()).collect();
+        for ((id, keep), outputs) in members.iter().zip(outputs) {
+            let node = graph.node(id).expect("id from the graph");
+            let (schema, _) = Self::kind_of(registry, node);
+            if outputs.len() != schema.outputs.len()
+                || keep.iter().zip(&outputs).any(|(k, o)| *k && o.is_none())
+            {
+                return Err(fail(
+                    id,
+                    None,
+                    "the fused pass did not write a kept output".into(),
+                ));
+            }
+            let (key, _) = self
+                .key_and_inputs(graph, schema, node, ctx)
+                .ok_or_else(|| fail(id, None, "an input has not run (executor order)".into()))?;
+            let stats = self.stats.entry((*id).to_owned()).or_default();
+            stats.executions += 1;
+            stats.cpu_time = if *id == carrier {
+                elapsed
+            } else {
+                Duration::ZERO
+            };
+            stats.gpu_time = None;
+            stats.fused_with = ids.clone();
+            self.store(id, key, outputs, schema.sink);
+            report.executed.push((*id).to_owned());
+        }
+        Ok(())
     }
 }

@@ -11,13 +11,11 @@
 //! group reads them (a consumer that runs in this pass, or a target); the others are not written
 //! (`None` in the cache), and a later pass that needs one re-runs its node.
 
-use crate::executor::{ExecContext, ExecError, Executor, PassReport, Registry};
 use crate::graph::Graph;
 use crate::param::Params;
 use crate::port::PortType;
 use crate::schema::{NodeError, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
-use std::time::{Duration, Instant};
 
 /// Where a fused member's input comes from.
 #[derive(Clone, Debug, PartialEq)]
@@ -347,112 +345,5 @@ impl<'g> Planner<'_, 'g> {
                 })
             })
             .collect()
-    }
-}
-
-impl<V: Clone> Executor<V> {
-    /// Runs a fused group (members in topological order with the outputs to keep) as one pass;
-    /// its times are reported on the last member.
-    pub(crate) fn run_group<C: ExecContext>(
-        &mut self,
-        graph: &Graph,
-        registry: &Registry<V, C>,
-        ctx: &mut C,
-        members: &[(&str, Vec<bool>)],
-        report: &mut PassReport,
-    ) -> Result<(), ExecError> {
-        let fuser = registry.fuser.as_deref().expect("groups only with a fuser");
-        let index: BTreeMap<&str, usize> = members
-            .iter()
-            .enumerate()
-            .map(|(i, (m, _))| (*m, i))
-            .collect();
-        let fail = |id: &str, port: Option<String>, message: String| ExecError {
-            node: id.to_owned(),
-            kind: graph.node(id).map(|n| n.kind.clone()).unwrap_or_default(),
-            port,
-            message,
-        };
-        let mut group = Vec::with_capacity(members.len());
-        for (id, keep) in members {
-            let node = graph.node(id).expect("id from the graph");
-            let (schema, _) = Self::kind_of(registry, node);
-            let sources = graph.input_sources(id);
-            let mut inputs = Vec::with_capacity(schema.inputs.len());
-            for port in 0..schema.inputs.len() {
-                inputs.push(match sources.get(&port) {
-                    None => Source::Absent,
-                    Some(&(source, out)) => match index.get(source) {
-                        Some(&member) => Source::Member { member, port: out },
-                        None => Source::External(self.output(source, out).cloned().ok_or_else(
-                            || {
-                                fail(
-                                    id,
-                                    Some(schema.inputs[port].name.to_owned()),
-                                    "the input's value was not kept (executor planning)".into(),
-                                )
-                            },
-                        )?),
-                    },
-                });
-            }
-            group.push(Member {
-                id,
-                kind: node.kind.as_str(),
-                params: &node.params,
-                inputs,
-                keep: keep.clone(),
-            });
-        }
-        let carrier = members.last().expect("groups have members").0;
-        for (id, _) in &members[..members.len() - 1] {
-            tracing::debug!(node = id, fused_into = carrier, "executing (fused)");
-            ctx.begin_node(id);
-            ctx.end_node(id);
-        }
-        tracing::debug!(
-            node = carrier,
-            members = members.len(),
-            "executing a fused pass"
-        );
-        ctx.begin_node(carrier);
-        let start = Instant::now();
-        let result = fuser.run(ctx, &group);
-        let elapsed = start.elapsed();
-        ctx.end_node(carrier);
-        let outputs = result
-            .map_err(|(i, e)| fail(members[i.min(members.len() - 1)].0, e.port, e.message))?;
-        if outputs.len() != members.len() {
-            return Err(fail(carrier, None, "the fused pass lost members".into()));
-        }
-        let ids: Vec<String> = members.iter().map(|(m, _)| (*m).to_owned()).collect();
-        for ((id, keep), outputs) in members.iter().zip(outputs) {
-            let node = graph.node(id).expect("id from the graph");
-            let (schema, _) = Self::kind_of(registry, node);
-            if outputs.len() != schema.outputs.len()
-                || keep.iter().zip(&outputs).any(|(k, o)| *k && o.is_none())
-            {
-                return Err(fail(
-                    id,
-                    None,
-                    "the fused pass did not write a kept output".into(),
-                ));
-            }
-            let (key, _) = self
-                .key_and_inputs(graph, schema, node, ctx)
-                .ok_or_else(|| fail(id, None, "an input has not run (executor order)".into()))?;
-            let stats = self.stats.entry((*id).to_owned()).or_default();
-            stats.executions += 1;
-            stats.cpu_time = if *id == carrier {
-                elapsed
-            } else {
-                Duration::ZERO
-            };
-            stats.gpu_time = None;
-            stats.fused_with = ids.clone();
-            self.store(id, key, outputs, schema.sink);
-            report.executed.push((*id).to_owned());
-        }
-        Ok(())
     }
 }

@@ -5,6 +5,7 @@ use crate::document::{
     EdgeDoc, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc, Source,
 };
 use crate::error::{ErrorKind, GraphError, GraphErrors};
+pub use crate::ids::check_node_id;
 use crate::param::{ParamValue, Params};
 use crate::schema::{NodeSchema, SchemaLookup};
 use petgraph::Direction;
@@ -61,22 +62,6 @@ pub struct Graph {
     /// The declared inputs as written, and the validated ones.
     input_docs: Vec<crate::inputs::InputDoc>,
     inputs: Vec<crate::inputs::GraphInput>,
-}
-
-/// Node ids are used on the command line as `node.param`, so they are plain identifiers.
-pub fn check_node_id(id: &str) -> Result<(), String> {
-    if id.is_empty() {
-        return Err("ids must not be empty".into());
-    }
-    if let Some(c) = id
-        .chars()
-        .find(|c| !(c.is_ascii_alphanumeric() || *c == '_' || *c == '-'))
-    {
-        return Err(format!(
-            "character '{c}' is not allowed (use letters, digits, '_' and '-')"
-        ));
-    }
-    Ok(())
 }
 
 impl Graph {

@@ -5,72 +5,13 @@
 //! default is what the first of them holds, so the file keeps one source of truth and a graph
 //! without inputs renders exactly as before. Setting an input sets every bound parameter.
 
+pub use crate::document::InputDoc;
 use crate::document::{GraphDocument, Source};
 use crate::error::{ErrorKind, GraphError};
+pub use crate::input_kind::InputKind;
 use crate::param::ParamKind;
 use crate::schema::SchemaLookup;
-use serde::Deserialize;
-use std::fmt;
 use std::path::{Path, PathBuf};
-
-/// What an input holds; a path parameter says which kind of file it reads
-/// ([`crate::ParamSpec::reads`]), and an input may only be bound to parameters of its kind.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum InputKind {
-    /// A scalar volume (NIfTI, NRRD, MetaImage, VTK, TIFF, DICOM).
-    Volume,
-    /// A label map: object ids per voxel (the same formats).
-    Labels,
-    /// A triangle mesh (.obj, .ply, .stl).
-    Mesh,
-    /// An object-name table (CSV/TSV `id,name`, ITK-SNAP label description).
-    Names,
-}
-
-impl InputKind {
-    pub const ALL: [InputKind; 4] = [
-        InputKind::Volume,
-        InputKind::Labels,
-        InputKind::Mesh,
-        InputKind::Names,
-    ];
-
-    /// The name written in graph files and shown by `hatchery inputs`.
-    pub fn name(self) -> &'static str {
-        match self {
-            InputKind::Volume => "volume",
-            InputKind::Labels => "labels",
-            InputKind::Mesh => "mesh",
-            InputKind::Names => "names",
-        }
-    }
-
-    pub fn parse(text: &str) -> Option<InputKind> {
-        InputKind::ALL.into_iter().find(|k| k.name() == text)
-    }
-}
-
-impl fmt::Display for InputKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// One declared input as stored in the file.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct InputDoc {
-    /// Unique among the graph's inputs; the same rules as node ids.
-    pub name: String,
-    /// `volume`, `labels`, `mesh` or `names` (see [`InputKind`]).
-    #[serde(rename = "type")]
-    pub kind: String,
-    /// One line for `hatchery inputs` and the editor's Data panel.
-    #[serde(default)]
-    pub doc: String,
-    /// The `(node, parameter)` pairs that take the input's path.
-    pub to: Vec<(String, String)>,
-}
 
 /// A validated input, as `hatchery inputs` lists it.
 #[derive(Clone, Debug, PartialEq)]
@@ -114,7 +55,7 @@ pub fn check(
                 },
             ))
         };
-        if let Err(reason) = crate::graph::check_node_id(&input.name) {
+        if let Err(reason) = crate::ids::check_node_id(&input.name) {
             fail(format!("invalid name: {reason}"));
             continue;
         }

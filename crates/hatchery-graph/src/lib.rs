@@ -17,7 +17,10 @@ pub mod error;
 pub mod executor;
 pub mod fusion;
 pub mod graph;
+pub mod ids;
+pub mod input_kind;
 pub mod inputs;
+pub mod load;
 mod locate;
 pub mod migrate;
 pub mod node_params;
@@ -25,6 +28,7 @@ pub mod organise;
 pub mod param;
 pub mod port;
 pub mod rebase;
+pub mod registry;
 pub mod reroute;
 pub mod schema;
 

@@ -76,7 +76,7 @@ pub struct ParamSpec {
     pub doc: &'static str,
     /// For a path parameter that reads data: which kind of file (a graph input of that kind
     /// may be bound to it, see [`crate::inputs`]).
-    pub reads: Option<crate::inputs::InputKind>,
+    pub reads: Option<crate::input_kind::InputKind>,
     /// A float in data units that may also be given relative to the connected volume's values
     /// (`"percentile(60)"`, `"range(0.3)"`, `"otsu"`; see [`RelativeValue`]).
     pub relative: bool,
@@ -171,7 +171,7 @@ impl ParamSpec {
     }
 
     /// Marks a path parameter as reading a data file of `kind` (graph inputs bind to it).
-    pub fn reads(mut self, kind: crate::inputs::InputKind) -> Self {
+    pub fn reads(mut self, kind: crate::input_kind::InputKind) -> Self {
         self.reads = Some(kind);
         self
     }

@@ -105,7 +105,7 @@ pub fn flatten(
     }
     for n in doc.nodes.iter().filter(|n| n.kind == REROUTE) {
         let at = source.node_offset(&n.id);
-        if let Err(reason) = crate::graph::check_node_id(&n.id) {
+        if let Err(reason) = crate::ids::check_node_id(&n.id) {
             let node = n.id.clone();
             errors.push(source.error(at, ErrorKind::BadNodeId { node, reason }));
         }

@@ -4,8 +4,11 @@
 //! graph with errors can still be opened, edited and saved. Each either changes the document
 //! and succeeds, or refuses with a one-line reason and leaves the document as it was.
 
-use crate::document::{EdgeDoc, EditorPos, FORMAT_VERSION, GraphDocument, NodeDoc};
-use crate::graph::check_node_id;
+use crate::document::{
+    EdgeDoc, EditorPos, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc,
+};
+use crate::ids::check_node_id;
+use crate::organise::{FRAME_COLORS, id_taken};
 use crate::param::ParamValue;
 use crate::port::PortType;
 use crate::reroute;
@@ -30,7 +33,7 @@ pub fn snake_case(kind: &str) -> String {
 
 /// The first `base_N` (N ≥ 1) that no node or group of `doc` and no id in `taken` uses.
 pub fn fresh_id(doc: &GraphDocument, base: &str, taken: &BTreeSet<String>) -> String {
-    let used = |id: &str| taken.contains(id) || crate::organise::id_taken(doc, id);
+    let used = |id: &str| taken.contains(id) || id_taken(doc, id);
     (1..)
         .map(|n| format!("{base}_{n}"))
         .find(|id| !used(id))
@@ -101,7 +104,7 @@ pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), 
         return node(doc, old).map(|_| ());
     }
     check_node_id(new).map_err(|r| format!("`{new}` is not a valid id: {r}"))?;
-    if crate::organise::id_taken(doc, new) {
+    if id_taken(doc, new) {
         return Err(format!("a node or group `{new}` already exists"));
     }
     let index = doc
@@ -153,7 +156,7 @@ pub fn move_node(doc: &mut GraphDocument, id: &str, position: EditorPos) -> bool
             n.editor = Some(position);
             true
         }
-        None => crate::organise::move_group(doc, id, position),
+        None => move_group(doc, id, position),
     }
 }
 
@@ -379,264 +382,110 @@ pub fn paste_nodes(
     Ok(ids)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::param::ParamSpec;
-    use crate::schema::{NodeSchema, PortSpec};
-
-    struct Fake(Vec<NodeSchema>);
-
-    impl SchemaLookup for Fake {
-        fn schema(&self, kind: &str) -> Option<&NodeSchema> {
-            self.0.iter().find(|s| s.kind == kind)
-        }
-        fn kinds(&self) -> Vec<&'static str> {
-            self.0.iter().map(|s| s.kind).collect()
-        }
+/// Groups nodes `ids` (all on the top level) into a new group placed at their top-left; returns
+/// the group's id (`group_N`).
+pub fn group_nodes(doc: &mut GraphDocument, ids: &[String]) -> Result<String, String> {
+    if ids.is_empty() {
+        return Err("select the nodes to group first".into());
     }
-
-    fn schema(
-        kind: &'static str,
-        inputs: Vec<PortSpec>,
-        outputs: Vec<PortSpec>,
-        params: Vec<ParamSpec>,
-    ) -> NodeSchema {
-        NodeSchema {
-            kind,
-            category: "Test",
-            doc: "",
-            inputs,
-            outputs,
-            params,
-            frame_dependent: false,
-            sink: false,
+    for id in ids {
+        if doc.group(id).is_some() {
+            return Err(format!("`{id}` is a group: groups do not nest"));
+        }
+        match doc.node(id) {
+            None => return Err(format!("no node `{id}` in the graph")),
+            Some(n) if n.group.is_some() => {
+                return Err(format!("`{id}` is already in a group: groups do not nest"));
+            }
+            Some(_) => {}
         }
     }
-
-    fn fake() -> Fake {
-        Fake(vec![
-            schema(
-                "MeshSource",
-                vec![],
-                vec![PortSpec::output("mesh", PortType::Mesh, "")],
-                vec![ParamSpec::int("count", 3, 1, 10, "")],
-            ),
-            schema(
-                "ShadeMesh",
-                vec![
-                    PortSpec::input("mesh", PortType::Mesh, ""),
-                    PortSpec::optional("under", PortType::Image, ""),
-                ],
-                vec![PortSpec::output("image", PortType::Image, "")],
-                vec![
-                    ParamSpec::float("gain", 1.0, 0.0, 2.0, ""),
-                    ParamSpec::choice("mode", "a", &["a", "b"], ""),
-                ],
-            ),
-            schema(
-                "Blur",
-                vec![PortSpec::input("image", PortType::Image, "")],
-                vec![PortSpec::output("image", PortType::Image, "")],
-                vec![],
-            ),
-        ])
+    let gid = (1..)
+        .map(|n| format!("group_{n}"))
+        .find(|g| !id_taken(doc, g))
+        .expect("unbounded");
+    let chosen: BTreeSet<&String> = ids.iter().collect();
+    let mut corner: Option<EditorPos> = None;
+    for n in doc.nodes.iter_mut().filter(|n| chosen.contains(&n.id)) {
+        n.group = Some(gid.clone());
+        if let Some(p) = n.editor {
+            let c = corner.get_or_insert(p);
+            c.x = c.x.min(p.x);
+            c.y = c.y.min(p.y);
+        }
     }
+    doc.groups.push(GroupDoc {
+        id: gid.clone(),
+        editor: corner,
+    });
+    Ok(gid)
+}
 
-    const ORIGIN: EditorPos = EditorPos { x: 0.0, y: 0.0 };
-
-    fn doc_with(s: &Fake, kinds: &[&str]) -> (GraphDocument, Vec<String>) {
-        let mut doc = GraphDocument {
-            version: FORMAT_VERSION,
-            ..Default::default()
-        };
-        let ids = kinds
-            .iter()
-            .map(|k| add_node(&mut doc, s, k, ORIGIN).unwrap())
-            .collect();
-        (doc, ids)
+/// Dissolves group `group`: its members (returned) and frames go back to the top level.
+pub fn ungroup(doc: &mut GraphDocument, group: &str) -> Result<Vec<String>, String> {
+    let index = doc
+        .groups
+        .iter()
+        .position(|g| g.id == group)
+        .ok_or_else(|| format!("no group `{group}` in the graph"))?;
+    doc.groups.remove(index);
+    let mut freed = Vec::new();
+    for n in doc.nodes.iter_mut() {
+        if n.group.as_deref() == Some(group) {
+            n.group = None;
+            freed.push(n.id.clone());
+        }
     }
-
-    #[test]
-    fn added_nodes_get_readable_fresh_ids() {
-        let s = fake();
-        let (mut doc, ids) = doc_with(&s, &["ShadeMesh", "ShadeMesh", "MeshSource"]);
-        assert_eq!(ids, ["shade_mesh_1", "shade_mesh_2", "mesh_source_1"]);
-        assert_eq!(doc.nodes[1].editor, Some(ORIGIN));
-        assert!(doc.nodes[1].params.is_empty());
-        remove_node(&mut doc, "shade_mesh_1").unwrap();
-        assert_eq!(
-            add_node(&mut doc, &s, "ShadeMesh", ORIGIN).unwrap(),
-            "shade_mesh_1"
-        );
-        assert!(
-            add_node(&mut doc, &s, "Nope", ORIGIN)
-                .unwrap_err()
-                .contains("unknown node kind")
-        );
-        assert_eq!(snake_case("TransferFunction1D"), "transfer_function1_d");
+    for f in doc.frames.iter_mut() {
+        if f.group.as_deref() == Some(group) {
+            f.group = None;
+        }
     }
+    Ok(freed)
+}
 
-    #[test]
-    fn connect_checks_types_ports_and_cycles_and_replaces() {
-        let s = fake();
-        let (mut doc, _) = doc_with(&s, &["MeshSource", "ShadeMesh", "Blur", "Blur"]);
-        assert_eq!(
-            connect(
-                &mut doc,
-                &s,
-                ("mesh_source_1", "mesh"),
-                ("shade_mesh_1", "mesh")
-            ),
-            Ok(None)
-        );
-        let err =
-            connect(&mut doc, &s, ("mesh_source_1", "mesh"), ("blur_1", "image")).unwrap_err();
-        assert!(
-            err.contains("type mismatch") && err.contains("Mesh") && err.contains("Image"),
-            "{err}"
-        );
-        let err =
-            connect(&mut doc, &s, ("mesh_source_1", "nope"), ("blur_1", "image")).unwrap_err();
-        assert!(err.contains("no output port `nope`"), "{err}");
-        connect(&mut doc, &s, ("shade_mesh_1", "image"), ("blur_1", "image")).unwrap();
-        connect(&mut doc, &s, ("blur_1", "image"), ("blur_2", "image")).unwrap();
-        let err =
-            connect(&mut doc, &s, ("blur_2", "image"), ("shade_mesh_1", "under")).unwrap_err();
-        assert!(err.contains("cycle"), "{err}");
-        let err = connect(&mut doc, &s, ("blur_1", "image"), ("blur_1", "image")).unwrap_err();
-        assert!(err.contains("cycle"), "{err}");
-        let edges_before = doc.edges.clone();
-        // Replacing the wire into blur_2.image.
-        let replaced =
-            connect(&mut doc, &s, ("shade_mesh_1", "image"), ("blur_2", "image")).unwrap();
-        assert_eq!(
-            replaced.unwrap().from,
-            ("blur_1".to_string(), "image".to_string())
-        );
-        assert_eq!(doc.edges.len(), edges_before.len());
-        assert_eq!(doc.edges.iter().filter(|e| e.to.0 == "blur_2").count(), 1);
-        assert!(disconnect(
-            &mut doc,
-            ("shade_mesh_1", "image"),
-            ("blur_2", "image")
-        ));
-        assert!(!disconnect(
-            &mut doc,
-            ("shade_mesh_1", "image"),
-            ("blur_2", "image")
-        ));
+/// Deletes group `group` with its members, their edges and its frames.
+pub fn remove_group(doc: &mut GraphDocument, group: &str) -> Result<(), String> {
+    for id in ungroup(doc, group)? {
+        remove_node(doc, &id);
     }
+    Ok(())
+}
 
-    #[test]
-    fn set_param_checks_range_and_type_and_stores_ron() {
-        let s = fake();
-        let (mut doc, _) = doc_with(&s, &["ShadeMesh"]);
-        set_param(&mut doc, &s, "shade_mesh_1", "gain", ParamValue::Float(1.5)).unwrap();
-        assert_eq!(
-            doc.nodes[0].params["gain"],
-            ron::Value::Number(ron::Number::new(1.5))
-        );
-        let err =
-            set_param(&mut doc, &s, "shade_mesh_1", "gain", ParamValue::Float(3.0)).unwrap_err();
-        assert!(err.contains("out of range"), "{err}");
-        let err =
-            set_param(&mut doc, &s, "shade_mesh_1", "gain", ParamValue::Bool(true)).unwrap_err();
-        assert!(err.contains("expected"), "{err}");
-        let err = set_param(
-            &mut doc,
-            &s,
-            "shade_mesh_1",
-            "mode",
-            ParamValue::Choice("z".into()),
-        )
-        .unwrap_err();
-        assert!(err.contains("not one of"), "{err}");
-        assert!(set_param(&mut doc, &s, "shade_mesh_1", "nope", ParamValue::Int(1)).is_err());
-        assert!(set_param(&mut doc, &s, "ghost", "gain", ParamValue::Float(1.0)).is_err());
-        assert_eq!(doc.nodes[0].params.len(), 1);
-    }
-
-    #[test]
-    fn rename_updates_edges_and_remove_drops_them() {
-        let s = fake();
-        let (mut doc, _) = doc_with(&s, &["MeshSource", "ShadeMesh"]);
-        connect(
-            &mut doc,
-            &s,
-            ("mesh_source_1", "mesh"),
-            ("shade_mesh_1", "mesh"),
-        )
-        .unwrap();
-        rename_node(&mut doc, "mesh_source_1", "bunny").unwrap();
-        assert_eq!(doc.edges[0].from.0, "bunny");
-        assert!(rename_node(&mut doc, "bunny", "shade_mesh_1").is_err());
-        assert!(rename_node(&mut doc, "bunny", "has space").is_err());
-        assert!(move_node(&mut doc, "bunny", EditorPos { x: 5.0, y: 6.0 }));
-        assert_eq!(doc.nodes[0].editor, Some(EditorPos { x: 5.0, y: 6.0 }));
-        assert!(remove_node(&mut doc, "bunny").is_some());
-        assert!(doc.edges.is_empty());
-        assert!(remove_node(&mut doc, "bunny").is_none());
-    }
-
-    #[test]
-    fn compatible_kinds_by_port_type_and_side() {
-        let s = fake();
-        assert_eq!(
-            compatible_kinds(&s, PortType::Image, true),
-            ["Blur", "ShadeMesh"]
-        );
-        assert_eq!(
-            compatible_kinds(&s, PortType::Image, false),
-            ["Blur", "ShadeMesh"]
-        );
-        assert_eq!(compatible_kinds(&s, PortType::Mesh, false), ["MeshSource"]);
-        assert_eq!(compatible_kinds(&s, PortType::Mesh, true), ["ShadeMesh"]);
-        assert!(compatible_kinds(&s, PortType::Volume, true).is_empty());
-    }
-
-    #[test]
-    fn copy_paste_keeps_internal_edges_and_renames_clashes() {
-        let s = fake();
-        let (mut doc, _) = doc_with(&s, &["MeshSource", "ShadeMesh", "Blur"]);
-        connect(
-            &mut doc,
-            &s,
-            ("mesh_source_1", "mesh"),
-            ("shade_mesh_1", "mesh"),
-        )
-        .unwrap();
-        connect(&mut doc, &s, ("shade_mesh_1", "image"), ("blur_1", "image")).unwrap();
-        set_param(&mut doc, &s, "mesh_source_1", "count", ParamValue::Int(7)).unwrap();
-        let text = copy_nodes(&doc, &["mesh_source_1", "shade_mesh_1"]);
-        let (sub, _) = GraphDocument::parse(&text, None).unwrap();
-        assert_eq!(sub.nodes.len(), 2);
-        assert_eq!(sub.edges.len(), 1, "only the internal edge");
-
-        let ids = paste_nodes(&mut doc, &text, EditorPos { x: 10.0, y: 20.0 }).unwrap();
-        assert_eq!(ids, ["mesh_source_2", "shade_mesh_2"]);
-        assert_eq!(doc.nodes.len(), 5);
-        let pasted = doc.nodes.iter().find(|n| n.id == "mesh_source_2").unwrap();
-        assert_eq!(pasted.editor, Some(EditorPos { x: 10.0, y: 20.0 }));
-        assert!(
-            matches!(&pasted.params["count"], ron::Value::Number(n) if n.into_f64() == 7.0),
-            "{:?}",
-            pasted.params
-        );
-        assert!(doc.edges.contains(&EdgeDoc {
-            from: ("mesh_source_2".into(), "mesh".into()),
-            to: ("shade_mesh_2".into(), "mesh".into()),
-        }));
-        assert_eq!(doc.edges.len(), 3);
-        // Pasting into an empty document keeps the ids.
-        let mut empty = GraphDocument {
-            version: 1,
-            ..Default::default()
-        };
-        assert_eq!(
-            paste_nodes(&mut empty, &text, ORIGIN).unwrap(),
-            ["mesh_source_1", "shade_mesh_1"]
-        );
-        assert!(paste_nodes(&mut doc, "not ron", ORIGIN).is_err());
+/// Moves a group's collapsed node in the editor; false if there is no such group.
+pub fn move_group(doc: &mut GraphDocument, group: &str, to: EditorPos) -> bool {
+    match doc.groups.iter_mut().find(|g| g.id == group) {
+        Some(g) => {
+            g.editor = Some(to);
+            true
+        }
+        None => false,
     }
 }
+
+/// Adds a frame (`Frame N`) covering `min`..`max` in the given group level; returns its index.
+pub fn add_frame(
+    doc: &mut GraphDocument,
+    min: EditorPos,
+    max: EditorPos,
+    group: Option<&str>,
+) -> usize {
+    let n = doc.frames.len();
+    let label = (1..)
+        .map(|i| format!("Frame {i}"))
+        .find(|l| doc.frames.iter().all(|f| &f.label != l))
+        .expect("unbounded");
+    doc.frames.push(FrameDoc {
+        label,
+        x: min.x,
+        y: min.y,
+        w: (max.x - min.x).max(1.0),
+        h: (max.y - min.y).max(1.0),
+        color: FRAME_COLORS[n % FRAME_COLORS.len()],
+        group: group.map(str::to_owned),
+    });
+    n
+}
+
+#[cfg(test)]
+mod tests;
