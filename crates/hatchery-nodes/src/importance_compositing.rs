@@ -10,10 +10,11 @@
 //! pixel; tests/importance.rs compares it with a brute-force EDT).
 
 use crate::raycast::{Grid, Kernel, RayOptions, RayUniforms, TableInfo};
-use crate::two_level_raycast::{TABLE_WIDTH, TwoLevelUniforms, brick_table, object_tables};
+use crate::raycast::{ImportancePipelines, PassUniforms};
+use crate::raycast::objects::{TABLE_WIDTH, TwoLevelUniforms, brick_table, object_tables};
 use crate::value::{Importance, ImportanceMethod, ObjectStyle};
 use crate::{Ctx, Value};
-use hatchery_gpu::{GpuContext, GpuError};
+use hatchery_gpu::GpuError;
 use hatchery_graph::{
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
@@ -28,120 +29,6 @@ crate::uniform_block! {
         pub frame: [f32; 4],
         pub view: [f32; 4],
         pub weights: [[f32; 4]; 8],
-    }
-}
-
-crate::uniform_block! {
-    /// `PassParams` of shaders/importance.wgsl: (axis or JFA step, radius, 0, 0).
-    pub struct PassUniforms in "importance" as "PassParams" {
-        pub step: [f32; 4],
-    }
-}
-
-const KERNELS: [&str; 9] = [
-    "footprint",
-    "dilate",
-    "weigh",
-    "box",
-    "jfa_init",
-    "jfa_step",
-    "reduce",
-    "finish",
-    "alpha_mean",
-];
-
-/// The compute pipelines of shaders/importance.wgsl, by entry point (`KERNELS` order).
-pub struct ImportancePipelines {
-    pipelines: Vec<wgpu::ComputePipeline>,
-}
-
-impl ImportancePipelines {
-    pub fn new(gpu: &GpuContext) -> Result<Self, GpuError> {
-        let source = crate::shaders::source("importance").expect("registered program");
-        let module = gpu.shader("importance", &source)?;
-        let pipelines = KERNELS
-            .iter()
-            .map(|entry| {
-                gpu.checked(&format!("pipeline importance/{entry}"), |device| {
-                    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                        label: Some(entry),
-                        layout: None,
-                        module: &module,
-                        entry_point: Some(entry),
-                        compilation_options: Default::default(),
-                        cache: None,
-                    })
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(Self { pipelines })
-    }
-
-    fn get(&self, entry: &str) -> &wgpu::ComputePipeline {
-        let i = KERNELS.iter().position(|k| *k == entry).expect("a kernel");
-        &self.pipelines[i]
-    }
-
-    /// Records one dispatch of `entry` with its bindings (binding number, resource); `groups`
-    /// workgroups in x and y.
-    pub fn dispatch(
-        &self,
-        gpu: &GpuContext,
-        encoder: &mut wgpu::CommandEncoder,
-        entry: &str,
-        bindings: &[(u32, wgpu::BindingResource)],
-        groups: (u32, u32),
-    ) {
-        let pipeline = self.get(entry);
-        let group = gpu.bind_group(entry, &pipeline.get_bind_group_layout(0), bindings);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(entry),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups(groups.0, groups.1, 1);
-    }
-
-    /// Passes of `entry` that read `views[i]` at binding `read` and write the other at `write`,
-    /// one per `(step, radius)` (`PassParams`), starting from `views[0]`; the index of the view
-    /// holding the result.
-    #[allow(clippy::too_many_arguments)]
-    fn ping_pong(
-        &self,
-        gpu: &GpuContext,
-        encoder: &mut wgpu::CommandEncoder,
-        entry: &str,
-        params: &wgpu::Buffer,
-        views: &[wgpu::TextureView; 2],
-        (read, write): (u32, u32),
-        steps: &[[f32; 2]],
-        groups: (u32, u32),
-    ) -> usize {
-        let mut at = 0;
-        for &[step, radius] in steps {
-            let pass = gpu.buffer_init(
-                "importance pass",
-                bytemuck::bytes_of(&PassUniforms {
-                    step: [step, radius, 0.0, 0.0],
-                }),
-                wgpu::BufferUsages::UNIFORM,
-            );
-            self.dispatch(
-                gpu,
-                encoder,
-                entry,
-                &[
-                    (20, params.as_entire_binding()),
-                    (21, pass.as_entire_binding()),
-                    (read, wgpu::BindingResource::TextureView(&views[at])),
-                    (write, wgpu::BindingResource::TextureView(&views[1 - at])),
-                ],
-                groups,
-            );
-            at = 1 - at;
-        }
-        at
     }
 }
 
@@ -534,7 +421,7 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
         .uniform(PassUniforms::layout())
         .uniform_in(
             "importance",
-            crate::two_level_raycast::TwoLevelUniforms::layout(),
+            TwoLevelUniforms::layout(),
         )
         .uniform_in("importance", crate::raycast::RayUniforms::layout());
 }

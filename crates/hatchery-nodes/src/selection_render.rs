@@ -320,7 +320,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let labels = inputs.require("labels")?.labels("labels")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
-        crate::two_level_raycast::check_labels_grid(&labels, &volume)?;
+        crate::raycast::objects::check_labels_grid(&labels, &volume)?;
         let background = color_tf(inputs, "tf")?.expect("a required input");
         let ghost = color_tf(inputs, "tf_ghost")?.unwrap_or_else(|| background.clone());
         let selected = color_tf(inputs, "tf_selection")?.unwrap_or_else(|| background.clone());

@@ -3,10 +3,13 @@
 //! skipping tables), `pass` (pipeline and draw); in WGSL, shaders/ray_common.wgsl (sampling,
 //! primary rays), ray_classify, ray_shade, ray_skip, and raycast.wgsl's compositing loop.
 
+mod importance_pass;
+pub mod objects;
 mod pass;
 mod tables;
 mod uniforms;
 
+pub use importance_pass::{ImportancePipelines, PassUniforms};
 pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
 pub use tables::check_same_grid;
 pub use uniforms::{Grid, RayUniforms, TableInfo};
