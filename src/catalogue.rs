@@ -57,11 +57,25 @@ pub fn markdown(registry: &Registry) -> String {
         out,
         "Port types: Volume, Labels, Mesh, Camera, Light, GBuffer, Image, Mask, TransferFunction, StyleSet. An edge connects an output to an input of the same type.\n"
     );
+    let sources = hatchery_nodes::kinds::Kinds::all().sources();
     for (category, schemas) in grouped(registry) {
         let _ = writeln!(out, "## {category}\n");
         for s in schemas {
             let _ = writeln!(out, "### {}\n", s.kind);
             let _ = writeln!(out, "{}\n", s.doc);
+            if let Some(source) = sources.get(s.kind) {
+                let shaders: Vec<String> = source
+                    .shaders
+                    .iter()
+                    .map(|f| format!("`shaders/{f}`"))
+                    .collect();
+                let shaders = match shaders.len() {
+                    0 => String::new(),
+                    1 => format!("; shader: {}", shaders[0]),
+                    _ => format!("; shaders: {}", shaders.join(", ")),
+                };
+                let _ = writeln!(out, "Code: `{}`{shaders}\n", source.file);
+            }
             if !s.inputs.is_empty() {
                 let _ = writeln!(out, "Inputs:\n");
                 for p in &s.inputs {

@@ -40,7 +40,7 @@ pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Regi
 pub use graph::{Graph, NodeInstance};
 pub use inputs::{GraphInput, InputDoc, InputKind};
 pub use node_params::{DataValue, FilePath, Group, ParamField};
-pub use param::{ParamKind, ParamSpec, ParamValue, Params, RelativeValue};
+pub use param::{ParamKind, ParamSpec, ParamValue, Params, RelativeValue, Widget};
 pub use port::PortType;
 pub use schema::{
     NodeError, NodeSchema, OwnSchema, PortSpec, SchemaLookup, SchemaRef, intern, node_schema,

@@ -276,8 +276,8 @@ pub fn doc_text(lines: &[&str]) -> &'static str {
 /// ```
 ///
 /// Each field: doc comment (the parameter's one-line doc), name, [`ParamField`] type, default,
-/// then `range(min, max)` for numbers and optionally `reads(InputKind::…)` for a path a graph
-/// input may bind. Generates `specs()` (for the kind's schema, in declaration order) and
+/// then `range(min, max)` for numbers, optionally `reads(InputKind::…)` for a path a graph
+/// input may bind and `widget(Widget::…)` for the editor widget it needs. Generates `specs()` (for the kind's schema, in declaration order) and
 /// `read(&Params) -> Result<Self, NodeError>`. A field whose type is another such struct, with
 /// default [`Group`], puts that struct's parameters in its place.
 #[macro_export]
@@ -290,6 +290,7 @@ macro_rules! node_params {
                 $fvis:vis $field:ident : $ty:ty = $default:expr
                     $(, range($min:expr, $max:expr))?
                     $(, reads($reads:expr))?
+                    $(, widget($widget:expr))?
                 ;
             )*
         }
@@ -313,7 +314,12 @@ macro_rules! node_params {
                         range,
                         $crate::node_params::doc_text(&[$($doc),*]),
                     );
-                    specs.extend(field.into_iter()$(.map(|s| s.reads($reads)))?);
+                    specs.extend(
+                        field
+                            .into_iter()
+                            $(.map(|s| s.reads($reads)))?
+                            $(.map(|s| s.widget($widget)))?,
+                    );
                 })*
                 specs
             }

@@ -80,6 +80,24 @@ pub struct ParamSpec {
     /// A float in data units that may also be given relative to the connected volume's values
     /// (`"percentile(60)"`, `"range(0.3)"`, `"otsu"`; see [`RelativeValue`]).
     pub relative: bool,
+    /// The editor widget for a parameter that is more than a number or a line of text.
+    pub widget: Option<Widget>,
+}
+
+/// An editor widget a parameter asks for (the editor's inspector picks it by this, not by the
+/// node kind).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Widget {
+    /// Control points of a 1-D transfer function, drawn as a curve over the data's histogram.
+    TransferFunction,
+    /// Nodes of a style transfer function (value → style, opacity), with the styles' spheres.
+    StyleTransferFunction,
+    /// A list of lit-sphere styles with their thumbnails.
+    StyleList,
+    /// The object table of a label volume (one row per object).
+    ObjectTable,
+    /// A WGSL shader file (the file picker shows .wgsl).
+    ShaderFile,
 }
 
 impl ParamSpec {
@@ -91,6 +109,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn int(name: &'static str, default: i64, min: i64, max: i64, doc: &'static str) -> Self {
@@ -101,6 +120,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn bool(name: &'static str, default: bool, doc: &'static str) -> Self {
@@ -111,6 +131,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn choice(
@@ -127,6 +148,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn color(name: &'static str, default: [f64; 4], doc: &'static str) -> Self {
@@ -137,6 +159,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn vec3(name: &'static str, default: [f64; 3], doc: &'static str) -> Self {
@@ -147,6 +170,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn path(name: &'static str, default: &'static str, doc: &'static str) -> Self {
@@ -157,6 +181,7 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
     pub fn text(name: &'static str, default: &'static str, doc: &'static str) -> Self {
@@ -167,12 +192,19 @@ impl ParamSpec {
             doc,
             reads: None,
             relative: false,
+            widget: None,
         }
     }
 
     /// Marks a path parameter as reading a data file of `kind` (graph inputs bind to it).
     pub fn reads(mut self, kind: crate::input_kind::InputKind) -> Self {
         self.reads = Some(kind);
+        self
+    }
+
+    /// Asks the editor for `widget` to edit this parameter.
+    pub fn widget(mut self, widget: Widget) -> Self {
+        self.widget = Some(widget);
         self
     }
 

@@ -8,6 +8,7 @@ use crate::uniforms::UniformLayout;
 use crate::{Ctx, Registry, Value};
 use hatchery_graph::executor::Node;
 use hatchery_graph::{NodeError, NodeInputs, NodeSchema, Params};
+use std::collections::BTreeMap;
 
 /// A compilable shader program: its name (used in error messages and by [`crate::shaders::source`])
 /// and its parts, (file name, WGSL text), concatenated in order (WGSL has no includes).
@@ -20,6 +21,18 @@ pub struct Kinds {
     pub(crate) stages: Vec<&'static dyn Fusable>,
     pub(crate) programs: Vec<Program>,
     pub(crate) uniforms: Vec<UniformLayout>,
+    /// (kind, the file of the `declare` that declared it).
+    files: Vec<(&'static str, &'static str)>,
+    /// (the file of the `declare` that declared a program, the program's own part).
+    program_files: Vec<(&'static str, &'static str)>,
+}
+
+/// Where a node kind's code is: the module file that declares it and the shader files of the
+/// programs that module declares (their own parts; shared parts are not listed).
+#[derive(Clone, Debug, PartialEq)]
+pub struct KindSource {
+    pub file: &'static str,
+    pub shaders: Vec<&'static str>,
 }
 
 impl Kinds {
@@ -32,26 +45,53 @@ impl Kinds {
         kinds
     }
 
+    /// Where each kind's code is, by kind (for docs/nodes.md).
+    pub fn sources(&self) -> BTreeMap<&'static str, KindSource> {
+        self.files
+            .iter()
+            .map(|&(kind, file)| {
+                let shaders = self
+                    .program_files
+                    .iter()
+                    .filter(|(f, _)| *f == file)
+                    .map(|&(_, shader)| shader)
+                    .collect();
+                (kind, KindSource { file, shaders })
+            })
+            .collect()
+    }
+
     /// A node kind.
+    #[track_caller]
     pub fn node(&mut self, node: impl Node<Value, Ctx> + 'static) -> &mut Self {
+        let file = std::panic::Location::caller().file();
+        self.files.push((node.schema().kind, file));
         self.registry.register(node);
         self
     }
 
     /// An image-space kind that runs as a stage of a fused pass ([`crate::fused_pass`]): its
     /// node (whose `execute` runs it as a pass of its own) and its stage.
+    #[track_caller]
     pub fn image_stage(&mut self, stage: &'static dyn Fusable) -> &mut Self {
+        let file = std::panic::Location::caller().file();
+        self.files.push((stage.schema().kind, file));
         self.registry.register(ImageStage(stage));
         self.stages.push(stage);
         self
     }
 
-    /// A shader program.
+    /// A shader program; its last part is the declaring module's own shader.
+    #[track_caller]
     pub fn program(
         &mut self,
         name: &'static str,
         parts: Vec<(&'static str, &'static str)>,
     ) -> &mut Self {
+        let file = std::panic::Location::caller().file();
+        if let Some(&(own, _)) = parts.last() {
+            self.program_files.push((file, own));
+        }
         self.programs.push((name, parts));
         self
     }

@@ -6,6 +6,7 @@ use crate::value::{Compositing, ObjectStyle, RenderMode, TransferFunction};
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::{TransferFunction1D, TransferFunction1D as Tf};
 use hatchery_graph::{
+    Widget,
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
@@ -174,7 +175,7 @@ hatchery_graph::node_params! {
     /// Parameters of `ObjectStyles`.
     pub struct ObjectStylesParams {
         /// "ID: mode compositing [tf=…] [iso=…] [importance=…] [off]; …"
-        pub objects: String = "1: shaded_dvr over";
+        pub objects: String = "1: shaded_dvr over", widget(Widget::ObjectTable);
     }
 }
 

@@ -4,6 +4,7 @@ use crate::value::StyleSet;
 use crate::{Ctx, Value};
 use hatchery_data::lit_sphere::{self, LitSphere};
 use hatchery_graph::{
+    Widget,
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
@@ -12,7 +13,8 @@ hatchery_graph::node_params! {
     /// Parameters of `StyleSet`.
     pub struct StyleSetParams {
         /// styles in order: name[:r,g,b] or a PNG or JPEG path
-        pub styles: String = "shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9";
+        pub styles: String = "shaded:0.9,0.85,0.8, toon2:0.85,0.3,0.25, gooch:0.6,0.7,0.9",
+            widget(Widget::StyleList);
     }
 }
 

@@ -5,6 +5,7 @@ use crate::value::TransferFunction;
 use crate::{Ctx, Value};
 use hatchery_data::style::StyleTransferFunction;
 use hatchery_graph::{
+    Widget,
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
@@ -14,7 +15,7 @@ hatchery_graph::node_params! {
     pub struct StyleTransferFunctionParams {
         /// value: style opacity; … (every object); a value may be relative to the connected volume:
         /// "percentile(P)", "range(F)", "otsu"
-        pub nodes: String = "40: 0 0.02; 90: 1 0.3; 160: 2 1.0";
+        pub nodes: String = "40: 0 0.02; 90: 1 0.3; 160: 2 1.0", widget(Widget::StyleTransferFunction);
         /// per object of a label volume (§4.2): "LABEL = value: style opacity; … | LABEL = …"
         pub label_nodes: String = "";
     }

@@ -4,6 +4,7 @@ use crate::value::TransferFunction;
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::{self as tf, TransferFunction1D};
 use hatchery_graph::{
+    Widget,
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
@@ -27,7 +28,7 @@ hatchery_graph::node_params! {
         pub preset: Preset = Preset::GreyRamp;
         /// control points for `custom`; a value may be relative to the connected volume
         /// ("percentile(5): 0 0 0 0", "range(0.5): …", "otsu: …")
-        pub points: String = "0: 0 0 0 0; 255: 1 1 1 1";
+        pub points: String = "0: 0 0 0 0; 255: 1 1 1 1", widget(Widget::TransferFunction);
         /// value range of presets when no volume is connected
         pub range_min: f32 = 0.0, range(-1e12, 1e12);
         /// value range of presets when no volume is connected

@@ -1,12 +1,12 @@
 //! The Inspector: the Data panel, then the parameters of the node clicked last (with the
-//! kind-specific editors of [`super::inspector_sections`] above them).
+//! editors of [`super::inspector_sections`] that its parameters ask for above them).
 
 use super::Panel;
 use super::inspector_sections as sections;
 use crate::app::EditorApp;
 use crate::files::{FileKind, Purpose};
 use egui::{Color32, Ui};
-use hatchery_graph::{ParamKind, ParamSpec, ParamValue};
+use hatchery_graph::{InputKind, ParamKind, ParamSpec, ParamValue, Widget};
 use std::path::{Path, PathBuf};
 
 /// The Inspector (the right-hand panel).
@@ -49,13 +49,19 @@ impl Panel for Inspector {
             return;
         };
         ui.label(schema.doc).on_hover_text(schema.category);
-        // Editors for the parameters that are more than a number.
-        match node.kind.as_str() {
-            "TransferFunction1D" => sections::transfer_function_section(app, ui, &id, &node),
-            "StyleTransferFunction" => sections::style_function_section(app, ui, &id, &node),
-            "StyleSet" => sections::styles_section(app, ui, &id, &node),
-            "ObjectStyles" => sections::object_styles_section(app, ui, &id, &node),
-            _ => {}
+        // Editors for the parameters that are more than a number, as their specs ask.
+        for widget in schema.params.iter().filter_map(|spec| spec.widget) {
+            match widget {
+                Widget::TransferFunction => {
+                    sections::transfer_function_section(app, ui, &id, &node)
+                }
+                Widget::StyleTransferFunction => {
+                    sections::style_function_section(app, ui, &id, &node)
+                }
+                Widget::StyleList => sections::styles_section(app, ui, &id, &node),
+                Widget::ObjectTable => sections::object_styles_section(app, ui, &id, &node),
+                Widget::ShaderFile => {}
+            }
         }
         egui::Grid::new("params").num_columns(3).show(ui, |ui| {
             for spec in &schema.params {
@@ -99,7 +105,7 @@ impl Panel for Inspector {
                         .on_hover_text(format!("choose {} with the file dialog", spec.name))
                         .clicked()
                 {
-                    choose_path(app, &node, spec.name, &current);
+                    choose_path(app, &node, spec, &current);
                 }
                 ui.end_row();
             }
@@ -137,7 +143,7 @@ impl Panel for Inspector {
 fn choose_path(
     app: &mut EditorApp,
     node: &hatchery_graph::NodeDoc,
-    param: &str,
+    spec: &ParamSpec,
     current: &ParamValue,
 ) {
     let base = app.state.base_dir();
@@ -154,15 +160,16 @@ fn choose_path(
     }
     .filter(|folder| folder.is_dir())
     .or(base);
-    let kind = match node.kind.as_str() {
-        "VolumeFile" => Some(FileKind::Volume),
-        "MeshFile" => Some(FileKind::Mesh),
-        "CustomShader" => Some(FileKind::Shader),
+    // The file filter follows what the parameter reads (label maps are volume files).
+    let kind = match (spec.widget, spec.reads) {
+        (Some(Widget::ShaderFile), _) => Some(FileKind::Shader),
+        (_, Some(InputKind::Volume | InputKind::Labels)) => Some(FileKind::Volume),
+        (_, Some(InputKind::Mesh)) => Some(FileKind::Mesh),
         _ => None,
     };
     let purpose = Purpose::Param {
         node: node.id.clone(),
-        param: param.to_owned(),
+        param: spec.name.to_owned(),
     };
     app.picker.open(purpose, kind, folder);
 }

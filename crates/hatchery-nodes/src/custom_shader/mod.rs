@@ -11,6 +11,7 @@ use crate::value::{Image, Mask};
 use crate::{Ctx, Value};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::{
+    Widget,
     NodeError, NodeInputs, NodeSchema, OwnSchema, ParamValue, Params, PortType, executor::Node,
 };
 use reflect::{MemberType, Reflection, Resource};
@@ -58,7 +59,7 @@ hatchery_graph::node_params! {
     pub struct CustomShaderParams {
         /// the WGSL file (relative to the graph file's folder); ports and parameters follow its
         /// declarations
-        pub shader: PathBuf = "";
+        pub shader: PathBuf = "", widget(Widget::ShaderFile);
     }
 }
 

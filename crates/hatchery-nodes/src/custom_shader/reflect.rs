@@ -605,6 +605,7 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
             doc,
             reads: None,
             relative: false,
+            widget: None,
         },
         MemberType::Vec4 => ParamSpec::color(name, [0.0, 0.0, 0.0, 1.0], doc),
     };
