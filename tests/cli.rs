@@ -255,21 +255,13 @@ fn the_cli_renders_groups_reroutes_and_frames_as_the_plain_graph() {
     );
     let plain = render("graphs/shaded_surface.ron", "plain.png");
     assert!(common::non_background_fraction(&organised) > 0.05, "blank");
-    let worst = organised
-        .enumerate_pixels()
-        .map(|(x, y, p)| {
-            let q = plain.get_pixel(x, y);
-            let d = (0..4).map(|c| p[c].abs_diff(q[c])).max().unwrap();
-            (d, x, y)
-        })
-        .max()
-        .unwrap();
-    assert!(
-        worst.0 <= 1,
-        "worst pixel ({}, {}) differs by {}/255",
-        worst.1,
-        worst.2,
-        worst.0
+    assert_eq!(organised.dimensions(), plain.dimensions());
+    common::assert_images_close(
+        "organised_vs_plain",
+        &common::rgba8_pixels(&organised),
+        &common::rgba8_pixels(&plain),
+        organised.width(),
+        1.0,
     );
     let output = hatchery(&["validate", "tests/fixtures/organised_shaded_surface.ron"]);
     assert!(output.status.success(), "{}", stderr(&output));

@@ -28,19 +28,6 @@ fn open(dir: &Path, graph: &str) -> Session {
     Session::open(&path, W, H).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// One pixel's RGBA against the expected, the error its largest channel difference.
-fn rgba_sample(x: u32, y: u32, got: &[f32], expected: &[f32]) -> common::Sample {
-    let error = (0..4)
-        .map(|i| (got[i] - expected[i]).abs())
-        .fold(0.0, f32::max);
-    common::Sample {
-        x,
-        y,
-        what: format!("{got:?} vs {expected:?}"),
-        error: error as f64,
-    }
-}
-
 fn pixels(session: &mut Session, node: &str, port: &str) -> hatchery_gpu::TextureData {
     session.run(&[node]).unwrap_or_else(|e| panic!("{e}"));
     let texture = match session.output(node, port).unwrap() {
@@ -171,7 +158,13 @@ fn fs_main(@builtin(position) p: vec4<f32>, @location(0) uv: vec2<f32>) -> @loca
     for (x, y) in [(0, 0), (W - 1, 0), (0, H - 1), (W - 1, H - 1), (17, 29)] {
         let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
         let expected = [cx / W as f32, cy / H as f32, cx / 64.0, cy / 64.0];
-        samples.push(rgba_sample(x, y, data.texel(x, y), &expected));
+        let got = data.texel(x, y);
+        samples.push(common::Sample {
+            x,
+            y,
+            what: format!("{got:?} vs {expected:?}"),
+            error: common::channel_difference(got, &expected) as f64,
+        });
     }
     // Rgba16Float keeps 11 significant bits: 1/2048 relative.
     common::assert_samples("custom shader uv", &samples, 1e-3, None);
@@ -199,7 +192,7 @@ fn chained_shaders_equal_the_cpu_formula() {
     let picture = pixels(&mut session, "gradient", "image");
     let mask = pixels(&mut session, "checker", "mask");
     let out = pixels(&mut session, "mix", "image");
-    let mut samples = Vec::new();
+    let mut expected = Vec::new();
     let mut masked = 0;
     for y in 0..H {
         for x in 0..W {
@@ -210,18 +203,22 @@ fn chained_shaders_equal_the_cpu_formula() {
             let t = (0.8f32 * m * 4.0).floor() / 4.0;
             let tint = [1.0, 0.5, 0.0];
             let offset = [0.0, 0.0, 0.125];
-            let expected: Vec<f32> = (0..3)
-                .map(|i| c[i] + (tint[i] - c[i]) * t + offset[i])
-                .chain([1.0])
-                .collect();
-            samples.push(rgba_sample(x, y, out.texel(x, y), &expected));
+            let [r, g, b] = [0, 1, 2].map(|i| c[i] + (tint[i] - c[i]) * t + offset[i]);
+            expected.push([r, g, b, 1.0]);
         }
     }
     assert!(
         masked > 0 && masked < W * H,
         "the checker masks part of the frame"
     );
-    common::assert_samples("custom shader mix", &samples, 2e-3, None);
+    let got = common::texels(&out);
+    common::assert_images_close(
+        "custom shader mix",
+        &got,
+        &expected,
+        W,
+        common::f32_at_most(2e-3),
+    );
 
     // A parameter set the way the CLI's --set does re-runs the node with the new value.
     session.set_param_text("mix", "amount", "0").unwrap();
@@ -263,21 +260,27 @@ fn a_gbuffer_port_binds_depth_and_normals() {
     };
     let depth = session.ctx.gpu.read_texture(&g.depth).unwrap();
     let normal = session.ctx.gpu.read_texture(&g.normal).unwrap();
-    let mut samples = Vec::new();
+    let mut expected = Vec::new();
     let mut covered = 0;
     for y in 0..H {
         for x in 0..W {
             let (n, d) = (normal.texel(x, y), depth.texel(x, y)[0]);
             covered += (d < 1.0) as u32;
-            let expected = [n[0] * 0.5 + 0.5, n[1] * 0.5 + 0.5, n[2] * 0.5 + 0.5, d];
-            samples.push(rgba_sample(x, y, out.texel(x, y), &expected));
+            expected.push([n[0] * 0.5 + 0.5, n[1] * 0.5 + 0.5, n[2] * 0.5 + 0.5, d]);
         }
     }
     assert!(
         covered > 100,
         "the surface covers the frame ({covered} pixels)"
     );
-    common::assert_samples("custom shader gbuffer", &samples, 1e-3, None);
+    let got = common::texels(&out);
+    common::assert_images_close(
+        "custom shader gbuffer",
+        &got,
+        &expected,
+        W,
+        common::f32_at_most(1e-3),
+    );
 }
 
 /// The first error of loading `graph` (its text) from `dir`.

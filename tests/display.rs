@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{Sample, assert_samples, session_from_text};
+use common::session_from_text;
 use hatchery_gpu::TextureData;
 use hatchery_graph::ParamValue;
 use hatchery_nodes::display::{self, checkerboard};
@@ -47,25 +47,22 @@ fn reference(
     [0, 1, 2].map(|c| ((sum[c] / n).clamp(0.0, 1.0) + (1.0 - a) * back).min(1.0))
 }
 
-/// Every pixel of a display picture against `want` (RGB); display pictures are opaque.
-fn compare(shown: &TextureData, want: impl Fn(u32, u32) -> [f32; 3]) -> Vec<Sample> {
-    let mut samples = Vec::new();
-    for y in 0..shown.height {
-        for x in 0..shown.width {
-            let (got, want) = (shown.texel(x, y), want(x, y));
-            assert_eq!(got[3], 1.0, "display pictures are opaque");
-            let error = (0..3)
-                .map(|c| (got[c] - want[c]).abs())
-                .fold(0.0f32, f32::max);
-            samples.push(Sample {
-                x,
-                y,
-                what: format!("got {:?}, want {want:?}", &got[..3]),
-                error: error as f64,
-            });
-        }
-    }
-    samples
+/// Fails unless every pixel of a display picture is within 1/255 of `want` (RGB); display
+/// pictures are opaque.
+fn assert_shows(name: &str, shown: &TextureData, want: impl Fn(u32, u32) -> [f32; 3]) {
+    let got: Vec<[f32; 3]> = common::texels(shown)
+        .into_iter()
+        .map(|[r, g, b, a]| {
+            assert_eq!(a, 1.0, "display pictures are opaque");
+            [r, g, b]
+        })
+        .collect();
+    let want: Vec<[f32; 3]> = (0..shown.width * shown.height)
+        .map(|i| want(i % shown.width, i / shown.width))
+        .collect();
+    // Within 1/255 as compared in f64 before.
+    let tolerance = common::f32_at_most(1.0 / 255.0);
+    common::assert_images_close(name, &got, &want, shown.width, tolerance);
 }
 
 #[test]
@@ -97,18 +94,10 @@ fn display_pictures_match_the_cpu_reference_at_full_and_reduced_size() {
         let shown = session.ctx.gpu.read_texture(&texture).expect("read back");
         let out = (shown.width, shown.height);
         assert_eq!(out, display::fit((w, h), bound));
-        let samples = compare(&shown, |x, y| {
-            reference(&source, |t| [t[0], t[1], t[2], t[3]], out, x, y)
-        });
-        let picture = image::RgbaImage::from_fn(out.0, out.1, |x, y| {
-            let t = shown.texel(x, y);
-            image::Rgba([0, 1, 2, 3].map(|c| (t[c] * 255.0).round() as u8))
-        });
-        assert_samples(
+        assert_shows(
             &format!("display_image_{}x{}", out.0, out.1),
-            &samples,
-            1.0 / 255.0,
-            Some(&picture),
+            &shown,
+            |x, y| reference(&source, |t| [t[0], t[1], t[2], t[3]], out, x, y),
         );
     }
 }
@@ -138,7 +127,7 @@ fn display_of_gbuffer_normals_and_of_a_volume() {
     let source = session.ctx.gpu.read_texture(&g.normal).expect("read back");
     let texture = display::display_texture(&mut session.ctx, &gbuffer, (w, h)).expect("display");
     let shown = session.ctx.gpu.read_texture(&texture).expect("read back");
-    let samples = compare(&shown, |x, y| {
+    assert_shows("display_normals", &shown, |x, y| {
         reference(
             &source,
             |t| {
@@ -151,7 +140,6 @@ fn display_of_gbuffer_normals_and_of_a_volume() {
             y,
         )
     });
-    assert_samples("display_normals", &samples, 1.0 / 255.0, None);
 
     // Volumes are drawn on the CPU (middle slice) and uploaded at the fitted size.
     let volume = session.evaluate("shells", "volume").expect("volume");

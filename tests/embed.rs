@@ -141,10 +141,6 @@ fn render(session: &mut Session, plane_z: Option<f32>, rho: f32, coverage: f32) 
         .collect()
 }
 
-fn diff(a: [f32; 4], b: [f32; 4]) -> f32 {
-    (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max)
-}
-
 #[test]
 fn a_stroke_behind_an_opaque_slab_is_hidden_exactly_where_the_slab_is_nearer() {
     let mut session = common::session_from_text(
@@ -162,14 +158,14 @@ fn a_stroke_behind_an_opaque_slab_is_hidden_exactly_where_the_slab_is_nearer() {
         let i = (ROW * SIZE + x) as usize;
         // The plane in front of the slab: the stroke everywhere on its row.
         assert!(
-            diff(in_front[i], red) <= 1.0 / 255.0,
+            common::channel_difference(&in_front[i], &red) <= 1.0 / 255.0,
             "x {x}: {:?}",
             in_front[i]
         );
         if plain[i][3] >= 0.99 {
             // The slab is opaque in front of the stroke here: exactly the plain rendering.
             assert!(
-                diff(behind[i], plain[i]) <= 1.0 / 255.0,
+                common::channel_difference(&behind[i], &plain[i]) <= 1.0 / 255.0,
                 "x {x}: {:?} vs {:?}",
                 behind[i],
                 plain[i]
@@ -177,7 +173,7 @@ fn a_stroke_behind_an_opaque_slab_is_hidden_exactly_where_the_slab_is_nearer() {
             hidden += 1;
         } else if plain[i][3] == 0.0 {
             assert!(
-                diff(behind[i], red) <= 1.0 / 255.0,
+                common::channel_difference(&behind[i], &red) <= 1.0 / 255.0,
                 "x {x}: {:?}",
                 behind[i]
             );
@@ -189,11 +185,9 @@ fn a_stroke_behind_an_opaque_slab_is_hidden_exactly_where_the_slab_is_nearer() {
         "hidden {hidden}, shown {shown}"
     );
     // Off the stroke's row nothing changes.
-    for i in 0..(SIZE * SIZE) as usize {
-        if i / SIZE as usize != ROW as usize {
-            assert!(diff(behind[i], plain[i]) <= 1.0 / 255.0);
-        }
-    }
+    common::assert_images_close_where("off the row", &behind, &plain, SIZE, 1.0 / 255.0, |i| {
+        i / SIZE as usize != ROW as usize
+    });
     // A global alpha ρ < 1 lets the stroke show through the slab.
     let thin = render(&mut session, Some(0.0), 0.02, 1.0);
     let i = (ROW * SIZE + 8) as usize;

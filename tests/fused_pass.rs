@@ -99,28 +99,10 @@ fn pixels(session: &Session, node: &str, port: &str) -> Vec<f32> {
     export::to_array(value, &session.ctx.gpu).unwrap().data
 }
 
-/// Fails naming the worst channel unless `a` and `b` are bit for bit equal.
-fn assert_identical(what: &str, fused: &[f32], alone: &[f32], channels: usize) {
-    assert_eq!(fused.len(), alone.len(), "{what}: sizes differ");
-    let worst = fused
-        .iter()
-        .zip(alone)
-        .enumerate()
-        .filter(|(_, (f, a))| f.to_bits() != a.to_bits())
-        .max_by(|x, y| {
-            let dx = (x.1.0 - x.1.1).abs();
-            let dy = (y.1.0 - y.1.1).abs();
-            dx.total_cmp(&dy)
-        });
-    if let Some((i, (f, a))) = worst {
-        let pixel = i / channels;
-        panic!(
-            "{what}: fused and unfused differ, worst at pixel ({}, {}) channel {}: {f} vs {a}",
-            pixel % W as usize,
-            pixel / W as usize,
-            i % channels
-        );
-    }
+/// Fails naming the worst value unless the images of `channels` values a pixel are bit for bit
+/// equal.
+fn assert_identical(what: &str, fused: &[f32], alone: &[f32], channels: u32) {
+    common::assert_images_identical(what, fused, alone, W * channels);
 }
 
 #[test]
@@ -251,12 +233,8 @@ fn every_preset_renders_the_same_fused_and_unfused() {
             let alone = render(session, false);
             let fused = render(session, true);
             assert_eq!(fused.len(), alone.len(), "{name}");
-            let differing = fused
-                .iter()
-                .zip(&alone)
-                .filter(|(x, y)| x.to_bits() != y.to_bits())
-                .count();
-            assert_eq!(differing, 0, "{name}: {differing} values differ");
+            // 120 rows of 160 pixels.
+            common::assert_images_identical(&name, &fused, &alone, (fused.len() / 120) as u32);
         }
         if fused
             .executor

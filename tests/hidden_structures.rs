@@ -96,12 +96,7 @@ fn tau(x: u32, y: u32, theta: f32, n: f32, c_cross: f32) -> f32 {
 /// Pixels where two binary masks differ; each must lie on a border of the reference (its 3×3
 /// neighbourhood holds both values), and there may be at most 0.1 % of them.
 fn compare_masks(name: &str, gpu: &[f32], reference: &[f32]) -> Vec<usize> {
-    let mut differing = Vec::new();
-    for i in 0..gpu.len() {
-        if (gpu[i] - reference[i]).abs() > 0.5 {
-            differing.push(i);
-        }
-    }
+    let diff = common::diff_images(gpu, reference, W, |_| true, 0.5);
     let on_border = |i: usize| {
         let (x, y) = ((i % W as usize) as i64, (i / W as usize) as i64);
         let mut seen = [false; 2];
@@ -112,30 +107,24 @@ fn compare_masks(name: &str, gpu: &[f32], reference: &[f32]) -> Vec<usize> {
         }
         seen[0] && seen[1]
     };
-    let inner: Vec<usize> = differing
+    let inner: Vec<usize> = diff
+        .over
         .iter()
         .copied()
         .filter(|&i| !on_border(i))
         .collect();
-    let fraction = differing.len() as f64 / gpu.len() as f64;
+    let fraction = diff.over.len() as f64 / gpu.len() as f64;
     if fraction > 0.001 || !inner.is_empty() {
-        let picture = image::RgbaImage::from_fn(W, H, |x, y| {
-            let i = (y * W + x) as usize;
-            let g = (gpu[i] * 255.0) as u8;
-            let r = (reference[i] * 255.0) as u8;
-            image::Rgba([g, r, 0, 255])
-        });
-        let saved = common::save_failure(name, &picture);
-        panic!(
-            "{name}: {} pixels differ ({:.4} %), {} of them off mask borders (first at {:?}); GPU red, CPU green in {}",
-            differing.len(),
+        let why = format!(
+            "{} pixels differ ({:.4} %), {} of them off mask borders (first at {:?})",
+            diff.over.len(),
             fraction * 100.0,
             inner.len(),
             inner.first().map(|i| (i % W as usize, i / W as usize)),
-            saved.display()
         );
+        diff.fail(name, gpu, reference, why);
     }
-    differing
+    diff.over
 }
 
 fn params_of(session: &Session, node: &str) -> Params {
@@ -268,16 +257,8 @@ fn gpu_masks_and_final_colour_match_the_cpu_reference_of_eq_1_to_10() {
         ),
     ] {
         let gpu = array(&session, node, port).data;
-        let samples: Vec<common::Sample> = (0..gpu.len())
-            .filter(|&i| !suspect[i])
-            .map(|i| common::Sample {
-                x: i as u32 % W,
-                y: i as u32 / W,
-                what: format!("{name}: GPU {} vs CPU {}", gpu[i], reference[i]),
-                error: (gpu[i] - reference[i]).abs() as f64,
-            })
-            .collect();
-        common::assert_samples(name, &samples, tolerance, None);
+        let tolerance = common::f32_at_most(tolerance);
+        common::assert_images_close_where(name, &gpu, reference, W, tolerance, |i| !suspect[i]);
     }
 
     // §3.3.4 final colour.
@@ -291,39 +272,40 @@ fn gpu_masks_and_final_colour_match_the_cpu_reference_of_eq_1_to_10() {
         colour("with_secondary"),
     );
     let picture = array(&session, "front_hatching", "image");
-    let gpu_picture = export::to_rgba8(
-        session.output("front_hatching", "image").unwrap(),
-        &session.ctx.gpu,
-    )
-    .unwrap();
-    let mut samples = Vec::new();
-    for i in 0..(W * H) as usize {
-        let mut c = paper.lerp(back, sil2[i]);
-        c = c.lerp(sec, i_s_final[i]);
-        c *= 1.0 - sil1[i];
-        c *= hatching[i];
-        let g = Vec3::new(
-            picture.data[4 * i],
-            picture.data[4 * i + 1],
-            picture.data[4 * i + 2],
-        );
-        // Pixels next to a differing mask pixel may differ too (the final mix reads them).
+    let want: Vec<[f32; 3]> = (0..(W * H) as usize)
+        .map(|i| {
+            let mut c = paper.lerp(back, sil2[i]);
+            c = c.lerp(sec, i_s_final[i]);
+            c *= 1.0 - sil1[i];
+            c *= hatching[i];
+            c.to_array()
+        })
+        .collect();
+    let got: Vec<[f32; 3]> = picture
+        .data
+        .chunks_exact(4)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    // Pixels next to a differing mask pixel may differ too (the final mix reads them).
+    let far_from_suspects = |i: usize| {
         let (x, y) = ((i % W as usize) as i64, (i / W as usize) as i64);
-        let near_suspect = (-1..=1).any(|dy| (-1..=1).any(|dx| suspect[at(x + dx, y + dy)]));
-        if !near_suspect {
-            samples.push(common::Sample {
-                x: x as u32,
-                y: y as u32,
-                what: format!("GPU {g} vs CPU {c}"),
-                error: (g - c).abs().max_element() as f64,
-            });
-        }
-    }
+        !(-1..=1).any(|dy| (-1..=1).any(|dx| suspect[at(x + dx, y + dy)]))
+    };
+    let compared = (0..(W * H) as usize)
+        .filter(|&i| far_from_suspects(i))
+        .count();
     assert!(
-        samples.len() as f64 > 0.99 * (W * H) as f64,
+        compared as f64 > 0.99 * (W * H) as f64,
         "too many pixels excluded"
     );
-    common::assert_samples("final_colour", &samples, 1.0 / 255.0, Some(&gpu_picture));
+    common::assert_images_close_where(
+        "final_colour",
+        &got,
+        &want,
+        W,
+        common::f32_at_most(1.0 / 255.0),
+        far_from_suspects,
+    );
     // The picture shows all four ingredients.
     let count = |v: &[f32]| v.iter().filter(|x| **x > 0.5).count();
     assert!(

@@ -240,36 +240,6 @@ fn cpu_reference(
     (buffers, picture)
 }
 
-/// The largest channel difference of two pixels.
-fn diff(a: [f32; 4], b: [f32; 4]) -> f32 {
-    (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max)
-}
-
-/// Every pixel selected by `which` within `tolerance`, reporting the worst one.
-fn assert_close_where(
-    name: &str,
-    gpu: &[[f32; 4]],
-    cpu: &[[f32; 4]],
-    tolerance: f32,
-    which: impl Fn(usize) -> bool,
-) {
-    let (mut worst, mut at) = (0.0f32, 0);
-    for i in (0..gpu.len()).filter(|&i| which(i)) {
-        let d = diff(gpu[i], cpu[i]);
-        if d > worst {
-            (worst, at) = (d, i);
-        }
-    }
-    assert!(
-        worst <= tolerance,
-        "{name}: pixel ({}, {}) differs by {worst}: {:?} vs {:?}",
-        at % SIZE as usize,
-        at / SIZE as usize,
-        gpu[at],
-        cpu[at]
-    );
-}
-
 const SHELL: [f32; 4] = [1.0, 0.2, 0.1, 0.25];
 const CORE: [f32; 4] = [0.1, 0.9, 0.2, 0.6];
 const INNER: [f32; 4] = [0.2, 0.3, 1.0, 0.5];
@@ -320,24 +290,25 @@ fn cylindrical_mimp_shows_only_the_focus_in_its_footprint_and_the_plain_renderin
         (200..400).contains(&footprint),
         "footprint of {footprint} pixels"
     );
-    assert_close_where(
+    common::assert_images_close_where(
         "footprint vs focus only",
         &mimp,
         &focus,
+        SIZE,
         1.0 / 255.0,
         inside,
     );
-    assert_close_where("outside vs plain", &mimp, &plain, 1.0 / 255.0, |i| {
+    common::assert_images_close_where("outside vs plain", &mimp, &plain, SIZE, 1.0 / 255.0, |i| {
         !inside(i)
     });
     // Not trivially equal: in the footprint the plain rendering shows the shell in front.
-    let changed = (0..buffer.len())
-        .filter(|&i| inside(i) && diff(plain[i], focus[i]) > 0.05)
-        .count();
+    let changed = common::diff_images(&plain, &focus, SIZE, inside, 0.05)
+        .over
+        .len();
     assert!(changed > footprint / 2, "only {changed} pixels changed");
     // And the CPU reference agrees everywhere.
     let (_, cpu) = cpu_reference(&scene, &setup, &cam);
-    assert_close_where("MImP vs CPU", &mimp, &cpu, 1.0 / 255.0, |_| true);
+    common::assert_images_close("MImP vs CPU", &mimp, &cpu, SIZE, 1.0 / 255.0);
 }
 
 #[test]
@@ -392,9 +363,9 @@ fn conical_mimp_starts_rays_on_the_countersink_of_eq_1() {
         ..setup
     };
     let (_, cyl) = render_gpu(&mut session, &cam, &scene, Some(&cylindrical), &[]);
-    let cut = (0..buffer.len())
-        .filter(|&i| buffer[i][2] < 0.5 && diff(gpu[i], cyl[i]) > 0.02)
-        .count();
+    let cut = common::diff_images(&gpu, &cyl, SIZE, |i| buffer[i][2] < 0.5, 0.02)
+        .over
+        .len();
     assert!(cut > 50, "the countersink changed only {cut} pixels");
     // The whole picture against the CPU reference (pixels where jump flooding is inexact
     // excluded: there the cut may move by a sample).
@@ -410,7 +381,7 @@ fn conical_mimp_starts_rays_on_the_countersink_of_eq_1() {
         &cpu_buffers,
         &p,
     );
-    assert_close_where("conical MImP vs CPU", &gpu, &cpu, 2.0 / 255.0, |i| {
+    common::assert_images_close_where("conical MImP vs CPU", &gpu, &cpu, SIZE, 2.0 / 255.0, |i| {
         (buffer[i][0] - cpu_buffers.pixels[i][0]).abs() <= 1e-3
     });
 }
@@ -477,9 +448,10 @@ fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
                 ..setup
             };
             let (_, cyl) = render_gpu(&mut session, &cam, &scene, Some(&cylindrical), &[]);
-            let cut = (0..buffer.len())
-                .filter(|&i| buffer[i][2] < 0.5 && diff(gpu[i], cyl[i]) > 0.02)
-                .count();
+            let outside = |i: usize| buffer[i][2] < 0.5;
+            let cut = common::diff_images(&gpu, &cyl, SIZE, outside, 0.02)
+                .over
+                .len();
             assert!(
                 cut > 30,
                 "the countersink changed {cut} pixels outside the footprint"
@@ -487,13 +459,13 @@ fn aimc_levels_of_sparseness_are_importance_over_the_sum_of_eq_2() {
         }
         let (cpu_buffers, cpu) = cpu_reference(&scene, &setup, &cam);
         let name = format!("{method:?} vs CPU");
-        assert_close_where(&name, &gpu, &cpu, 2.0 / 255.0, |i| {
+        common::assert_images_close_where(&name, &gpu, &cpu, SIZE, 2.0 / 255.0, |i| {
             (buffer[i][0] - cpu_buffers.pixels[i][0]).abs() <= 1e-3
         });
         let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
         let centre = (SIZE / 2 * SIZE + SIZE / 2) as usize;
         assert!(
-            diff(gpu[centre], plain[centre]) > 0.05,
+            common::channel_difference(&gpu[centre], &plain[centre]) > 0.05,
             "{method:?}: the centre is not sparser than the plain rendering"
         );
     }
@@ -561,7 +533,7 @@ fn vpimc_scales_the_occluding_context_to_the_opacity_s_o_of_eq_3() {
         // occluding part).
         let outside = (SIZE / 2 * SIZE + 12) as usize;
         assert!(buffer[outside][2] < 0.5);
-        assert!(diff(gpu[outside], plain[outside]) < 1.0 / 255.0);
+        assert!(common::channel_difference(&gpu[outside], &plain[outside]) < 1.0 / 255.0);
         // Also with a conical countersink: the slab around the footprint stays as it is.
         let conical = Setup {
             slope: 1.0,
@@ -569,14 +541,17 @@ fn vpimc_scales_the_occluding_context_to_the_opacity_s_o_of_eq_3() {
             ..setup
         };
         let (cone_buffer, cone) = render_gpu(&mut session, &cam, &scene, Some(&conical), &[]);
-        for i in (0..cone.len()).filter(|&i| cone_buffer[i][2] < 0.5) {
-            assert!(
-                diff(cone[i], plain[i]) < 1.0 / 255.0,
-                "conical VPImC changed pixel {i} outside the footprint"
-            );
-        }
+        // Every difference below 1/255: none beyond the largest float under it.
+        common::assert_images_close_where(
+            "conical VPImC outside the footprint vs plain",
+            &cone,
+            &plain,
+            SIZE,
+            (1.0f32 / 255.0).next_down(),
+            |i| cone_buffer[i][2] < 0.5,
+        );
         let (_, cpu) = cpu_reference(&scene, &setup, &cam);
-        assert_close_where("VPImC vs CPU", &gpu, &cpu, 1.0 / 255.0, |_| true);
+        common::assert_images_close("VPImC vs CPU", &gpu, &cpu, SIZE, 1.0 / 255.0);
     }
 }
 
@@ -628,7 +603,7 @@ fn levels_of_sparseness_change_the_context_as_named() {
     // A sparse style: the slab in front of the focus as a MIP segment (one sample's colour
     // and opacity, 0.12, instead of the slab's accumulated opacity), so more focus shows.
     assert!(style[centre][1] > plain[centre][1] + 0.05);
-    assert!(diff(style[centre], opacity[centre]) > 0.01);
+    assert!(common::channel_difference(&style[centre], &opacity[centre]) > 0.01);
     // Opacity and saturation: the same opacity; saturation greys the slab's red (0.9, 0.3,
     // 0.2) towards its luminance 0.47, so the slab adds less red and more green.
     assert!((opacity[centre][3] - saturation[centre][3]).abs() < 1e-3);
@@ -659,7 +634,7 @@ fn levels_of_sparseness_change_the_context_as_named() {
         ("door", &door),
     ] {
         assert!(
-            diff(picture[outside], plain[outside]) < 1.0 / 255.0,
+            common::channel_difference(&picture[outside], &plain[outside]) < 1.0 / 255.0,
             "{name}"
         );
     }

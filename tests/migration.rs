@@ -109,26 +109,13 @@ fn every_v1_preset_loads_saves_in_the_current_version_and_renders_identically() 
         assert_eq!(before.len(), after.len(), "{name}: savers differ");
         assert!(!before.is_empty(), "{name}: nothing rendered");
         for ((saver, a), (_, b)) in before.iter().zip(&after) {
-            let samples: Vec<common::Sample> = a
-                .enumerate_pixels()
-                .map(|(x, y, p)| {
-                    let q = b.get_pixel(x, y);
-                    let error = (0..4)
-                        .map(|c| (p[c] as f64 - q[c] as f64).abs() / 255.0)
-                        .fold(0.0, f64::max);
-                    common::Sample {
-                        x,
-                        y,
-                        what: format!("{saver}: v1 {:?} vs v2 {:?}", p.0, q.0),
-                        error,
-                    }
-                })
-                .collect();
-            common::assert_samples(
+            assert_eq!(a.dimensions(), b.dimensions(), "{name}: {saver}");
+            common::assert_images_close(
                 &format!("migration_{name}_{saver}"),
-                &samples,
-                1.0 / 255.0,
-                Some(b),
+                &common::rgba8_pixels(a),
+                &common::rgba8_pixels(b),
+                a.width(),
+                1.0,
             );
         }
     }

@@ -128,28 +128,21 @@ fn raycast(
 fn assert_rms(name: &str, gpu: &[[f32; 4]], cpu: &[[f32; 4]], w: u32) {
     assert_eq!(gpu.len(), cpu.len());
     let mut sum = [0.0f64; 4];
-    let mut worst = (0usize, 0.0f32);
-    for (i, (g, c)) in gpu.iter().zip(cpu).enumerate() {
+    for (g, c) in gpu.iter().zip(cpu) {
         for ch in 0..4 {
             let d = (g[ch] - c[ch]) as f64;
             sum[ch] += d * d;
-            if d.abs() as f32 > worst.1 {
-                worst = (i, d.abs() as f32);
-            }
         }
     }
     let rms: Vec<f64> = sum.iter().map(|s| (s / gpu.len() as f64).sqrt()).collect();
-    let (x, y) = (worst.0 as u32 % w, worst.0 as u32 / w);
+    let diff = common::diff_images(gpu, cpu, w, |_| true, 0.0);
     eprintln!(
-        "{name}: RMS per channel {rms:?}; worst pixel ({x}, {y}) off by {}: GPU {:?} CPU {:?}",
-        worst.1, gpu[worst.0], cpu[worst.0]
+        "{name}: RMS per channel {rms:?}; worst pixel ({}, {}) off by {}: GPU {:?} CPU {:?}",
+        diff.x, diff.y, diff.worst, gpu[diff.index], cpu[diff.index]
     );
-    assert!(
-        rms.iter().all(|r| *r <= 2.0 / 255.0),
-        "{name}: RMS {rms:?} exceeds 2/255; worst pixel ({x}, {y}): GPU {:?} vs CPU {:?}",
-        gpu[worst.0],
-        cpu[worst.0]
-    );
+    if !rms.iter().all(|r| *r <= 2.0 / 255.0) {
+        diff.fail(name, gpu, cpu, format!("RMS {rms:?} exceeds 2/255"));
+    }
     assert!(
         gpu.iter().any(|p| p[3] > 0.1),
         "{name}: the GPU image is empty"
@@ -329,12 +322,7 @@ fn gpu_ray_caster_matches_the_cpu_reference_on_procedural_volumes() {
         if name.contains("lighting") {
             // Eq. 8's order (enhance α_u, then correct for the step) shows in single pixels: the
             // other order is off by up to 6/255 at a quarter-voxel step, this one by < 1/255.
-            let worst = gpu
-                .iter()
-                .zip(&cpu)
-                .flat_map(|(g, c)| (0..4).map(move |k| (g[k] - c[k]).abs()))
-                .fold(0.0f32, f32::max);
-            assert!(worst <= 2.0 / 255.0, "{name}: a pixel is off by {worst}");
+            common::assert_images_close(name, &gpu, &cpu, 48, 2.0 / 255.0);
         }
     }
 }
@@ -870,21 +858,8 @@ fn empty_space_skipping_leaves_the_picture_unchanged_on_the_shared_volumes() {
             covered > 1000,
             "{name}: the volume covers only {covered} pixels"
         );
-        let (mut worst, mut at) = (0.0f32, 0);
-        for (i, (a, b)) in skipped.iter().zip(&full).enumerate() {
-            let d = (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
-            if d > worst {
-                (worst, at) = (d, i);
-            }
-        }
-        assert!(
-            worst <= 1e-6,
-            "{name}: skipping changed pixel ({}, {}) by {worst}: {:?} vs {:?}",
-            at % 160,
-            at / 160,
-            skipped[at],
-            full[at]
-        );
+        let name = format!("{name}: skipped vs full");
+        common::assert_images_close(&name, &skipped, &full, 160, 1e-6);
     }
 }
 
@@ -932,35 +907,15 @@ fn an_iso_hit_right_after_a_skipped_brick_interpolates_from_the_skipped_sample()
     // The hit at x = 16.125, as window depth of the orthographic camera.
     let eye_x = 20.0 - 30.0;
     let expected_depth = (16.125 - eye_x - 0.05) / (50.0 - 0.05);
-    for (i, (a, b)) in skipped
-        .chunks_exact(4)
-        .zip(full.chunks_exact(4))
-        .enumerate()
-    {
+    let depth = |gbuffer: &[f32]| -> Vec<f32> { gbuffer.chunks_exact(4).map(|p| p[0]).collect() };
+    let (skipped, full) = (depth(&skipped), depth(&full));
+    common::assert_images_close("iso depth, skipped vs full", &skipped, &full, 16, 1e-6);
+    for (i, d) in skipped.iter().enumerate() {
         assert!(
-            (a[0] - b[0]).abs() <= 1e-6,
-            "pixel {i}: depth {} with skipping, {} without",
-            a[0],
-            b[0]
-        );
-        assert!(
-            (a[0] - expected_depth).abs() < 1e-4,
-            "pixel {i}: depth {}, expected {expected_depth}",
-            a[0]
+            (d - expected_depth).abs() < 1e-4,
+            "pixel {i}: depth {d}, expected {expected_depth}"
         );
     }
-}
-
-/// Worst per-channel difference of two pictures, and where.
-fn worst_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> (f32, usize) {
-    let (mut worst, mut at) = (0.0f32, 0);
-    for (i, (x, y)) in a.iter().zip(b).enumerate() {
-        let d = (0..4).map(|c| (x[c] - y[c]).abs()).fold(0.0, f32::max);
-        if d > worst {
-            (worst, at) = (d, i);
-        }
-    }
-    (worst, at)
 }
 
 #[test]
@@ -1010,15 +965,8 @@ fn compute_kernel_casts_the_same_rays_as_the_fragment_shader() {
             ("image", &fragment, &compute),
             ("G-buffer", &fragment_g, &compute_g),
         ] {
-            let (worst, at) = worst_difference(a, b);
-            assert!(
-                worst <= 1e-3,
-                "{name}: {what} differs at pixel ({}, {}) by {worst}: fragment {:?}, compute {:?}",
-                at % w as usize,
-                at / w as usize,
-                a[at],
-                b[at]
-            );
+            let name = format!("{name}: {what}, fragment vs compute");
+            common::assert_images_close(&name, a, b, w, 1e-3);
         }
     }
 }

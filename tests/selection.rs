@@ -179,45 +179,19 @@ fn render_gpu(
         .collect()
 }
 
-fn diff(a: [f32; 4], b: [f32; 4]) -> f32 {
-    (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max)
-}
-
 /// GPU against CPU: at most 1 % of the pixels beyond 1/255 and none beyond 6/255. The sample
 /// lattice is anchored at the near plane (`t = k h`, the first k with t ≥ t_in), so where
 /// t_in / h lies within float rounding of an integer the GPU and the CPU may start one sample
 /// apart: a handful of pixels, each off by about one sample's share.
 fn assert_close(name: &str, gpu: &[[f32; 4]], cpu: &[[f32; 4]]) {
-    let (mut worst, mut at) = (0.0f32, 0);
-    for (i, (a, b)) in gpu.iter().zip(cpu).enumerate() {
-        let d = diff(*a, *b);
-        if d > worst {
-            (worst, at) = (d, i);
-        }
+    let diff = common::diff_images(gpu, cpu, SIZE, |_| true, 1.0 / 255.0);
+    if diff.worst > 6.0 / 255.0 || diff.over.len() * 100 > gpu.len() {
+        let why = format!(
+            "{} pixels beyond 1/255 (at most 1 %, none beyond 6/255)",
+            diff.over.len()
+        );
+        diff.fail(name, gpu, cpu, why);
     }
-    let over = gpu
-        .iter()
-        .zip(cpu)
-        .filter(|(a, b)| diff(**a, **b) > 1.0 / 255.0)
-        .count();
-    assert!(
-        worst <= 6.0 / 255.0 && over * 100 <= gpu.len(),
-        "{name}: {over} pixels beyond 1/255; pixel ({}, {}) differs by {worst}: GPU {:?}, CPU {:?}",
-        at % SIZE as usize,
-        at / SIZE as usize,
-        gpu[at],
-        cpu[at]
-    );
-}
-
-/// Every pixel within 1/255 (two GPU renderings of the same samples).
-fn assert_same(name: &str, a: &[[f32; 4]], b: &[[f32; 4]]) {
-    let worst = a
-        .iter()
-        .zip(b)
-        .map(|(a, b)| diff(*a, *b))
-        .fold(0.0, f32::max);
-    assert!(worst <= 1.0 / 255.0, "{name}: differs by {worst}");
 }
 
 fn vec3_param(v: Vec3) -> ParamValue {
@@ -248,10 +222,12 @@ fn ghosting_goes_from_no_ghosting_to_a_full_cutaway_as_the_cpu_reference() {
     };
     let none = render(&mut session, "none", 0.7);
     // Ghosting 0 is the rendering without cutaway.
-    assert_same(
+    common::assert_images_close(
         "ghosting 0 vs no cutaway",
         &render(&mut session, "ghost", 0.0),
         &none,
+        SIZE,
+        1.0 / 255.0,
     );
     // Every ghosting factor against the CPU reference, and the background's mean opacity over
     // the ghost's footprint falls as the factor grows.

@@ -166,25 +166,6 @@ fn render_gpu(
         .collect()
 }
 
-/// Every channel within `tolerance`, reporting the worst pixel.
-fn assert_close(name: &str, gpu: &[[f32; 4]], cpu: &[[f32; 4]], tolerance: f32) {
-    let (mut worst, mut at) = (0.0f32, 0);
-    for (i, (a, b)) in gpu.iter().zip(cpu).enumerate() {
-        let d = (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
-        if d > worst {
-            (worst, at) = (d, i);
-        }
-    }
-    assert!(
-        worst <= tolerance,
-        "{name}: pixel ({}, {}) differs by {worst}: GPU {:?}, CPU {:?}",
-        at % SIZE as usize,
-        at / SIZE as usize,
-        gpu[at],
-        cpu[at]
-    );
-}
-
 fn centre(image: &[[f32; 4]]) -> [f32; 4] {
     image[(SIZE / 2 * SIZE + SIZE / 2) as usize]
 }
@@ -234,7 +215,7 @@ fn every_local_and_global_compositing_mode_matches_the_cpu_reference() {
             let cpu = reference::render(&volume, &labels, &objects, global, true, &p);
             let covered = cpu.iter().filter(|c| c[3] > 0.01).count();
             assert!(covered > 500, "{name}: only {covered} pixels covered");
-            assert_close(&name, &gpu, &cpu, 1.0 / 255.0);
+            common::assert_images_close(&name, &gpu, &cpu, SIZE, 1.0 / 255.0);
         }
     }
 }
@@ -575,7 +556,7 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
         let (two_level, raycast) = (pixels(&two_level), pixels(&raycast));
         let covered = raycast.iter().filter(|p| p[3] > 0.05).count();
         assert!(covered > 100, "{name}: only {covered} pixels covered");
-        assert_close(name, &two_level, &raycast, 1.0 / 255.0);
+        common::assert_images_close(name, &two_level, &raycast, SIZE, 1.0 / 255.0);
     }
 }
 
@@ -654,7 +635,7 @@ fn object_ids_up_to_65535_render_as_small_ones_do() {
     );
     let cpu = reference::render(&volume, &small, &objects(1, 2), Global::Over, true, &p);
     assert!(cpu.iter().filter(|c| c[3] > 0.01).count() > 500);
-    assert_close("ids 30001 and 65535", &gpu, &cpu, 1.0 / 255.0);
+    common::assert_images_close("ids 30001 and 65535", &gpu, &cpu, SIZE, 1.0 / 255.0);
 }
 
 #[test]

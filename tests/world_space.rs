@@ -104,24 +104,10 @@ fn las_and_ras_copies_of_one_object_ray_cast_alike() {
         let cam = ortho(centre, azimuth, elevation, 18.0);
         let a = render(&mut s, &ras, &cam, f.clone());
         let b = render(&mut s, &las, &cam, f.clone());
-        let (mut worst, mut at) = (0.0f32, 0usize);
-        for (i, (p, q)) in a.iter().zip(&b).enumerate() {
-            for c in 0..4 {
-                if (p[c] - q[c]).abs() > worst {
-                    (worst, at) = ((p[c] - q[c]).abs(), i);
-                }
-            }
-        }
         let covered = a.iter().filter(|p| p[3] > 0.1).count();
         assert!(covered > 100, "az {azimuth}: the object is not in view");
-        assert!(
-            worst <= 1.0 / 255.0,
-            "az {azimuth} el {elevation}: LAS and RAS differ by {worst} at pixel ({}, {}): {:?} vs {:?}",
-            at as u32 % SIZE,
-            at as u32 / SIZE,
-            a[at],
-            b[at]
-        );
+        let name = format!("az {azimuth} el {elevation}: LAS vs RAS");
+        common::assert_images_close(&name, &a, &b, SIZE, 1.0 / 255.0);
     }
 }
 

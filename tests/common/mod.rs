@@ -3,10 +3,19 @@
 
 #![allow(dead_code)]
 
+pub mod images;
 pub mod importance_reference;
 pub mod raycast_reference;
 pub mod selection_reference;
 pub mod two_level_reference;
+
+// Not every test uses every helper.
+#[allow(unused_imports)]
+pub use images::{
+    Exact, ImageDiff, Pixel, assert_images_close, assert_images_close_where,
+    assert_images_identical, channel_difference, diff_images, f32_at_most, rgba8_pixels, texels,
+    worst_channel,
+};
 
 use hatchery_graph::{Graph, GraphDocument, NodeInputs, ParamValue, Params};
 use hatchery_nodes::Session;
@@ -75,10 +84,19 @@ pub fn savers(session: &Session) -> Vec<String> {
     savers.map(|n| n.id.clone()).collect()
 }
 
+/// Writes `picture` as `name`.png (characters other than letters, digits, `.`, `-` and `_`
+/// replaced) into a temporary folder, and says where.
 pub fn save_failure(name: &str, picture: &image::RgbaImage) -> PathBuf {
     let dir = std::env::temp_dir().join("hatchery-test-failures");
     let _ = std::fs::create_dir_all(&dir);
-    let path = dir.join(format!("{name}.png"));
+    let file: String = name
+        .chars()
+        .map(|c| match c {
+            'a'..='z' | 'A'..='Z' | '0'..='9' | '.' | '-' | '_' => c,
+            _ => '_',
+        })
+        .collect();
+    let path = dir.join(format!("{file}.png"));
     let _ = picture.save(&path);
     path
 }
@@ -184,27 +202,6 @@ pub fn hatchery(args: &[&str]) -> std::process::Output {
         .current_dir(repo_root())
         .output()
         .expect("hatchery runs")
-}
-
-/// The largest channel difference between two pictures of one size, and where: (difference,
-/// x, y). Panics when the sizes differ (a test compares renders of one size).
-pub fn worst_channel(a: &image::RgbaImage, b: &image::RgbaImage) -> (u8, u32, u32) {
-    assert_eq!(
-        a.dimensions(),
-        b.dimensions(),
-        "pictures of different sizes"
-    );
-    let mut worst = (0u8, 0, 0);
-    for (x, y, p) in a.enumerate_pixels() {
-        let q = b.get_pixel(x, y);
-        for c in 0..4 {
-            let d = p[c].abs_diff(q[c]);
-            if d > worst.0 {
-                worst = (d, x, y);
-            }
-        }
-    }
-    worst
 }
 
 /// What SaveImage node `saver` of `session` would write, rendered without writing it (its
