@@ -1,15 +1,12 @@
 //! Annotations (VolumeShop §6.4 in the tutorial): labelled 3-D anchors, written in the graph
-//! (`AnnotationList`) or one per object of a segmentation (`AnnotationsFromLabels`). Laid out
-//! by `AnnotationLayout` (crate::annotation_layout), drawn by `AnnotationOverlay`, written by
-//! `SaveSvg`.
+//! (`AnnotationList`, annotation_list.rs) or one per object of a segmentation
+//! (`AnnotationsFromLabels`, annotations_from_labels.rs). Laid out by `AnnotationLayout`, drawn
+//! by `AnnotationOverlay`, written by `SaveSvg`.
 
 use crate::value::Labels;
-use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_annotation::{Anchor, Layout, ProjectedAnchor};
-use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
-};
+use hatchery_graph::NodeError;
 use std::sync::Arc;
 
 /// Anchors and, once laid out, where their labels go.
@@ -91,55 +88,8 @@ pub fn parse_anchor_list(text: &str) -> Result<Vec<Anchor>, String> {
         .collect()
 }
 
-hatchery_graph::node_params! {
-    /// Parameters of `AnnotationList`.
-    pub struct AnnotationListParams {
-        /// "x y z: text; …" in world units
-        pub anchors: String = "0 0 0: centre";
-    }
-}
-
-pub struct AnnotationListNode;
-
-impl Node<Value, Ctx> for AnnotationListNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "AnnotationList",
-            category: "Annotation",
-            doc: "Labelled anchors written in the graph: \"x y z: text; …\" (world units), one \
-                  label per row; earlier rows have higher priority when labels must be left out.",
-            inputs: vec![],
-            outputs: vec![PortSpec::output(
-                "annotations",
-                PortType::Annotations,
-                "the anchors",
-            )],
-            params: AnnotationListParams::specs(),
-            frame_dependent: false,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        _ctx: &mut Ctx,
-        _inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = AnnotationListParams::read(p)?;
-        let anchors = parse_anchor_list(&params.anchors)
-            .map_err(|e| NodeError::new(format!("parameter `anchors`: {e}")))?;
-        let bounds = vec![None; anchors.len()];
-        Ok(vec![Value::Annotations(Arc::new(Annotations {
-            anchors,
-            bounds,
-            placed: None,
-        }))])
-    }
-}
-
 /// Per object id: voxel count, sum of voxel indices, and index bounds.
-struct ObjectVoxels {
+pub(crate) struct ObjectVoxels {
     count: u64,
     sum: glam::DVec3,
     lo: glam::UVec3,
@@ -148,7 +98,7 @@ struct ObjectVoxels {
 
 /// One anchor per object in `ids` that has voxels: at the object's voxel nearest its centroid
 /// (so on the object even where it is concave), with the object's world box as bounds.
-fn anchors_for(labels: &Labels, ids: &[u16]) -> (Vec<Anchor>, Vec<Option<[Vec3; 2]>>) {
+pub(crate) fn anchors_for(labels: &Labels, ids: &[u16]) -> (Vec<Anchor>, Vec<Option<[Vec3; 2]>>) {
     let l = &labels.data;
     let [nx, ny, _] = l.dims.map(|d| d as usize);
     let mut stats: Vec<Option<ObjectVoxels>> = (0..ids.len()).map(|_| None).collect();
@@ -221,124 +171,6 @@ fn anchors_for(labels: &Labels, ids: &[u16]) -> (Vec<Anchor>, Vec<Option<[Vec3; 
         bounds.push(Some([lo, hi]));
     }
     (anchors, bounds)
-}
-
-hatchery_graph::node_params! {
-    /// Parameters of `AnnotationsFromLabels`.
-    pub struct AnnotationsFromLabelsParams {
-        /// label ids to annotate, e.g. "10, 13" (empty: the drawn objects, or all)
-        pub objects: String = "";
-    }
-}
-
-pub struct AnnotationsFromLabelsNode;
-
-impl Node<Value, Ctx> for AnnotationsFromLabelsNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "AnnotationsFromLabels",
-            category: "Annotation",
-            doc: "One anchor per object of a segmentation: at the object's voxel nearest its \
-                  centroid (on the object even where it is concave), named after the labels \
-                  (or the object table), with the object's box as its part of the silhouette \
-                  hull. Objects: those listed in `objects`, else the drawn rows of the `styles` \
-                  input, else every object of the labels. Priority: the importance from the \
-                  object table, else the object's share of the voxels.",
-            inputs: vec![
-                PortSpec::input("labels", PortType::Labels, "the segmentation"),
-                PortSpec::optional(
-                    "styles",
-                    PortType::ObjectStyles,
-                    "which objects are drawn, their names and importance",
-                ),
-            ],
-            outputs: vec![PortSpec::output(
-                "annotations",
-                PortType::Annotations,
-                "one anchor per object",
-            )],
-            params: AnnotationsFromLabelsParams::specs(),
-            frame_dependent: false,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = AnnotationsFromLabelsParams::read(p)?;
-        let labels = inputs.require("labels")?.labels("labels")?.clone();
-        let styles = match inputs.get("styles") {
-            Some(v) => Some(v.object_styles("styles")?.clone()),
-            None => None,
-        };
-        let listed = params.objects.trim();
-        let ids: Vec<u16> = if !listed.is_empty() {
-            let mut ids: Vec<u16> = Vec::new();
-            for s in listed
-                .split(|c: char| c == ',' || c.is_whitespace())
-                .filter(|s| !s.is_empty())
-            {
-                match s.parse::<u16>() {
-                    Ok(id) if id > 0 => {
-                        if !ids.contains(&id) {
-                            ids.push(id);
-                        }
-                    }
-                    _ => {
-                        return Err(NodeError::new(format!(
-                            "parameter `objects`: `{s}` is not a label id (1–65535)"
-                        )));
-                    }
-                }
-            }
-            ids
-        } else if let Some(styles) = &styles {
-            styles.iter().filter(|s| s.enabled).map(|s| s.id).collect()
-        } else {
-            labels
-                .data
-                .objects
-                .keys()
-                .copied()
-                .filter(|&id| id != 0)
-                .collect()
-        };
-        let (mut anchors, bounds) = anchors_for(&labels, &ids);
-        let empty: Vec<String> = ids
-            .iter()
-            .filter(|id| !anchors.iter().any(|a| a.object == **id))
-            .map(|id| id.to_string())
-            .collect();
-        if !empty.is_empty() {
-            ctx.warn(format!(
-                "objects {} have no voxel in the labels: no anchor for them",
-                empty.join(", ")
-            ));
-        }
-        if let Some(styles) = &styles {
-            for a in &mut anchors {
-                if let Some(s) = styles.iter().find(|s| s.id == a.object) {
-                    a.priority = s.importance;
-                }
-            }
-        }
-        Ok(vec![Value::Annotations(Arc::new(Annotations {
-            anchors,
-            bounds,
-            placed: None,
-        }))])
-    }
-}
-
-
-/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
-pub fn declare(k: &mut crate::kinds::Kinds) {
-    k.node(AnnotationListNode)
-        .node(AnnotationsFromLabelsNode);
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! its kinds, shader programs and uniform blocks in its `declare` ([`kinds`]), and
 //! [`declaring_modules!`] below lists it once. docs/contributing.md has a worked example.
 
+pub mod annotations;
 pub mod context;
 pub mod export;
 pub mod framing;
@@ -9,6 +10,7 @@ pub mod fused_pass;
 pub mod graph_inputs;
 pub mod kinds;
 pub mod label_font;
+pub mod label_sources;
 pub mod memory_inputs;
 pub mod mesh_pass;
 pub mod relative;
@@ -17,6 +19,7 @@ mod session;
 pub mod shaders;
 pub mod uniforms;
 pub mod value;
+pub mod visual_conventions;
 pub mod volume_texture;
 
 /// Declares the modules that declare node kinds, shader programs or uniform blocks (each has a
@@ -32,7 +35,11 @@ macro_rules! declaring_modules {
 // Adding a node kind: its module, and its name here (alphabetical).
 declaring_modules! {
     annotation_layout,
-    annotations,
+    annotation_list,
+    annotation_overlay,
+    annotations_from_labels,
+    arrow,
+    bounding_box,
     camera,
     curvature,
     curvature_color,
@@ -44,13 +51,16 @@ declaring_modules! {
     depth_test_mask,
     diffuse_intensity,
     display,
+    fan,
     fill,
     gbuffer,
     halftone,
     hatch_strokes,
     importance_compositing,
+    label_file,
     label_mask,
-    label_sources,
+    labels_from_maps,
+    labels_from_threshold,
     light,
     marching_cubes,
     mask_combine,
@@ -75,7 +85,6 @@ declaring_modules! {
     style_transfer_function,
     transfer_function_1d,
     two_level_raycast,
-    visual_conventions,
     volume_file,
 }
 

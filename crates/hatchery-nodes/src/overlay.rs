@@ -1,6 +1,6 @@
 //! Drawing annotations over an image (VolumeShop §6.3 visual conventions, §6.4 annotations):
-//! a small GPU 2-D vector renderer, [`Canvas`], shared by every overlay node, and the
-//! `AnnotationOverlay` node that draws laid-out labels with it.
+//! a small GPU 2-D vector renderer, [`Canvas`], shared by every overlay node (the
+//! `AnnotationOverlay` node, annotation_overlay.rs, draws laid-out labels with it).
 //!
 //! Units: pixels with the origin at the image's top-left corner and y down; a pixel's centre is
 //! at (x + 0.5, y + 0.5).
@@ -16,17 +16,13 @@
 //! rather than a second CPU-rasterised channel: the atlas stays one channel, and the halo width
 //! stays a drawing parameter, exact for any width, without rasterising the text again.
 
-use crate::annotation_layout::LABEL_PADDING;
-use crate::annotations::Annotations;
 use crate::label_font;
 use crate::screen_pass::IMAGE_FORMAT;
 use crate::value::Image;
 use crate::{Ctx, Value};
 use glam::Vec2;
 use hatchery_gpu::{GpuContext, GpuError};
-use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
-};
+use hatchery_graph::NodeError;
 use std::sync::Arc;
 
 crate::uniform_block! {
@@ -39,17 +35,17 @@ crate::uniform_block! {
 /// Largest halo the shader dilates by, pixels.
 pub const MAX_HALO: f32 = 8.0;
 
-const SEGMENT: f32 = 0.0;
-const DISC: f32 = 1.0;
-const TRIANGLE: f32 = 2.0;
-const TEXT: f32 = 3.0;
+pub(crate) const SEGMENT: f32 = 0.0;
+pub(crate) const DISC: f32 = 1.0;
+pub(crate) const TRIANGLE: f32 = 2.0;
+pub(crate) const TEXT: f32 = 3.0;
 /// An exclusion rectangle that excludes nothing (min > max).
-const NO_CLIP: [f32; 4] = [1.0, 1.0, 0.0, 0.0];
+pub(crate) const NO_CLIP: [f32; 4] = [1.0, 1.0, 0.0, 0.0];
 
 /// One instanced quad of shaders/overlay.wgsl (`Primitive`, locations 0–6).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-struct Primitive {
+pub(crate) struct Primitive {
     /// p0, p1.
     a: [f32; 4],
     /// p2, size (half width, radius or halo radius), kind.
@@ -65,23 +61,23 @@ struct Primitive {
     clip1: [f32; 4],
 }
 
-const ATTRIBUTES: [wgpu::VertexAttribute; 7] = wgpu::vertex_attr_array![
+pub(crate) const ATTRIBUTES: [wgpu::VertexAttribute; 7] = wgpu::vertex_attr_array![
     0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4,
     4 => Float32x4, 5 => Float32x4, 6 => Float32x4
 ];
 
 /// Straight RGBA (0–1) to premultiplied, times `opacity`.
-fn premultiplied(color: [f32; 4], opacity: f32) -> [f32; 4] {
+pub(crate) fn premultiplied(color: [f32; 4], opacity: f32) -> [f32; 4] {
     let a = (color[3] * opacity).clamp(0.0, 1.0);
     [color[0] * a, color[1] * a, color[2] * a, a]
 }
 
-fn finite(points: &[Vec2]) -> bool {
+pub(crate) fn finite(points: &[Vec2]) -> bool {
     points.iter().all(|p| p.is_finite())
 }
 
 /// A string waiting for its atlas cell.
-struct PendingText {
+pub(crate) struct PendingText {
     primitive: usize,
     text: String,
     size: f32,
@@ -456,7 +452,7 @@ impl Canvas {
     }
 }
 
-fn pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, GpuError> {
+pub(crate) fn pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, GpuError> {
     let source = crate::shaders::source("overlay").ok_or_else(|| GpuError::Validation {
         what: "shader overlay".into(),
         message: "no such shader program".into(),
@@ -510,136 +506,11 @@ pub fn pixels(name: &str, v: f32) -> Result<f32, NodeError> {
     }
 }
 
-hatchery_graph::node_params! {
-    /// Parameters of `AnnotationOverlay`.
-    pub struct AnnotationOverlayParams {
-        /// label text colour
-        pub text_color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
-        /// colour of the halo around the text (alpha 0: none)
-        pub halo_color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
-        /// halo width around the glyphs, pixels
-        pub halo_width: f32 = 2.0, range(0.0, MAX_HALO as f64);
-        /// leader line and anchor dot colour (alpha times the label's opacity)
-        pub leader_color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
-        /// leader line width, pixels
-        pub leader_width: f32 = 1.0, range(0.0, 16.0);
-        /// radius of the dot at the anchor, pixels (0: none)
-        pub dot_radius: f32 = 2.5, range(0.0, 32.0);
-    }
-}
-
-pub struct AnnotationOverlayNode;
-
-impl Node<Value, Ctx> for AnnotationOverlayNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "AnnotationOverlay",
-            category: "Annotation",
-            doc: "Draws laid-out annotations over an image (VolumeShop §6.4): for every shown \
-                  label its leader line from the anchor to the label's attachment point and a \
-                  dot at the anchor, both at the label's depth opacity, then its text (at the \
-                  layout's font size) over a halo. Anti-aliased on the GPU; pixels, top-left \
-                  origin, y down.",
-            inputs: vec![
-                PortSpec::input("image", PortType::Image, "the picture to annotate"),
-                PortSpec::input(
-                    "annotations",
-                    PortType::Annotations,
-                    "annotations laid out by AnnotationLayout for this image's size",
-                ),
-            ],
-            outputs: vec![PortSpec::output(
-                "image",
-                PortType::Image,
-                "the picture with the labels",
-            )],
-            params: AnnotationOverlayParams::specs(),
-            frame_dependent: false,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = AnnotationOverlayParams::read(p)?;
-        let image = inputs.require("image")?.image("image")?.clone();
-        let annotations: Arc<Annotations> = inputs
-            .require("annotations")?
-            .annotations("annotations")?
-            .clone();
-        let placed = annotations.placed("annotations")?;
-        let (width, height) = (image.texture.width(), image.texture.height());
-        if (placed.width, placed.height) != (width, height) {
-            return Err(NodeError::at_port(
-                "annotations",
-                format!(
-                    "laid out for {}×{} pixels, the image is {width}×{height}",
-                    placed.width, placed.height
-                ),
-            ));
-        }
-        let (halo_width, leader_width, dot_radius) = (
-            pixels("halo_width", params.halo_width)?,
-            pixels("leader_width", params.leader_width)?,
-            pixels("dot_radius", params.dot_radius)?,
-        );
-        let leader_color = params.leader_color;
-        let with_opacity = |o: f32| {
-            let mut c = leader_color;
-            c[3] *= o.clamp(0.0, 1.0);
-            c
-        };
-        let mut canvas = Canvas::new(width, height);
-        let shown: Vec<_> = placed.layout.labels.iter().filter(|l| l.shown).collect();
-        // Leaders and dots first, so no leader runs over another label's text.
-        for label in &shown {
-            let [anchor, attachment] = label.leader;
-            canvas.line(
-                anchor,
-                attachment,
-                leader_width,
-                with_opacity(label.opacity),
-            );
-            canvas.disc(anchor, dot_radius, with_opacity(label.opacity));
-        }
-        let ascent = label_font::ascent(placed.font_size);
-        for label in &shown {
-            let anchor = annotations.anchors.get(label.anchor).ok_or_else(|| {
-                NodeError::at_port(
-                    "annotations",
-                    format!(
-                        "a label refers to anchor {}, there are {}",
-                        label.anchor,
-                        annotations.anchors.len()
-                    ),
-                )
-            })?;
-            let origin = label.rect.min + Vec2::new(LABEL_PADDING, LABEL_PADDING + ascent);
-            canvas.text(
-                &anchor.text,
-                placed.font_size,
-                origin,
-                params.text_color,
-                params.halo_color,
-                halo_width,
-            );
-        }
-        Ok(vec![canvas.draw_over(ctx, &image, "image")?])
-    }
-}
-
-
-
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
-    k.node(AnnotationOverlayNode)
-        // Instanced quads with their own vertex stage.
-        .program("overlay", vec![shaders::part!("overlay.wgsl")])
+    // Instanced quads with their own vertex stage.
+    k.program("overlay", vec![shaders::part!("overlay.wgsl")])
         .uniform(OverlayUniforms::layout());
 }
 

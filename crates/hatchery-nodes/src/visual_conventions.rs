@@ -1,6 +1,7 @@
-//! VolumeShop's visual conventions (Bruckner & Gröller 2005, §6.3): arrows, fans and bounding
-//! boxes that show how a selection relates to its ghost, drawn over an image with the overlay
-//! renderer ([`crate::overlay::Canvas`]).
+//! VolumeShop's visual conventions (Bruckner & Gröller 2005, §6.3): the geometry of the arrows,
+//! fans and bounding boxes that show how a selection relates to its ghost (the `Arrow`, `Fan`
+//! and `BoundingBox` nodes, arrow.rs, fan.rs, bounding_box.rs, draw it with the overlay renderer
+//! [`crate::overlay::Canvas`]; SaveSvg writes it as paths).
 //!
 //! Each node reads the first two anchors of its `annotations` input: anchor 0 is the ghost (the
 //! object's original place), anchor 1 the selection (where it is now), with their world boxes
@@ -9,14 +10,12 @@
 
 use crate::annotations::Annotations;
 use crate::camera::Camera;
-use crate::overlay::{Canvas, pixels};
+use crate::overlay::Canvas;
 use crate::value::Image;
 use crate::{Ctx, Value};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use hatchery_annotation::{box_corners, convex_hull};
-use hatchery_graph::{
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
-};
+use hatchery_graph::{NodeError, NodeInputs, PortSpec, PortType};
 use std::sync::Arc;
 
 /// Anchor 0 is the ghost, anchor 1 the selection.
@@ -25,7 +24,7 @@ const ROLES: [&str; 2] = ["ghost", "selection"];
 /// The three inputs every convention node takes: image, annotations, camera.
 type Inputs = (Arc<Image>, Arc<Annotations>, Arc<Camera>);
 
-fn inputs_of(inputs: &NodeInputs<Value>) -> Result<Inputs, NodeError> {
+pub(crate) fn inputs_of(inputs: &NodeInputs<Value>) -> Result<Inputs, NodeError> {
     Ok((
         inputs.require("image")?.image("image")?.clone(),
         inputs
@@ -36,7 +35,7 @@ fn inputs_of(inputs: &NodeInputs<Value>) -> Result<Inputs, NodeError> {
     ))
 }
 
-fn ports(doc_annotations: &'static str) -> Vec<PortSpec> {
+pub(crate) fn ports(doc_annotations: &'static str) -> Vec<PortSpec> {
     vec![
         PortSpec::input("image", PortType::Image, "the picture to draw over"),
         PortSpec::input("annotations", PortType::Annotations, doc_annotations),
@@ -48,7 +47,7 @@ fn ports(doc_annotations: &'static str) -> Vec<PortSpec> {
     ]
 }
 
-fn output() -> Vec<PortSpec> {
+pub(crate) fn output() -> Vec<PortSpec> {
     vec![PortSpec::output(
         "image",
         PortType::Image,
@@ -164,7 +163,11 @@ impl Projector {
     }
 }
 
-fn draw(ctx: &mut Ctx, canvas: Canvas, image: &Arc<Image>) -> Result<Vec<Value>, NodeError> {
+pub(crate) fn draw(
+    ctx: &mut Ctx,
+    canvas: Canvas,
+    image: &Arc<Image>,
+) -> Result<Vec<Value>, NodeError> {
     Ok(vec![canvas.draw_over(ctx, image, "image")?])
 }
 
@@ -194,66 +197,6 @@ pub fn arrow_path(from: Vec2, to: Vec2, bulge: f32, samples: usize) -> Vec<Vec2>
             from * (s * s * s) + c1 * (3.0 * s * s * t) + c2 * (3.0 * s * t * t) + to * (t * t * t)
         })
         .collect()
-}
-
-hatchery_graph::node_params! {
-    /// Parameters of `Arrow`.
-    pub struct ArrowParams {
-        /// arrow colour
-        pub color: [f32; 4] = [0.8, 0.1, 0.1, 1.0];
-        /// shaft width, pixels
-        pub width: f32 = 2.0, range(0.1, 32.0);
-        /// greatest distance from the chord per pixel of depth difference
-        pub curvature: f32 = 0.5, range(0.0, 4.0);
-    }
-}
-
-pub struct ArrowNode;
-
-impl Node<Value, Ctx> for ArrowNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "Arrow",
-            category: "Annotation",
-            doc: "A curved arrow from the ghost (anchor 0) to the selection (anchor 1), VolumeShop \
-                  §6.3 \"Arrows\": the head at the selection. The screen-space depth difference \
-                  bends it, so ghost and selection that project close together still get a \
-                  readable arrow: the selection's view-space depth minus the ghost's (world \
-                  units, positive = nearer the viewer) times the pixels per world unit at their \
-                  midpoint gives Δ pixels; the curve's greatest distance from the straight chord \
-                  is curvature × Δ, to the left of the direction of travel on screen when the \
-                  selection moved towards the viewer, to the right when away. Equal depths: a \
-                  straight arrow.",
-            inputs: ports("anchor 0 = ghost, anchor 1 = selection (world positions)"),
-            outputs: output(),
-            params: ArrowParams::specs(),
-            frame_dependent: false,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = ArrowParams::read(p)?;
-        let (image, annotations, camera) = inputs_of(inputs)?;
-        let width = pixels("width", params.width)?;
-        let curvature = pixels("curvature", params.curvature)?;
-        let color = params.color;
-        let (w, h) = (image.texture.width(), image.texture.height());
-        let mut canvas = Canvas::new(w, h);
-        let Some((shaft, head)) = arrow_shape(&annotations, &camera, (w, h), width, curvature)?
-        else {
-            ctx.warn("the ghost or the selection is behind the camera: no arrow");
-            return draw(ctx, canvas, &image);
-        };
-        canvas.polyline(&shaft, width, color);
-        canvas.triangle(head, color);
-        draw(ctx, canvas, &image)
-    }
 }
 
 /// An arrow on screen (pixels): its shaft polyline and its head triangle (tip first).
@@ -334,67 +277,6 @@ pub fn fan_bridges(a: (Vec2, Vec2), b: (Vec2, Vec2)) -> (Vec<Vec2>, Vec<[Vec2; 2
     (hull, bridges)
 }
 
-hatchery_graph::node_params! {
-    /// Parameters of `Fan`.
-    pub struct FanParams {
-        /// outline and line colour
-        pub color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
-        /// line width, pixels
-        pub width: f32 = 1.5, range(0.1, 32.0);
-        /// colour between the rectangles (alpha 0: no fill)
-        pub fill: [f32; 4] = [0.3, 0.3, 0.3, 0.15];
-    }
-}
-
-pub struct FanNode;
-
-impl Node<Value, Ctx> for FanNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "Fan",
-            category: "Annotation",
-            doc: "A fan between ghost (anchor 0) and selection (anchor 1), VolumeShop §6.3 \
-                  \"Fans\": the screen-space bounding rectangles of their world boxes (the \
-                  projected 8 corners each), outlined, joined by the two outer common tangents \
-                  (the edges of the convex hull of both rectangles' corners that go from one \
-                  rectangle to the other; none when one rectangle contains the other), with a \
-                  translucent fill between them that leaves both rectangles' insides clear.",
-            inputs: ports("anchor 0 = ghost, anchor 1 = selection, with world boxes as bounds"),
-            outputs: output(),
-            params: FanParams::specs(),
-            frame_dependent: false,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = FanParams::read(p)?;
-        let (image, annotations, camera) = inputs_of(inputs)?;
-        let width = pixels("width", params.width)?;
-        let color = params.color;
-        let (w, h) = (image.texture.width(), image.texture.height());
-        let mut canvas = Canvas::new(w, h);
-        let Some(fan) = fan_shape(&annotations, &camera, (w, h))? else {
-            ctx.warn("the ghost or the selection is behind the camera: no fan");
-            return draw(ctx, canvas, &image);
-        };
-        let [ghost, selection] = fan.rects;
-        canvas.convex_polygon(&fan.hull, params.fill, [Some(ghost), Some(selection)]);
-        for (lo, hi) in fan.rects {
-            canvas.rect_outline(lo, hi, width, color);
-        }
-        for [a, b] in fan.bridges {
-            canvas.line(a, b, width, color);
-        }
-        draw(ctx, canvas, &image)
-    }
-}
-
 /// A fan's screen geometry (pixels): the ghost's and the selection's rectangles, the convex hull
 /// of their corners (the filled part, less the rectangles) and the connecting lines.
 pub struct FanShape {
@@ -423,66 +305,6 @@ pub fn fan_shape(
     }))
 }
 
-hatchery_graph::param_choice! {
-    /// Whose box to draw.
-    pub enum Which { Ghost = "ghost", Selection = "selection", Both = "both" }
-}
-
-hatchery_graph::node_params! {
-    /// Parameters of `BoundingBox`.
-    pub struct BoundingBoxParams {
-        /// whose box to draw
-        pub which: Which = Which::Selection;
-        /// edge colour
-        pub color: [f32; 4] = [0.1, 0.4, 0.9, 1.0];
-        /// edge width, pixels
-        pub width: f32 = 1.0, range(0.1, 32.0);
-    }
-}
-
-pub struct BoundingBoxNode;
-
-impl Node<Value, Ctx> for BoundingBoxNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "BoundingBox",
-            category: "Annotation",
-            doc: "The 12 edges of the ghost's (anchor 0) and/or the selection's (anchor 1) world \
-                  box projected with the camera, VolumeShop §6.3 \"Boxes\": cues on an object's \
-                  position and orientation while arranging an illustration. Edges are clipped at \
-                  the near plane; all edges are drawn (no occlusion).",
-            inputs: ports("anchor 0 = ghost, anchor 1 = selection, with world boxes as bounds"),
-            outputs: output(),
-            params: BoundingBoxParams::specs(),
-            frame_dependent: false,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = BoundingBoxParams::read(p)?;
-        let (image, annotations, camera) = inputs_of(inputs)?;
-        let which: &[usize] = match params.which {
-            Which::Ghost => &[0],
-            Which::Both => &[0, 1],
-            Which::Selection => &[1],
-        };
-        let width = pixels("width", params.width)?;
-        let color = params.color;
-        let (w, h) = (image.texture.width(), image.texture.height());
-        let mut canvas = Canvas::new(w, h);
-        for [u, v] in box_edges(&annotations, &camera, (w, h), which)? {
-            canvas.line(u, v, width, color);
-        }
-        draw(ctx, canvas, &image)
-    }
-}
-
 /// The 12 edges of the world boxes of anchors `which` (0 ghost, 1 selection) in a `frame` of
 /// pixels seen by `camera`, clipped at the near plane.
 pub fn box_edges(
@@ -507,14 +329,6 @@ pub fn box_edges(
         }
     }
     Ok(edges)
-}
-
-
-/// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
-pub fn declare(k: &mut crate::kinds::Kinds) {
-    k.node(ArrowNode)
-        .node(FanNode)
-        .node(BoundingBoxNode);
 }
 
 #[cfg(test)]

@@ -1,15 +1,17 @@
-//! `Raycast` and `IsoSurfaceRaycast`: GPU volume ray casting. The parts, shared with the
-//! two-level ray caster: `uniforms` (the `Ray` block), `tables` (classification, lighting and
+//! `Raycast` (here) and `IsoSurfaceRaycast` (iso_surface_raycast.rs): GPU volume ray casting.
+//! The parts, shared with the two-level ray caster: `uniforms` (the `Ray` block), `tables` (classification, lighting and
 //! skipping tables), `pass` (pipeline and draw); in WGSL, shaders/ray_common.wgsl (sampling,
 //! primary rays), ray_classify, ray_shade, ray_skip, and raycast.wgsl's compositing loop.
 
 mod importance_pass;
+mod iso_surface_raycast;
 pub mod objects;
 mod pass;
 mod tables;
 mod uniforms;
 
 pub use importance_pass::{ImportancePipelines, PassUniforms};
+pub use iso_surface_raycast::{IsoSurfaceRaycastNode, IsoSurfaceRaycastParams};
 pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
 pub use tables::check_same_grid;
 pub use uniforms::{Grid, RayUniforms, TableInfo};
@@ -365,85 +367,11 @@ impl Node<Value, Ctx> for RaycastNode {
     }
 }
 
-hatchery_graph::node_params! {
-    /// Parameters of `IsoSurfaceRaycast`.
-    pub struct IsoSurfaceRaycastParams {
-        /// iso value, in the volume's units, or relative to its values: "percentile(60)",
-        /// "range(0.3)", "otsu"
-        pub iso: DataValue = 0.0, range(-1e12, 1e12);
-        /// sample distance in voxels
-        pub step: f32 = 0.25, range(0.05, 8.0);
-    }
-}
-
-pub struct IsoSurfaceRaycastNode;
-
-impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
-    fn schema(&self) -> NodeSchema {
-        NodeSchema {
-            kind: "IsoSurfaceRaycast",
-            category: "Volume",
-            doc: "First hit of an iso value along each ray (refined linearly between samples) as a \
-                  G-buffer: window depth and the view-space normal −∇f/|∇f|. Feeds Silhouette, \
-                  DiffuseIntensity, Halftone and the compositing nodes with no mesh at all.",
-            inputs: vec![
-                PortSpec::input("volume", PortType::Volume, "the scalar field"),
-                PortSpec::input("camera", PortType::Camera, "the view"),
-            ],
-            outputs: vec![PortSpec::output(
-                "gbuffer",
-                PortType::GBuffer,
-                "depth + normal of the iso-surface",
-            )],
-            params: IsoSurfaceRaycastParams::specs(),
-            frame_dependent: true,
-            sink: false,
-        }
-    }
-
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        let params = IsoSurfaceRaycastParams::read(p)?;
-        let volume = inputs.require("volume")?.volume("volume")?.clone();
-        let camera = inputs.require("camera")?.camera("camera")?.clone();
-        let options = RayOptions {
-            mode: Mode::Iso as usize,
-            iso: crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?,
-            step_voxels: params.step,
-            shading: 0,
-            lighting_model: "phong",
-            phong: [0.0, 1.0, 0.0, 1.0],
-            kappa: [0.0, 0.0],
-            contours: false,
-            thickness: 0.0,
-            transparency: false,
-            mip_bias: 0.0,
-            jitter: false,
-            early_termination: 1.0,
-            hit_opacity: 1.0,
-            light_view: Vec3::Z,
-            skip_empty: true,
-            kernel: Kernel::choose(KernelChoice::Auto, &ctx.gpu),
-            rho: 1.0,
-            embed: false,
-            fast_exponent: false,
-        };
-        let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
-        Ok(vec![Value::GBuffer(Arc::new(gbuffer))])
-    }
-}
-
-
-
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
+    iso_surface_raycast::declare(k);
     k.node(RaycastNode)
-        .node(IsoSurfaceRaycastNode)
         .program("raycast", shaders::ray(shaders::part!("raycast.wgsl")))
         .program("depth_from_texture", shaders::screen(shaders::part!("depth_from_texture.wgsl")))
         .uniform(RayUniforms::layout())
