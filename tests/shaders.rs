@@ -30,16 +30,16 @@ fn validate(name: &str, source: &str) {
 
 #[test]
 fn every_shader_program_validates() {
-    let programs = hatchery_nodes::shaders::programs();
+    let programs = hatchery_nodes::kinds::programs();
     assert!(!programs.is_empty());
     for (name, _) in programs {
-        validate(name, &hatchery_nodes::shaders::source(name).unwrap());
+        validate(name, &hatchery_nodes::kinds::source(name).unwrap());
     }
 }
 
 #[test]
 fn every_wgsl_file_is_part_of_a_program() {
-    let used: BTreeSet<&str> = hatchery_nodes::shaders::programs()
+    let used: BTreeSet<&str> = hatchery_nodes::kinds::programs()
         .iter()
         .flat_map(|(_, parts)| parts.iter().map(|(file, _)| *file))
         .collect();
@@ -91,10 +91,10 @@ fn wgsl_struct(module: &naga::Module, name: &str) -> Option<(u32, Vec<Member>)> 
 
 #[test]
 fn every_uniform_block_matches_its_wgsl_struct_field_by_field() {
-    let layouts = hatchery_nodes::uniforms::all();
+    let layouts = hatchery_nodes::kinds::uniform_blocks();
     assert!(!layouts.is_empty());
     for layout in &layouts {
-        let source = hatchery_nodes::shaders::source(layout.program)
+        let source = hatchery_nodes::kinds::source(layout.program)
             .unwrap_or_else(|| panic!("no program `{}`", layout.program));
         let module = naga::front::wgsl::parse_str(&source).unwrap();
         let (span, members) = wgsl_struct(&module, layout.wgsl_struct).unwrap_or_else(|| {
@@ -123,9 +123,9 @@ fn every_uniform_block_matches_its_wgsl_struct_field_by_field() {
 
 #[test]
 fn every_uniform_buffer_in_every_program_has_a_typed_rust_block() {
-    let layouts = hatchery_nodes::uniforms::all();
-    for (program, _) in hatchery_nodes::shaders::programs() {
-        let source = hatchery_nodes::shaders::source(program).unwrap();
+    let layouts = hatchery_nodes::kinds::uniform_blocks();
+    for (program, _) in hatchery_nodes::kinds::programs() {
+        let source = hatchery_nodes::kinds::source(program).unwrap();
         let module = naga::front::wgsl::parse_str(&source).unwrap();
         for (_, global) in module.global_variables.iter() {
             if global.space != naga::AddressSpace::Uniform {
@@ -137,7 +137,7 @@ fn every_uniform_buffer_in_every_program_has_a_typed_rust_block() {
                     .iter()
                     .any(|l| l.program == *program && l.wgsl_struct == ty),
                 "program {program}: `var<uniform> {}: {ty}` has no typed block in \
-                 hatchery_nodes::uniforms::all()",
+                 hatchery_nodes::kinds::uniform_blocks()",
                 global.name.clone().unwrap_or_default()
             );
         }

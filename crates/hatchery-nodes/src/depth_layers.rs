@@ -201,7 +201,7 @@ fn capture_pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, hatchery_g
 
 /// The resolve pipeline: one full-frame triangle writing depth and the normal target.
 fn resolve_pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, hatchery_gpu::GpuError> {
-    let source = crate::shaders::source("depth_layers_resolve").expect("registered program");
+    let source = crate::kinds::source("depth_layers_resolve").expect("registered program");
     let module = gpu.shader("depth_layers_resolve", &source)?;
     let depth = wgpu::DepthStencilState {
         depth_compare: Some(wgpu::CompareFunction::Always),

@@ -1,6 +1,6 @@
 //! `DepthTestMask`: where one layer lies in front of another (Fischer et al. 2005, eq. 10).
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

@@ -1,6 +1,6 @@
 //! `DiffuseIntensity`: max(n · l, 0) of a G-buffer layer (Fischer et al. 2005, eq. 1 and 6).
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

@@ -1,6 +1,6 @@
 //! `Halftone`: procedural screening of an intensity mask (Fischer et al. 2005, §3.3.2, eq. 7–9).
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

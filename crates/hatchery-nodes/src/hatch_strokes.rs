@@ -122,7 +122,7 @@ struct HatchPipelines {
 
 impl HatchPipelines {
     fn new(gpu: &GpuContext) -> Result<Self, GpuError> {
-        let source = crate::shaders::source("hatch_strokes").expect("registered program");
+        let source = crate::kinds::source("hatch_strokes").expect("registered program");
         let module = gpu.shader("hatch_strokes", &source)?;
         let compute = |entry: &str| {
             gpu.checked(&format!("pipeline hatch_strokes/{entry}"), |device| {

@@ -3,14 +3,14 @@
 //! once. The registry, the program list and the uniform list are all built from those calls, so
 //! a kind is declared in its own module only.
 
-use crate::fused_pass::{self, Fusable};
+use crate::stage::Fusable;
 use crate::uniforms::UniformLayout;
 use crate::{Ctx, Registry, Value};
 use hatchery_graph::executor::Node;
-use hatchery_graph::{NodeError, NodeInputs, NodeSchema, Params};
 use std::collections::BTreeMap;
+use std::sync::OnceLock;
 
-/// A compilable shader program: its name (used in error messages and by [`crate::shaders::source`])
+/// A compilable shader program: its name (used in error messages and by [`source`])
 /// and its parts, (file name, WGSL text), concatenated in order (WGSL has no includes).
 pub type Program = (&'static str, Vec<(&'static str, &'static str)>);
 
@@ -22,7 +22,7 @@ pub struct Kinds {
     pub(crate) programs: Vec<Program>,
     pub(crate) uniforms: Vec<UniformLayout>,
     /// (kind, the file of the `declare` that declared it).
-    files: Vec<(&'static str, &'static str)>,
+    pub(crate) files: Vec<(&'static str, &'static str)>,
     /// (the file of the `declare` that declared a program, the program's own part).
     program_files: Vec<(&'static str, &'static str)>,
 }
@@ -70,17 +70,6 @@ impl Kinds {
         self
     }
 
-    /// An image-space kind that runs as a stage of a fused pass ([`crate::fused_pass`]): its
-    /// node (whose `execute` runs it as a pass of its own) and its stage.
-    #[track_caller]
-    pub fn image_stage(&mut self, stage: &'static dyn Fusable) -> &mut Self {
-        let file = std::panic::Location::caller().file();
-        self.files.push((stage.schema().kind, file));
-        self.registry.register(ImageStage(stage));
-        self.stages.push(stage);
-        self
-    }
-
     /// A shader program; its last part is the declaring module's own shader.
     #[track_caller]
     pub fn program(
@@ -109,22 +98,22 @@ impl Kinds {
     }
 }
 
-/// The one `Node` implementation of every fusable kind: the schema is the stage's, and
-/// `execute` runs the node as a fused pass of one (so fused and unfused frames run the same
-/// code).
-struct ImageStage(&'static dyn Fusable);
+/// Every compilable program, (name, parts), as the modules declare them. The name is used in
+/// error messages.
+pub fn programs() -> &'static [Program] {
+    static PROGRAMS: OnceLock<Vec<Program>> = OnceLock::new();
+    PROGRAMS.get_or_init(|| Kinds::all().programs)
+}
 
-impl Node<Value, Ctx> for ImageStage {
-    fn schema(&self) -> NodeSchema {
-        self.0.schema()
-    }
+/// The full source of a program.
+pub fn source(name: &str) -> Option<String> {
+    programs()
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, parts)| parts.iter().map(|(_, s)| *s).collect())
+}
 
-    fn execute(
-        &self,
-        ctx: &mut Ctx,
-        inputs: &NodeInputs<Value>,
-        p: &Params,
-    ) -> Result<Vec<Value>, NodeError> {
-        fused_pass::execute(self.0, ctx, inputs, p)
-    }
+/// Every uniform block of every node, for the reflection test (as the modules declare them).
+pub fn uniform_blocks() -> Vec<UniformLayout> {
+    Kinds::all().uniforms
 }

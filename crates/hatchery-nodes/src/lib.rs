@@ -17,6 +17,7 @@ pub mod relative;
 pub mod screen_pass;
 mod session;
 pub mod shaders;
+pub mod stage;
 pub mod uniforms;
 pub mod value;
 pub mod visual_conventions;

@@ -29,7 +29,7 @@ pub fn depth_state() -> wgpu::DepthStencilState {
     }
 }
 
-/// A render pipeline drawing meshes with `program` (a name from [`crate::shaders::programs`]).
+/// A render pipeline drawing meshes with `program` (a name from [`crate::kinds::programs`]).
 pub fn mesh_pipeline(
     gpu: &GpuContext,
     program: &str,
@@ -51,7 +51,7 @@ pub fn mesh_pipeline_with(
     targets: &[Option<wgpu::ColorTargetState>],
     depth: wgpu::DepthStencilState,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
-    let source = crate::shaders::source(program).ok_or_else(|| GpuError::Validation {
+    let source = crate::kinds::source(program).ok_or_else(|| GpuError::Validation {
         what: format!("shader {program}"),
         message: "no such shader program".into(),
     })?;

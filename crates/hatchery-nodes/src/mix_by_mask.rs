@@ -1,6 +1,6 @@
 //! `MixByMask`: mix(base, over, mask) — an image or a colour blended in where a mask is set.
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

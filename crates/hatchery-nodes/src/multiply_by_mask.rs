@@ -1,6 +1,6 @@
 //! `MultiplyByMask`: darkens an image by a mask (ink where the mask says so).
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

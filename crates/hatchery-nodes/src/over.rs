@@ -1,7 +1,7 @@
 //! `Over`: one image over another (premultiplied Porter–Duff over), e.g. a volume rendering over
 //! paper, or strokes embedded over a rendering.
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

@@ -453,7 +453,7 @@ impl Canvas {
 }
 
 pub(crate) fn pipeline(gpu: &GpuContext) -> Result<wgpu::RenderPipeline, GpuError> {
-    let source = crate::shaders::source("overlay").ok_or_else(|| GpuError::Validation {
+    let source = crate::kinds::source("overlay").ok_or_else(|| GpuError::Validation {
         what: "shader overlay".into(),
         message: "no such shader program".into(),
     })?;

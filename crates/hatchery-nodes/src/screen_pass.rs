@@ -31,7 +31,7 @@ pub fn pipeline_specialised(
     format: wgpu::TextureFormat,
     constants: &[(&str, f64)],
 ) -> Result<wgpu::RenderPipeline, GpuError> {
-    let source = crate::shaders::source(program).ok_or_else(|| GpuError::Validation {
+    let source = crate::kinds::source(program).ok_or_else(|| GpuError::Validation {
         what: format!("shader {program}"),
         message: "no such shader program".into(),
     })?;

@@ -1,10 +1,7 @@
-//! The WGSL parts shared by several programs, and the program list. Each module declares its
-//! own programs (`declare`, see [`crate::kinds`]) from its own shader files and these shared
+//! The WGSL parts shared by several programs. Each module declares its
+//! own programs (`declare`; the list is [`crate::kinds::programs`]) from its own shader files and these shared
 //! parts: `mesh_common.wgsl` is prepended to the mesh shaders, `fullscreen.wgsl` to the
 //! image-space ones, the `ray_*.wgsl` parts to the ray casters (WGSL has no includes).
-
-use crate::kinds::{Kinds, Program};
-use std::sync::OnceLock;
 
 /// A file of `shaders/`, embedded at build time.
 macro_rules! shader_file {
@@ -77,19 +74,4 @@ pub fn curvature(own: Part) -> Parts {
         ("curvature_common.wgsl", CURVATURE_COMMON),
         own,
     ]
-}
-
-/// Every compilable program, (name, parts), as the modules declare them. The name is used in
-/// error messages.
-pub fn programs() -> &'static [Program] {
-    static PROGRAMS: OnceLock<Vec<Program>> = OnceLock::new();
-    PROGRAMS.get_or_init(|| Kinds::all().programs)
-}
-
-/// The full source of a program.
-pub fn source(name: &str) -> Option<String> {
-    programs()
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, parts)| parts.iter().map(|(_, s)| *s).collect())
 }

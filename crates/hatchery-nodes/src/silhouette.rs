@@ -1,7 +1,7 @@
 //! `Silhouette`: image-space feature lines of a G-buffer layer (Fischer et al. 2005, §3.3.1), with
 //! optional procedurally perturbed sampling (PIP, Yuan & Chen 2005, §6, eq. 2).
 
-use crate::fused_pass::{Arg, Fusable, Stage, StageInputs};
+use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::Ctx;
 use hatchery_graph::{
     NodeError, NodeSchema, Params, PortSpec, PortType, 

@@ -1,12 +1,12 @@
 //! Typed uniform blocks: each `#[repr(C)]` struct mirrors one WGSL struct field by field, and
-//! `tests/shaders.rs` checks every field's offset and size, and the struct's size, against
+//! `tests/shaders.rs` checks every field (of [`crate::kinds::uniform_blocks`])'s offset and size, and the struct's size, against
 //! naga's reflection of the shader (so a field added on one side only fails a test instead of
 //! shifting every value after it).
 
 /// The layout of a Rust uniform block, to compare with its WGSL struct.
 #[derive(Clone, Debug)]
 pub struct UniformLayout {
-    /// Shader program (a name of `shaders::programs`) whose `var<uniform>` uses the struct.
+    /// Shader program (a name of `kinds::programs`) whose `var<uniform>` uses the struct.
     pub program: &'static str,
     /// The WGSL struct's name.
     pub wgsl_struct: &'static str,
@@ -48,9 +48,4 @@ macro_rules! uniform_block {
             }
         }
     };
-}
-
-/// Every uniform block of every node, for the reflection test (as the modules declare them).
-pub fn all() -> Vec<UniformLayout> {
-    crate::kinds::Kinds::all().uniforms
 }

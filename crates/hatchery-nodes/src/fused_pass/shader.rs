@@ -181,7 +181,7 @@ impl Shader {
     pub(super) fn source(&self, kernel: Kernel) -> Result<String, NodeError> {
         let mut text = String::from(crate::shaders::FULLSCREEN);
         for library in &self.libraries {
-            let parts = crate::shaders::programs()
+            let parts = crate::kinds::programs()
                 .iter()
                 .find(|(name, _)| name == library)
                 .map(|(_, parts)| parts)

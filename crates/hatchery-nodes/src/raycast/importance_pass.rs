@@ -30,7 +30,7 @@ pub struct ImportancePipelines {
 
 impl ImportancePipelines {
     pub fn new(gpu: &GpuContext) -> Result<Self, GpuError> {
-        let source = crate::shaders::source("importance").expect("registered program");
+        let source = crate::kinds::source("importance").expect("registered program");
         let module = gpu.shader("importance", &source)?;
         let pipelines = KERNELS
             .iter()

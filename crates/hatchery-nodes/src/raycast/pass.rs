@@ -107,7 +107,7 @@ impl RayPipelines {
         program: &str,
         constants: &[(&str, f64)],
     ) -> Result<Self, GpuError> {
-        let source = crate::shaders::source(program).expect("registered program");
+        let source = crate::kinds::source(program).expect("registered program");
         let module = gpu.shader(program, &source)?;
         let render = full_screen_pipeline(
             gpu,
@@ -129,7 +129,7 @@ impl RayPipelines {
                 cache: None,
             })
         })?;
-        let copy_source = crate::shaders::source("depth_from_texture").expect("registered program");
+        let copy_source = crate::kinds::source("depth_from_texture").expect("registered program");
         let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
         let depth_copy = full_screen_pipeline(gpu, "depth_from_texture", &copy_module, &[], &[])?;
         Ok(Self {
