@@ -25,7 +25,7 @@ pub struct RenderContext {
     /// node → parameter → "percentile(60) = 80" (the editor shows them).
     resolved: BTreeMap<String, BTreeMap<String, String>>,
     /// Fused image-space passes as fragment shaders or compute kernels (crate::fused_pass).
-    image_kernel: crate::raycast::Kernel,
+    image_kernel: crate::kernel::Kernel,
     /// Graph inputs given as data in memory, by key (see [`crate::memory_inputs`]).
     memory: HashMap<String, crate::memory_inputs::InputData>,
 }
@@ -42,11 +42,11 @@ impl RenderContext {
             warnings: BTreeMap::new(),
             resolved: BTreeMap::new(),
             memory: HashMap::new(),
-            image_kernel: crate::raycast::Kernel::choose(
+            image_kernel: crate::kernel::Kernel::choose(
                 std::env::var("HATCHERY_IMAGE_KERNEL")
                     .ok()
-                    .and_then(|k| crate::raycast::KernelChoice::from_name(&k))
-                    .unwrap_or(crate::raycast::KernelChoice::Auto),
+                    .and_then(|k| crate::kernel::KernelChoice::from_name(&k))
+                    .unwrap_or(crate::kernel::KernelChoice::Auto),
                 &gpu,
             ),
             gpu,
@@ -56,12 +56,12 @@ impl RenderContext {
     /// How fused image-space passes run: by default as fragment shaders, except on adapters
     /// whose graphics pipeline is a small part of the chip (as the ray caster's `auto`);
     /// `HATCHERY_IMAGE_KERNEL=fragment|compute` chooses (for measuring both on one machine).
-    pub fn image_kernel(&self) -> crate::raycast::Kernel {
+    pub fn image_kernel(&self) -> crate::kernel::Kernel {
         self.image_kernel
     }
 
     /// Overrides [`Self::image_kernel`] (tests compare both paths on one adapter).
-    pub fn set_image_kernel(&mut self, kernel: crate::raycast::Kernel) {
+    pub fn set_image_kernel(&mut self, kernel: crate::kernel::Kernel) {
         self.image_kernel = kernel;
     }
 

@@ -8,6 +8,7 @@ pub mod export;
 pub mod framing;
 pub mod fused_pass;
 pub mod graph_inputs;
+pub mod kernel;
 pub mod kinds;
 pub mod label_font;
 pub mod label_sources;

@@ -1,6 +1,5 @@
 //! `Light`: a directional light for the shading and illustration nodes.
 
-use crate::camera::Camera;
 use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_graph::{
@@ -8,27 +7,7 @@ use hatchery_graph::{
 };
 use std::sync::Arc;
 
-#[derive(Clone, Debug, PartialEq)]
-pub struct Light {
-    /// Unit vector towards the light.
-    pub direction: Vec3,
-    /// Whether `direction` is in view space (a headlight that follows the camera) or world space.
-    pub view_space: bool,
-    pub color: [f32; 3],
-    pub intensity: f32,
-    pub ambient: f32,
-}
-
-impl Light {
-    /// Unit direction towards the light in the camera's view space.
-    pub fn view_direction(&self, camera: &Camera) -> Vec3 {
-        if self.view_space {
-            self.direction
-        } else {
-            camera.view.transform_vector3(self.direction).normalize()
-        }
-    }
-}
+pub use crate::value::light::Light;
 
 hatchery_graph::param_choice! {
     /// The space a light direction is given in.

@@ -13,7 +13,7 @@
 //! (`as_rgba16float` in shaders/fullscreen.wgsl), so a fused frame equals the unfused one bit
 //! for bit on lavapipe (tests/fused_pass.rs).
 
-use crate::raycast::Kernel;
+use crate::kernel::Kernel;
 use crate::screen_pass::{self, IMAGE_FORMAT};
 pub use crate::stage::{Arg, Fusable, Stage, StageInputs};
 use crate::value::{Image, Mask};

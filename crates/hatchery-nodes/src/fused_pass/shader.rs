@@ -3,7 +3,7 @@
 //! textures bound once, the uniform blocks in one struct, an output per kept value.
 
 use super::{Arg, Stage, StageInputs, fusable};
-use crate::raycast::Kernel;
+use crate::kernel::Kernel;
 use crate::screen_pass::{self, IMAGE_FORMAT, MASK_FORMAT};
 use crate::{Ctx, Value};
 use hatchery_graph::fusion::{Member, Source};

@@ -1,5 +1,10 @@
 //! The data flowing along edges: one variant per [`PortType`], cheap to clone (shared handles).
 
+pub mod annotations;
+pub mod camera;
+pub mod light;
+pub mod strokes;
+
 use crate::volume_texture::VolumeTexture;
 use hatchery_data::{MeshData, VolumeData};
 use hatchery_gpu::{GpuContext, GpuError};
@@ -379,7 +384,7 @@ pub struct GBuffer {
     /// View-space unit normal in xyz, coverage (1 or 0) in w (Rgba16Float).
     pub normal: wgpu::Texture,
     /// The camera the layer was rendered with (to unproject depth).
-    pub camera: crate::camera::Camera,
+    pub camera: camera::Camera,
 }
 
 /// RGBA colour, premultiplied alpha (Rgba16Float).
@@ -516,7 +521,7 @@ pub struct Importance {
     /// 1×1 Rgba32Float: (e_max, footprint size in pixels, 0, 0).
     pub stats: wgpu::Texture,
     /// The view the buffers were made for.
-    pub camera: crate::camera::Camera,
+    pub camera: camera::Camera,
 }
 
 /// A value on an edge.
@@ -524,8 +529,8 @@ pub struct Importance {
 pub enum Value {
     Volume(Arc<Volume>),
     Mesh(Arc<Mesh>),
-    Camera(Arc<crate::camera::Camera>),
-    Light(Arc<crate::light::Light>),
+    Camera(Arc<camera::Camera>),
+    Light(Arc<light::Light>),
     GBuffer(Arc<GBuffer>),
     Image(Arc<Image>),
     Mask(Arc<Mask>),
@@ -534,8 +539,8 @@ pub enum Value {
     Labels(Arc<Labels>),
     ObjectStyles(Arc<Vec<ObjectStyle>>),
     Importance(Arc<Importance>),
-    Annotations(Arc<crate::annotations::Annotations>),
-    Strokes(Arc<crate::hatch_strokes::Strokes>),
+    Annotations(Arc<annotations::Annotations>),
+    Strokes(Arc<strokes::Strokes>),
 }
 
 impl Value {
@@ -582,8 +587,8 @@ macro_rules! accessor {
 }
 accessor!(volume, Volume, Arc<Volume>);
 accessor!(mesh, Mesh, Arc<Mesh>);
-accessor!(camera, Camera, Arc<crate::camera::Camera>);
-accessor!(light, Light, Arc<crate::light::Light>);
+accessor!(camera, Camera, Arc<camera::Camera>);
+accessor!(light, Light, Arc<light::Light>);
 accessor!(gbuffer, GBuffer, Arc<GBuffer>);
 accessor!(image, Image, Arc<Image>);
 accessor!(mask, Mask, Arc<Mask>);
@@ -592,9 +597,5 @@ accessor!(style_set, StyleSet, Arc<StyleSet>);
 accessor!(labels, Labels, Arc<Labels>);
 accessor!(object_styles, ObjectStyles, Arc<Vec<ObjectStyle>>);
 accessor!(importance, Importance, Arc<Importance>);
-accessor!(
-    annotations,
-    Annotations,
-    Arc<crate::annotations::Annotations>
-);
-accessor!(strokes, Strokes, Arc<crate::hatch_strokes::Strokes>);
+accessor!(annotations, Annotations, Arc<annotations::Annotations>);
+accessor!(strokes, Strokes, Arc<strokes::Strokes>);
