@@ -457,3 +457,24 @@ fn the_readme_main_command_renders_the_labelled_default_as_png_and_svg() {
     assert!(!common::repo_root().join("graphs/default.svg").exists());
     assert!(!common::repo_root().join("graphs/default.png").exists());
 }
+
+/// Issue 29: no module of a crate imports, directly or through others, a module that imports
+/// it (scripts/import-circles.py reads every crate's `crate::` paths).
+#[test]
+fn no_crate_has_import_circles_between_its_files() {
+    let script = common::repo_root().join("scripts/import-circles.py");
+    let out = match std::process::Command::new("python3").arg(&script).output() {
+        Ok(out) => out,
+        Err(e) => {
+            eprintln!("skipped: python3 is not installed ({e})");
+            return;
+        }
+    };
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "import circles:\n{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(text.contains("crates/hatchery-nodes/src"), "{text}");
+}

@@ -1,14 +1,8 @@
-//! The egui application: the editor's state and one frame of it, which places the panels
-//! (menu bar, status line, inspector, viewport, canvas: see [`crate::panels`]) in the window and
-//! handles what belongs to no panel (files dropped or picked, the unsaved-changes dialog, export,
-//! the window title).
+//! The egui application's state, [`EditorApp`], and what belongs to no panel (files dropped or
+//! picked, the unsaved-changes dialog, export, the window title). One frame of it, placing the
+//! panels, is [`crate::shell`].
 
 use crate::files::{FileKind, FilePicker, Purpose};
-use crate::panels::Panel as _;
-use crate::panels::canvas::{self, Canvas};
-use crate::panels::inspector::Inspector;
-use crate::panels::menu::{self, MenuBar, StatusLine};
-use crate::panels::viewport::Viewport;
 use crate::preview::Preview;
 use crate::selection::CanvasSelection;
 use crate::state::EditorState;
@@ -17,8 +11,6 @@ use egui_snarl::{NodeId, Snarl};
 use hatchery_graph::{EditorPos, ParamValue, PortType};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-
-pub use crate::panels::canvas_viewer::LEGIBLE_TITLE_PX;
 
 /// One colour per port type (also the legend).
 pub fn port_color(ty: PortType) -> Color32 {
@@ -81,7 +73,7 @@ pub struct EditorApp {
     pub(crate) style_thumbnails: crate::style_picker::Thumbnails,
     /// The file dialog (path parameters, Open…, Save as…).
     pub picker: FilePicker,
-    title: String,
+    pub(crate) title: String,
     pub(crate) offer_recovery: bool,
     /// Fit every node into the canvas on the next frame.
     pub frame_all: bool,
@@ -97,7 +89,7 @@ pub struct EditorApp {
     /// *Apply to my data…*: once this preset is open, ask for a file for this input (name, type).
     pub(crate) apply_after_open: Option<(PathBuf, String, String)>,
     /// Wakes the UI when a custom shader's file changes.
-    file_watch: Option<crate::file_watch::FileWatch>,
+    pub(crate) file_watch: Option<crate::file_watch::FileWatch>,
     /// Frame once more when every node has been drawn (their sizes are known then).
     pub(crate) frame_all_again: bool,
     /// The canvas's graph → screen transform of the last frame.
@@ -219,7 +211,7 @@ impl EditorApp {
         self.pending.as_ref()
     }
 
-    fn perform(&mut self, action: Pending) {
+    pub(crate) fn perform(&mut self, action: Pending) {
         match action {
             Pending::Open(path) => self.open(&path),
             Pending::Quit => self.quitting = true,
@@ -234,7 +226,7 @@ impl EditorApp {
         }
     }
 
-    fn confirm_discard(&mut self, ui: &mut Ui) {
+    pub(crate) fn confirm_discard(&mut self, ui: &mut Ui) {
         let Some(action) = self.pending.clone() else {
             return;
         };
@@ -298,105 +290,8 @@ impl EditorApp {
         self.selecting.node_at(self.canvas_transform, at)
     }
 
-    /// One frame of the whole editor.
-    pub fn ui(&mut self, ui: &mut Ui) {
-        self.guard_close(ui);
-        menu::shortcuts(self, ui);
-        // Custom shaders are re-read when their files change (a thread wakes us then).
-        self.state.poll_watched_files();
-        let watch = self
-            .file_watch
-            .get_or_insert_with(|| crate::file_watch::FileWatch::spawn(ui.ctx().clone()));
-        watch.set(self.state.watched_files());
-        if self.synced_revision != Some(self.state.revision()) {
-            canvas::rebuild_snarl(self);
-        }
-        use crate::picture::Placement;
-        let placement = self.picture.placement;
-        if placement == Placement::FullWindow {
-            egui::CentralPanel::default().show(ui, |ui| Viewport.show(self, ui));
-        } else {
-            egui::Panel::top("menu").show(ui, |ui| MenuBar.show(self, ui));
-            egui::Panel::bottom("status").show(ui, |ui| StatusLine.show(self, ui));
-            // The Inspector keeps its width when a node with a wide editor (the object table)
-            // is selected: wide content scrolls sideways instead of pushing the picture and the
-            // canvas over.
-            egui::Panel::right("inspector")
-                .default_size(320.0)
-                .show(ui, |ui| {
-                    egui::ScrollArea::both()
-                        .auto_shrink([false, false])
-                        .show(ui, |ui| Inspector.show(self, ui));
-                });
-            if placement == Placement::Maximised {
-                egui::CentralPanel::default().show(ui, |ui| Viewport.show(self, ui));
-            } else {
-                // The picture beside the canvas, in a panel the user can widen.
-                let wide = (ui.max_rect().width() * 0.4).max(240.0);
-                egui::Panel::right("viewport")
-                    .resizable(true)
-                    .default_size(wide)
-                    .show(ui, |ui| Viewport.show(self, ui));
-                egui::CentralPanel::default().show(ui, |ui| Canvas.show(self, ui));
-            }
-        }
-        self.dropped_files(ui);
-        self.apply_to_my_data();
-        if let Some((purpose, path)) = self.picker.update(ui.ctx()) {
-            self.picked(purpose, &path);
-        }
-        self.confirm_discard(ui);
-        crate::frames::rename_window(ui.ctx(), &mut self.state);
-        if self
-            .export
-            .show(ui.ctx(), self.state.doc(), &self.state.registry)
-        {
-            let graph = self.state.validate();
-            let base = self.state.base_dir();
-            self.export.start(graph, base.as_deref());
-        }
-        match self.export.poll() {
-            Some(Ok(path)) => self.state.status = format!("exported {}", path.display()),
-            Some(Err(e)) => self.state.status = format!("export failed: {e}"),
-            None => {}
-        }
-        if self.layout.enabled() {
-            for id in self.snarl_ids.keys() {
-                if let Some(r) = self.node_screen_rect(id) {
-                    self.layout.record(format!("node:{id}"), r);
-                }
-            }
-            // A canvas point on no node (where a scripted right-click opens the palette).
-            let canvas = self.canvas_rect.shrink(30.0);
-            let empty = (0..40)
-                .flat_map(|j| (0..40).map(move |i| (i, j)))
-                .map(|(i, j)| canvas.lerp_inside(egui::vec2(i as f32 / 39.0, j as f32 / 39.0)))
-                .find(|p| self.node_at(*p).is_none());
-            if let Some(p) = empty {
-                self.layout.record(
-                    "canvas:empty".into(),
-                    egui::Rect::from_center_size(p, egui::vec2(2.0, 2.0)),
-                );
-            }
-            self.layout.flush(ui.ctx().pixels_per_point());
-        }
-
-        // A drag (of a slider, a node, ...) ends when the pointer is released.
-        let busy = ui.input(|i| i.pointer.any_down()) || ui.ctx().egui_wants_keyboard_input();
-        if !busy {
-            self.state.end_group();
-        }
-        self.state.autosave();
-        let title = self.state.title();
-        if title != self.title {
-            ui.ctx()
-                .send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
-            self.title = title;
-        }
-    }
-
     /// Closing the window with unsaved changes asks first (the autosave covers crashes only).
-    fn guard_close(&mut self, ui: &Ui) {
+    pub(crate) fn guard_close(&mut self, ui: &Ui) {
         if self.quitting {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
             return;
@@ -410,7 +305,7 @@ impl EditorApp {
 
     /// *Apply to my data…*: the preset is open, ask for the file of its main input; forget the
     /// request if opening it was cancelled.
-    fn apply_to_my_data(&mut self) {
+    pub(crate) fn apply_to_my_data(&mut self) {
         let Some((path, input, kind)) = self.apply_after_open.clone() else {
             return;
         };
@@ -429,7 +324,7 @@ impl EditorApp {
     }
 
     /// The user picked `path` in the file dialog.
-    fn picked(&mut self, purpose: Purpose, path: &Path) {
+    pub(crate) fn picked(&mut self, purpose: Purpose, path: &Path) {
         match purpose {
             Purpose::Param { node, param } => {
                 let stored = crate::files::path_for_graph(self.state.base_dir().as_deref(), path);
@@ -453,7 +348,7 @@ impl EditorApp {
 
     /// Files dropped on the window: a graph opens; a volume or mesh becomes a source node
     /// reading it, where it was dropped.
-    fn dropped_files(&mut self, ui: &Ui) {
+    pub(crate) fn dropped_files(&mut self, ui: &Ui) {
         let hovering = ui.input(|i| !i.raw.hovered_files.is_empty());
         if hovering {
             egui::Area::new(Id::new("drop-hint"))
@@ -511,11 +406,5 @@ impl EditorApp {
                 }
             }
         }
-    }
-}
-
-impl eframe::App for EditorApp {
-    fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
-        EditorApp::ui(self, ui);
     }
 }

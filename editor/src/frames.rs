@@ -193,39 +193,6 @@ fn shift(p: EditorPos, by: egui::Vec2) -> EditorPos {
     }
 }
 
-impl crate::EditorApp {
-    /// A frame around the selected nodes (*Frame selection*, `Ctrl+J`).
-    pub fn frame_selection(&mut self) {
-        let rects = node_rects(&self.placed, &self.selecting.sizes());
-        let _ = self.state.frame_selection(&rects);
-    }
-
-    /// This frame's frame drag (see [`drag_frames`]), after the canvas was drawn; `free`: the
-    /// pointer is over the canvas and nothing covers it. True while a frame is dragged.
-    pub(crate) fn drag_frames(&mut self, ctx: &egui::Context, free: bool) -> bool {
-        let rects = node_rects(&self.placed, &self.selecting.sizes());
-        let over_node = ctx
-            .input(|i| i.pointer.interact_pos())
-            .is_some_and(|p| self.node_at(p).is_some());
-        let to_screen = self.canvas_transform;
-        let dragging = drag_frames(
-            &mut self.frame_drag,
-            &mut self.state,
-            ctx,
-            to_screen,
-            (free, over_node),
-            &rects,
-        );
-        // The canvas holds still while a frame is dragged, as for a box selection.
-        if let Some(drag) = &self.frame_drag {
-            self.selecting.box_transform = Some(drag.transform);
-        } else if !self.selecting.boxing() {
-            self.selecting.box_transform = None;
-        }
-        dragging
-    }
-}
-
 impl EditorState {
     /// A new frame around the selected nodes shown (`rects`: shown nodes in graph space), one
     /// undo step; returns its index.

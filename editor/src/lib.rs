@@ -23,11 +23,13 @@ pub mod history_text;
 pub mod layout_dump;
 pub mod object_table;
 pub mod panels;
+pub mod param_widget;
 pub mod picture;
 pub mod preview;
 pub mod relative_value;
 pub mod render_worker;
 pub mod selection;
+pub mod shell;
 pub mod state;
 pub mod style_picker;
 

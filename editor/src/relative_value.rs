@@ -39,7 +39,7 @@ pub fn widget(
                 ));
             }
             _ => {
-                let r = ui.scope(|ui| crate::panels::inspector::param_widget(ui, spec, current));
+                let r = ui.scope(|ui| crate::param_widget::param_widget(ui, spec, current));
                 field_rect = r.response.rect;
                 changed = r.inner;
             }

@@ -4,6 +4,15 @@
 
 use glam::Vec2;
 
+/// A polyline in pixels (top-left origin, y down).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polyline {
+    /// Vertices, px. A closed polyline does not repeat its first vertex at the end.
+    pub points: Vec<Vec2>,
+    /// Whether the last vertex connects back to the first.
+    pub closed: bool,
+}
+
 /// An axis-aligned rectangle in pixels, `min` the top-left and `max` the bottom-right corner.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rect {

@@ -1,7 +1,7 @@
 //! Ramer–Douglas–Peucker polyline simplification.
 
+use crate::geometry::Polyline;
 use crate::geometry::point_segment_distance;
-use crate::trace::Polyline;
 use glam::Vec2;
 
 /// Simplifies `polyline` with Ramer–Douglas–Peucker: keeps a subset of its vertices such that

@@ -6,14 +6,7 @@ use crate::simplify::simplify;
 use glam::Vec2;
 use std::collections::HashMap;
 
-/// A polyline in pixels (top-left origin, y down).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Polyline {
-    /// Vertices, px. A closed polyline does not repeat its first vertex at the end.
-    pub points: Vec<Vec2>,
-    /// Whether the last vertex connects back to the first.
-    pub closed: bool,
-}
+pub use crate::geometry::Polyline;
 
 /// Traces the `threshold` iso-contours of `mask` (row-major, `width × height` values, row 0 at
 /// the top) by marching squares and simplifies them with Ramer–Douglas–Peucker at `tolerance` px

@@ -7,7 +7,7 @@ use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use crate::manifest::{temp_beside, write_atomic};
+use crate::files::{temp_beside, write_atomic};
 
 /// The animation formats, by file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

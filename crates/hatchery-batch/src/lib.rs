@@ -6,6 +6,7 @@
 //! processes: this crate is what each one runs.
 
 pub mod animation;
+pub mod files;
 pub mod job;
 pub mod manifest;
 pub mod run;

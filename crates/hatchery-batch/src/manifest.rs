@@ -91,27 +91,6 @@ pub fn file_sha256(path: &Path) -> Option<String> {
     std::fs::read(path).ok().map(|b| sha256(&b))
 }
 
-/// Writes `bytes` to `path` atomically (hatchery_graph::atomic), making its folder first. A
-/// killed process leaves the old file or none, never half of one.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
-    if let Some(dir) = dir {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    }
-    hatchery_graph::atomic::write_bytes_atomically(path, bytes)
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))
-}
-
-/// A temporary name beside `path` (hidden, with this process's id).
-pub fn temp_beside(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
-}
-
 /// What `--merge` found.
 #[derive(Debug, Default)]
 pub struct Merged {
@@ -208,7 +187,7 @@ pub fn merge(job: &Job, out: &Path) -> Result<Merged, String> {
         };
         let path = out.join("manifest.json");
         let text = serde_json::to_string_pretty(&manifest).expect("serialisable");
-        write_atomic(&path, text.as_bytes())?;
+        crate::files::write_atomic(&path, text.as_bytes())?;
         merged.written = Some(path);
         merged.animations = animations(job, out)?;
     }

@@ -209,7 +209,7 @@ pub fn run(
         }
         manifest.items.push(entry);
         let text = serde_json::to_string_pretty(&manifest).expect("serialisable");
-        manifest::write_atomic(&manifest_path, text.as_bytes())?;
+        crate::files::write_atomic(&manifest_path, text.as_bytes())?;
         progress(item, &outcome, started.elapsed().as_secs_f64());
     }
     Ok(summary)
@@ -362,7 +362,7 @@ fn render_item(
         picture
             .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
             .map_err(|e| format!("cannot encode the picture: {e}"))?;
-        manifest::write_atomic(target, &png)?;
+        crate::files::write_atomic(target, &png)?;
         Ok(manifest::sha256(&png))
     }
 }

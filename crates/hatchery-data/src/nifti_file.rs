@@ -12,8 +12,7 @@ use crate::raw_voxels;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
-/// Volumes claiming more voxels than this are refused before anything is allocated.
-pub const MAX_VOXELS: u64 = 1 << 30;
+pub use crate::voxels::MAX_VOXELS;
 
 /// Loads a single-file NIfTI-1 or NIfTI-2 volume, gzip-compressed or not (both detected from
 /// the content; NIfTI-2 has 64-bit dims and double-precision transforms, the rules are the same).

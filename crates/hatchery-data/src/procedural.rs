@@ -98,10 +98,10 @@ fn field(resolution: u32, f: impl Fn(Vec3) -> f32 + Sync) -> Result<VolumeData, 
         )));
     }
     // Keep the allocation within what the NIfTI loader would accept too.
-    if (resolution as u64).pow(3) > crate::nifti_file::MAX_VOXELS {
+    if (resolution as u64).pow(3) > crate::voxels::MAX_VOXELS {
         return Err(DataError::Invalid(format!(
             "procedural volume resolution {resolution} is too large (limit {} voxels)",
-            crate::nifti_file::MAX_VOXELS
+            crate::voxels::MAX_VOXELS
         )));
     }
     let n = resolution as usize;

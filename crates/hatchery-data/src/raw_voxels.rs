@@ -6,7 +6,7 @@ use std::io::{self, BufRead, Read};
 use std::path::Path;
 
 use crate::DataError;
-use crate::nifti_file::MAX_VOXELS;
+use crate::voxels::MAX_VOXELS;
 use crate::voxels::Voxels;
 
 /// An element type of a raw voxel file.

@@ -1,6 +1,9 @@
 //! Voxel values in the type a file stores them in (u8, i8, u16, i16, f32; f64 is narrowed to f32
 //! on load), so a uint8 volume costs one byte per voxel, not four.
 
+/// Volumes claiming more voxels than this are refused before anything is allocated.
+pub const MAX_VOXELS: u64 = 1 << 30;
+
 /// A voxel type kept natively.
 pub trait Voxel: Copy + Send + Sync + 'static {
     fn to_f32(self) -> f32;

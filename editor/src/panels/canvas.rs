@@ -244,3 +244,38 @@ fn thumbnail_size(shown: &Shown) -> egui::Vec2 {
     let [w, h] = shown.size();
     egui::vec2(w as f32, h as f32)
 }
+
+/// The frame commands of the canvas and the menu (frames are drawn and hit-tested in
+/// [`crate::frames`]).
+impl EditorApp {
+    /// A frame around the selected nodes (*Frame selection*, `Ctrl+J`).
+    pub fn frame_selection(&mut self) {
+        let rects = crate::frames::node_rects(&self.placed, &self.selecting.sizes());
+        let _ = self.state.frame_selection(&rects);
+    }
+
+    /// This frame's frame drag (see [`crate::frames::drag_frames`]), after the canvas was drawn; `free`: the
+    /// pointer is over the canvas and nothing covers it. True while a frame is dragged.
+    pub(crate) fn drag_frames(&mut self, ctx: &egui::Context, free: bool) -> bool {
+        let rects = crate::frames::node_rects(&self.placed, &self.selecting.sizes());
+        let over_node = ctx
+            .input(|i| i.pointer.interact_pos())
+            .is_some_and(|p| self.node_at(p).is_some());
+        let to_screen = self.canvas_transform;
+        let dragging = crate::frames::drag_frames(
+            &mut self.frame_drag,
+            &mut self.state,
+            ctx,
+            to_screen,
+            (free, over_node),
+            &rects,
+        );
+        // The canvas holds still while a frame is dragged, as for a box selection.
+        if let Some(drag) = &self.frame_drag {
+            self.selecting.box_transform = Some(drag.transform);
+        } else if !self.selecting.boxing() {
+            self.selecting.box_transform = None;
+        }
+        dragging
+    }
+}

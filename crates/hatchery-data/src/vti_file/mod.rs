@@ -20,7 +20,7 @@ use std::path::Path;
 use glam::{DMat3, DVec3};
 
 use crate::geometry::Geometry;
-use crate::nifti_file::MAX_VOXELS;
+use crate::voxels::MAX_VOXELS;
 use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 use decode::{Loss, read_array};
