@@ -2,6 +2,9 @@
 //! and TwoLevelRaycast's final synthesis against the CPU reference
 //! (tests/common/importance_reference.rs) and against plain and focus-only renderings, on
 //! synthetic nested objects seen orthographically along an axis.
+//!
+//! Over 600 lines: one test file per capability; each case builds its scene and its CPU reference
+//! of the paper's equations.
 
 mod common;
 

@@ -3,6 +3,9 @@
 //! Thread safety: every method locks the graph's one mutex, with the GIL released while it
 //! waits and while it renders, so a Graph can be shared by Python threads (calls on one graph
 //! run one at a time; graphs render concurrently on the one shared GPU device).
+//!
+//! Over 600 lines: the `Graph` class is one Python-facing type whose methods (load, edit, render,
+//! export, bind inputs) share its lock and error mapping.
 
 use hatchery_graph::executor::PassReport;
 use hatchery_graph::{Graph as GraphModel, GraphDocument, GraphErrors};

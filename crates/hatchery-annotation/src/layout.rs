@@ -14,6 +14,9 @@
 //! Remaining crossings and overlaps are removed by disabling labels one at a time (§6.4: "annotations
 //! whose reference structures are farther away will be disabled first"); see [`layout`] for the exact
 //! rule and this implementation's choices.
+//!
+//! Over 600 lines: one algorithm (§6.4's layout loop: initial placement, the swap/shift
+//! iterations, the crossing and overlap tests it needs), kept together so its steps read in order.
 
 use crate::anchor::ProjectedAnchor;
 use crate::geometry::{Rect, rect_intersects_convex_polygon, segments_cross};

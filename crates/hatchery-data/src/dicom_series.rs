@@ -9,6 +9,10 @@
 //! syntax's codec (8-bit JPEG baseline/extended, JPEG lossless, JPEG 2000, RLE Lossless; see
 //! `compressed`) or, for JPEG-LS, by `jpeg_ls`; other compressed syntaxes (12-bit JPEG, MPEG video,
 //! ...) are refused by name.
+//!
+//! Over 600 lines: reading a series is one procedure (grouping, ordering by position, spacing and
+//! orientation checks, rescale, the refusals that name the slice) whose steps share the slice
+//! records.
 
 use std::collections::BTreeMap;
 use std::error::Error;

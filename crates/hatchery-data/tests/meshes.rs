@@ -1,4 +1,7 @@
 //! Mesh loading: the shared meshes and files written here from a known mesh.
+//!
+//! Over 600 lines: one test file per capability (every mesh format, as other tools write it, and
+//! every malformed case).
 
 use std::path::{Path, PathBuf};
 

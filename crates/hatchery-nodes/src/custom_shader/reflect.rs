@@ -14,6 +14,10 @@
 //!   `f32` (output `mask`); it may take `@builtin(position)` and `@location(0) uv: vec2<f32>`.
 //!
 //! Every problem is reported as `file:line:col: message`.
+//!
+//! Over 600 lines: the whole reflection of a user's shader (bindings → ports, uniform members →
+//! parameters, every refusal with its message) in one place, so what a custom shader may declare
+//! is read in one file.
 
 use hatchery_graph::{NodeSchema, ParamKind, ParamSpec, ParamValue, PortSpec, PortType, intern};
 use naga::{AddressSpace, ImageClass, ScalarKind, TypeInner, VectorSize};

@@ -1,4 +1,8 @@
 //! The data flowing along edges: one variant per [`PortType`], cheap to clone (shared handles).
+//!
+//! One enum of every value that flows on an edge, with its typed accessors and the volume and
+//! label wrappers they hand out; it is ~600 lines because every port type is here, and the data
+//! types of their own are in the submodules.
 
 pub mod annotations;
 pub mod camera;
