@@ -172,6 +172,32 @@ hatchery_graph::node_params! {
     }
 }
 
+/// 1×1 textures bound where a pass has nothing to read, made once per device: `one` (1, 1, 1, 1)
+/// for no importance, no countersink and no occluder; `zero` for the lighting TF of
+/// shade_surface's `lighting` branch, which two-level never takes.
+struct Placeholders {
+    one: wgpu::Texture,
+    zero: wgpu::Texture,
+}
+
+impl Placeholders {
+    fn new(gpu: &hatchery_gpu::GpuContext) -> Self {
+        let texture = |label, value: f32| {
+            gpu.texture_2d_init(
+                label,
+                1,
+                1,
+                wgpu::TextureFormat::Rgba32Float,
+                bytemuck::cast_slice(&[value; 4]),
+            )
+        };
+        Placeholders {
+            one: texture("two-level placeholder (1)", 1.0),
+            zero: texture("two-level placeholder (0)", 0.0),
+        }
+    }
+}
+
 pub struct TwoLevelRaycastNode;
 
 impl Node<Value, Ctx> for TwoLevelRaycastNode {
@@ -258,6 +284,9 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             })
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
+        let placeholders = ctx
+            .cached("two_level.placeholders", |gpu| Ok(Placeholders::new(gpu)))
+            .map_err(err)?;
         let gpu = &ctx.gpu;
         let volume_texture = volume.texture(gpu).map_err(err)?;
         let contours = styles
@@ -358,37 +387,21 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             table_texture.create_view(&Default::default()),
             brick_texture.create_view(&Default::default()),
             drawn_mask.create_view(&Default::default()),
-            gpu.texture_2d_init(
-                "unused lighting tf",
-                1,
-                1,
-                wgpu::TextureFormat::Rgba32Float,
-                &[0u8; 16],
-            )
-            .create_view(&Default::default()),
+            placeholders.zero.create_view(&Default::default()),
         ];
         let texture = |binding, view| wgpu::BindGroupEntry {
             binding,
             resource: wgpu::BindingResource::TextureView(view),
         };
-        let blank = |label| {
-            gpu.texture_2d_init(
-                label,
-                1,
-                1,
-                wgpu::TextureFormat::Rgba32Float,
-                bytemuck::cast_slice(&[1.0f32; 4]),
-            )
-            .create_view(&Default::default())
-        };
+        let one = || placeholders.one.create_view(&Default::default());
         let (importance_view, cut_view) = match &importance {
             Some(i) => (
                 i.buffer.create_view(&Default::default()),
                 i.cut.create_view(&Default::default()),
             ),
-            None => (blank("no importance"), blank("no countersink")),
+            None => (one(), one()),
         };
-        let no_occluder = blank("no occluder");
+        let no_occluder = one();
         let fixed = vec![
             wgpu::BindGroupEntry {
                 binding: 0,
