@@ -9,11 +9,19 @@
 // compiler folds (as uniforms, every mode's code stayed in the pass: about twice the time on
 // lavapipe).
 
+// Mirrored field by field by `SilhouetteUniforms` (crates/hatchery-nodes/src/silhouette.rs);
+// the PIP mode and the switches are constants of the pass, not members.
 struct Silhouette {
-    // x = depth threshold, y = normal threshold, z, w = unused (the switches are constants).
-    thresholds: vec4<f32>,
-    // x = unused (the mode is a constant), y = amount, z = pattern scale in pixels, w = seed.
-    pip: vec4<f32>,
+    depth_threshold: f32,
+    normal_threshold: f32,
+    // PIP: P's scale in pixels, the pattern size in pixels, the noise seed.
+    pip_amount: f32,
+    pip_scale: f32,
+    pip_seed: f32,
+    // Padding to 16 bytes.
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 };
 
 // Bilinear read at a fractional pixel position (taps at integer positions are exact).
@@ -54,8 +62,8 @@ fn silhouette_value_noise(x: vec2<f32>, scale: f32, seed: f32) -> f32 {
 
 // The perturbation P(x, y) in pixels. `mode`: 0 none, 1 constant, 2 texture, 3 noise, 4 dots.
 fn silhouette_perturbation(u: Silhouette, pattern: texture_2d<f32>, mode: i32, p: vec2<i32>) -> f32 {
-    let amount = u.pip.y;
-    let scale = max(u.pip.z, 1.0);
+    let amount = u.pip_amount;
+    let scale = max(u.pip_scale, 1.0);
     let x = vec2<f32>(p) + 0.5;
     switch mode {
         case 1: {
@@ -68,7 +76,7 @@ fn silhouette_perturbation(u: Silhouette, pattern: texture_2d<f32>, mode: i32, p
             return amount * dot(t.rgb, vec3<f32>(0.299, 0.587, 0.114));
         }
         case 3: {
-            return amount * silhouette_value_noise(x, scale, u.pip.w);
+            return amount * silhouette_value_noise(x, scale, u.pip_seed);
         }
         case 4: {
             // A regular matrix of round dots, `scale` pixels apart, radius 0.3·scale.
@@ -125,7 +133,7 @@ fn silhouette(
         silhouette_depth_at(layer_depth, c + vec2<f32>(-s, s)),
         silhouette_depth_at(layer_depth, c + vec2<f32>(0.0, s)),
         silhouette_depth_at(layer_depth, c + vec2<f32>(s, s)),
-        u.thresholds.x,
+        u.depth_threshold,
     ) {
         response = 1.0;
     }
@@ -137,7 +145,7 @@ fn silhouette(
         silhouette_normal_at(layer_normal, c + vec2<f32>(-s, 0.0)),
         silhouette_normal_at(layer_normal, c + vec2<f32>(0.0, s)),
         silhouette_normal_at(layer_normal, c + vec2<f32>(0.0, -s)),
-        u.thresholds.y,
+        u.normal_threshold,
     ) {
         response = 1.0;
     }
@@ -167,7 +175,7 @@ fn silhouette_unperturbed(
         textureLoad(layer_depth, vec2<i32>(lo.x, hi.y), 0),
         textureLoad(layer_depth, vec2<i32>(p.x, hi.y), 0),
         textureLoad(layer_depth, hi, 0),
-        u.thresholds.x,
+        u.depth_threshold,
     ) {
         response = 1.0;
     }
@@ -178,7 +186,7 @@ fn silhouette_unperturbed(
         textureLoad(layer_normal, vec2<i32>(lo.x, p.y), 0).xyz,
         textureLoad(layer_normal, vec2<i32>(p.x, hi.y), 0).xyz,
         textureLoad(layer_normal, vec2<i32>(p.x, lo.y), 0).xyz,
-        u.thresholds.y,
+        u.normal_threshold,
     ) {
         response = 1.0;
     }

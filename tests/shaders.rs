@@ -69,8 +69,39 @@ fn a_broken_shader_is_reported_by_name_not_by_a_panic() {
     assert!(message.contains("oops"), "{message}");
 }
 
-/// (member name, byte offset, byte size).
-type Member = (String, u32, u32);
+/// (member name, byte offset, byte size, the Rust type that mirrors it: `f32`, `u32`, `i32`,
+/// `[f32; 4]` for a vec4<f32>, `[[f32; 4]; 4]` for a mat4x4<f32>).
+type Member = (String, u32, u32, String);
+
+/// The Rust type a WGSL uniform member is mirrored by (no spaces), or its WGSL description.
+fn rust_type(module: &naga::Module, ty: naga::Handle<naga::Type>) -> String {
+    let scalar = |s: &naga::Scalar| {
+        match (s.kind, s.width) {
+            (naga::ScalarKind::Float, 4) => "f32",
+            (naga::ScalarKind::Uint, 4) => "u32",
+            (naga::ScalarKind::Sint, 4) => "i32",
+            _ => "?",
+        }
+        .to_owned()
+    };
+    match &module.types[ty].inner {
+        naga::TypeInner::Scalar(s) => scalar(s),
+        naga::TypeInner::Vector { size, scalar: s } => format!("[{};{}]", scalar(s), *size as u32),
+        naga::TypeInner::Matrix {
+            columns,
+            rows,
+            scalar: s,
+        } => {
+            format!("[[{};{}];{}]", scalar(s), *rows as u32, *columns as u32)
+        }
+        naga::TypeInner::Array {
+            base,
+            size: naga::ArraySize::Constant(n),
+            ..
+        } => format!("[{};{n}]", rust_type(module, *base)),
+        other => format!("{other:?}"),
+    }
+}
 
 /// The WGSL struct `name` of a program: (size, members).
 fn wgsl_struct(module: &naga::Module, name: &str) -> Option<(u32, Vec<Member>)> {
@@ -81,7 +112,8 @@ fn wgsl_struct(module: &naga::Module, name: &str) -> Option<(u32, Vec<Member>)> 
                 .iter()
                 .map(|m| {
                     let size = module.types[m.ty].inner.size(module.to_ctx());
-                    (m.name.clone().unwrap_or_default(), m.offset, size)
+                    let name = m.name.clone().unwrap_or_default();
+                    (name, m.offset, size, rust_type(module, m.ty))
                 })
                 .collect(),
         )),
@@ -106,11 +138,11 @@ fn every_uniform_block_matches_its_wgsl_struct_field_by_field() {
         let rust: Vec<Member> = layout
             .fields
             .iter()
-            .map(|(n, o, s)| (n.to_string(), *o as u32, *s as u32))
+            .map(|(n, o, s, t)| (n.to_string(), *o as u32, *s as u32, t.replace(' ', "")))
             .collect();
         assert_eq!(
             rust, members,
-            "{}::{}: Rust fields (name, offset, size) differ from WGSL",
+            "{}::{}: Rust fields (name, offset, size, type) differ from WGSL",
             layout.program, layout.wgsl_struct
         );
         assert_eq!(

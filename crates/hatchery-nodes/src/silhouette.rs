@@ -8,11 +8,22 @@ use hatchery_graph::{
 };
 
 crate::uniform_block! {
-    /// `Silhouette` of shaders/silhouette.wgsl: (depth threshold, normal threshold, use depth,
-    /// use normals) and the pip settings (mode, amount, scale, seed).
+    /// `Silhouette` of shaders/silhouette.wgsl (the PIP mode and the switches are constants of
+    /// the pass).
     pub struct SilhouetteUniforms in "silhouette" as "Silhouette" {
-        pub thresholds: [f32; 4],
-        pub pip: [f32; 4],
+        /// Threshold on the Sobel depth-gradient magnitude (eq. 3).
+        pub depth_threshold: f32,
+        /// Threshold on the summed neighbour normal dot products (eq. 4–5).
+        pub normal_threshold: f32,
+        /// PIP: P's scale in pixels (Yuan & Chen §6, eq. 2).
+        pub pip_amount: f32,
+        /// PIP: pattern size in pixels (`noise`, `dots`).
+        pub pip_scale: f32,
+        /// PIP: seed of the `noise` pattern.
+        pub pip_seed: f32,
+        pub pad0: f32,
+        pub pad1: f32,
+        pub pad2: f32,
     }
 }
 
@@ -99,8 +110,12 @@ impl Fusable for SilhouetteNode {
             ctx.blank_texture()
         };
         let uniforms = SilhouetteUniforms {
-            thresholds: [p.depth_threshold, p.normal_threshold, 0.0, 0.0],
-            pip: [0.0, p.pip_amount, p.pip_scale, p.pip_seed as f32],
+            depth_threshold: p.depth_threshold,
+            normal_threshold: p.normal_threshold,
+            pip_amount: p.pip_amount,
+            pip_scale: p.pip_scale,
+            pip_seed: p.pip_seed as f32,
+            ..Default::default()
         };
         // The mode and switches as constants (shaders/silhouette.wgsl says why).
         Ok(Stage {

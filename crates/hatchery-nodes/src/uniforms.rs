@@ -12,13 +12,17 @@ pub struct UniformLayout {
     pub wgsl_struct: &'static str,
     /// `size_of` the Rust struct, bytes.
     pub size: usize,
-    /// (field name, byte offset, byte size), in declaration order.
-    pub fields: Vec<(&'static str, usize, usize)>,
+    /// (field name, byte offset, byte size, Rust type as written), in declaration order.
+    pub fields: Vec<(&'static str, usize, usize, &'static str)>,
 }
 
 /// Declares a `#[repr(C)]`, `Pod` uniform block mirroring a WGSL struct of `program`, with a
-/// `layout()` that reports its fields for the reflection test. Fields are `f32`, `[f32; 4]`
-/// (vec4) or `[[f32; 4]; 4]` (mat4x4), so Rust and WGSL agree on alignment without padding.
+/// `layout()` that reports its fields for the reflection test. Fields are `f32`, `u32`, `i32`,
+/// `[T; 2|3|4]` (vectors), `[[f32; 4]; 4]` (mat4x4) or arrays of those, named as in WGSL; the
+/// test compares every field's name, offset, size and type with naga's reflection, so padding
+/// WGSL inserts must be an explicit field here (e.g. `pad0: f32`). Named scalar fields
+/// (`SilhouetteUniforms`) are the form new blocks take; older blocks still pack scalars into
+/// `[f32; 4]` by position (issue 29 item 2).
 #[macro_export]
 macro_rules! uniform_block {
     (
@@ -42,7 +46,12 @@ macro_rules! uniform_block {
                     wgsl_struct: $wgsl,
                     size: std::mem::size_of::<$name>(),
                     fields: vec![
-                        $( (stringify!($field), std::mem::offset_of!($name, $field), std::mem::size_of::<$ty>()), )*
+                        $( (
+                            stringify!($field),
+                            std::mem::offset_of!($name, $field),
+                            std::mem::size_of::<$ty>(),
+                            stringify!($ty),
+                        ), )*
                     ],
                 }
             }
