@@ -69,12 +69,15 @@ impl<V, C> Default for Registry<V, C> {
 }
 
 impl<V, C> Registry<V, C> {
-    pub fn register(&mut self, node: impl Node<V, C> + 'static) {
+    /// Adds a node kind (its schema computed once, here); returns the kind's name.
+    pub fn register(&mut self, node: impl Node<V, C> + 'static) -> &'static str {
         let schema = node.schema();
+        let kind = schema.kind;
         if node.has_own_schema() {
-            self.own.insert(schema.kind);
+            self.own.insert(kind);
         }
-        self.kinds.insert(schema.kind, (schema, Box::new(node)));
+        self.kinds.insert(kind, (schema, Box::new(node)));
+        kind
     }
     /// Sets what fuses pointwise image-space nodes into one pass ([`crate::fusion`]).
     pub fn set_fuser(&mut self, fuser: impl Fuser<V, C> + 'static) {

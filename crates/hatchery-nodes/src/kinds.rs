@@ -65,8 +65,8 @@ impl Kinds {
     #[track_caller]
     pub fn node(&mut self, node: impl Node<Value, Ctx> + 'static) -> &mut Self {
         let file = std::panic::Location::caller().file();
-        self.files.push((node.schema().kind, file));
-        self.registry.register(node);
+        let kind = self.registry.register(node);
+        self.files.push((kind, file));
         self
     }
 

@@ -250,8 +250,8 @@ impl crate::kinds::Kinds {
     #[track_caller]
     pub fn image_stage(&mut self, stage: &'static dyn Fusable) -> &mut Self {
         let file = std::panic::Location::caller().file();
-        self.files.push((stage.schema().kind, file));
-        self.registry.register(ImageStage(stage));
+        let kind = self.registry.register(ImageStage(stage));
+        self.files.push((kind, file));
         self.stages.push(stage);
         self
     }
