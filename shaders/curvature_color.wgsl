@@ -13,16 +13,27 @@
 @group(0) @binding(2) var map2d: texture_2d<f32>;
 
 struct CurvatureColor {
-    // x = measure (0 κ1, 1 κ2, 2 mean, 3 Gaussian, 4 curvedness, 5 the 2-D map); y, z = TF
-    // domain lo, hi; w = the 2-D map's range r (world units⁻¹).
-    options: vec4<f32>,
+    // The measure (a MEASURE_* constant).
+    measure: u32,
+    // The 2-D map's range r (world units⁻¹).
+    map_range: f32,
+    // The transfer function's domain (lo, hi).
+    domain: vec2<f32>,
 };
+
+// CurvatureColor.measure (hatchery_nodes::curvature_color::Measure).
+const MEASURE_CURVEDNESS: u32 = 0u;
+const MEASURE_K1: u32 = 1u;
+const MEASURE_K2: u32 = 2u;
+const MEASURE_MEAN: u32 = 3u;
+const MEASURE_GAUSSIAN: u32 = 4u;
+const MEASURE_K1_K2: u32 = 5u;
 @group(0) @binding(3) var<uniform> params: CurvatureColor;
 
 // The 2-D map's colour of (κ1, κ2).
 fn map_colour(k: vec2<f32>) -> vec4<f32> {
     let size = vec2<f32>(textureDimensions(map2d));
-    let r = max(params.options.w, 1e-12);
+    let r = max(params.map_range, 1e-12);
     let uv = clamp(
         vec2<f32>((k.x + r) / (2.0 * r), (r - k.y) / (2.0 * r)),
         vec2<f32>(0.0),
@@ -40,17 +51,17 @@ fn map_colour(k: vec2<f32>) -> vec4<f32> {
 }
 
 fn measure(k: vec2<f32>) -> f32 {
-    let m = i32(params.options.x + 0.5);
-    if m == 0 {
+    let m = params.measure;
+    if m == MEASURE_K1 {
         return k.x;
     }
-    if m == 1 {
+    if m == MEASURE_K2 {
         return k.y;
     }
-    if m == 2 {
+    if m == MEASURE_MEAN {
         return 0.5 * (k.x + k.y);
     }
-    if m == 3 {
+    if m == MEASURE_GAUSSIAN {
         return k.x * k.y;
     }
     return length(k);
@@ -62,14 +73,14 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     if c.z < -5.0 {
         return vec4<f32>(0.0);
     }
-    if i32(params.options.x + 0.5) == 5 {
+    if params.measure == MEASURE_K1_K2 {
         let entry = map_colour(c.xy);
         return vec4<f32>(entry.rgb * entry.a, entry.a);
     }
-    let span = params.options.z - params.options.y;
+    let span = params.domain.y - params.domain.x;
     var u = 0.0;
     if span > 0.0 {
-        u = clamp((measure(c.xy) - params.options.y) / span, 0.0, 1.0);
+        u = clamp((measure(c.xy) - params.domain.x) / span, 0.0, 1.0);
     }
     // The LUT rule of TransferFunction1D::lookup.
     let x = u * 255.0;

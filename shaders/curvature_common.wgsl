@@ -13,7 +13,7 @@ const NONE: f32 = -10.0;
 // the screen (x right, y down), so perspective foreshortening off the view axis is included.
 fn screen_angle(p: vec3<f32>, d: vec3<f32>) -> f32 {
     // One finite-difference step: far enough for f32 precision, near enough to be linear.
-    let eps = max(curvature_params.step.x, 1e-6);
+    let eps = max(curvature_params.step, 1e-6);
     let a = ray.view_proj * vec4<f32>(p, 1.0);
     let b = ray.view_proj * vec4<f32>(p + eps * d, 1.0);
     let s = b.xy / b.w - a.xy / a.w;
@@ -27,8 +27,11 @@ fn screen_angle(p: vec3<f32>, d: vec3<f32>) -> f32 {
 }
 
 struct CurvatureParams {
-    // x = finite-difference step h (world units).
-    step: vec4<f32>,
+    // Finite-difference step h (world units).
+    step: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 };
 @group(0) @binding(22) var<uniform> curvature_params: CurvatureParams;
 
@@ -50,7 +53,7 @@ fn surface_point(position: vec4<f32>) -> vec4<f32> {
 // The symmetrised Hessian of the volume at world point p (central differences of the gradient
 // at ±h along the world axes).
 fn hessian_at(p: vec3<f32>) -> mat3x3<f32> {
-    let h = curvature_params.step.x;
+    let h = curvature_params.step;
     var columns: array<vec3<f32>, 3>;
     for (var axis = 0; axis < 3; axis++) {
         var e = vec3<f32>(0.0);

@@ -8,8 +8,11 @@
 // 1 on the contour. Prepended: fullscreen, ray_common, curvature_common.
 
 struct ContourParams {
-    // x = thickness (pixels).
-    options: vec4<f32>,
+    // Contour width (pixels).
+    thickness: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 };
 @group(0) @binding(23) var<uniform> contour: ContourParams;
 
@@ -41,7 +44,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     }
     let w = normalize(along);
     let kappa_v = -dot(w, hessian_at(p) * w) / g_length;
-    let tk = contour.options.x * pixel_size * kappa_v;
+    let tk = contour.thickness * pixel_size * kappa_v;
     if tk <= 0.0 {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }

@@ -11,11 +11,15 @@
 
 struct Flow {
     inv_view_proj: mat4x4<f32>,
-    // x, y = frame width and height (px); z = steps per half streamline; w = step (px).
-    frame: vec4<f32>,
-    // x = noise grain (world units); y = 1 for the smaller-|κ| direction; z = contrast;
-    // w = mean output value.
-    options: vec4<f32>,
+    // Frame width and height (px); steps per half streamline; step (px).
+    frame: vec2<f32>,
+    steps: u32,
+    step: f32,
+    // Noise grain (world units); 1 for the smaller-|κ| direction; contrast; mean output value.
+    grain: f32,
+    smaller_curvature: u32,
+    contrast: f32,
+    mean: f32,
 };
 @group(0) @binding(2) var<uniform> flow: Flow;
 
@@ -29,7 +33,7 @@ fn hash3(c: vec3<i32>) -> f32 {
 
 // Trilinear value noise in [0, 1] with cells of `grain` world units.
 fn noise(x: vec3<f32>) -> f32 {
-    let g = x / max(flow.options.x, 1e-9);
+    let g = x / max(flow.grain, 1e-9);
     let i = vec3<i32>(floor(g));
     let f = g - floor(g);
     var v = 0.0;
@@ -59,7 +63,7 @@ fn surface_at(p: vec2<f32>) -> vec4<f32> {
 fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let p = position.xy;
     let here = surface_at(p);
-    let smaller = flow.options.y > 0.5;
+    let smaller = flow.smaller_curvature != 0u;
     if here.w == 0.0 || textureLoad(curvature, pixel_of(position), 0).z < -5.0 {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
@@ -68,7 +72,7 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let ndc = vec2<f32>(p.x / flow.frame.x * 2.0 - 1.0, 1.0 - p.y / flow.frame.y * 2.0);
     let z = textureLoad(depth, pixel_of(position), 0);
     let side4 = flow.inv_view_proj * vec4<f32>(ndc + vec2<f32>(2.0 / flow.frame.x, 0.0), z, 1.0);
-    let jump = 8.0 * flow.frame.w * distance(side4.xyz / side4.w, here.xyz);
+    let jump = 8.0 * flow.step * distance(side4.xyz / side4.w, here.xyz);
     var sum = noise(here.xyz);
     var n = 1.0;
     let start = direction_field(curvature, p, smaller);
@@ -77,13 +81,13 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             var q = p;
             var d = sense * start;
             var previous = here.xyz;
-            for (var i = 0u; i < u32(flow.frame.z); i++) {
+            for (var i = 0u; i < flow.steps; i++) {
                 let k1 = align(direction_field(curvature, q, smaller), d);
-                let k2 = align(direction_field(curvature, q + 0.5 * flow.frame.w * k1, smaller), k1);
+                let k2 = align(direction_field(curvature, q + 0.5 * flow.step * k1, smaller), k1);
                 if dot(k2, k2) == 0.0 {
                     break;
                 }
-                let next = q + flow.frame.w * k2;
+                let next = q + flow.step * k2;
                 let s = surface_at(next);
                 if s.w == 0.0 || any(next < vec2<f32>(0.0)) || any(next >= flow.frame.xy) {
                     break;
@@ -101,6 +105,6 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             }
         }
     }
-    let value = clamp(flow.options.w + (sum / n - 0.5) * sqrt(n) * flow.options.z, 0.0, 1.0);
+    let value = clamp(flow.mean + (sum / n - 0.5) * sqrt(n) * flow.contrast, 0.0, 1.0);
     return vec4<f32>(value, 0.0, 0.0, 1.0);
 }

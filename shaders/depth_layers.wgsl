@@ -11,8 +11,11 @@
 // from MarchingCubes have none.
 
 struct LayersFrame {
-    // x = frame width in pixels.
-    size: vec4<u32>,
+    // Frame width in pixels; the slot is the resolve step's (unused here).
+    width: u32,
+    slot: u32,
+    pad0: u32,
+    pad1: u32,
 };
 
 @group(0) @binding(1) var<storage, read_write> layers: array<atomic<u64>>;
@@ -30,7 +33,7 @@ fn oct_encode(n: vec3<f32>) -> u32 {
 @fragment
 fn fs_main(in: VertexOut) {
     let pixel = vec2<u32>(floor(in.clip.xy));
-    let slot = (pixel.y * frame.size.x + pixel.x) * 2u;
+    let slot = (pixel.y * frame.width + pixel.x) * 2u;
     // The octahedral code divides by the L1 norm: no need to normalise first.
     let key = (u64(bitcast<u32>(in.clip.z)) << 32u) | u64(oct_encode(in.view_normal));
     let inverted = ~key;

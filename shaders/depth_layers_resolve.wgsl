@@ -3,8 +3,11 @@
 // pixels are discarded, so they keep the cleared depth 1 and normal 0, as in a GBuffer pass.
 
 struct ResolveFrame {
-    // x = frame width in pixels, y = slot (0: nearest layer, 1: the next).
-    size: vec4<u32>,
+    // Frame width in pixels; the slot resolved (0: nearest layer, 1: the next).
+    width: u32,
+    slot: u32,
+    pad0: u32,
+    pad1: u32,
 };
 
 // The 64-bit keys as pairs of 32-bit words (little-endian: low word first).
@@ -29,7 +32,7 @@ fn oct_decode(packed: u32) -> vec3<f32> {
 @fragment
 fn fs_main(in: ScreenOut) -> LayerOut {
     let pixel = vec2<u32>(pixel_of(in.position));
-    let word = ((pixel.y * resolve.size.x + pixel.x) * 2u + resolve.size.y) * 2u;
+    let word = ((pixel.y * resolve.width + pixel.x) * 2u + resolve.slot) * 2u;
     let low = ~layers[word];
     let high = ~layers[word + 1u];
     if layers[word] == 0u && layers[word + 1u] == 0u {

@@ -4,23 +4,29 @@
 // Rgba8Unorm holding display (sRGB-encoded) values, which is what egui draws textures as.
 
 struct Display {
-    // 0 = premultiplied image, 1 = mask (grey), 2 = normals (n·0.5 + 0.5, w = coverage).
-    mode: f32,
+    // What the texture holds (a SHOW_* constant).
+    mode: u32,
     // Side of a checkerboard square, output pixels.
     checker: f32,
     out_width: f32,
     out_height: f32,
 };
 
+// Display.mode (hatchery_nodes::display::Shows): a premultiplied image, a mask (grey), normals
+// (n·0.5 + 0.5, w = coverage).
+const SHOW_IMAGE: u32 = 0u;
+const SHOW_MASK: u32 = 1u;
+const SHOW_NORMALS: u32 = 2u;
+
 @group(0) @binding(0) var source: texture_2d<f32>;
 @group(0) @binding(1) var<uniform> display: Display;
 
 // A source texel as premultiplied RGBA.
 fn as_premultiplied(t: vec4<f32>) -> vec4<f32> {
-    if display.mode < 0.5 {
+    if display.mode == SHOW_IMAGE {
         return t;
     }
-    if display.mode < 1.5 {
+    if display.mode == SHOW_MASK {
         let g = clamp(t.r, 0.0, 1.0);
         return vec4<f32>(g, g, g, 1.0);
     }

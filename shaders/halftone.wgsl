@@ -4,10 +4,16 @@
 // A stage of a fused image-space pass (crates/hatchery-nodes/src/fused_pass/).
 
 struct Halftone {
-    // x = theta in radians, y = cell size n in pixels, z = c_cross.
-    params: vec4<f32>,
-    // x = cos(theta), y = sin(theta): computed once, not per pixel.
-    rotation: vec4<f32>,
+    // The screen angle θ in radians, the cell size n in pixels, c_cross (eq. 8).
+    theta: f32,
+    cell: f32,
+    c_cross: f32,
+    // cos θ and sin θ: computed once, not per pixel.
+    cos_theta: f32,
+    sin_theta: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 };
 
 fn halftone_wrap(v: f32, n: f32) -> f32 {
@@ -16,12 +22,12 @@ fn halftone_wrap(v: f32, n: f32) -> f32 {
 
 // 1 (paper) where the intensity at p reaches the screen's threshold, 0 (ink) elsewhere.
 fn halftone(p: vec2<i32>, u: Halftone, intensity: vec4<f32>) -> vec4<f32> {
-    let n = u.params.y;
-    let c_cross = u.params.z;
+    let n = u.cell;
+    let c_cross = u.c_cross;
     let x = f32(p.x);
     let y = f32(p.y);
-    let c = u.rotation.x;
-    let s_theta = u.rotation.y;
+    let c = u.cos_theta;
+    let s_theta = u.sin_theta;
     let xr = c * x - s_theta * y;
     let yr = s_theta * x + c * y;
     let s = halftone_wrap(xr, n);

@@ -21,17 +21,27 @@ struct Hatch {
     view_proj: mat4x4<f32>,
     view: mat4x4<f32>,
     inv_proj: mat4x4<f32>,
-    // x, y = frame width and height (px); z = RK4 step (px); w = steps per half stroke.
-    frame: vec4<f32>,
-    // x = density; y = cross-hatching darkness threshold (≥ 1: none); z = depth tolerance
-    // (world units); w unused.
-    options: vec4<f32>,
-    // x = stroke width (px); y = taper (fraction of the length); z = 0 follow the larger |κ|,
-    // 1 the smaller; w = most strokes.
-    shape: vec4<f32>,
-    // x = candidate seeds; y = 1 when a tone mask is bound (else headlight Lambert from the
-    // G-buffer normal); z = seed salt; w unused.
-    counts: vec4<u32>,
+    // Frame width and height (px); RK4 step (px); steps per half stroke.
+    frame: vec2<f32>,
+    step: f32,
+    steps: u32,
+    // Seeds per unit of screen area; cross-hatching darkness threshold (≥ 1: none); depth
+    // tolerance (world units); most strokes.
+    density: f32,
+    cross_threshold: f32,
+    depth_tolerance: f32,
+    max_strokes: u32,
+    // Stroke width (px); taper (fraction of the length); 1 to follow the smaller |κ|, 0 the
+    // larger; 1 when a tone mask is bound (else headlight Lambert from the G-buffer normal).
+    width: f32,
+    taper: f32,
+    smaller_curvature: u32,
+    use_tone: u32,
+    // Candidate seeds; seed salt.
+    seeds: u32,
+    salt: u32,
+    pad0: u32,
+    pad1: u32,
 };
 
 struct Stroke {
@@ -58,7 +68,7 @@ struct Stroke {
 @group(0) @binding(11) var<storage, read> points_in: array<vec2<f32>>;
 
 fn steps() -> u32 {
-    return u32(hatch.frame.w);
+    return hatch.steps;
 }
 
 fn slots() -> u32 {
@@ -93,14 +103,14 @@ fn surface_z(t: vec2<i32>) -> f32 {
 // The hatching direction field at pixel position p: the larger-|κ| principal direction (or the
 // smaller with direction = min), the other one for cross-hatching.
 fn field(p: vec2<f32>, other: bool) -> vec2<f32> {
-    return direction_field(curvature, p, (hatch.shape.z > 0.5) != other);
+    return direction_field(curvature, p, (hatch.smaller_curvature != 0u) != other);
 }
 
 // Integrates one half of a stroke from p along ±`heading`, writing points at slot
 // base + steps ± i; returns how many steps it made.
 fn trace_half(base: u32, start: vec2<f32>, heading: vec2<f32>, sense: i32, other: bool) -> u32 {
-    let h = hatch.frame.z;
-    let tolerance = hatch.options.z;
+    let h = hatch.step;
+    let tolerance = hatch.depth_tolerance;
     var p = start;
     var d = heading;
     var z = surface_z(vec2<i32>(floor(p)));
@@ -140,7 +150,7 @@ fn trace_half(base: u32, start: vec2<f32>, heading: vec2<f32>, sense: i32, other
 
 fn trace_stroke(seed: u32, p: vec2<f32>, other: bool) {
     let slot = atomicAdd(&counter, 1u);
-    if slot >= u32(hatch.shape.w) {
+    if slot >= hatch.max_strokes {
         return;
     }
     let base = slot * slots();
@@ -163,11 +173,11 @@ fn trace_stroke(seed: u32, p: vec2<f32>, other: bool) {
 @compute @workgroup_size(64)
 fn trace(@builtin(global_invocation_id) gid: vec3<u32>) {
     let id = gid.x + gid.y * 65535u * 64u;
-    if id >= hatch.counts.x {
+    if id >= hatch.seeds {
         return;
     }
-    let u = random(id ^ hatch.counts.z);
-    let density = hatch.options.x;
+    let u = random(id ^ hatch.salt);
+    let density = hatch.density;
     if u >= density {
         return;
     }
@@ -194,14 +204,14 @@ fn trace(@builtin(global_invocation_id) gid: vec3<u32>) {
         let n = clamp(t + vec2<i32>(k % 3 - 1, k / 3 - 1), vec2<i32>(0), size - 1);
         nearest = min(nearest, abs(seed_z - surface_z(n)));
     }
-    if nearest > hatch.options.z {
+    if nearest > hatch.depth_tolerance {
         return;
     }
     if textureLoad(curvature, t, 0).z < -5.0 {
         return;
     }
     var brightness: f32;
-    if hatch.counts.y == 1u {
+    if hatch.use_tone == 1u {
         brightness = textureLoad(tone, t, 0).r;
     } else {
         brightness = max(textureLoad(normals, t, 0).z, 0.0);
@@ -212,14 +222,14 @@ fn trace(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     trace_stroke(id, p, false);
-    if darkness > hatch.options.y {
+    if darkness > hatch.cross_threshold {
         trace_stroke(id, p, true);
     }
 }
 
 @compute @workgroup_size(1)
 fn finish() {
-    let n = min(atomicLoad(&counter), u32(hatch.shape.w));
+    let n = min(atomicLoad(&counter), hatch.max_strokes);
     indirect[0] = 6u;
     indirect[1] = n * (slots() - 1u);
     indirect[2] = 0u;
@@ -236,12 +246,12 @@ struct StrokeOut {
 
 // Half width at point index k of a stroke with valid points first..=last.
 fn half_width(k: u32, first: u32, last: u32) -> f32 {
-    let taper = hatch.shape.y;
+    let taper = hatch.taper;
     if taper <= 0.0 {
-        return 0.5 * hatch.shape.x;
+        return 0.5 * hatch.width;
     }
     let t = f32(k - first) / max(f32(last - first), 1.0);
-    return 0.5 * hatch.shape.x * clamp(min(t, 1.0 - t) / taper, 0.0, 1.0);
+    return 0.5 * hatch.width * clamp(min(t, 1.0 - t) / taper, 0.0, 1.0);
 }
 
 @vertex

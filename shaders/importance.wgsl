@@ -22,20 +22,30 @@
 // Prepended: ray_common, ray_skip, ray_objects.
 
 struct ImportanceParams {
-    // x, y = frame size; z = countersink slope s_c (≤ 0: cylindrical, no countersink); w = 1 for
-    // an orthographic camera.
-    frame: vec4<f32>,
-    // x = world size of a pixel (orthographic) or of a pixel at unit view depth (perspective);
-    // y = AImC transition radius in pixels; z = focus object id; w = number of table rows.
-    view: vec4<f32>,
+    // Frame size in pixels.
+    frame_size: vec2<u32>,
+    // Countersink slope s_c (≤ 0: cylindrical, no countersink).
+    slope: f32,
+    // 1 for an orthographic camera.
+    orthographic: u32,
+    // World size of a pixel (orthographic) or of a pixel at unit view depth (perspective).
+    pixel_world: f32,
+    // The focus object's id.
+    focus: u32,
+    pad0: f32,
+    pad1: f32,
     // Importance of table row i (the drawn objects, in table order) at weights[i / 4][i % 4].
     weights: array<vec4<f32>, 8>,
 };
 @group(0) @binding(20) var<uniform> imp: ImportanceParams;
 
-// One pass of a separable or iterated kernel: x = axis (0 = x, 1 = y) or JFA step; y = radius.
+// One pass of a separable or iterated kernel: the axis (0 = x, 1 = y) or the JFA step in
+// pixels, and the radius in pixels.
 struct PassParams {
-    step: vec4<f32>,
+    step: u32,
+    radius: u32,
+    pad0: u32,
+    pad1: u32,
 };
 @group(0) @binding(21) var<uniform> pass_params: PassParams;
 
@@ -57,7 +67,7 @@ struct PassParams {
 const NO_SEED: f32 = -1.0e9;
 
 fn frame_size() -> vec2<i32> {
-    return vec2<i32>(imp.frame.xy + 0.5);
+    return vec2<i32>(imp.frame_size);
 }
 
 fn in_frame(id: vec2<u32>) -> bool {
@@ -79,17 +89,17 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
     var first = -1.0;
     var last = -1.0;
     var bits = 0u;
-    let focus = u32(imp.view.z + 0.5);
-    let columns = i32(two_level.options.z + 0.5);
+    let focus = imp.focus;
+    let columns = two_level.columns;
     if r.hits {
-        let h = ray.box_min.w;
+        let h = ray.step_world;
         let count = min(u32(max(floor((r.t_out - r.t_in) / h), -1.0) + 1.0), 65536u);
         for (var k = 0u; k < count; k++) {
             let t = r.t_in + f32(k) * h;
             let q = r.q0 + r.dq * t;
-            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
+            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
             let info = textureLoad(bricks, brick, 0);
-            if ray.skip.x > 0.5 && info.x > info.y {
+            if ray.skip_empty != 0u && info.x > info.y {
                 // No drawn object reaches this brick: jump to the first sample after it.
                 let exit = brick_exit(q, r.dq, t) - 1e-4 * h;
                 let next = min(max(ceil((exit - r.t_in) / h), f32(k + 1u)), f32(count));
@@ -99,12 +109,12 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
             var object = 0u;
             if info.z >= 0.0 {
                 object = u32(info.z);
-            } else if two_level.options.y > 0.5 && drawn_union(q) < 0.45 {
+            } else if two_level.boundary_filter != 0u && drawn_union(q) < 0.45 {
                 object = 0u;
             } else {
                 object = object_at(q);
             }
-            if object == 0u || i32(object) >= columns {
+            if object == 0u || object >= columns {
                 continue;
             }
             let row = object_info(object, 0u).x;
@@ -129,7 +139,7 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 fn axis_offset(o: i32) -> vec2<i32> {
-    if pass_params.step.x < 0.5 {
+    if pass_params.step == 0u {
         return vec2<i32>(o, 0);
     }
     return vec2<i32>(0, o);
@@ -140,7 +150,7 @@ fn dilate(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_frame(id.xy) {
         return;
     }
-    let radius = i32(pass_params.step.y + 0.5);
+    let radius = i32(pass_params.radius);
     let top = frame_size() - 1;
     var bits = 0u;
     for (var o = -radius; o <= radius; o++) {
@@ -170,7 +180,7 @@ fn box(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_frame(id.xy) {
         return;
     }
-    let radius = i32(pass_params.step.y + 0.5);
+    let radius = i32(pass_params.radius);
     let size = frame_size();
     var sum = 0.0;
     var n = 0.0;
@@ -201,7 +211,7 @@ fn jfa_step(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_frame(id.xy) {
         return;
     }
-    let k = i32(pass_params.step.x + 0.5);
+    let k = i32(pass_params.step);
     let size = frame_size();
     let here = vec2<f32>(id.xy);
     var best = textureLoad(seed_in, vec2<i32>(id.xy), 0).xy;
@@ -268,7 +278,7 @@ fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
     let fp = textureLoad(footprint_in, pixel, 0);
     let stats = textureLoad(stats_in, vec2<i32>(0), 0);
     let sum = textureLoad(sum_in, pixel, 0).r;
-    let slope = imp.frame.z;
+    let slope = imp.slope;
     var e = -1.0e30;
     var inside = 0.0;
     var normal = vec3<f32>(0.0, 0.0, 1.0);
@@ -284,9 +294,9 @@ fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
             d = length(away);
             if slope > 0.0 {
                 let e_max = stats.x;
-                var pixel_world = imp.view.x;
-                if imp.frame.w < 0.5 {
-                    pixel_world = imp.view.x * e_max;
+                var pixel_world = imp.pixel_world;
+                if imp.orthographic == 0u {
+                    pixel_world = imp.pixel_world * e_max;
                 }
                 // Eq. 1: e_i = e_max − d_i · s_c (d_i in world units at the footprint's depth).
                 e = e_max - d * pixel_world * slope;

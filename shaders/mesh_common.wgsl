@@ -4,8 +4,9 @@
 struct Camera {
     view: mat4x4<f32>,
     proj: mat4x4<f32>,
-    // World eye position; w = 1 for an orthographic camera.
-    eye: vec4<f32>,
+    // World eye position, and 1 for an orthographic camera.
+    eye: vec3<f32>,
+    orthographic: u32,
 };
 
 @group(0) @binding(0) var<uniform> camera: Camera;
@@ -35,7 +36,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
 
 // Unit vector from the surface point towards the viewer, in view space.
 fn to_viewer(view_pos: vec3<f32>) -> vec3<f32> {
-    if camera.eye.w > 0.5 {
+    if camera.orthographic != 0u {
         return vec3<f32>(0.0, 0.0, 1.0);
     }
     return normalize(-view_pos);

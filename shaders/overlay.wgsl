@@ -8,8 +8,10 @@
 // radius b.z in `halo`'s colour.
 
 struct Overlay {
-    // x, y = frame width and height, pixels.
-    frame: vec4<f32>,
+    // Frame width and height, pixels.
+    frame: vec2<f32>,
+    pad0: f32,
+    pad1: f32,
 };
 
 @group(0) @binding(0) var atlas: texture_2d<f32>;

@@ -17,7 +17,7 @@ fn table_lookup_row(v: f32, row: i32, domain: vec2<f32>) -> vec4<f32> {
 }
 
 fn table_lookup(v: f32) -> vec4<f32> {
-    return table_lookup_row(v, 0, ray.tf.xy);
+    return table_lookup_row(v, 0, ray.tf_domain);
 }
 
 // The table row, domain and style-node count of the object at voxel-space q (the label at the
@@ -31,12 +31,12 @@ struct TableRow {
 fn table_row_at(q: vec3<f32>) -> TableRow {
     var r: TableRow;
     r.row = 0;
-    r.domain = ray.tf.xy;
-    r.node_count = ray.tf.z;
-    if ray.labels.x > 0.5 {
-        let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0)));
-        let label = round(ray.labels.y + textureLoad(label_volume, voxel, 0).r * (ray.labels.z - ray.labels.y));
-        let slot = clamp(i32(label), 0, i32(ray.labels.w) - 1);
+    r.domain = ray.tf_domain;
+    r.node_count = f32(ray.style_nodes);
+    if ray.use_labels != 0u {
+        let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims - 1.0)));
+        let label = round(ray.label_texels.x + textureLoad(label_volume, voxel, 0).r * (ray.label_texels.y - ray.label_texels.x));
+        let slot = clamp(i32(label), 0, i32(ray.label_rows) - 1);
         r.row = i32(textureLoad(label_rows, vec2<i32>(slot, 0), 0).r + 0.5);
         let info = textureLoad(label_rows, vec2<i32>(r.row, 1), 0);
         r.domain = info.xy;

@@ -8,49 +8,83 @@ struct Ray {
     inv_view_proj: mat4x4<f32>,
     view: mat4x4<f32>,
     view_proj: mat4x4<f32>,
-    // xyz voxel-space box of the voxel centres (slightly widened); box_min.w = step in world
-    // units, box_max.w = step in voxels.
-    box_min: vec4<f32>,
-    box_max: vec4<f32>,
-    // xyz world origin (centre of voxel 0, informative); w = lowest finite value (the
-    // visibility table's range).
-    origin: vec4<f32>,
-    // xyz voxel spacing (informative); w = highest finite value.
-    spacing: vec4<f32>,
-    // xyz voxel counts; w = largest gradient magnitude (normalises |g| to [0, 1]).
-    dims: vec4<f32>,
-    // xyz view-space unit vector towards the light; w = 1 for an orthographic camera.
-    light: vec4<f32>,
-    // x, y = frame size; z = 1 to jitter the first sample; w = early-termination opacity.
-    frame: vec4<f32>,
-    // x = mode (0 DVR, 1 MIP, 2 iso); y = iso value; z = shading (0 none, 1 Phong,
-    // 2 lighting TF, 3 context-preserving, 4 style); w = accumulated opacity that counts as "hit".
-    mode: vec4<f32>,
-    // ambient, diffuse, specular, exponent of eq. 3.
-    phong: vec4<f32>,
-    // kappa_t, kappa_s, nearest and farthest eye-to-box-corner distances (eq. 5).
-    context: vec4<f32>,
-    // transfer-function domain (lo, hi); z = number of style nodes N; w = contour thickness T.
-    tf: vec4<f32>,
-    // x = 1 for style contours, y = 1 for illustrative transparency (eq. 2), z = mip bias,
-    // w = style map size in texels.
-    style: vec4<f32>,
-    // xyz world eye position (perspective cameras).
-    eye: vec4<f32>,
-    // x = 1 when a label volume selects per-object style rows (§4.2); y, z = its texel range
-    // (the texture is normalised like the volume's); w = width of the label → row table.
-    labels: vec4<f32>,
-    // x = 1 to skip empty bricks (DVR); y = voxels per brick side; z = visibility bins.
-    skip: vec4<f32>,
     // World → voxel transform (voxel centres at integers); rays march in voxel space.
     to_voxel: mat4x4<f32>,
     // Voxel-space gradient → world-space gradient: the inverse transpose of the linear part.
     grad_to_world: mat4x4<f32>,
-    // x, y: data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format
-    // follows the voxel type, see hatchery_nodes::volume_texture); z = 1 when strokes are
-    // embedded (Raycast); w = global alpha ρ scaling every sample's opacity (Raycast, DVR).
-    texel: vec4<f32>,
+    // Voxel-space box of the voxel centres (slightly widened), and the sample distance in
+    // world units and in voxels.
+    box_min: vec3<f32>,
+    step_world: f32,
+    box_max: vec3<f32>,
+    step_voxels: f32,
+    // Voxel counts, and the largest gradient magnitude (normalises |g| to [0, 1]).
+    dims: vec3<f32>,
+    max_gradient: f32,
+    // View-space unit vector towards the light; 1 for an orthographic camera.
+    light: vec3<f32>,
+    orthographic: u32,
+    // World eye position (perspective cameras); 1 for Schlick's approximation in eq. 5.
+    eye: vec3<f32>,
+    fast_exponent: u32,
+    // Frame size in pixels; 1 to jitter the first sample; the early-termination opacity.
+    frame: vec2<f32>,
+    jitter: u32,
+    early_termination: f32,
+    // A MODE_* constant (raycast.wgsl), the iso value, a SHADING_* constant (ray_shade.wgsl),
+    // and the accumulated opacity that counts as "hit".
+    mode: u32,
+    iso: f32,
+    shading: u32,
+    hit_opacity: f32,
+    // c_a, c_d, c_s, c_e of eq. 3.
+    ambient: f32,
+    diffuse: f32,
+    specular: f32,
+    shininess: f32,
+    // κ_t, κ_s and the nearest and farthest eye-to-box-corner distances (eq. 5).
+    kappa_t: f32,
+    kappa_s: f32,
+    distance_near: f32,
+    distance_far: f32,
+    // Transfer-function domain (lo, hi) of table row 0; its style nodes N (0 for a colour
+    // TF); the style contour thickness T.
+    tf_domain: vec2<f32>,
+    style_nodes: u32,
+    contour_thickness: f32,
+    // 1 for style contours; 1 for illustrative transparency (eq. 2); the style mip bias; the
+    // style map size in texels.
+    contours: u32,
+    transparency: u32,
+    mip_bias: f32,
+    style_map_size: f32,
+    // The label volume's texel range (normalised like the volume's), the width of the
+    // label → row table, and 1 when a label volume selects per-object style rows (§4.2).
+    label_texels: vec2<f32>,
+    label_rows: u32,
+    use_labels: u32,
+    // Lowest and highest finite value (the visibility table's range); voxels per brick side;
+    // visibility bins.
+    value_range: vec2<f32>,
+    brick_size: u32,
+    visibility_bins: u32,
+    // Data values of texel 0 and 1 (value = x + (y - x) · texel; the texture's format follows
+    // the voxel type, see hatchery_nodes::volume_texture); 1 to skip empty bricks (DVR); 1 when
+    // strokes are embedded (Raycast).
+    texel_values: vec2<f32>,
+    skip_empty: u32,
+    embed_strokes: u32,
+    // Global alpha ρ scaling every sample's opacity (Raycast, DVR).
+    rho: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 };
+
+// Ray.mode (hatchery_nodes::raycast::RayMode).
+const RAY_MODE_DVR: u32 = 0u;
+const RAY_MODE_MIP: u32 = 1u;
+const RAY_MODE_ISO: u32 = 2u;
 
 @group(0) @binding(0) var<uniform> ray: Ray;
 @group(0) @binding(1) var volume: texture_3d<f32>;
@@ -81,14 +115,14 @@ const LIGHTING_SIZE: f32 = 64.0;
 override RAY_ORTHOGRAPHIC: i32 = -1;
 override RAY_FAST_EXPONENT: i32 = -1;
 
-// Whether the camera is orthographic (ray.light.w, unless RAY_ORTHOGRAPHIC says).
+// Whether the camera is orthographic (ray.orthographic, unless RAY_ORTHOGRAPHIC says).
 fn orthographic() -> bool {
-    return select(ray.light.w > 0.5, RAY_ORTHOGRAPHIC > 0, RAY_ORTHOGRAPHIC >= 0);
+    return select(ray.orthographic != 0u, RAY_ORTHOGRAPHIC > 0, RAY_ORTHOGRAPHIC >= 0);
 }
 
-// Whether eq. 5 uses Schlick's approximation (ray.eye.w, unless RAY_FAST_EXPONENT says).
+// Whether eq. 5 uses Schlick's approximation (ray.fast_exponent, unless RAY_FAST_EXPONENT says).
 fn fast_exponent() -> bool {
-    return select(ray.eye.w > 0.5, RAY_FAST_EXPONENT > 0, RAY_FAST_EXPONENT >= 0);
+    return select(ray.fast_exponent != 0u, RAY_FAST_EXPONENT > 0, RAY_FAST_EXPONENT >= 0);
 }
 
 // Returned by value_at where the sample leans on a "no data" voxel (the texture holds
@@ -97,12 +131,12 @@ const NO_DATA: f32 = -1.0e30;
 
 // Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
 fn value_at(q: vec3<f32>) -> f32 {
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+    let uv = (clamp(q, vec3<f32>(0.0), ray.dims - 1.0) + 0.5) / ray.dims;
     let normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
     if normalised < -0.5 {
         return NO_DATA;
     }
-    return ray.texel.x + normalised * (ray.texel.y - ray.texel.x);
+    return ray.texel_values.x + normalised * (ray.texel_values.y - ray.texel_values.x);
 }
 
 // Whether a value from value_at is "no data" (transparent).
@@ -113,7 +147,7 @@ fn no_data(v: f32) -> bool {
 // World-space gradient by central differences in voxel space (one-sided at the border and next
 // to "no data", 0 with no data on both sides), mapped to world units through the transform.
 fn gradient_at(q: vec3<f32>) -> vec3<f32> {
-    let top = ray.dims.xyz - 1.0;
+    let top = ray.dims - 1.0;
     let p = clamp(q, vec3<f32>(0.0), top);
     var g = vec3<f32>(0.0);
     for (var axis = 0; axis < 3; axis++) {

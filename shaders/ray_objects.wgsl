@@ -18,18 +18,28 @@
 @group(0) @binding(14) var drawn_mask: texture_3d<f32>;
 
 struct TwoLevel {
-    // x = global compositing (0 over, 1 mip, 2 sum); y = 1 for boundary filtering, 0 for point
-    // sampling; z = number of columns of `objects` (largest id + 1); w = 1 to take normals from
-    // each object's own filtered mask instead of the data (label maps without intensities).
-    options: vec4<f32>,
-    // Importance-driven rendering (TwoLevelRaycast with an `importance` input): x = method (0
-    // none, 1 MImP, 2 AImC image space, 3 AImC object space, 4 VPImC); y = level of sparseness
-    // (0 opacity, 1 colour saturation, 2 screen door, 3 sparse style); z = focus id; w = 1 in
-    // VPImC's first pass, which draws only the occluding context.
-    importance: vec4<f32>,
-    // x, y = rendering mode and local compositing of the sparse style; z = depth band behind a
-    // countersink cut shaded with the cut's normal (world units); w = 0.
-    sparse: vec4<f32>,
+    // Global compositing of the segments (a GLOBAL_* constant of two_level_raycast.wgsl).
+    global_mode: u32,
+    // 1 for boundary filtering (§2.3), 0 for point sampling.
+    boundary_filter: u32,
+    // Columns of `objects` (largest id + 1).
+    columns: u32,
+    // 1 to take normals from each object's own filtered mask instead of the data (label maps
+    // without intensities).
+    mask_normals: u32,
+    // Importance-driven rendering (TwoLevelRaycast with an `importance` input): the method (an
+    // IMP_* constant), the level of sparseness (SPARSE_*), the focus id, and 1 in VPImC's first
+    // pass, which draws only the occluding context.
+    method: u32,
+    level: u32,
+    focus: u32,
+    first_pass: u32,
+    // Rendering mode (MODE_*) and local compositing (LOCAL_*) of the sparse style, and the
+    // depth band behind a countersink cut shaded with the cut's normal (world units).
+    sparse_mode: u32,
+    sparse_local: u32,
+    cut_band: f32,
+    pad0: f32,
 };
 @group(0) @binding(13) var<uniform> two_level: TwoLevel;
 
@@ -38,15 +48,15 @@ fn object_info(id: u32, which: u32) -> vec4<f32> {
 }
 
 fn id_at(v: vec3<i32>) -> u32 {
-    let top = vec3<i32>(ray.dims.xyz) - 1;
+    let top = vec3<i32>(ray.dims) - 1;
     return textureLoad(object_ids, clamp(v, vec3<i32>(0), top), 0).r;
 }
 
 // The object at voxel-space q: boundary filtering (§2.3) or the nearest voxel; 0 for none
 // (background, or no object's filtered mask above 0.5, as at a junction of three objects).
 fn object_at(q: vec3<f32>) -> u32 {
-    let p = clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0);
-    if two_level.options.y < 0.5 {
+    let p = clamp(q, vec3<f32>(0.0), ray.dims - 1.0);
+    if two_level.boundary_filter == 0u {
         return id_at(vec3<i32>(round(p)));
     }
     let base = vec3<i32>(floor(p));
@@ -76,7 +86,7 @@ fn object_at(q: vec3<f32>) -> u32 {
 
 // The trilinearly filtered binary mask of object `id` at voxel-space q (§2.3).
 fn object_mask(q: vec3<f32>, id: u32) -> f32 {
-    let p = clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0);
+    let p = clamp(q, vec3<f32>(0.0), ray.dims - 1.0);
     let base = vec3<i32>(floor(p));
     let f = p - floor(p);
     var mask = 0.0;
@@ -106,7 +116,7 @@ fn object_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
 
 // The gradient that shades a sample of object `id`: the data's, or the object mask's.
 fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
-    if two_level.options.w > 0.5 {
+    if two_level.mask_normals != 0u {
         return object_gradient(q, id);
     }
     return gradient_at(q);
@@ -114,7 +124,7 @@ fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
 
 // The drawn objects' union mask at voxel-space q, filtered trilinearly by the sampler.
 fn drawn_union(q: vec3<f32>) -> f32 {
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+    let uv = (clamp(q, vec3<f32>(0.0), ray.dims - 1.0) + 0.5) / ray.dims;
     return textureSampleLevel(drawn_mask, linear_clamp, uv, 0.0).r;
 }
 

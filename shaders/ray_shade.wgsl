@@ -3,9 +3,16 @@
 // transfer functions (Bruckner & Gröller 2007: lit spheres §3.1/§4.1, style contours §3.3,
 // illustrative transparency eq. 2).
 
+// Ray.shading (hatchery_nodes::raycast::RayShading).
+const SHADING_NONE: u32 = 0u;
+const SHADING_PHONG: u32 = 1u;
+const SHADING_LIGHTING: u32 = 2u;
+const SHADING_CONTEXT: u32 = 3u;
+const SHADING_STYLE: u32 = 4u;
+
 // Eq. 3: c_a + c_d |L·N| + c_s |H·N|^c_e.
 fn phong_term(n: vec3<f32>, l: vec3<f32>, hv: vec3<f32>) -> f32 {
-    return ray.phong.y * abs(dot(l, n)) + ray.phong.z * pow(abs(dot(hv, n)), ray.phong.w) + ray.phong.x;
+    return ray.diffuse * abs(dot(l, n)) + ray.specular * pow(abs(dot(hv, n)), ray.shininess) + ray.ambient;
 }
 
 // Bilinear lookup of the lighting transfer function at signed (N·L, N·H).
@@ -24,7 +31,7 @@ fn lighting_lookup(nl: f32, nh: f32) -> vec4<f32> {
 
 // Eq. 1 of Bruckner & Gröller 2007: sqrt(T κv (2 − T κv)), T κv clamped to [0, 1].
 fn contour_limit(kappa_v: f32) -> f32 {
-    let tk = clamp(ray.tf.w * kappa_v, 0.0, 1.0);
+    let tk = clamp(ray.contour_thickness * kappa_v, 0.0, 1.0);
     return sqrt(tk * (2.0 - tk));
 }
 
@@ -43,12 +50,12 @@ fn schlick_pow(x: f32, n: f32) -> f32 {
 // g_norm ∈ [0, 1], after the accumulated opacity `alpha_before` (eye position from the uniforms;
 // the near plane for orthographic cameras, p0 on the ray).
 fn context_preserving(a: f32, s: f32, g_norm: f32, p: vec3<f32>, p0: vec3<f32>, alpha_before: f32) -> f32 {
-    var eye = ray.eye.xyz;
+    var eye = ray.eye;
     if orthographic() {
         eye = p0;
     }
-    let dist = clamp((length(p - eye) - ray.context.z) / max(ray.context.w - ray.context.z, 1e-20), 0.0, 1.0);
-    let base = ray.context.x * s * (1.0 - dist) * (1.0 - alpha_before);
+    let dist = clamp((length(p - eye) - ray.distance_near) / max(ray.distance_far - ray.distance_near, 1e-20), 0.0, 1.0);
+    let base = ray.kappa_t * s * (1.0 - dist) * (1.0 - alpha_before);
     if fast_exponent() {
         // The paper's §6: Schlick's x^n ≈ x / (n − n·x + x) for both exponentiations (eq. 6–7),
         // on [0, 1]; a base above 1 keeps pow for the inner one.
@@ -57,15 +64,15 @@ fn context_preserving(a: f32, s: f32, g_norm: f32, p: vec3<f32>, p0: vec3<f32>, 
         }
         var e: f32;
         if base <= 1.0 {
-            e = schlick_pow(base, ray.context.y);
+            e = schlick_pow(base, ray.kappa_s);
         } else {
-            e = pow(base, ray.context.y);
+            e = pow(base, ray.kappa_s);
         }
         return a * schlick_pow(clamp(g_norm, 0.0, 1.0), e);
     }
     var exponent = 0.0;
     if base > 0.0 {
-        exponent = pow(base, ray.context.y);
+        exponent = pow(base, ray.kappa_s);
     }
     if exponent != 0.0 {
         return a * pow(g_norm, exponent);
@@ -78,7 +85,7 @@ fn context_preserving(a: f32, s: f32, g_norm: f32, p: vec3<f32>, p0: vec3<f32>, 
 // gradient magnitude g_norm and curvature estimate kappa_v (angle between successive normals
 // over the step; 0 at a ray's first sample or after a gap).
 fn style_shade(entry: vec4<f32>, t: TableRow, n: vec3<f32>, v_dir: vec3<f32>, g_norm: f32, kappa_v: f32) -> vec4<f32> {
-    let h = ray.box_min.w;
+    let h = ray.step_world;
     let i = entry.x;
     let alpha_u = entry.y;
     let last = max(t.node_count - 1.0, 0.0);
@@ -91,7 +98,7 @@ fn style_shade(entry: vec4<f32>, t: TableRow, n: vec3<f32>, v_dir: vec3<f32>, g_
     let limit = contour_limit(kappa_v);
     var nxy = n.xy;
     let r = length(nxy);
-    if ray.style.x > 0.5 && limit > 0.0 && abs(n_dot_v) <= limit && r > 0.0 {
+    if ray.contours != 0u && limit > 0.0 && abs(n_dot_v) <= limit && r > 0.0 {
         // Push the sphere-map coordinates outwards: r' = min(1, r / δ).
         let delta = 1.0 - min(1.0, (limit - abs(n_dot_v)) / limit);
         var r_new = 1.0;
@@ -101,10 +108,10 @@ fn style_shade(entry: vec4<f32>, t: TableRow, n: vec3<f32>, v_dir: vec3<f32>, g_
         nxy = nxy * (r_new / r);
     }
     // Mip level from how far the normal turns across one step (§4.3), plus a bias.
-    let lod = max(log2(max(kappa_v * h * ray.style.w * 0.5, 1.0)) + ray.style.z, 0.0);
+    let lod = max(log2(max(kappa_v * h * ray.style_map_size * 0.5, 1.0)) + ray.mip_bias, 0.0);
     let styled = mix(style_sample(j0, nxy, lod), style_sample(j1, nxy, lod), w);
     var a = styled.a * alpha_u;
-    if ray.style.y > 0.5 {
+    if ray.transparency != 0u {
         // Illustrative transparency, eq. 2.
         let exponent = 0.5 + max(0.0, abs(n_dot_v) - limit) * (1.0 - g_norm);
         var factor = 0.0;
@@ -117,11 +124,11 @@ fn style_shade(entry: vec4<f32>, t: TableRow, n: vec3<f32>, v_dir: vec3<f32>, g_
 }
 
 // Shaded colour of a surface point (iso mode): base colour c, view-space normal n.
-fn shade_surface(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>, hv: vec3<f32>, shading: i32) -> vec3<f32> {
-    if shading == 1 || shading == 3 {
+fn shade_surface(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>, hv: vec3<f32>, shading: u32) -> vec3<f32> {
+    if shading == SHADING_PHONG || shading == SHADING_CONTEXT {
         return clamp(c * phong_term(n, l, hv), vec3<f32>(0.0), vec3<f32>(1.0));
     }
-    if shading == 2 {
+    if shading == SHADING_LIGHTING {
         let lt = lighting_lookup(dot(n, l), dot(n, hv));
         return clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
     }

@@ -4,17 +4,17 @@
 
 // [min, max] of the values trilinear samples can take in the brick holding voxel-space q.
 fn brick_range(q: vec3<f32>) -> vec2<f32> {
-    let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
+    let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
     return textureLoad(bricks, brick, 0).xy;
 }
 
 // Whether no value in `range` is visible under any row of the transfer function.
 fn range_is_invisible(range: vec2<f32>) -> bool {
-    let lo = ray.origin.w;
-    let span = max(ray.spacing.w - lo, 1e-30);
-    let last = i32(ray.skip.z) - 1;
-    let a = clamp(i32(floor((range.x - lo) / span * ray.skip.z)), 0, last);
-    let b = clamp(i32(floor((range.y - lo) / span * ray.skip.z)), 0, last);
+    let lo = ray.value_range.x;
+    let span = max(ray.value_range.y - lo, 1e-30);
+    let last = i32(ray.visibility_bins) - 1;
+    let a = clamp(i32(floor((range.x - lo) / span * f32(ray.visibility_bins))), 0, last);
+    let b = clamp(i32(floor((range.y - lo) / span * f32(ray.visibility_bins))), 0, last);
     var before = 0.0;
     if a > 0 {
         before = textureLoad(visibility, vec2<i32>(a - 1, 0), 0).r;
@@ -24,13 +24,13 @@ fn range_is_invisible(range: vec2<f32>) -> bool {
 
 // The ray parameter where the ray leaves the brick holding q (q = q0 + dq·t).
 fn brick_exit(q: vec3<f32>, dq: vec3<f32>, t: f32) -> f32 {
-    let brick = floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y);
+    let brick = floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size));
     var exit = 1e30;
     for (var axis = 0; axis < 3; axis++) {
         if dq[axis] > 1e-12 {
-            exit = min(exit, t + ((brick[axis] + 1.0) * ray.skip.y - q[axis]) / dq[axis]);
+            exit = min(exit, t + ((brick[axis] + 1.0) * f32(ray.brick_size) - q[axis]) / dq[axis]);
         } else if dq[axis] < -1e-12 {
-            exit = min(exit, t + (brick[axis] * ray.skip.y - q[axis]) / dq[axis]);
+            exit = min(exit, t + (brick[axis] * f32(ray.brick_size) - q[axis]) / dq[axis]);
         }
     }
     return exit;

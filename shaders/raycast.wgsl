@@ -14,16 +14,16 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     out.depth = 1.0;
     let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
     // The maximum of the texels themselves: texels map to data values increasingly
-    // (ray.texel.x < ray.texel.y), so the largest texel is the largest value, mapped once at the
+    // (ray.texel_values.x < ray.texel_values.y), so the largest texel is the largest value, mapped once at the
     // end. Same samples as value_at; the same winner, except where two texels map to one f32
     // value (a tie there keeps the earliest sample, here the larger texel: same colour). "No data"
     // (texels below −0.5) never wins: the start is the float just below −0.5.
-    let top = ray.dims.xyz - 1.0;
+    let top = ray.dims - 1.0;
     var best = bitcast<f32>(0xbf000001u);
     var best_t = -1.0;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
-        let uv = (clamp(r.q0 + r.dq * t, vec3<f32>(0.0), top) + 0.5) / ray.dims.xyz;
+        let uv = (clamp(r.q0 + r.dq * t, vec3<f32>(0.0), top) + 0.5) / ray.dims;
         let texel = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
         if texel > best {
             best = texel;
@@ -33,7 +33,7 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     if best_t < 0.0 {
         return out;
     }
-    let entry = table_lookup(ray.texel.x + best * (ray.texel.y - ray.texel.x));
+    let entry = table_lookup(ray.texel_values.x + best * (ray.texel_values.y - ray.texel_values.x));
     out.color = vec4<f32>(entry.rgb * entry.a, entry.a);
     out.depth = to_window_depth(r.p0 + r.dir * best_t);
     out.normal = vec4<f32>(0.0, 0.0, 0.0, 1.0);
@@ -44,7 +44,7 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
 // of the surface it was drawn on. Where a stroke covers a pixel its colour, with opacity
 // coverage × alpha, is composited as a layer at the stroke's depth: under what the ray gathered
 // in front of it, over what lies behind (an opaque stroke ends the ray: no sample behind it
-// contributes; a soft edge lets the volume behind show through). DVR only. ray.texel.z = 1 when strokes are bound; ray.texel.w =
+// contributes; a soft edge lets the volume behind show through). DVR only. ray.embed_strokes = 1 when strokes are bound; ray.rho =
 // the global alpha ρ that scales every sample's opacity.
 @group(0) @binding(15) var stroke_depth: texture_depth_2d;
 @group(0) @binding(16) var stroke_mask: texture_2d<f32>;
@@ -56,7 +56,7 @@ struct Strokes {
 
 // The stroke at `position`: (coverage, t along the ray where it lies; 1e30 for none).
 fn stroke_at(position: vec2<f32>, p0: vec3<f32>, dir: vec3<f32>) -> vec2<f32> {
-    if ray.texel.z < 0.5 {
+    if ray.embed_strokes == 0u {
         return vec2<f32>(0.0, 1e30);
     }
     let pixel = vec2<i32>(floor(position));
@@ -70,14 +70,14 @@ fn stroke_at(position: vec2<f32>, p0: vec3<f32>, dir: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(m, dot(h4.xyz / h4.w - p0, dir));
 }
 
-// The mode (0 DVR, 1 MIP, 2 iso) and the shading as pipeline constants: Raycast makes one
+// The mode (a RAY_MODE_* constant) and the shading (SHADING_*) as pipeline constants: Raycast makes one
 // pipeline per combination, the compiler folds the constants and drops the other modes' code
 // from the loop. −1 (the default, for other programs) reads them from the uniform instead.
 override RAY_MODE: i32 = -1;
 override RAY_SHADING: i32 = -1;
 
-fn ray_mode() -> i32 {
-    return select(i32(ray.mode.x + 0.5), RAY_MODE, RAY_MODE >= 0);
+fn ray_mode() -> u32 {
+    return select(ray.mode, u32(RAY_MODE), RAY_MODE >= 0);
 }
 
 fn cast_ray(position: vec2<f32>) -> RayResult {
@@ -89,7 +89,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     let r = primary_ray(position);
     let stroke = stroke_at(position, r.p0, r.dir);
     let stroke_alpha = stroke.x * strokes.color.a;
-    let dvr = ray_mode() == 0;
+    let dvr = ray_mode() == RAY_MODE_DVR;
     if !r.hits {
         if dvr {
             out.color = vec4<f32>(strokes.color.rgb * stroke_alpha, stroke_alpha);
@@ -104,17 +104,17 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     // DVR composites an embedded stroke at its depth; MIP and iso ignore strokes.
     var stroke_pending = dvr && stroke_alpha > 0.0;
 
-    let h = ray.box_min.w;
-    let step_voxels = ray.box_max.w;
+    let h = ray.step_world;
+    let step_voxels = ray.step_voxels;
     var start = r.t_in;
-    if ray.frame.z > 0.5 {
+    if ray.jitter != 0u {
         start += h * hash(position);
     }
     let mode = ray_mode();
-    let shading = select(i32(ray.mode.z + 0.5), RAY_SHADING, RAY_SHADING >= 0);
-    let l = ray.light.xyz;
+    let shading = select(ray.shading, u32(RAY_SHADING), RAY_SHADING >= 0);
+    let l = ray.light;
 
-    if mode == 1 {
+    if mode == RAY_MODE_MIP {
         return cast_mip(r, start, h);
     }
 
@@ -128,14 +128,14 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     var hit_t = -1.0;
     let count = min(u32(max(floor((t_out - start) / h), -1.0) + 1.0), 65536u);
 
-    let skipping = ray.skip.x > 0.5;
+    let skipping = ray.skip_empty != 0u;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
         if stroke_pending && t >= stroke.y {
             stroke_pending = false;
             color += (1.0 - alpha) * stroke_alpha * strokes.color.rgb;
             alpha += (1.0 - alpha) * stroke_alpha;
-            if alpha >= ray.frame.w {
+            if alpha >= ray.early_termination {
                 break;
             }
         }
@@ -147,19 +147,19 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             let range = brick_range(q);
             // An empty range (min > max) holds only "no data".
             var skip = range.x > range.y;
-            if !skip && mode == 0 {
+            if !skip && mode == RAY_MODE_DVR {
                 skip = range_is_invisible(range);
-            } else if !skip && mode == 1 {
+            } else if !skip && mode == RAY_MODE_MIP {
                 skip = range.y <= best;
             } else if !skip {
-                skip = range.y < ray.mode.y;
+                skip = range.y < ray.iso;
             }
             if skip {
                 // Jump to the first sample past the brick, on the same lattice of t, so the
                 // samples taken are exactly those taken without skipping.
                 let exit = brick_exit(q, dq, t) - 1e-4 * h;
                 let next = min(max(ceil((exit - start) / h), f32(k + 1u)), f32(count));
-                if mode == 2 {
+                if mode == RAY_MODE_ISO {
                     // The iso hit interpolates from the sample before it: take that one.
                     let t_before = start + (next - 1.0) * h;
                     previous_value = value_at(q0 + dq * t_before);
@@ -179,18 +179,18 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             continue;
         }
 
-        if mode == 1 {
+        if mode == RAY_MODE_MIP {
             if v > best {
                 best = v;
                 best_t = t;
             }
             continue;
         }
-        if mode == 2 {
-            if v >= ray.mode.y {
+        if mode == RAY_MODE_ISO {
+            if v >= ray.iso {
                 var t_hit = t;
                 if k > 0u && v != previous_value && !no_data(previous_value) {
-                    t_hit = previous_t + h * (ray.mode.y - previous_value) / (v - previous_value);
+                    t_hit = previous_t + h * (ray.iso - previous_value) / (v - previous_value);
                 }
                 hit_t = t_hit;
                 break;
@@ -206,7 +206,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         let entry = table_lookup_row(v, row.row, row.domain);
         // Colour TFs keep opacity in .a, style TFs α_u in .y.
         var classified = entry.a;
-        if shading == 4 {
+        if shading == SHADING_STYLE {
             classified = entry.y;
         }
         if classified <= 0.0 {
@@ -219,13 +219,13 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         let n = view_normal(g);
         let v_dir = view_direction(p);
         let hv = normalize(l + v_dir);
-        let g_norm = clamp(g_length / max(ray.dims.w, 1e-20), 0.0, 1.0);
+        let g_norm = clamp(g_length / max(ray.max_gradient, 1e-20), 0.0, 1.0);
 
         var c = vec3<f32>(0.0);
         var a = 0.0;
         // Eq. 3's Phong term, computed once for the colour and eq. 5.
         var phong = 1.0;
-        if shading == 4 {
+        if shading == SHADING_STYLE {
             // κv: angle between successive normals over the step (§3.3).
             var kappa_v = 0.0;
             if k > 0u && dot(previous_normal, previous_normal) > 0.5 && g_length > 1e-12 {
@@ -238,12 +238,12 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         } else {
             c = entry.rgb;
             a = entry.a;
-            if shading == 1 || shading == 3 {
+            if shading == SHADING_PHONG || shading == SHADING_CONTEXT {
                 phong = phong_term(n, l, hv);
                 c = clamp(c * phong, vec3<f32>(0.0), vec3<f32>(1.0));
             }
         }
-        if shading == 2 {
+        if shading == SHADING_LIGHTING {
             // VolumeShop lighting transfer function, eq. 8: it enhances the TF's opacity α_u,
             // before the step correction below (the two differ when the step is not 1 voxel).
             let lt = lighting_lookup(dot(n, l), dot(n, hv));
@@ -252,23 +252,23 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         }
         // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
         // (TF opacities are per voxel).
-        a = 1.0 - pow(1.0 - clamp(a * ray.texel.w, 0.0, 1.0), step_voxels);
-        if shading == 3 {
+        a = 1.0 - pow(1.0 - clamp(a * ray.rho, 0.0, 1.0), step_voxels);
+        if shading == SHADING_CONTEXT {
             // Context-preserving opacity, eq. 5 (applied to the corrected opacity).
             a = context_preserving(a, phong, g_norm, p, p0, alpha);
         }
         color += (1.0 - alpha) * a * c;
         alpha += (1.0 - alpha) * a;
-        if hit_t < 0.0 && alpha >= ray.mode.w {
+        if hit_t < 0.0 && alpha >= ray.hit_opacity {
             hit_t = t;
             out.normal = vec4<f32>(n, 1.0);
         }
-        if alpha >= ray.frame.w {
+        if alpha >= ray.early_termination {
             break;
         }
     }
 
-    if mode == 1 {
+    if mode == RAY_MODE_MIP {
         if best_t < 0.0 {
             return out;
         }
@@ -278,19 +278,19 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         out.normal = vec4<f32>(0.0, 0.0, 0.0, 1.0);
         return out;
     }
-    if mode == 2 {
+    if mode == RAY_MODE_ISO {
         if hit_t < 0.0 {
             return out;
         }
         let p = p0 + dir * hit_t;
         let n = view_normal(gradient_at(q0 + dq * hit_t));
         let hv = normalize(l + view_direction(p));
-        out.color = vec4<f32>(shade_surface(table_lookup(ray.mode.y).rgb, n, l, hv, shading), 1.0);
+        out.color = vec4<f32>(shade_surface(table_lookup(ray.iso).rgb, n, l, hv, shading), 1.0);
         out.normal = vec4<f32>(n, 1.0);
         out.depth = to_window_depth(p);
         return out;
     }
-    if stroke_pending && alpha < ray.frame.w {
+    if stroke_pending && alpha < ray.early_termination {
         color += (1.0 - alpha) * stroke_alpha * strokes.color.rgb;
         alpha += (1.0 - alpha) * stroke_alpha;
     }

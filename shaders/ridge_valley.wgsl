@@ -12,8 +12,13 @@
 @group(0) @binding(0) var curvature: texture_2d<f32>;
 
 struct RidgeValley {
-    // x = threshold (world units⁻¹); y = line thickness (pixels); z = 0 ridges, 1 valleys.
-    options: vec4<f32>,
+    // Smallest |κ| of a line (world units⁻¹).
+    threshold: f32,
+    // Line thickness (pixels).
+    thickness: f32,
+    // 0 for ridges, 1 for valleys.
+    valleys: u32,
+    pad0: f32,
 };
 @group(0) @binding(1) var<uniform> params: RidgeValley;
 
@@ -32,7 +37,7 @@ fn key_at(p: vec2<f32>) -> f32 {
         }
         let w = select(1.0 - f, f, vec2<bool>(o == vec2<i32>(1)));
         var k = t.x;
-        if params.options.z > 0.5 {
+        if params.valleys != 0u {
             k = -t.y;
         }
         value += w.x * w.y * k;
@@ -48,7 +53,7 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
         return vec4<f32>(0.0);
     }
     var theta = here.z;
-    if params.options.z > 0.5 {
+    if params.valleys != 0u {
         theta = here.w;
     }
     let d = vec2<f32>(cos(theta), sin(theta));
@@ -56,18 +61,18 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let k0 = key_at(p);
     let km = key_at(p - d);
     let kp = key_at(p + d);
-    if k0 < params.options.x || km <= -1e29 || kp <= -1e29 {
+    if k0 < params.threshold || km <= -1e29 || kp <= -1e29 {
         return vec4<f32>(0.0);
     }
     // Parabola through (−1, km), (0, k0), (1, kp): a maximum needs negative curvature.
     let a = 0.5 * (km + kp) - k0;
-    if a >= -0.01 * max(abs(k0), params.options.x) {
+    if a >= -0.01 * max(abs(k0), params.threshold) {
         return vec4<f32>(0.0);
     }
     let offset = 0.25 * (km - kp) / a;
     if abs(offset) > 1.0 {
         return vec4<f32>(0.0);
     }
-    let coverage = clamp(0.5 * params.options.y + 0.5 - abs(offset), 0.0, 1.0);
+    let coverage = clamp(0.5 * params.thickness + 0.5 - abs(offset), 0.0, 1.0);
     return vec4<f32>(coverage, 0.0, 0.0, 0.0);
 }

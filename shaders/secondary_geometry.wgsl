@@ -4,9 +4,14 @@
 
 struct Secondary {
     // View-space unit vector towards the light.
-    light_dir: vec4<f32>,
-    // x = alpha, y = beta, z = 1 for two-sided lighting.
-    factors: vec4<f32>,
+    light_dir: vec3<f32>,
+    // 1 for two-sided lighting.
+    two_sided: u32,
+    // Attenuation behind one layer (α) and behind two (β), eq. 10.
+    alpha: f32,
+    beta: f32,
+    pad0: f32,
+    pad1: f32,
 };
 
 @group(0) @binding(1) var layer1_depth: texture_depth_2d;
@@ -21,19 +26,19 @@ struct SecondaryOut {
 @fragment
 fn fs_main(in: VertexOut) -> SecondaryOut {
     var n = normalize(in.view_normal);
-    if secondary.factors.z > 0.5 && dot(n, to_viewer(in.view_pos)) < 0.0 {
+    if secondary.two_sided != 0u && dot(n, to_viewer(in.view_pos)) < 0.0 {
         n = -n;
     }
-    let i0 = max(dot(n, secondary.light_dir.xyz), 0.0);
+    let i0 = max(dot(n, secondary.light_dir), 0.0);
     let p = vec2<i32>(floor(in.clip.xy));
     let d = in.clip.z;
     let d1 = textureLoad(layer1_depth, p, 0);
     let d2 = textureLoad(layer2_depth, p, 0);
-    var factor = secondary.factors.y;
+    var factor = secondary.beta;
     if d < d1 {
         factor = 1.0;
     } else if d < d2 {
-        factor = secondary.factors.x;
+        factor = secondary.alpha;
     }
     var out: SecondaryOut;
     out.intensity = vec4<f32>(i0 * factor, 0.0, 0.0, 1.0);

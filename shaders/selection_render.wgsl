@@ -24,21 +24,33 @@ struct Selection {
     to_source: mat4x4<f32>,
     // The selection's rotation (T's linear part, world space): turns the source's gradients.
     rotation: mat4x4<f32>,
-    // x = ghosting factor g; y = cutaway (0 none, 1 ghost, 2 selection, 3 both); z = shading
-    // (0 none, 1 lighting transfer function); w = 0.
-    options: vec4<f32>,
-    // TF domains: (background lo, hi, ghost lo, hi).
-    domains: vec4<f32>,
-    // (selection lo, hi, 0, 0).
-    domains2: vec4<f32>,
+    // Transfer-function domains (lo, hi) of the background, the ghost and the selection.
+    background_domain: vec2<f32>,
+    ghost_domain: vec2<f32>,
+    selection_domain: vec2<f32>,
+    // The ghosting factor g.
+    ghosting: f32,
+    // Whose far side the background is cut in front of (a CUT_* constant).
+    cutaway: u32,
+    // 1 to shade with the lighting transfer function.
+    shaded: u32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
 };
+
+// Selection.cutaway (hatchery_nodes::selection_render::Cutaway).
+const CUT_GHOST: u32 = 0u;
+const CUT_SELECTION: u32 = 1u;
+const CUT_BOTH: u32 = 2u;
+const CUT_NONE: u32 = 3u;
 @group(0) @binding(13) var<uniform> selection: Selection;
 // Indicator of the selected ids (1 inside; R8Unorm, R16Unorm on CPU adapters), on the
 // volume's grid: filtered trilinearly it is f_S.
 @group(0) @binding(14) var selection_mask: texture_3d<f32>;
 
 fn inside_grid(q: vec3<f32>) -> bool {
-    return all(q >= vec3<f32>(-0.5)) && all(q <= ray.dims.xyz - 0.5);
+    return all(q >= vec3<f32>(-0.5)) && all(q <= ray.dims - 0.5);
 }
 
 // f_S at voxel-space q (0 outside the grid).
@@ -46,7 +58,7 @@ fn selected(q: vec3<f32>) -> f32 {
     if !inside_grid(q) {
         return 0.0;
     }
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) + 0.5) / ray.dims.xyz;
+    let uv = (clamp(q, vec3<f32>(0.0), ray.dims - 1.0) + 0.5) / ray.dims;
     return textureSampleLevel(selection_mask, linear_clamp, uv, 0.0).r;
 }
 
@@ -99,32 +111,32 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
     if t_in > t_out {
         return out;
     }
-    let h = ray.box_min.w;
-    let step_voxels = ray.box_max.w;
+    let h = ray.step_world;
+    let step_voxels = ray.step_voxels;
     // Samples on a lattice anchored at the near plane (t = 0), not at the box: a decoupled
     // selection, the same in view space from every viewpoint, is then sampled alike.
     var start = ceil(t_in / h) * h;
-    if ray.frame.z > 0.5 {
+    if ray.jitter != 0u {
         start += h * hash(position);
     }
     let count = min(u32(max(floor((t_out - start) / h), -1.0) + 1.0), 65536u);
-    let cutaway = i32(selection.options.y + 0.5);
+    let cutaway = selection.cutaway;
     // The cutaway region along this ray: in front of the far side of the ghost and/or the
     // selection (the last sample where its selection set exceeds 1/2).
     var t_cut = -1.0e30;
-    if cutaway > 0 && selection.options.x > 0.0 {
+    if cutaway != CUT_NONE && selection.ghosting > 0.0 {
         for (var k = 0u; k < count; k++) {
             let t = start + f32(k) * h;
-            let ghost = (cutaway == 1 || cutaway == 3) && selected(q0 + dq * t) > 0.5;
-            let moved = (cutaway == 2 || cutaway == 3) && selected(s0 + ds * t) > 0.5;
+            let ghost = (cutaway == CUT_GHOST || cutaway == CUT_BOTH) && selected(q0 + dq * t) > 0.5;
+            let moved = (cutaway == CUT_SELECTION || cutaway == CUT_BOTH) && selected(s0 + ds * t) > 0.5;
             if ghost || moved {
                 t_cut = t;
             }
         }
     }
-    let g = selection.options.x;
-    let shaded = selection.options.z > 0.5;
-    let l = ray.light.xyz;
+    let g = selection.ghosting;
+    let shaded = selection.shaded != 0u;
+    let l = ray.light;
     var color = vec3<f32>(0.0);
     var alpha = 0.0;
     var hit_t = -1.0;
@@ -135,9 +147,9 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
         let v = value_inside(q);
         let vs = value_inside(qs);
         let f_s = selected(q);
-        let sel = member(vs, selected(qs), 2, selection.domains2.xy);
-        let ghost = member(v, f_s, 1, selection.domains.zw);
-        var back = member(v, 1.0 - f_s, 0, selection.domains.xy);
+        let sel = member(vs, selected(qs), 2, selection.selection_domain);
+        let ghost = member(v, f_s, 1, selection.ghost_domain);
+        var back = member(v, 1.0 - f_s, 0, selection.background_domain);
         let total = sel.mu + ghost.mu + back.mu;
         if total <= 0.0 {
             continue;
@@ -156,7 +168,7 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
                 grad = gradient_at(q);
             }
             n = view_normal(grad);
-            g_norm = clamp(length(grad) / max(ray.dims.w, 1e-20), 0.0, 1.0);
+            g_norm = clamp(length(grad) / max(ray.max_gradient, 1e-20), 0.0, 1.0);
             lt = lighting_lookup(dot(n, l), dot(n, hv));
         }
         // Eq. 8's opacity enhancement, and ghosting of the background in the cutaway region.
@@ -180,11 +192,11 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
         a_sample = 1.0 - pow(1.0 - clamp(a_sample, 0.0, 1.0), step_voxels);
         color += (1.0 - alpha) * a_sample * c;
         alpha += (1.0 - alpha) * a_sample;
-        if hit_t < 0.0 && alpha >= ray.mode.w {
+        if hit_t < 0.0 && alpha >= ray.hit_opacity {
             hit_t = t;
             out.normal = vec4<f32>(n, 1.0);
         }
-        if alpha >= ray.frame.w {
+        if alpha >= ray.early_termination {
             break;
         }
     }

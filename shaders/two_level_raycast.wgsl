@@ -22,15 +22,15 @@
 // 1×1: x = α_avg of the occluding context (VPImC's first pass), else 1.
 @group(0) @binding(17) var occluder_stats: texture_2d<f32>;
 
-const IMP_NONE: i32 = 0;
-const IMP_MIMP: i32 = 1;
-const IMP_AIMC_IMAGE: i32 = 2;
-const IMP_AIMC_OBJECT: i32 = 3;
-const IMP_VPIMC: i32 = 4;
-const SPARSE_OPACITY: i32 = 0;
-const SPARSE_SATURATION: i32 = 1;
-const SPARSE_SCREEN_DOOR: i32 = 2;
-const SPARSE_STYLE: i32 = 3;
+const IMP_NONE: u32 = 0u;
+const IMP_MIMP: u32 = 1u;
+const IMP_AIMC_IMAGE: u32 = 2u;
+const IMP_AIMC_OBJECT: u32 = 3u;
+const IMP_VPIMC: u32 = 4u;
+const SPARSE_OPACITY: u32 = 0u;
+const SPARSE_SATURATION: u32 = 1u;
+const SPARSE_SCREEN_DOOR: u32 = 2u;
+const SPARSE_STYLE: u32 = 3u;
 
 // Screen-door threshold of voxel-space point q: a low-discrepancy value over the voxel lattice
 // (the R3 sequence), so a level of sparseness S keeps an even fraction S of the voxels.
@@ -41,7 +41,7 @@ fn screen_door(q: vec3<f32>) -> f32 {
 
 // A level of sparseness s applied to a sample's colour and opacity (opacity and saturation
 // levels); the screen door and sparse styles are applied by the caller.
-fn sparse_sample(c: vec3<f32>, a: f32, s: f32, level: i32) -> vec4<f32> {
+fn sparse_sample(c: vec3<f32>, a: f32, s: f32, level: u32) -> vec4<f32> {
     if level == SPARSE_SATURATION {
         let grey = vec3<f32>(dot(c, vec3<f32>(0.299, 0.587, 0.114)));
         return vec4<f32>(mix(grey, c, s), a * s);
@@ -58,16 +58,19 @@ fn corrected(seg: vec4<f32>, scale: f32) -> vec4<f32> {
     return seg * min(scale, 1.0 / seg.a);
 }
 
-const MODE_DVR: i32 = 0;
-const MODE_SHADED: i32 = 1;
-const MODE_TONE: i32 = 2;
-const MODE_CONTOURS: i32 = 3;
-const MODE_MIP: i32 = 4;
-const MODE_ISO: i32 = 5;
-const LOCAL_OVER: i32 = 0;
-const LOCAL_MIP: i32 = 1;
-const LOCAL_ISO: i32 = 2;
-const LOCAL_SUM: i32 = 3;
+const MODE_DVR: u32 = 0u;
+const MODE_SHADED: u32 = 1u;
+const MODE_TONE: u32 = 2u;
+const MODE_CONTOURS: u32 = 3u;
+const MODE_MIP: u32 = 4u;
+const MODE_ISO: u32 = 5u;
+const GLOBAL_OVER: u32 = 0u;
+const GLOBAL_MIP: u32 = 1u;
+const GLOBAL_SUM: u32 = 2u;
+const LOCAL_OVER: u32 = 0u;
+const LOCAL_MIP: u32 = 1u;
+const LOCAL_ISO: u32 = 2u;
+const LOCAL_SUM: u32 = 3u;
 
 // Cool-to-warm tone shading (Gooch et al. 1998; the tutorial's "tone shading").
 fn tone(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
@@ -79,12 +82,12 @@ fn tone(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
 
 // A finished segment (premultiplied, alpha clamped to 1) combined into the total by the global
 // mode: over, mip (per-channel maximum), sum.
-fn combine(total: vec4<f32>, seg: vec4<f32>, global_mode: i32) -> vec4<f32> {
+fn combine(total: vec4<f32>, seg: vec4<f32>, global_mode: u32) -> vec4<f32> {
     let s = vec4<f32>(seg.rgb, min(seg.a, 1.0));
-    if global_mode == 0 {
+    if global_mode == GLOBAL_OVER {
         return total + (1.0 - total.a) * s;
     }
-    if global_mode == 1 {
+    if global_mode == GLOBAL_MIP {
         return max(total, s);
     }
     return total + s;
@@ -106,22 +109,22 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
     if !r.hits {
         return out;
     }
-    let h = ray.box_min.w;
-    let step_voxels = ray.box_max.w;
+    let h = ray.step_world;
+    let step_voxels = ray.step_voxels;
     var start = r.t_in;
-    if ray.frame.z > 0.5 {
+    if ray.jitter != 0u {
         start += h * hash(position);
     }
-    let l = ray.light.xyz;
-    let global_mode = i32(two_level.options.x + 0.5);
-    let columns = i32(two_level.options.z + 0.5);
+    let l = ray.light;
+    let global_mode = two_level.global_mode;
+    let columns = two_level.columns;
     let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
 
     // Importance-driven rendering: this pixel's buffers and the ray's view depth z(t).
-    let method = i32(two_level.importance.x + 0.5);
-    let level = i32(two_level.importance.y + 0.5);
-    let focus = u32(two_level.importance.z + 0.5);
-    let first_pass = two_level.importance.w > 0.5;
+    let method = two_level.method;
+    let level = two_level.level;
+    let focus = two_level.focus;
+    let first_pass = two_level.first_pass != 0u;
     var imp = vec4<f32>(-1.0e30, 1.0, 0.0, -1.0);
     var cut = vec4<f32>(0.0, 0.0, 1.0, 0.0);
     var alpha_avg = 1.0;
@@ -146,8 +149,8 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
     var current = 0u;
     var scale = 1.0;
     var row = 0;
-    var mode = 0;
-    var local = 0;
+    var mode = MODE_DVR;
+    var local = LOCAL_OVER;
     var iso = 0.0;
     var domain = vec2<f32>(0.0, 1.0);
     var seg = vec4<f32>(0.0);
@@ -167,9 +170,9 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         // samples, which close the open segment exactly as stepping through them would.
         var jump = false;
         if k < count {
-            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims.xyz - 1.0) / ray.skip.y));
+            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
             let info = textureLoad(bricks, brick, 0);
-            jump = ray.skip.x > 0.5 && info.x > info.y;
+            jump = ray.skip_empty != 0u && info.x > info.y;
             // Inside a brick of one object no sample needs its 8 voxels; where the drawn
             // objects' union mask is below 0.5 (0.45: a margin for the filter's fixed-point
             // weights) none of them can exceed 0.5, so neither.
@@ -177,14 +180,14 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 id = 0u;
             } else if info.z >= 0.0 {
                 id = u32(info.z);
-            } else if two_level.options.y > 0.5 && drawn_union(q) < 0.45 {
+            } else if two_level.boundary_filter != 0u && drawn_union(q) < 0.45 {
                 id = 0u;
             } else {
                 id = object_at(q);
             }
         }
         if k < count && !jump {
-            if i32(id) >= columns {
+            if id >= columns {
                 id = 0u;
             } else if id != 0u && object_info(id, 0u).x < 0.5 {
                 id = 0u;
@@ -235,7 +238,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                     out.normal = vec4<f32>(seg_normal, 1.0);
                 }
             }
-            if global_mode == 0 && total.a >= ray.frame.w {
+            if global_mode == GLOBAL_OVER && total.a >= ray.early_termination {
                 break;
             }
             current = id;
@@ -249,15 +252,15 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             if id != 0u {
                 let info = object_info(id, 0u);
                 row = i32(info.x + 0.5) - 1;
-                mode = i32(info.y + 0.5);
-                local = i32(info.z + 0.5);
+                mode = u32(info.y + 0.5);
+                local = u32(info.z + 0.5);
                 iso = info.w;
                 domain = object_info(id, 1u).xy;
                 if flag == 1u && method == IMP_VPIMC && !first_pass {
                     scale = s / alpha_avg;
                 } else if flag == 1u && method != IMP_VPIMC {
-                    mode = i32(two_level.sparse.x + 0.5);
-                    local = i32(two_level.sparse.y + 0.5);
+                    mode = two_level.sparse_mode;
+                    local = two_level.sparse_local;
                 }
             }
         }
@@ -282,7 +285,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             s = 1.0;
         }
         // Just behind a countersink cut the cut surface shades the context (MImP).
-        let on_cut = t >= t_cut && t - t_cut <= two_level.sparse.z;
+        let on_cut = t >= t_cut && t - t_cut <= two_level.cut_band;
         let v = value_at(q);
         if no_data(v) {
             previous_value = NO_DATA;
@@ -312,14 +315,14 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 seg_first_t = t_hit;
                 seg_normal = n;
                 seg_done = true;
-                if global_mode == 0 {
+                if global_mode == GLOBAL_OVER {
                     total = combine(total, corrected(seg, scale), global_mode);
                     if hit_t < 0.0 {
                         hit_t = seg_first_t;
                         out.normal = vec4<f32>(seg_normal, 1.0);
                     }
                     seg = vec4<f32>(0.0);
-                    if total.a >= ray.frame.w {
+                    if total.a >= ray.early_termination {
                         break;
                     }
                 }
@@ -348,7 +351,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             } else if mode == MODE_TONE {
                 c = tone(c, n, l);
             } else {
-                let g_norm = clamp(length(g) / max(ray.dims.w, 1e-20), 0.0, 1.0);
+                let g_norm = clamp(length(g) / max(ray.max_gradient, 1e-20), 0.0, 1.0);
                 a = a * g_norm * pow(1.0 - abs(dot(n, v_dir)), 8.0);
             }
         }
@@ -383,11 +386,11 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         if local == LOCAL_OVER {
             seg += (1.0 - seg.a) * vec4<f32>(c * a, a);
             // Early termination inside the segment: what follows adds less than 1 − alpha.
-            seg_done = seg.a >= ray.frame.w;
+            seg_done = seg.a >= ray.early_termination;
         } else {
             seg += vec4<f32>(c * a, a);
         }
-        if seg_done && global_mode == 0 {
+        if seg_done && global_mode == GLOBAL_OVER {
             // Nothing more joins this segment: with global over, combine it now, and stop
             // the ray if it is opaque (the segment stays open, empty, until its object ends).
             total = combine(total, corrected(seg, scale), global_mode);
@@ -396,7 +399,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 out.normal = vec4<f32>(seg_normal, 1.0);
             }
             seg = vec4<f32>(0.0);
-            if total.a >= ray.frame.w {
+            if total.a >= ray.early_termination {
                 break;
             }
         }

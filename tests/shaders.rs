@@ -175,3 +175,41 @@ fn every_uniform_buffer_in_every_program_has_a_typed_rust_block() {
         }
     }
 }
+
+/// The value of the WGSL `const NAME: u32 = …;` of a module, if it has one.
+fn wgsl_u32_constant(module: &naga::Module, name: &str) -> Option<u32> {
+    module.constants.iter().find_map(|(_, c)| {
+        if c.name.as_deref() != Some(name) {
+            return None;
+        }
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(naga::Literal::U32(v)) => Some(v),
+            ref other => panic!("WGSL constant {name} is {other:?}, not a u32 literal"),
+        }
+    })
+}
+
+#[test]
+fn every_gpu_enum_matches_its_wgsl_constants() {
+    let enums = hatchery_nodes::kinds::gpu_enums();
+    assert!(!enums.is_empty());
+    for e in &enums {
+        let source = hatchery_nodes::kinds::source(e.program)
+            .unwrap_or_else(|| panic!("no program `{}`", e.program));
+        let module = naga::front::wgsl::parse_str(&source).unwrap();
+        assert!(!e.constants.is_empty(), "{}: no variants", e.rust_enum);
+        for &(name, value) in &e.constants {
+            let wgsl = wgsl_u32_constant(&module, name).unwrap_or_else(|| {
+                panic!(
+                    "{}: program {} declares no `const {name}: u32`",
+                    e.rust_enum, e.program
+                )
+            });
+            assert_eq!(
+                wgsl, value,
+                "{}: WGSL {name} = {wgsl} in {}, the Rust code is {value}",
+                e.rust_enum, e.program
+            );
+        }
+    }
+}

@@ -13,10 +13,13 @@ use hatchery_graph::{
 use std::sync::Arc;
 
 crate::uniform_block! {
-    /// `CurvatureParams` of shaders/curvature.wgsl: (finite-difference step h in world units,
-    /// 0, 0, 0).
+    /// `CurvatureParams` of shaders/curvature_common.wgsl: the finite-difference step h in
+    /// world units.
     pub struct CurvatureUniforms in "curvature" as "CurvatureParams" {
-        pub step: [f32; 4],
+        pub step: f32,
+        pub pad0: f32,
+        pub pad1: f32,
+        pub pad2: f32,
     }
 }
 
@@ -121,7 +124,10 @@ pub fn surface_pass(
     let ray = RayUniforms::new(camera, v, &options, &info, 1.0, texture.texel_range);
     let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
     let params = CurvatureUniforms {
-        step: [step_voxels * min_spacing, 0.0, 0.0, 0.0],
+        step: step_voxels * min_spacing,
+        pad0: 0.0,
+        pad1: 0.0,
+        pad2: 0.0,
     };
     let uniform = |label, bytes: &[u8]| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM);
     let ray_buffer = uniform("curvature ray", bytemuck::bytes_of(&ray));

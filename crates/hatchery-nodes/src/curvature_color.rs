@@ -80,23 +80,15 @@ pub fn map_lookup(map: &[[f32; 4]], width: u32, height: u32, range: f32, k: [f32
 }
 
 crate::uniform_block! {
-    /// `CurvatureColor` of shaders/curvature_color.wgsl: (measure code, TF domain lo, hi, 0).
+    /// `CurvatureColor` of shaders/curvature_color.wgsl.
     pub struct CurvatureColorUniforms in "curvature_color" as "CurvatureColor" {
-        pub options: [f32; 4],
+        /// A [`Measure`] code.
+        pub measure: u32,
+        pub map_range: f32,
+        pub domain: [f32; 2],
     }
 }
 
-/// The shader's code for a measure (shaders/curvature_color.wgsl).
-fn measure_code(measure: Measure) -> f32 {
-    match measure {
-        Measure::K1 => 0.0,
-        Measure::K2 => 1.0,
-        Measure::Mean => 2.0,
-        Measure::Gaussian => 3.0,
-        Measure::Curvedness => 4.0,
-        Measure::K1K2 => 5.0,
-    }
-}
 
 hatchery_graph::param_choice! {
     /// Which curvature the colour shows (k1_k2: the 2-D map).
@@ -107,6 +99,17 @@ hatchery_graph::param_choice! {
         Mean = "mean",
         Gaussian = "gaussian",
         K1K2 = "k1_k2",
+    }
+}
+
+crate::wgsl_constants! {
+    Measure in "curvature_color" {
+        Curvedness = "MEASURE_CURVEDNESS",
+        K1 = "MEASURE_K1",
+        K2 = "MEASURE_K2",
+        Mean = "MEASURE_MEAN",
+        Gaussian = "MEASURE_GAUSSIAN",
+        K1K2 = "MEASURE_K1_K2",
     }
 }
 
@@ -219,12 +222,9 @@ impl Node<Value, Ctx> for CurvatureColorNode {
                 .map_err(|e| NodeError::new(format!("param `map`: {e}")))?
         };
         let uniforms = CurvatureColorUniforms {
-            options: [
-                measure_code(params.measure),
-                domain[0],
-                domain[1],
-                params.range,
-            ],
+            measure: params.measure.code(),
+            map_range: params.range,
+            domain,
         };
         let size = (curvature.texture.width(), curvature.texture.height());
         let image = screen_pass::render(
@@ -246,5 +246,6 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(CurvatureColorNode)
         .program("curvature_color", shaders::screen(shaders::part!("curvature_color.wgsl")))
-        .uniform(CurvatureColorUniforms::layout());
+        .uniform(CurvatureColorUniforms::layout())
+        .gpu_enum(Measure::wgsl());
 }

@@ -12,9 +12,12 @@ use hatchery_graph::{
 use std::sync::Arc;
 
 crate::uniform_block! {
-    /// `ContourParams` of shaders/curvature_contours.wgsl: (thickness px, 0, 0, 0).
+    /// `ContourParams` of shaders/curvature_contours.wgsl: the contour width in pixels.
     pub struct ContourUniforms in "curvature_contours" as "ContourParams" {
-        pub options: [f32; 4],
+        pub thickness: f32,
+        pub pad0: f32,
+        pub pad1: f32,
+        pub pad2: f32,
     }
 }
 
@@ -73,7 +76,10 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let uniforms = ContourUniforms {
-            options: [params.thickness, 0.0, 0.0, 0.0],
+            thickness: params.thickness,
+            pad0: 0.0,
+            pad1: 0.0,
+            pad2: 0.0,
         };
         let mask = surface_pass(
             ctx,

@@ -11,12 +11,16 @@ use hatchery_graph::{
 use std::sync::Arc;
 
 crate::uniform_block! {
-    /// `Flow` of shaders/curvature_flow.wgsl: inverse view-projection; (width, height, steps
-    /// per half streamline, step px); (grain in world units, 1 = smaller |κ|, contrast, mean).
+    /// `Flow` of shaders/curvature_flow.wgsl (see there for the fields).
     pub struct FlowUniforms in "curvature_flow" as "Flow" {
         pub inv_view_proj: [[f32; 4]; 4],
-        pub frame: [f32; 4],
-        pub options: [f32; 4],
+        pub frame: [f32; 2],
+        pub steps: u32,
+        pub step: f32,
+        pub grain: f32,
+        pub smaller_curvature: u32,
+        pub contrast: f32,
+        pub mean: f32,
     }
 }
 
@@ -96,22 +100,13 @@ impl Node<Value, Ctx> for CurvatureFlowNode {
         let step = params.step;
         let uniforms = FlowUniforms {
             inv_view_proj: camera.view_proj().inverse().to_cols_array_2d(),
-            frame: [
-                size.0 as f32,
-                size.1 as f32,
-                (0.5 * params.length / step).ceil().clamp(1.0, 256.0),
-                step,
-            ],
-            options: [
-                params.grain,
-                if params.direction == Direction::MinCurvature {
-                    1.0
-                } else {
-                    0.0
-                },
-                params.contrast,
-                params.mean,
-            ],
+            frame: [size.0 as f32, size.1 as f32],
+            steps: (0.5 * params.length / step).ceil().clamp(1.0, 256.0) as u32,
+            step,
+            grain: params.grain,
+            smaller_curvature: (params.direction == Direction::MinCurvature).into(),
+            contrast: params.contrast,
+            mean: params.mean,
         };
         let flow = screen_pass::render(
             ctx,

@@ -34,9 +34,12 @@ hatchery_graph::node_params! {
 pub struct DepthLayersNode;
 
 crate::uniform_block! {
-    /// The frame for both steps: x = width in pixels, y = the slot resolved.
+    /// The frame for both steps: the width in pixels and the slot resolved.
     pub struct LayersUniform in "depth_layers_resolve" as "ResolveFrame" {
-        pub size: [u32; 4],
+        pub width: u32,
+        pub slot: u32,
+        pub pad0: u32,
+        pub pad1: u32,
     }
 }
 
@@ -137,7 +140,10 @@ fn single_pass(
         gpu.buffer_init(
             "depth layers frame",
             bytemuck::bytes_of(&LayersUniform {
-                size: [w, slot, 0, 0],
+                width: w,
+                slot,
+                pad0: 0,
+                pad1: 0,
             }),
             wgpu::BufferUsages::UNIFORM,
         )

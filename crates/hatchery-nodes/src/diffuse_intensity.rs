@@ -7,13 +7,14 @@ use hatchery_graph::{
 };
 
 crate::uniform_block! {
-    /// `Diffuse` of shaders/diffuse_intensity.wgsl: view-space light direction, (value of empty
-    /// pixels, 0, 0, 0), the inverse projection, and (width, height, orthographic).
+    /// `Diffuse` of shaders/diffuse_intensity.wgsl (see there for the fields).
     pub struct DiffuseUniforms in "diffuse_intensity" as "Diffuse" {
-        pub light_dir: [f32; 4],
-        pub options: [f32; 4],
         pub inverse_proj: [[f32; 4]; 4],
-        pub frame: [f32; 4],
+        pub light_dir: [f32; 3],
+        pub empty: f32,
+        pub frame: [f32; 2],
+        pub orthographic: u32,
+        pub pad0: f32,
     }
 }
 
@@ -63,19 +64,12 @@ impl Fusable for DiffuseIntensityNode {
         let l = light.view_direction(&gbuffer.camera);
         let (w, h) = ctx.size();
         let uniforms = DiffuseUniforms {
-            light_dir: [l.x, l.y, l.z, 0.0],
-            options: [params.empty, 0.0, 0.0, 0.0],
             inverse_proj: gbuffer.camera.proj.inverse().to_cols_array_2d(),
-            frame: [
-                w as f32,
-                h as f32,
-                if gbuffer.camera.orthographic {
-                    1.0
-                } else {
-                    0.0
-                },
-                0.0,
-            ],
+            light_dir: l.to_array(),
+            empty: params.empty,
+            frame: [w as f32, h as f32],
+            orthographic: gbuffer.camera.orthographic.into(),
+            pad0: 0.0,
         };
         Ok(Stage {
             library: "diffuse_intensity",

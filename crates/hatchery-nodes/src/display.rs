@@ -11,10 +11,23 @@ crate::uniform_block! {
     /// `Display` of shaders/display.wgsl: what the texture holds (0 image, 1 mask, 2 normals),
     /// the checkerboard cell in pixels and the output size.
     pub struct DisplayUniforms in "display" as "Display" {
-        pub mode: f32,
+        /// A [`Shows`] code.
+        pub mode: u32,
         pub checker: f32,
         pub out_width: f32,
         pub out_height: f32,
+    }
+}
+
+crate::gpu_enum! {
+    /// What a display texture is made from.
+    pub enum Shows in "display" {
+        /// A premultiplied image.
+        Image = 0 as "SHOW_IMAGE",
+        /// A mask, shown grey.
+        Mask = 1 as "SHOW_MASK",
+        /// A G-buffer's normals (n·0.5 + 0.5).
+        Normals = 2 as "SHOW_NORMALS",
     }
 }
 
@@ -82,13 +95,13 @@ pub fn display_texture(
     };
     let size = fit(source_size(value).ok_or_else(no_picture)?, bound);
     let (texture, mode) = match value {
-        Value::Image(i) => (&i.texture, 0.0),
-        Value::Mask(m) => (&m.texture, 1.0),
-        Value::GBuffer(g) => (&g.normal, 2.0),
+        Value::Image(i) => (&i.texture, Shows::Image),
+        Value::Mask(m) => (&m.texture, Shows::Mask),
+        Value::GBuffer(g) => (&g.normal, Shows::Normals),
         _ => return upload_picture(ctx, value, size),
     };
     let uniform = DisplayUniforms {
-        mode,
+        mode: mode.code(),
         checker: CHECKER as f32,
         out_width: size.0 as f32,
         out_height: size.1 as f32,
@@ -136,7 +149,8 @@ fn upload_picture(ctx: &mut Ctx, value: &Value, size: (u32, u32)) -> Result<wgpu
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.program("display", shaders::screen(shaders::part!("display.wgsl")))
-        .uniform(DisplayUniforms::layout());
+        .uniform(DisplayUniforms::layout())
+        .gpu_enum(Shows::wgsl());
 }
 
 #[cfg(test)]

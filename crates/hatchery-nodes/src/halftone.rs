@@ -7,11 +7,16 @@ use hatchery_graph::{
 };
 
 crate::uniform_block! {
-    /// `Halftone` of shaders/halftone.wgsl: (θ in radians, cell size in pixels, c_cross, 0) and
-    /// (cos θ, sin θ, 0, 0).
+    /// `Halftone` of shaders/halftone.wgsl.
     pub struct HalftoneUniforms in "halftone" as "Halftone" {
-        pub params: [f32; 4],
-        pub rotation: [f32; 4],
+        pub theta: f32,
+        pub cell: f32,
+        pub c_cross: f32,
+        pub cos_theta: f32,
+        pub sin_theta: f32,
+        pub pad0: f32,
+        pub pad1: f32,
+        pub pad2: f32,
     }
 }
 
@@ -62,8 +67,14 @@ impl Fusable for HalftoneNode {
         let p = HalftoneParams::read(p)?;
         let theta = p.theta.to_radians();
         let uniforms = HalftoneUniforms {
-            params: [theta, p.cell, p.c_cross, 0.0],
-            rotation: [theta.cos(), theta.sin(), 0.0, 0.0],
+            theta,
+            cell: p.cell,
+            c_cross: p.c_cross,
+            cos_theta: theta.cos(),
+            sin_theta: theta.sin(),
+            pad0: 0.0,
+            pad1: 0.0,
+            pad2: 0.0,
         };
         Ok(Stage {
             library: "halftone",

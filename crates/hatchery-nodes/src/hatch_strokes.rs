@@ -17,15 +17,26 @@ use hatchery_graph::{
 use std::sync::{Arc, OnceLock};
 
 crate::uniform_block! {
-    /// `Hatch` of shaders/hatch_strokes.wgsl (see there for the channels).
+    /// `Hatch` of shaders/hatch_strokes.wgsl (see there for the fields).
     pub struct HatchUniforms in "hatch_strokes" as "Hatch" {
         pub view_proj: [[f32; 4]; 4],
         pub view: [[f32; 4]; 4],
         pub inv_proj: [[f32; 4]; 4],
-        pub frame: [f32; 4],
-        pub options: [f32; 4],
-        pub shape: [f32; 4],
-        pub counts: [u32; 4],
+        pub frame: [f32; 2],
+        pub step: f32,
+        pub steps: u32,
+        pub density: f32,
+        pub cross_threshold: f32,
+        pub depth_tolerance: f32,
+        pub max_strokes: u32,
+        pub width: f32,
+        pub taper: f32,
+        pub smaller_curvature: u32,
+        pub use_tone: u32,
+        pub seeds: u32,
+        pub salt: u32,
+        pub pad0: u32,
+        pub pad1: u32,
     }
 }
 
@@ -241,33 +252,26 @@ impl Node<Value, Ctx> for HatchStrokesNode {
             view_proj: camera.view_proj().to_cols_array_2d(),
             view: camera.view.to_cols_array_2d(),
             inv_proj: camera.proj.inverse().to_cols_array_2d(),
-            frame: [width as f32, height as f32, step, steps as f32],
-            options: [
-                params.density,
-                if params.cross_hatching >= 1.0 {
-                    2.0
-                } else {
-                    params.cross_hatching
-                },
-                params.depth_tolerance * diagonal,
-                0.0,
-            ],
-            shape: [
-                params.width,
-                params.taper,
-                if params.direction == Direction::MinCurvature {
-                    1.0
-                } else {
-                    0.0
-                },
-                max_strokes as f32,
-            ],
-            counts: [
-                vertex_count,
-                u32::from(tone.is_some()),
-                params.seed.wrapping_mul(0x9E37_79B9),
-                0,
-            ],
+            frame: [width as f32, height as f32],
+            step,
+            steps,
+            density: params.density,
+            // ≥ 1: no cross-hatching.
+            cross_threshold: if params.cross_hatching >= 1.0 {
+                2.0
+            } else {
+                params.cross_hatching
+            },
+            depth_tolerance: params.depth_tolerance * diagonal,
+            max_strokes,
+            width: params.width,
+            taper: params.taper,
+            smaller_curvature: (params.direction == Direction::MinCurvature).into(),
+            use_tone: tone.is_some().into(),
+            seeds: vertex_count,
+            salt: params.seed.wrapping_mul(0x9E37_79B9),
+            pad0: 0,
+            pad1: 0,
         };
         let blank = ctx.blank_texture();
         let gpu = &ctx.gpu;

@@ -26,8 +26,13 @@ const MAX_OBJECTS: usize = 32;
 crate::uniform_block! {
     /// `ImportanceParams` of shaders/importance.wgsl.
     pub struct ImportanceUniforms in "importance" as "ImportanceParams" {
-        pub frame: [f32; 4],
-        pub view: [f32; 4],
+        pub frame_size: [u32; 2],
+        pub slope: f32,
+        pub orthographic: u32,
+        pub pixel_world: f32,
+        pub focus: u32,
+        pub pad0: f32,
+        pub pad1: f32,
         pub weights: [[f32; 4]; 8],
     }
 }
@@ -189,16 +194,8 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let ray = RayUniforms::for_grid(&camera, &grid, &options, &info, 1.0, [0.0, 1.0]);
         let tables = object_tables(&styles);
         let two_level = TwoLevelUniforms {
-            options: [
-                0.0,
-                if params.boundary == Boundary::Point {
-                    0.0
-                } else {
-                    1.0
-                },
-                tables.columns as f32,
-                0.0,
-            ],
+            boundary_filter: (params.boundary != Boundary::Point).into(),
+            columns: tables.columns,
             ..Default::default()
         };
         let proj_y = camera.proj.y_axis.y;
@@ -207,23 +204,20 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         } else {
             params.slope
         };
+        // Image-space AImC dilates and averages the footprints over this radius (pixels).
+        let radius = if method == ImportanceMethod::AimcImage {
+            params.transition.round() as u32
+        } else {
+            0
+        };
         let params = ImportanceUniforms {
-            frame: [
-                w as f32,
-                h as f32,
-                slope,
-                if camera.orthographic { 1.0 } else { 0.0 },
-            ],
-            view: [
-                2.0 / (proj_y * h as f32),
-                if method == ImportanceMethod::AimcImage {
-                    params.transition.round()
-                } else {
-                    0.0
-                },
-                f32::from(focus),
-                drawn.len().min(MAX_OBJECTS) as f32,
-            ],
+            frame_size: [w, h],
+            slope,
+            orthographic: camera.orthographic.into(),
+            pixel_world: 2.0 / (proj_y * h as f32),
+            focus: focus.into(),
+            pad0: 0.0,
+            pad1: 0.0,
             weights,
         };
         let uniform =
@@ -302,9 +296,8 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         );
         // Image-space AImC: dilate the footprints (OR of the bits), weigh, then average, each
         // separably (x, then y).
-        let radius = params.view[1];
-        let separable: &[[f32; 2]] = if radius > 0.0 {
-            &[[0.0, radius], [1.0, radius]]
+        let separable: &[[u32; 2]] = if radius > 0 {
+            &[[0, radius], [1, radius]]
         } else {
             &[]
         };
@@ -354,10 +347,10 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let mut steps = Vec::new();
         let mut k = w.max(h).next_power_of_two() / 2;
         while k >= 1 {
-            steps.push([k as f32, 0.0]);
+            steps.push([k, 0]);
             k /= 2;
         }
-        steps.push([1.0, 0.0]);
+        steps.push([1, 0]);
         let seed_at = pipelines.ping_pong(
             gpu,
             &mut encoder,

@@ -4,7 +4,7 @@
 //! a kind is declared in its own module only.
 
 use crate::stage::Fusable;
-use crate::uniforms::UniformLayout;
+use crate::uniforms::{GpuEnumLayout, UniformLayout};
 use crate::{Ctx, Registry, Value};
 use hatchery_graph::executor::Node;
 use std::collections::BTreeMap;
@@ -21,6 +21,7 @@ pub struct Kinds {
     pub(crate) stages: Vec<&'static dyn Fusable>,
     pub(crate) programs: Vec<Program>,
     pub(crate) uniforms: Vec<UniformLayout>,
+    pub(crate) gpu_enums: Vec<GpuEnumLayout>,
     /// (kind, the file of the `declare` that declared it).
     pub(crate) files: Vec<(&'static str, &'static str)>,
     /// (the file of the `declare` that declared a program, the program's own part).
@@ -91,6 +92,13 @@ impl Kinds {
         self
     }
 
+    /// An enum a program reads as codes (checked against its WGSL constants by
+    /// tests/shaders.rs).
+    pub fn gpu_enum(&mut self, layout: GpuEnumLayout) -> &mut Self {
+        self.gpu_enums.push(layout);
+        self
+    }
+
     /// A uniform block that `program` uses as well as the program it was declared for (a
     /// shared block: the camera of the mesh shaders, the ray casters' `Ray`).
     pub fn uniform_in(&mut self, program: &'static str, layout: UniformLayout) -> &mut Self {
@@ -116,4 +124,9 @@ pub fn source(name: &str) -> Option<String> {
 /// Every uniform block of every node, for the reflection test (as the modules declare them).
 pub fn uniform_blocks() -> Vec<UniformLayout> {
     Kinds::all().uniforms
+}
+
+/// Every enum mirrored by WGSL constants, for the reflection test.
+pub fn gpu_enums() -> Vec<GpuEnumLayout> {
+    Kinds::all().gpu_enums
 }

@@ -26,9 +26,11 @@ use hatchery_graph::NodeError;
 use std::sync::Arc;
 
 crate::uniform_block! {
-    /// `Overlay` of shaders/overlay.wgsl: (frame width, frame height, 0, 0) in pixels.
+    /// `Overlay` of shaders/overlay.wgsl: the frame size in pixels.
     pub struct OverlayUniforms in "overlay" as "Overlay" {
-        pub frame: [f32; 4],
+        pub frame: [f32; 2],
+        pub pad0: f32,
+        pub pad1: f32,
     }
 }
 
@@ -393,7 +395,9 @@ impl Canvas {
         );
         let atlas_view = atlas.create_view(&Default::default());
         let uniforms = OverlayUniforms {
-            frame: [self.width as f32, self.height as f32, 0.0, 0.0],
+            frame: [self.width as f32, self.height as f32],
+            pad0: 0.0,
+            pad1: 0.0,
         };
         let uniform = gpu.buffer_init(
             "overlay",

@@ -10,10 +10,12 @@ use hatchery_graph::{
 use std::sync::Arc;
 
 crate::uniform_block! {
-    /// `RidgeValley` of shaders/ridge_valley.wgsl: (threshold, thickness px, 0 ridges / 1
-    /// valleys, 0).
+    /// `RidgeValley` of shaders/ridge_valley.wgsl.
     pub struct RidgeValleyUniforms in "ridge_valley" as "RidgeValley" {
-        pub options: [f32; 4],
+        pub threshold: f32,
+        pub thickness: f32,
+        pub valleys: u32,
+        pub pad0: f32,
     }
 }
 
@@ -66,9 +68,12 @@ impl Node<Value, Ctx> for RidgeValleyNode {
         let curvature = inputs.require("curvature")?.image("curvature")?.clone();
         let size = (curvature.texture.width(), curvature.texture.height());
         let mut outputs = Vec::new();
-        for kind in [0.0, 1.0] {
+        for valleys in [false, true] {
             let uniforms = RidgeValleyUniforms {
-                options: [params.threshold, params.thickness, kind, 0.0],
+                threshold: params.threshold,
+                thickness: params.thickness,
+                valleys: valleys.into(),
+                pad0: 0.0,
             };
             let mask = screen_pass::render(
                 ctx,

@@ -11,11 +11,15 @@ use hatchery_graph::{
 use std::sync::Arc;
 
 crate::uniform_block! {
-    /// `Secondary` of shaders/secondary_geometry.wgsl: view-space light direction and (α, β of
-    /// Fischer eq. 10, two-sided, 0).
+    /// `Secondary` of shaders/secondary_geometry.wgsl: the view-space light direction and α, β
+    /// of Fischer eq. 10.
     pub struct SecondaryUniforms in "secondary_geometry" as "Secondary" {
-        pub light_dir: [f32; 4],
-        pub factors: [f32; 4],
+        pub light_dir: [f32; 3],
+        pub two_sided: u32,
+        pub alpha: f32,
+        pub beta: f32,
+        pub pad0: f32,
+        pub pad1: f32,
     }
 }
 
@@ -104,10 +108,13 @@ impl Node<Value, Ctx> for SecondaryGeometryNode {
         let gpu = &ctx.gpu;
         let l = light.view_direction(&camera);
         let own = SecondaryGeometryParams::read(p)?;
-        let two_sided = if own.two_sided { 1.0 } else { 0.0 };
         let params = SecondaryUniforms {
-            light_dir: [l.x, l.y, l.z, 0.0],
-            factors: [own.alpha, own.beta, two_sided, 0.0],
+            light_dir: l.to_array(),
+            two_sided: own.two_sided.into(),
+            alpha: own.alpha,
+            beta: own.beta,
+            pad0: 0.0,
+            pad1: 0.0,
         };
         let camera_buf = camera.uniform_buffer(gpu);
         let params_buf = gpu.buffer_init(

@@ -22,9 +22,16 @@ crate::uniform_block! {
     pub struct SelectionUniforms in "selection_render" as "Selection" {
         pub to_source: [[f32; 4]; 4],
         pub rotation: [[f32; 4]; 4],
-        pub options: [f32; 4],
-        pub domains: [f32; 4],
-        pub domains2: [f32; 4],
+        pub background_domain: [f32; 2],
+        pub ghost_domain: [f32; 2],
+        pub selection_domain: [f32; 2],
+        pub ghosting: f32,
+        /// A [`Cutaway`] code.
+        pub cutaway: u32,
+        pub shaded: u32,
+        pub pad0: f32,
+        pub pad1: f32,
+        pub pad2: f32,
     }
 }
 
@@ -199,6 +206,15 @@ hatchery_graph::param_choice! {
         Selection = "selection",
         Both = "both",
         None = "none",
+    }
+}
+
+crate::wgsl_constants! {
+    Cutaway in "selection_render" {
+        Ghost = "CUT_GHOST",
+        Selection = "CUT_SELECTION",
+        Both = "CUT_BOTH",
+        None = "CUT_NONE",
     }
 }
 
@@ -386,30 +402,19 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             max_gradient,
             volume_texture.texel_range,
         );
-        // shaders/selection_render.wgsl's codes.
-        let cutaway = match params.cutaway {
-            Cutaway::Ghost => 1.0,
-            Cutaway::Selection => 2.0,
-            Cutaway::Both => 3.0,
-            Cutaway::None => 0.0,
-        };
         let to_voxel = v.geometry.to_voxel().as_mat4();
         let selection = SelectionUniforms {
             to_source: (to_voxel * transform.inverse()).to_cols_array_2d(),
             rotation: Mat4::from_mat3(Mat3::from_mat4(transform)).to_cols_array_2d(),
-            options: [
-                params.ghosting,
-                cutaway,
-                if shaded { 1.0 } else { 0.0 },
-                0.0,
-            ],
-            domains: [
-                background.domain[0],
-                background.domain[1],
-                ghost.domain[0],
-                ghost.domain[1],
-            ],
-            domains2: [selected.domain[0], selected.domain[1], 0.0, 0.0],
+            background_domain: background.domain,
+            ghost_domain: ghost.domain,
+            selection_domain: selected.domain,
+            ghosting: params.ghosting,
+            cutaway: params.cutaway.code(),
+            shaded: shaded.into(),
+            pad0: 0.0,
+            pad1: 0.0,
+            pad2: 0.0,
         };
         let tf_rows: Vec<f32> = [&background, &ghost, &selected]
             .iter()
@@ -505,5 +510,6 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
     k.node(SelectionRenderNode)
         .program("selection_render", shaders::ray(shaders::part!("selection_render.wgsl")))
         .uniform(SelectionUniforms::layout())
+        .gpu_enum(Cutaway::wgsl())
         .uniform_in("selection_render", crate::raycast::RayUniforms::layout());
 }

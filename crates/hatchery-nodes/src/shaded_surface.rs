@@ -11,12 +11,17 @@ pub const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 crate::uniform_block! {
     /// `Shading` of shaders/shaded_surface.wgsl: base colour, view-space light direction, light
-    /// colour × intensity, (ambient, specular, shininess, two-sided).
+    /// colour and intensity, Blinn–Phong terms.
     pub struct ShadingUniform in "shaded_surface" as "Shading" {
         pub base_color: [f32; 4],
-        pub light_dir: [f32; 4],
-        pub light_color: [f32; 4],
-        pub params: [f32; 4],
+        pub light_dir: [f32; 3],
+        pub two_sided: u32,
+        pub light_color: [f32; 3],
+        pub intensity: f32,
+        pub ambient: f32,
+        pub specular: f32,
+        pub shininess: f32,
+        pub pad0: f32,
     }
 }
 
@@ -85,19 +90,14 @@ impl Node<Value, Ctx> for ShadedSurfaceNode {
         let l = light.view_direction(&camera);
         let shading = ShadingUniform {
             base_color: params.color,
-            light_dir: [l.x, l.y, l.z, 0.0],
-            light_color: [
-                light.color[0],
-                light.color[1],
-                light.color[2],
-                light.intensity,
-            ],
-            params: [
-                light.ambient,
-                params.specular,
-                params.shininess,
-                if params.two_sided { 1.0 } else { 0.0 },
-            ],
+            light_dir: l.to_array(),
+            two_sided: params.two_sided.into(),
+            light_color: [light.color[0], light.color[1], light.color[2]],
+            intensity: light.intensity,
+            ambient: light.ambient,
+            specular: params.specular,
+            shininess: params.shininess,
+            pad0: 0.0,
         };
         let camera_buf = camera.uniform_buffer(gpu);
         let shading_buf = gpu.buffer_init(

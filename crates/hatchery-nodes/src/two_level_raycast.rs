@@ -4,10 +4,10 @@
 
 use crate::camera::Camera;
 use crate::raycast::objects::{
-    TABLE_WIDTH, TwoLevelUniforms, brick_table, check_labels_grid, compositing_code, mode_code, object_tables,
+    TABLE_WIDTH, TwoLevelUniforms, brick_table, check_labels_grid, object_tables,
 };
 use crate::raycast::{
-    ImportancePipelines, Kernel, KernelChoice, PhongParams, RayOptions, RayPipelines, RayUniforms, TableInfo,
+    ImportancePipelines, Kernel, KernelChoice, PhongParams, RayOptions, RayPipelines, RayShading, RayUniforms, TableInfo,
 };
 use crate::value::{
     Compositing, Image, Importance, ImportanceMethod, ObjectStyle, RenderMode,
@@ -20,7 +20,8 @@ use hatchery_graph::{
 };
 use std::sync::Arc;
 
-fn sparse_codes(mode: SparseMode, compositing: SparseCompositing) -> [f32; 2] {
+/// The sparse style's rendering mode and local compositing: `RenderMode` and `Compositing` codes.
+fn sparse_codes(mode: SparseMode, compositing: SparseCompositing) -> [u32; 2] {
     let mode = match mode {
         SparseMode::Dvr => RenderMode::Dvr,
         SparseMode::ShadedDvr => RenderMode::ShadedDvr,
@@ -33,16 +34,7 @@ fn sparse_codes(mode: SparseMode, compositing: SparseCompositing) -> [f32; 2] {
         SparseCompositing::Sum => Compositing::Sum,
         SparseCompositing::Mip => Compositing::Mip,
     };
-    [mode_code(mode), compositing_code(compositing)]
-}
-
-fn method_code(method: ImportanceMethod) -> f32 {
-    match method {
-        ImportanceMethod::Mimp => 1.0,
-        ImportanceMethod::AimcImage => 2.0,
-        ImportanceMethod::AimcObject => 3.0,
-        ImportanceMethod::Vpimc => 4.0,
-    }
+    [mode.code(), compositing.code()]
 }
 
 /// The importance input, checked against this node's view; `styles` then take their
@@ -101,6 +93,10 @@ hatchery_graph::param_choice! {
     pub enum Global { Over = "over", Mip = "mip", Sum = "sum" }
 }
 
+crate::wgsl_constants! {
+    Global in "two_level_raycast" { Over = "GLOBAL_OVER", Mip = "GLOBAL_MIP", Sum = "GLOBAL_SUM" }
+}
+
 hatchery_graph::param_choice! {
     /// Object membership: filtered binary masks (§2.3) or the nearest voxel's id.
     pub enum Boundary { Filtered = "filtered", Point = "point" }
@@ -121,6 +117,15 @@ hatchery_graph::param_choice! {
         Saturation = "saturation",
         ScreenDoor = "screen_door",
         Style = "style",
+    }
+}
+
+crate::wgsl_constants! {
+    Sparseness in "two_level_raycast" {
+        Opacity = "SPARSE_OPACITY",
+        Saturation = "SPARSE_SATURATION",
+        ScreenDoor = "SPARSE_SCREEN_DOOR",
+        Style = "SPARSE_STYLE",
     }
 }
 
@@ -262,7 +267,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         }
         let kernel = Kernel::choose(params.kernel, &ctx.gpu);
         let options = RayOptions {
-            shading: 1,
+            shading: RayShading::Phong,
             phong: params.phong.values(),
             ..RayOptions::plain(
                 params.step,
@@ -273,7 +278,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             )
         };
         let info = TableInfo {
-            shading: 1.0,
+            shading: RayShading::Phong,
             skip_empty: params.skip_empty,
             ..TableInfo::plain()
         };
@@ -319,29 +324,23 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 ),
             ));
         }
-        let global = params.global as u32;
         let filtered = params.boundary != Boundary::Point;
-        let level = params.sparseness as u32;
         let [sparse_mode, sparse_local] =
             sparse_codes(params.sparse_mode, params.sparse_compositing);
         let two_level = |first_pass: bool| TwoLevelUniforms {
-            options: [
-                global as f32,
-                if filtered { 1.0 } else { 0.0 },
-                tables.columns as f32,
-                if object_normals { 1.0 } else { 0.0 },
-            ],
-            importance: match &importance {
-                Some(i) => [
-                    method_code(i.method),
-                    level as f32,
-                    f32::from(i.focus),
-                    if first_pass { 1.0 } else { 0.0 },
-                ],
-                None => [0.0; 4],
-            },
+            global_mode: params.global.code(),
+            boundary_filter: filtered.into(),
+            columns: tables.columns,
+            mask_normals: object_normals.into(),
+            method: importance.as_ref().map_or(0, |i| i.method.code()),
+            level: importance.as_ref().map_or(0, |_| params.sparseness.code()),
+            focus: importance.as_ref().map_or(0, |i| u32::from(i.focus)),
+            first_pass: (importance.is_some() && first_pass).into(),
+            sparse_mode,
+            sparse_local,
             // A cut shades the context down to 1.5 voxels behind it.
-            sparse: [sparse_mode, sparse_local, 1.5 * min_spacing, 0.0],
+            cut_band: 1.5 * min_spacing,
+            pad0: 0.0,
         };
         let ray_buffer = gpu.buffer_init(
             "two-level ray",
@@ -497,5 +496,10 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
     k.node(TwoLevelRaycastNode)
         .program("two_level_raycast", shaders::ray_objects(shaders::part!("two_level_raycast.wgsl")))
         .uniform(TwoLevelUniforms::layout())
+        .gpu_enum(Global::wgsl())
+        .gpu_enum(Sparseness::wgsl())
+        .gpu_enum(RenderMode::wgsl())
+        .gpu_enum(Compositing::wgsl())
+        .gpu_enum(ImportanceMethod::wgsl())
         .uniform_in("two_level_raycast", crate::raycast::RayUniforms::layout());
 }

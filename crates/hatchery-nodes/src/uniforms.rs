@@ -58,3 +58,61 @@ macro_rules! uniform_block {
         }
     };
 }
+
+/// A Rust enum mirrored by WGSL constants: `(program, [(WGSL constant, value)])`, checked by
+/// `tests/shaders.rs` against the `const NAME: u32 = value;` declarations of the program.
+#[derive(Clone, Debug)]
+pub struct GpuEnumLayout {
+    /// Shader program (a name of `kinds::programs`) that declares the constants.
+    pub program: &'static str,
+    /// The Rust enum's name.
+    pub rust_enum: &'static str,
+    /// (WGSL constant name, value), one per variant.
+    pub constants: Vec<(&'static str, u32)>,
+}
+
+/// Declares a `#[repr(u32)]` enum whose variants a shader reads as `u32` codes, each variant
+/// naming the WGSL `const` that mirrors it (see [`wgsl_constants!`]).
+#[macro_export]
+macro_rules! gpu_enum {
+    (
+        $(#[$meta:meta])*
+        pub enum $name:ident in $program:literal {
+            $( $(#[$vmeta:meta])* $variant:ident = $value:literal as $wgsl:literal ),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        #[repr(u32)]
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum $name {
+            $( $(#[$vmeta])* $variant = $value, )*
+        }
+
+        $crate::wgsl_constants! { $name in $program { $( $variant = $wgsl ),* } }
+    };
+}
+
+/// Gives a field-less enum (a parameter choice, a value enum) the codes a shader reads: its
+/// discriminants, mirrored by the named WGSL constants of `program`. `code()` is the value a
+/// uniform field or table texel carries; `wgsl()` reports the constants for the reflection
+/// test, so a code changed on one side only fails a test.
+#[macro_export]
+macro_rules! wgsl_constants {
+    ($name:ident in $program:literal { $( $variant:ident = $wgsl:literal ),* $(,)? }) => {
+        impl $name {
+            /// The code the shader compares with its constants.
+            pub const fn code(self) -> u32 {
+                self as u32
+            }
+
+            /// The WGSL constants mirroring the variants, for the reflection test.
+            pub fn wgsl() -> $crate::uniforms::GpuEnumLayout {
+                $crate::uniforms::GpuEnumLayout {
+                    program: $program,
+                    rust_enum: stringify!($name),
+                    constants: vec![ $( ($wgsl, $name::$variant as u32), )* ],
+                }
+            }
+        }
+    };
+}

@@ -5,9 +5,14 @@
 use hatchery_gpu::{GpuContext, GpuError};
 
 crate::uniform_block! {
-    /// `PassParams` of shaders/importance.wgsl: (axis or JFA step, radius, 0, 0).
+    /// `PassParams` of shaders/importance.wgsl.
     pub struct PassUniforms in "importance" as "PassParams" {
-        pub step: [f32; 4],
+        /// The axis (0 = x, 1 = y) of a separable kernel, or the JFA step in pixels.
+        pub step: u32,
+        /// The kernel radius in pixels.
+        pub radius: u32,
+        pub pad0: u32,
+        pub pad1: u32,
     }
 }
 
@@ -88,7 +93,7 @@ impl ImportancePipelines {
         params: &wgpu::Buffer,
         views: &[wgpu::TextureView; 2],
         (read, write): (u32, u32),
-        steps: &[[f32; 2]],
+        steps: &[[u32; 2]],
         groups: (u32, u32),
     ) -> usize {
         let mut at = 0;
@@ -96,7 +101,10 @@ impl ImportancePipelines {
             let pass = gpu.buffer_init(
                 "importance pass",
                 bytemuck::bytes_of(&PassUniforms {
-                    step: [step, radius, 0.0, 0.0],
+                    step,
+                    radius,
+                    pad0: 0,
+                    pad1: 0,
                 }),
                 wgpu::BufferUsages::UNIFORM,
             );

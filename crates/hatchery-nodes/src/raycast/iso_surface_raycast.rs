@@ -1,7 +1,7 @@
 //! `IsoSurfaceRaycast`: the first hit of an iso value along each ray as a G-buffer (declared
 //! with `Raycast` in mod.rs: the same program).
 
-use super::{Kernel, KernelChoice, Mode, RayOptions, cast};
+use super::{Kernel, KernelChoice, RayMode, RayOptions, RayShading, cast};
 use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_graph::{DataValue, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node};
@@ -53,10 +53,10 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let options = RayOptions {
-            mode: Mode::Iso as usize,
+            mode: RayMode::Iso,
             iso: crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?,
             step_voxels: params.step,
-            shading: 0,
+            shading: RayShading::None,
             lighting_model: "phong",
             phong: [0.0, 1.0, 0.0, 1.0],
             kappa: [0.0, 0.0],

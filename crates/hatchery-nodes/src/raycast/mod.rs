@@ -15,7 +15,7 @@ pub use crate::kernel::{Kernel, KernelChoice};
 pub use iso_surface_raycast::{IsoSurfaceRaycastNode, IsoSurfaceRaycastParams};
 pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
 pub use tables::check_same_grid;
-pub use uniforms::{Grid, RayUniforms, TableInfo};
+pub use uniforms::{Grid, RayMode, RayShading, RayUniforms, TableInfo};
 
 use crate::camera::Camera;
 use crate::value::Image;
@@ -28,10 +28,10 @@ use std::sync::Arc;
 
 /// What one ray-casting pass needs besides the volume and the camera.
 pub struct RayOptions<'a> {
-    pub mode: usize,
+    pub mode: RayMode,
     pub iso: f32,
     pub step_voxels: f32,
-    pub shading: usize,
+    pub shading: RayShading,
     pub lighting_model: &'a str,
     pub phong: [f32; 4],
     pub kappa: [f32; 2],
@@ -67,10 +67,10 @@ impl RayOptions<'static> {
         kernel: Kernel,
     ) -> Self {
         Self {
-            mode: 0,
+            mode: RayMode::Dvr,
             iso: 0.0,
             step_voxels,
-            shading: 0,
+            shading: RayShading::None,
             lighting_model: "phong",
             phong: [0.0; 4],
             kappa: [0.0, 0.0],
@@ -275,10 +275,10 @@ impl Node<Value, Ctx> for RaycastNode {
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let tf = inputs.require("tf")?.transfer_function("tf")?.clone();
         let options = RayOptions {
-            mode: params.mode as usize,
+            mode: params.mode.into(),
             iso: crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?,
             step_voxels: params.step,
-            shading: params.shading as usize,
+            shading: params.shading.into(),
             lighting_model: params.lighting_model.name(),
             phong: params.phong.values(),
             kappa: [params.kappa_t, params.kappa_s],
@@ -348,7 +348,9 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
         .program("raycast", shaders::ray(shaders::part!("raycast.wgsl")))
         .program("depth_from_texture", shaders::screen(shaders::part!("depth_from_texture.wgsl")))
         .uniform(RayUniforms::layout())
-        .uniform(StrokeUniforms::layout());
+        .uniform(StrokeUniforms::layout())
+        .gpu_enum(RayMode::wgsl())
+        .gpu_enum(RayShading::wgsl());
 }
 
 #[cfg(test)]

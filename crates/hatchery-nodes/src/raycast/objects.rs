@@ -3,43 +3,58 @@
 //! transfer functions and modes) and the brick table of drawn objects, and the check that labels
 //! and volume share one grid.
 
-use crate::value::{Compositing, Labels, ObjectStyle, RenderMode};
+use crate::value::{Compositing, ImportanceMethod, Labels, ObjectStyle, RenderMode};
 use hatchery_data::transfer_function::LUT_SIZE;
 use hatchery_graph::NodeError;
 
 crate::uniform_block! {
-    /// `TwoLevel` of shaders/two_level_raycast.wgsl: (global compositing 0 over / 1 mip /
-    /// 2 sum, 1 for boundary filtering, columns of the object table, 1 for normals from the
-    /// objects' masks).
+    /// `TwoLevel` of shaders/ray_objects.wgsl (its comments say what each field holds).
     pub struct TwoLevelUniforms in "two_level_raycast" as "TwoLevel" {
-        pub options: [f32; 4],
-        /// Importance-driven rendering: (method 0 none / 1 MImP / 2 AImC image / 3 AImC
-        /// object / 4 VPImC, level of sparseness 0 opacity / 1 saturation / 2 screen door /
-        /// 3 style, focus id, 1 in VPImC's first pass).
-        pub importance: [f32; 4],
-        /// (sparse style's rendering mode, its local compositing, depth band shaded with the
-        /// countersink's normal in world units, 0).
-        pub sparse: [f32; 4],
+        /// A [`Global`](crate::two_level_raycast::Global) code.
+        pub global_mode: u32,
+        pub boundary_filter: u32,
+        pub columns: u32,
+        pub mask_normals: u32,
+        /// An [`ImportanceMethod`] code, 0 for none.
+        pub method: u32,
+        /// A [`Sparseness`](crate::two_level_raycast::Sparseness) code.
+        pub level: u32,
+        pub focus: u32,
+        pub first_pass: u32,
+        /// A [`RenderMode`] and a [`Compositing`] code.
+        pub sparse_mode: u32,
+        pub sparse_local: u32,
+        pub cut_band: f32,
+        pub pad0: f32,
     }
 }
 
-pub(crate) fn mode_code(mode: RenderMode) -> f32 {
-    match mode {
-        RenderMode::Dvr => 0.0,
-        RenderMode::ShadedDvr => 1.0,
-        RenderMode::Tone => 2.0,
-        RenderMode::Contours => 3.0,
-        RenderMode::Mip => 4.0,
-        RenderMode::Iso => 5.0,
+crate::wgsl_constants! {
+    RenderMode in "two_level_raycast" {
+        Dvr = "MODE_DVR",
+        ShadedDvr = "MODE_SHADED",
+        Tone = "MODE_TONE",
+        Contours = "MODE_CONTOURS",
+        Mip = "MODE_MIP",
+        Iso = "MODE_ISO",
     }
 }
 
-pub(crate) fn compositing_code(c: Compositing) -> f32 {
-    match c {
-        Compositing::Over => 0.0,
-        Compositing::Mip => 1.0,
-        Compositing::Iso => 2.0,
-        Compositing::Sum => 3.0,
+crate::wgsl_constants! {
+    Compositing in "two_level_raycast" {
+        Over = "LOCAL_OVER",
+        Mip = "LOCAL_MIP",
+        Iso = "LOCAL_ISO",
+        Sum = "LOCAL_SUM",
+    }
+}
+
+crate::wgsl_constants! {
+    ImportanceMethod in "two_level_raycast" {
+        Mimp = "IMP_MIMP",
+        AimcImage = "IMP_AIMC_IMAGE",
+        AimcObject = "IMP_AIMC_OBJECT",
+        Vpimc = "IMP_VPIMC",
     }
 }
 
@@ -79,8 +94,8 @@ pub(crate) fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
         let at = texel(s.id, 0);
         table[at..at + 4].copy_from_slice(&[
             rows as f32,
-            mode_code(s.mode),
-            compositing_code(s.compositing),
+            s.mode.code() as f32,
+            s.compositing.code() as f32,
             s.iso,
         ]);
         let at = texel(s.id, 1);

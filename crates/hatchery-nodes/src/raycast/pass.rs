@@ -1,7 +1,7 @@
 //! One ray-casting pass: the pipeline, the bind group and the draw (see shaders/raycast.wgsl).
 
 use super::tables::RayTables;
-use super::uniforms::RayUniforms;
+use super::uniforms::{RayShading, RayUniforms};
 use super::{Kernel, RayOptions};
 use crate::Ctx;
 use crate::camera::Camera;
@@ -220,7 +220,8 @@ pub fn cast(
     let gpu = &ctx.gpu;
     let volume_texture = volume.texture(gpu).map_err(err)?;
     let tables = RayTables::new(gpu, &st, volume, tf, labels, o)?;
-    let max_gradient = if tables.info.shading >= 2.0 {
+    // Lighting TFs, context-preserving and style shading normalise |∇f| (eq. 5, 8, 2).
+    let max_gradient = if tables.info.shading.code() >= RayShading::Lighting.code() {
         volume.max_gradient()
     } else {
         1.0
@@ -316,10 +317,14 @@ pub fn cast(
     );
     // One pipeline per mode, shading, projection and exponent (the pipeline constants of
     // raycast.wgsl and ray_common.wgsl).
-    let (mode, shading) = (uniforms.mode[0], uniforms.mode[2]);
-    // Schlick's exponent matters to context-preserving shading (3) only: one pipeline otherwise.
-    let orthographic = uniforms.light[3];
-    let fast = if shading == 3.0 { uniforms.eye[3] } else { 0.0 };
+    let (mode, shading) = (uniforms.mode, uniforms.shading);
+    // Schlick's exponent matters to context-preserving shading only: one pipeline otherwise.
+    let orthographic = uniforms.orthographic;
+    let fast = if shading == RayShading::ContextPreserving.code() {
+        uniforms.fast_exponent
+    } else {
+        0
+    };
     let pipelines = ctx
         .cached(
             &format!("raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}"),

@@ -2,6 +2,7 @@
 //! TF, or the style TF's tft/ift rows per object, §4.1–4.2), the label → row table, the lighting
 //! transfer function (eq. 8) and the empty-space skipping tables (bricks, visible values).
 
+use super::uniforms::{RayMode, RayShading};
 use super::RayOptions;
 use super::pass::Statics;
 use super::uniforms::TableInfo;
@@ -121,13 +122,13 @@ impl RayTables {
         let err = |e: GpuError| NodeError::new(e.to_string());
         let data = &volume.data;
         let mut info = TableInfo {
-            shading: o.shading as f32,
+            shading: o.shading,
             domain: [0.0, 1.0],
-            nodes: 0.0,
+            nodes: 0,
             map_size: 1.0,
             use_labels: false,
             label_range: [0.0, 1.0],
-            label_count: 0.0,
+            label_count: 0,
             skip_empty: false,
         };
         let mut style_view = None;
@@ -151,8 +152,8 @@ impl RayTables {
                 styles,
             }) => {
                 info.domain = function.domain;
-                info.shading = 4.0;
-                info.nodes = function.ift.len() as f32;
+                info.shading = RayShading::Style;
+                info.nodes = function.ift.len() as u32;
                 info.map_size = styles.maps.first().map_or(1, |m| m.size) as f32;
                 style_view = Some(
                     styles
@@ -183,7 +184,7 @@ impl RayTables {
                     wgpu::TextureFormat::Rgba32Float,
                     bytemuck::cast_slice(&tables.label_rows),
                 ));
-                info.label_count = tables.label_width as f32;
+                info.label_count = tables.label_width;
                 Some(gpu.texture_2d_init(
                     "tft",
                     hatchery_data::transfer_function::LUT_SIZE as u32,
@@ -217,7 +218,7 @@ impl RayTables {
             })
             .collect();
         // DVR skips by the transfer function's visible values, so it needs one.
-        info.skip_empty = o.skip_empty && (o.mode != 0 || !rows.is_empty());
+        info.skip_empty = o.skip_empty && (o.mode != RayMode::Dvr || !rows.is_empty());
         let visibility = floats_texture(
             gpu,
             "visibility",

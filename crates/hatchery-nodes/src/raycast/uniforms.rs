@@ -7,30 +7,110 @@ use hatchery_data::VolumeData;
 use hatchery_data::geometry::Geometry;
 
 crate::uniform_block! {
-    /// Everything a ray needs besides textures; field by field the WGSL struct `Ray` (its
-    /// comments say what each component holds).
+    /// Everything a ray needs besides textures: the WGSL struct `Ray` of
+    /// shaders/ray_common.wgsl, field by field (its comments say what each field holds).
     pub struct RayUniforms in "raycast" as "Ray" {
         pub inv_view_proj: [[f32; 4]; 4],
         pub view: [[f32; 4]; 4],
         pub view_proj: [[f32; 4]; 4],
-        pub box_min: [f32; 4],
-        pub box_max: [f32; 4],
-        pub origin: [f32; 4],
-        pub spacing: [f32; 4],
-        pub dims: [f32; 4],
-        pub light: [f32; 4],
-        pub frame: [f32; 4],
-        pub mode: [f32; 4],
-        pub phong: [f32; 4],
-        pub context: [f32; 4],
-        pub tf: [f32; 4],
-        pub style: [f32; 4],
-        pub eye: [f32; 4],
-        pub labels: [f32; 4],
-        pub skip: [f32; 4],
         pub to_voxel: [[f32; 4]; 4],
         pub grad_to_world: [[f32; 4]; 4],
-        pub texel: [f32; 4],
+        pub box_min: [f32; 3],
+        pub step_world: f32,
+        pub box_max: [f32; 3],
+        pub step_voxels: f32,
+        pub dims: [f32; 3],
+        pub max_gradient: f32,
+        pub light: [f32; 3],
+        pub orthographic: u32,
+        pub eye: [f32; 3],
+        pub fast_exponent: u32,
+        pub frame: [f32; 2],
+        pub jitter: u32,
+        pub early_termination: f32,
+        /// A [`RayMode`] code.
+        pub mode: u32,
+        pub iso: f32,
+        /// A [`RayShading`] code.
+        pub shading: u32,
+        pub hit_opacity: f32,
+        pub ambient: f32,
+        pub diffuse: f32,
+        pub specular: f32,
+        pub shininess: f32,
+        pub kappa_t: f32,
+        pub kappa_s: f32,
+        pub distance_near: f32,
+        pub distance_far: f32,
+        pub tf_domain: [f32; 2],
+        pub style_nodes: u32,
+        pub contour_thickness: f32,
+        pub contours: u32,
+        pub transparency: u32,
+        pub mip_bias: f32,
+        pub style_map_size: f32,
+        pub label_texels: [f32; 2],
+        pub label_rows: u32,
+        pub use_labels: u32,
+        pub value_range: [f32; 2],
+        pub brick_size: u32,
+        pub visibility_bins: u32,
+        pub texel_values: [f32; 2],
+        pub skip_empty: u32,
+        pub embed_strokes: u32,
+        pub rho: f32,
+        pub pad0: f32,
+        pub pad1: f32,
+        pub pad2: f32,
+    }
+}
+
+crate::gpu_enum! {
+    /// How a ray composites (`Ray.mode`; raycast.wgsl's `RAY_MODE` pipeline constant).
+    pub enum RayMode in "raycast" {
+        /// Direct volume rendering, front to back (eq. 1).
+        Dvr = 0 as "RAY_MODE_DVR",
+        /// Maximum intensity projection.
+        Mip = 1 as "RAY_MODE_MIP",
+        /// The first hit of the iso value.
+        Iso = 2 as "RAY_MODE_ISO",
+    }
+}
+
+crate::gpu_enum! {
+    /// How a sample is shaded (`Ray.shading`; shaders/ray_shade.wgsl).
+    pub enum RayShading in "raycast" {
+        /// Unshaded.
+        None = 0 as "SHADING_NONE",
+        /// Blinn–Phong, eq. 3.
+        Phong = 1 as "SHADING_PHONG",
+        /// The lighting transfer function, eq. 8.
+        Lighting = 2 as "SHADING_LIGHTING",
+        /// Context-preserving, eq. 5.
+        ContextPreserving = 3 as "SHADING_CONTEXT",
+        /// A style transfer function (Bruckner & Gröller 2007).
+        Style = 4 as "SHADING_STYLE",
+    }
+}
+
+impl From<super::Mode> for RayMode {
+    fn from(mode: super::Mode) -> Self {
+        match mode {
+            super::Mode::Dvr => RayMode::Dvr,
+            super::Mode::Mip => RayMode::Mip,
+            super::Mode::Iso => RayMode::Iso,
+        }
+    }
+}
+
+impl From<super::Shading> for RayShading {
+    fn from(shading: super::Shading) -> Self {
+        match shading {
+            super::Shading::None => RayShading::None,
+            super::Shading::Phong => RayShading::Phong,
+            super::Shading::Lighting => RayShading::Lighting,
+            super::Shading::ContextPreserving => RayShading::ContextPreserving,
+        }
     }
 }
 
@@ -45,9 +125,6 @@ impl Grid<'_> {
     fn spacing(&self) -> [f32; 3] {
         self.geometry.spacing.as_vec3().to_array()
     }
-    fn origin(&self) -> [f32; 3] {
-        self.geometry.origin.as_vec3().to_array()
-    }
     fn voxel_to_world(&self, v: Vec3) -> Vec3 {
         self.geometry.voxel_to_world(v)
     }
@@ -55,18 +132,18 @@ impl Grid<'_> {
 
 /// What the tables contribute to the uniforms (see `tables::RayTables`).
 pub struct TableInfo {
-    /// Shading code: the option's, or 4 for a style transfer function.
-    pub shading: f32,
+    /// The option's shading, or `Style` for a style transfer function.
+    pub shading: RayShading,
     /// Transfer-function domain (lo, hi) of table row 0.
     pub domain: [f32; 2],
     /// Style nodes N of row 0 (0 for a colour TF).
-    pub nodes: f32,
+    pub nodes: u32,
     /// Style map size in texels.
     pub map_size: f32,
     /// Whether a label volume picks table rows, its texel range, and the label → row table width.
     pub use_labels: bool,
     pub label_range: [f32; 2],
-    pub label_count: f32,
+    pub label_count: u32,
     /// Whether empty bricks are skipped.
     pub skip_empty: bool,
 }
@@ -76,20 +153,16 @@ impl TableInfo {
     /// [0, 1], no labels, no skipping.
     pub fn plain() -> Self {
         Self {
-            shading: 0.0,
+            shading: RayShading::None,
             domain: [0.0, 1.0],
-            nodes: 0.0,
+            nodes: 0,
             map_size: 1.0,
             use_labels: false,
             label_range: [0.0, 1.0],
-            label_count: 0.0,
+            label_count: 0,
             skip_empty: false,
         }
     }
-}
-
-fn bool_f(b: bool) -> f32 {
-    if b { 1.0 } else { 0.0 }
 }
 
 impl RayUniforms {
@@ -140,8 +213,6 @@ impl RayUniforms {
         let view_proj = camera.view_proj();
         let l = o.light_view.normalize_or(Vec3::Z);
         let eye = camera.view.inverse().w_axis.xyz();
-        let [ox, oy, oz] = data.origin();
-        let [sx, sy, sz] = data.spacing();
         let linear = data.geometry.to_world().as_mat4();
         // Voxel-space gradients → world: M^-T of the linear part.
         let normal_matrix =
@@ -150,49 +221,53 @@ impl RayUniforms {
             inv_view_proj: view_proj.inverse().to_cols_array_2d(),
             view: camera.view.to_cols_array_2d(),
             view_proj: view_proj.to_cols_array_2d(),
-            box_min: [lo.x, lo.y, lo.z, step_world],
-            box_max: [hi.x, hi.y, hi.z, o.step_voxels],
-            origin: [ox, oy, oz, data.value_range[0]],
-            spacing: [sx, sy, sz, data.value_range[1]],
-            dims: [
-                data.dims[0] as f32,
-                data.dims[1] as f32,
-                data.dims[2] as f32,
-                max_gradient,
-            ],
-            light: [l.x, l.y, l.z, bool_f(camera.orthographic)],
-            frame: [
-                camera.width as f32,
-                camera.height as f32,
-                bool_f(o.jitter),
-                o.early_termination,
-            ],
-            mode: [o.mode as f32, o.iso, t.shading, o.hit_opacity],
-            phong: o.phong,
-            context: [o.kappa[0], o.kappa[1], distances[0], distances[1]],
-            tf: [t.domain[0], t.domain[1], t.nodes, o.thickness],
-            style: [
-                bool_f(o.contours),
-                bool_f(o.transparency),
-                o.mip_bias,
-                t.map_size,
-            ],
-            eye: [eye.x, eye.y, eye.z, bool_f(o.fast_exponent)],
-            labels: [
-                bool_f(t.use_labels),
-                t.label_range[0],
-                t.label_range[1],
-                t.label_count,
-            ],
-            skip: [
-                bool_f(t.skip_empty),
-                hatchery_data::bricks::BRICK as f32,
-                hatchery_data::bricks::VISIBILITY_BINS as f32,
-                0.0,
-            ],
             to_voxel: data.geometry.to_voxel().as_mat4().to_cols_array_2d(),
             grad_to_world: normal_matrix.to_cols_array_2d(),
-            texel: [texel_range[0], texel_range[1], bool_f(o.embed), o.rho],
+            box_min: lo.to_array(),
+            step_world,
+            box_max: hi.to_array(),
+            step_voxels: o.step_voxels,
+            dims: data.dims.map(|d| d as f32),
+            max_gradient,
+            light: l.to_array(),
+            orthographic: camera.orthographic.into(),
+            eye: eye.to_array(),
+            fast_exponent: o.fast_exponent.into(),
+            frame: [camera.width as f32, camera.height as f32],
+            jitter: o.jitter.into(),
+            early_termination: o.early_termination,
+            mode: o.mode.code(),
+            iso: o.iso,
+            shading: t.shading.code(),
+            hit_opacity: o.hit_opacity,
+            ambient: o.phong[0],
+            diffuse: o.phong[1],
+            specular: o.phong[2],
+            shininess: o.phong[3],
+            kappa_t: o.kappa[0],
+            kappa_s: o.kappa[1],
+            distance_near: distances[0],
+            distance_far: distances[1],
+            tf_domain: t.domain,
+            style_nodes: t.nodes,
+            contour_thickness: o.thickness,
+            contours: o.contours.into(),
+            transparency: o.transparency.into(),
+            mip_bias: o.mip_bias,
+            style_map_size: t.map_size,
+            label_texels: t.label_range,
+            label_rows: t.label_count,
+            use_labels: t.use_labels.into(),
+            value_range: data.value_range,
+            brick_size: hatchery_data::bricks::BRICK as u32,
+            visibility_bins: hatchery_data::bricks::VISIBILITY_BINS as u32,
+            texel_values: texel_range,
+            skip_empty: t.skip_empty.into(),
+            embed_strokes: o.embed.into(),
+            rho: o.rho,
+            pad0: 0.0,
+            pad1: 0.0,
+            pad2: 0.0,
         }
     }
 }

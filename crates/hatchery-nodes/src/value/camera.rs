@@ -143,12 +143,8 @@ impl Camera {
         CameraUniform {
             view: self.view.to_cols_array_2d(),
             proj: self.proj.to_cols_array_2d(),
-            eye: [
-                self.eye.x,
-                self.eye.y,
-                self.eye.z,
-                if self.orthographic { 1.0 } else { 0.0 },
-            ],
+            eye: self.eye.to_array(),
+            orthographic: self.orthographic.into(),
         }
     }
 }
@@ -158,7 +154,8 @@ crate::uniform_block! {
     pub struct CameraUniform in "gbuffer" as "Camera" {
         pub view: [[f32; 4]; 4],
         pub proj: [[f32; 4]; 4],
-        /// World eye position; w = 1 for orthographic.
-        pub eye: [f32; 4],
+        /// World eye position.
+        pub eye: [f32; 3],
+        pub orthographic: u32,
     }
 }

@@ -278,10 +278,12 @@ impl Labels {
 }
 
 /// How one object's samples are coloured (the rendering modes of Hadwiger §2.2, Fig. 16/17).
+/// The discriminants are the shader's codes (`MODE_*`, see `raycast::objects`).
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RenderMode {
     /// The transfer function's colour and opacity, unshaded.
-    Dvr,
+    Dvr = 0,
     /// Colour × Blinn–Phong (eq. 3 of the context-preserving paper).
     ShadedDvr,
     /// Cool-to-warm tone shading by N·L (Gooch et al. 1998, as in the tutorial's figures).
@@ -294,11 +296,13 @@ pub enum RenderMode {
     Iso,
 }
 
-/// How the samples of one object's ray segment are combined (local compositing, §2.4).
+/// How the samples of one object's ray segment are combined (local compositing, §2.4). The
+/// discriminants are the shader's codes (`LOCAL_*`, see `raycast::objects`).
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Compositing {
     /// Front-to-back alpha blending.
-    Over,
+    Over = 0,
     /// The sample of largest intensity.
     Mip,
     /// The first sample at or above the object's iso value.
@@ -489,12 +493,14 @@ impl StyleSet {
     }
 }
 
-/// How importance compositing turns importance into levels of sparseness (Viola et al.).
+/// How importance compositing turns importance into levels of sparseness (Viola et al.). The
+/// discriminants are the shader's codes (`IMP_*`, see `raycast::objects`; 0 is "none").
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ImportanceMethod {
     /// Maximum importance projection: in the focus footprint only the focus is drawn; around
     /// it the context in front of the countersink (eq. 1) is cut away.
-    Mimp,
+    Mimp = 1,
     /// Average importance compositing, image space: every sample of object o at a pixel gets
     /// S_o = I_o / Σ I (eq. 2) over the (dilated, averaged) footprints covering the pixel.
     AimcImage,
