@@ -3,7 +3,7 @@
 // surface point (central differences of the gradient along the world axes at ±h, symmetrised),
 // and the screen angle of a world direction.
 
-@group(0) @binding(20) var gbuffer_depth: texture_depth_2d;
+@group(1) @binding(0) var gbuffer_depth: texture_depth_2d;
 
 // θ of a pixel without a surface (outside [−π/2, π/2)).
 const NONE: f32 = -10.0;
@@ -33,7 +33,7 @@ struct CurvatureParams {
     pad1: f32,
     pad2: f32,
 };
-@group(0) @binding(22) var<uniform> curvature_params: CurvatureParams;
+@group(1) @binding(1) var<uniform> curvature_params: CurvatureParams;
 
 fn world_gradient(p: vec3<f32>) -> vec3<f32> {
     return gradient_at((ray.to_voxel * vec4<f32>(p, 1.0)).xyz);

@@ -14,7 +14,7 @@ struct ContourParams {
     pad1: f32,
     pad2: f32,
 };
-@group(0) @binding(23) var<uniform> contour: ContourParams;
+@group(1) @binding(2) var<uniform> contour: ContourParams;
 
 @fragment
 fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {

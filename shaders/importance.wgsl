@@ -37,7 +37,7 @@ struct ImportanceParams {
     // Importance of table row i (the drawn objects, in table order) at weights[i / 4][i % 4].
     weights: array<vec4<f32>, 8>,
 };
-@group(0) @binding(20) var<uniform> imp: ImportanceParams;
+@group(1) @binding(4) var<uniform> imp: ImportanceParams;
 
 // One pass of a separable or iterated kernel: the axis (0 = x, 1 = y) or the JFA step in
 // pixels, and the radius in pixels.
@@ -47,21 +47,21 @@ struct PassParams {
     pad0: u32,
     pad1: u32,
 };
-@group(0) @binding(21) var<uniform> pass_params: PassParams;
+@group(1) @binding(5) var<uniform> pass_params: PassParams;
 
-@group(0) @binding(22) var footprint_out: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(23) var bits_out: texture_storage_2d<r32uint, write>;
-@group(0) @binding(24) var bits_in: texture_2d<u32>;
-@group(0) @binding(25) var sum_out: texture_storage_2d<r32float, write>;
-@group(0) @binding(26) var sum_in: texture_2d<f32>;
-@group(0) @binding(27) var footprint_in: texture_2d<f32>;
-@group(0) @binding(28) var seed_out: texture_storage_2d<rg32float, write>;
-@group(0) @binding(29) var seed_in: texture_2d<f32>;
-@group(0) @binding(30) var stats_out: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(31) var stats_in: texture_2d<f32>;
-@group(0) @binding(32) var buffer_out: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(33) var cut_out: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(34) var picture_in: texture_2d<f32>;
+@group(1) @binding(6) var footprint_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(7) var bits_out: texture_storage_2d<r32uint, write>;
+@group(1) @binding(8) var bits_in: texture_2d<u32>;
+@group(1) @binding(9) var sum_out: texture_storage_2d<r32float, write>;
+@group(1) @binding(10) var sum_in: texture_2d<f32>;
+@group(1) @binding(11) var footprint_in: texture_2d<f32>;
+@group(1) @binding(12) var seed_out: texture_storage_2d<rg32float, write>;
+@group(1) @binding(13) var seed_in: texture_2d<f32>;
+@group(1) @binding(14) var stats_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(15) var stats_in: texture_2d<f32>;
+@group(1) @binding(16) var buffer_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(17) var cut_out: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(18) var picture_in: texture_2d<f32>;
 
 // A pixel without a seed (no footprint pixel found yet).
 const NO_SEED: f32 = -1.0e9;

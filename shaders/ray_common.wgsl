@@ -266,9 +266,9 @@ fn fragment_out(r: RayResult) -> FragmentOut {
 // The compute path: one invocation per pixel in 8×8 tiles writes storage textures (the depth
 // as r32float; the pass copies it into the G-buffer's depth texture). On GPUs whose graphics
 // pipeline runs on part of the chip only (H100/H200) this is the fast path.
-@group(1) @binding(0) var out_color: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(1) var out_normal: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(2) var out_depth: texture_storage_2d<r32float, write>;
+@group(2) @binding(0) var out_color: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(1) var out_normal: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(2) var out_depth: texture_storage_2d<r32float, write>;
 
 fn store_result(id: vec2<u32>, r: RayResult) {
     let pixel = vec2<i32>(id);

@@ -7,15 +7,15 @@
 // and (1, 0, id, 0) for the others, so an empty brick reads as one to skip; id is the one object
 // every sample of the brick sees, −1 where several meet.
 // Object ids (R16Uint), on the volume's grid.
-@group(0) @binding(11) var object_ids: texture_3d<u32>;
+@group(1) @binding(0) var object_ids: texture_3d<u32>;
 // Per id, at column id % 256 of rows 2 · (id / 256) and the one after: (table row + 1, or 0
 // when not drawn; rendering mode; local compositing; iso value) and (TF domain lo, hi,
 // importance, 0).
-@group(0) @binding(12) var objects: texture_2d<f32>;
+@group(1) @binding(1) var objects: texture_2d<f32>;
 
 // 1 where a voxel belongs to a drawn object (R8Unorm, filtered): the union of the drawn
 // objects' masks, an upper bound of each one's filtered mask.
-@group(0) @binding(14) var drawn_mask: texture_3d<f32>;
+@group(1) @binding(3) var drawn_mask: texture_3d<f32>;
 
 struct TwoLevel {
     // Global compositing of the segments (a GLOBAL_* constant of two_level_raycast.wgsl).
@@ -41,7 +41,7 @@ struct TwoLevel {
     cut_band: f32,
     pad0: f32,
 };
-@group(0) @binding(13) var<uniform> two_level: TwoLevel;
+@group(1) @binding(2) var<uniform> two_level: TwoLevel;
 
 fn object_info(id: u32, which: u32) -> vec4<f32> {
     return textureLoad(objects, vec2<i32>(i32(id % 256u), i32((id / 256u) * 2u + which)), 0);

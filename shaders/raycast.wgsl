@@ -46,13 +46,13 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
 // in front of it, over what lies behind (an opaque stroke ends the ray: no sample behind it
 // contributes; a soft edge lets the volume behind show through). DVR only. ray.embed_strokes = 1 when strokes are bound; ray.rho =
 // the global alpha ρ that scales every sample's opacity.
-@group(0) @binding(15) var stroke_depth: texture_depth_2d;
-@group(0) @binding(16) var stroke_mask: texture_2d<f32>;
+@group(1) @binding(0) var stroke_depth: texture_depth_2d;
+@group(1) @binding(1) var stroke_mask: texture_2d<f32>;
 struct Strokes {
     // Straight RGBA of the strokes.
     color: vec4<f32>,
 };
-@group(0) @binding(17) var<uniform> strokes: Strokes;
+@group(1) @binding(2) var<uniform> strokes: Strokes;
 
 // The stroke at `position`: (coverage, t along the ray where it lies; 1e30 for none).
 fn stroke_at(position: vec2<f32>, p0: vec3<f32>, dir: vec3<f32>) -> vec2<f32> {

@@ -44,10 +44,10 @@ const CUT_GHOST: u32 = 0u;
 const CUT_SELECTION: u32 = 1u;
 const CUT_BOTH: u32 = 2u;
 const CUT_NONE: u32 = 3u;
-@group(0) @binding(13) var<uniform> selection: Selection;
+@group(1) @binding(0) var<uniform> selection: Selection;
 // Indicator of the selected ids (1 inside; R8Unorm, R16Unorm on CPU adapters), on the
 // volume's grid: filtered trilinearly it is f_S.
-@group(0) @binding(14) var selection_mask: texture_3d<f32>;
+@group(1) @binding(1) var selection_mask: texture_3d<f32>;
 
 fn inside_grid(q: vec3<f32>) -> bool {
     return all(q >= vec3<f32>(-0.5)) && all(q <= ray.dims - 0.5);

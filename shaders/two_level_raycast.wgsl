@@ -16,11 +16,11 @@
 // *and* one level (dense or sparse/occluding), so a context object splits at the countersink.
 
 // (E, Σ I, 1 in the focus footprint, focus last hit) per pixel; E = countersink view depth.
-@group(0) @binding(15) var importance_buffer: texture_2d<f32>;
+@group(1) @binding(4) var importance_buffer: texture_2d<f32>;
 // (countersink view-space normal, distance to the footprint in pixels) per pixel.
-@group(0) @binding(16) var importance_cut: texture_2d<f32>;
+@group(1) @binding(5) var importance_cut: texture_2d<f32>;
 // 1×1: x = α_avg of the occluding context (VPImC's first pass), else 1.
-@group(0) @binding(17) var occluder_stats: texture_2d<f32>;
+@group(1) @binding(6) var occluder_stats: texture_2d<f32>;
 
 const IMP_NONE: u32 = 0u;
 const IMP_MIMP: u32 = 1u;

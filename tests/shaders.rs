@@ -213,3 +213,74 @@ fn every_gpu_enum_matches_its_wgsl_constants() {
         }
     }
 }
+
+/// The bindings of a module: (group, binding) → variable name.
+fn wgsl_bindings(module: &naga::Module) -> std::collections::BTreeMap<(u32, u32), String> {
+    module
+        .global_variables
+        .iter()
+        .filter_map(|(_, g)| {
+            let b = g.binding.as_ref()?;
+            Some(((b.group, b.binding), g.name.clone().unwrap_or_default()))
+        })
+        .collect()
+}
+
+#[test]
+fn every_typed_bind_group_matches_its_program_binding_by_binding() {
+    use std::collections::{BTreeMap, BTreeSet};
+    let layouts = hatchery_nodes::kinds::bind_groups();
+    assert!(!layouts.is_empty());
+    let programs: BTreeSet<&str> = layouts.iter().map(|l| l.program).collect();
+    for program in programs {
+        let source = hatchery_nodes::kinds::source(program)
+            .unwrap_or_else(|| panic!("no program `{program}`"));
+        let module = naga::front::wgsl::parse_str(&source).unwrap();
+        let wgsl = wgsl_bindings(&module);
+        // What the Rust structs declare for this program, (group, binding) → (name, struct).
+        let mut declared: BTreeMap<(u32, u32), (String, &str)> = BTreeMap::new();
+        for l in layouts.iter().filter(|l| l.program == program) {
+            for (i, name) in l.names.iter().enumerate() {
+                let at = (l.group, l.first + i as u32);
+                if let Some((other, by)) = declared.insert(at, (name.to_string(), l.rust_struct)) {
+                    panic!(
+                        "{program}: group {} binding {} declared twice ({other} by {by}, {name} by {})",
+                        at.0, at.1, l.rust_struct
+                    );
+                }
+            }
+        }
+        for (&(group, binding), (name, by)) in &declared {
+            let actual = wgsl.get(&(group, binding)).unwrap_or_else(|| {
+                panic!("{program}: {by}.{name} is group {group} binding {binding}, which WGSL does not declare")
+            });
+            assert_eq!(
+                actual, name,
+                "{program}: group {group} binding {binding} is `{actual}` in WGSL, `{name}` in {by}"
+            );
+        }
+        for ((group, binding), name) in &wgsl {
+            assert!(
+                declared.contains_key(&(*group, *binding)),
+                "{program}: `{name}` (group {group} binding {binding}) is in no typed bind group"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_ray_caster_binds_the_shared_ray_group() {
+    let layouts = hatchery_nodes::kinds::bind_groups();
+    for (program, _) in hatchery_nodes::kinds::programs() {
+        let source = hatchery_nodes::kinds::source(program).unwrap();
+        if !source.contains("var<uniform> ray: Ray;") {
+            continue;
+        }
+        assert!(
+            layouts
+                .iter()
+                .any(|l| l.program == *program && l.rust_struct == "RayBindings"),
+            "program {program} includes ray_common.wgsl but declares no RayBindings"
+        );
+    }
+}

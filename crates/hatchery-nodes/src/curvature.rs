@@ -2,7 +2,7 @@
 //! volume's gradient and Hessian (Hadwiger's deferred iso-surface shading, the tutorial's §1;
 //! see shaders/curvature.wgsl for the rule and the output's channels).
 
-use crate::raycast::{Kernel, RayOptions, RayUniforms, TableInfo, linear_clamp_sampler};
+use crate::raycast::{Kernel, RayBindings, RayOptions, RayUniforms, TableInfo, linear_clamp_sampler};
 use crate::screen_pass;
 use crate::value::Image;
 use crate::{Ctx, Value};
@@ -96,9 +96,10 @@ impl Node<Value, Ctx> for CurvatureNode {
 }
 
 /// Runs a fragment program of the curvature family (shaders/curvature_common.wgsl prepended)
-/// over the G-buffer's frame: the ray uniforms of `gbuffer`'s camera over `volume` (binding 0),
-/// the volume (1) and its sampler (2), the G-buffer depth (20), the finite-difference step
-/// `step_voxels` × the smallest spacing (22) and, if given, `extra` as the uniform at 23.
+/// over the G-buffer's frame: in group 0 the ray uniforms of `gbuffer`'s camera over `volume`,
+/// the volume and its sampler ([`RayBindings`]); in group 1 the G-buffer depth and the
+/// finite-difference step `step_voxels` × the smallest spacing ([`CurvatureBindings`]) and, if
+/// given, `extra` as the program's own uniform after them ([`CURVATURE_OWN_FIRST`]).
 pub fn surface_pass(
     ctx: &mut Ctx,
     program: &'static str,
@@ -138,23 +139,52 @@ pub fn surface_pass(
         aspect: wgpu::TextureAspect::DepthOnly,
         ..Default::default()
     });
-    use wgpu::BindingResource::{Sampler, TextureView};
-    let mut bindings = vec![
-        (0, ray_buffer.as_entire_binding()),
-        (1, TextureView(&volume_view)),
-        (2, Sampler(&sampler)),
-        (20, TextureView(&depth_view)),
-        (22, params_buffer.as_entire_binding()),
-    ];
+    let shared = RayBindings {
+        ray: Some(&ray_buffer),
+        volume: Some(&volume_view),
+        linear_clamp: Some(&sampler),
+        ..Default::default()
+    };
+    let own = CurvatureBindings {
+        gbuffer_depth: Some(&depth_view),
+        curvature_params: Some(&params_buffer),
+    };
+    // A program's own uniform (CurvatureContours') follows the shared ones in group 1.
+    let mut own_entries = own.entries();
     if let Some(buffer) = &extra_buffer {
-        bindings.push((23, buffer.as_entire_binding()));
+        own_entries.push(wgpu::BindGroupEntry {
+            binding: CURVATURE_OWN_FIRST,
+            resource: buffer.as_entire_binding(),
+        });
     }
-    let group = gpu.bind_group(program, &pipeline.get_bind_group_layout(0), &bindings);
+    let groups = crate::bindings::bind_groups(
+        gpu,
+        program,
+        |i| pipeline.get_bind_group_layout(i),
+        &[shared.entries(), own_entries],
+    )
+    .map_err(err)?;
     let size = (camera.width, camera.height);
     Ok(screen_pass::draw(
-        ctx, program, &pipeline, &group, format, size,
+        ctx,
+        program,
+        &pipeline,
+        &[&groups[0], &groups[1]],
+        format,
+        size,
     ))
 }
+
+crate::bind_group! {
+    /// Group 1 of the curvature programs: shaders/curvature_common.wgsl's bindings.
+    pub struct CurvatureBindings in "curvature", group 1 from 0 {
+        pub gbuffer_depth: TextureView,
+        pub curvature_params: Buffer,
+    }
+}
+
+/// The binding of a curvature program's own uniform in group 1, after [`CurvatureBindings`].
+pub const CURVATURE_OWN_FIRST: u32 = 2;
 
 /// An error at `port` unless `texture` has the G-buffer's frame size ("is A×B, the G-buffer
 /// W×H" followed by `hint`).
@@ -175,5 +205,8 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
     k.node(CurvatureNode)
         .program("curvature", shaders::curvature(shaders::part!("curvature.wgsl")))
         .uniform(CurvatureUniforms::layout())
+        .bind_group(CurvatureBindings::layout())
+        .bind_group_in("curvature", crate::raycast::RayBindings::layout())
+        .bind_group_in("curvature", crate::raycast::RayOutputs::layout())
         .uniform_in("curvature", crate::raycast::RayUniforms::layout());
 }

@@ -95,12 +95,24 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
 }
 
 
+crate::bind_group! {
+    /// CurvatureContours' own uniform in group 1, after the curvature bindings (`surface_pass`
+    /// binds it at [`crate::curvature::CURVATURE_OWN_FIRST`]).
+    pub struct ContourBindings in "curvature_contours", group 1 from 2 {
+        pub contour: Buffer,
+    }
+}
+
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(CurvatureContoursNode)
         .program("curvature_contours", shaders::curvature(shaders::part!("curvature_contours.wgsl")))
         .uniform(ContourUniforms::layout())
+        .bind_group(ContourBindings::layout())
+        .bind_group_in("curvature_contours", crate::curvature::CurvatureBindings::layout())
+        .bind_group_in("curvature_contours", crate::raycast::RayBindings::layout())
+        .bind_group_in("curvature_contours", crate::raycast::RayOutputs::layout())
         .uniform_in("curvature_contours", crate::raycast::RayUniforms::layout())
         .uniform_in(
             "curvature_contours",

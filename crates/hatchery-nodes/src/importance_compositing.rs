@@ -10,8 +10,8 @@
 //! pixel; tests/importance.rs compares it with a brute-force EDT).
 
 use crate::raycast::{Grid, Kernel, RayOptions, RayUniforms, TableInfo};
-use crate::raycast::{ImportancePipelines, PassUniforms};
-use crate::raycast::objects::{TABLE_WIDTH, TwoLevelUniforms, brick_table, object_tables};
+use crate::raycast::{ImportanceBindings, ImportancePipelines, PassUniforms, PingPong, RayBindings};
+use crate::raycast::objects::{ObjectBindings, TABLE_WIDTH, TwoLevelUniforms, brick_table, object_tables};
 use crate::value::{Importance, ImportanceMethod, ObjectStyle};
 use crate::{Ctx, Value};
 use hatchery_gpu::GpuError;
@@ -267,7 +267,6 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let bits_v = [view(&bits[0]), view(&bits[1])];
         let sums_v = [view(&sums[0]), view(&sums[1])];
         let seeds_v = [view(&seeds[0]), view(&seeds[1])];
-        let tex = wgpu::BindingResource::TextureView;
         let groups = (w.div_ceil(8), h.div_ceil(8));
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let (ids_v, drawn_v, bricks_v, table_v) = (
@@ -280,17 +279,29 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             gpu,
             &mut encoder,
             "footprint",
-            &[
-                (0, ray_buffer.as_entire_binding()),
-                (2, wgpu::BindingResource::Sampler(&sampler)),
-                (9, tex(&bricks_v)),
-                (11, tex(&ids_v)),
-                (12, tex(&table_v)),
-                (13, two_level_buffer.as_entire_binding()),
-                (14, tex(&drawn_v)),
-                (20, params_buffer.as_entire_binding()),
-                (22, tex(&footprint_v)),
-                (23, tex(&bits_v[0])),
+            [
+                RayBindings {
+                    ray: Some(&ray_buffer),
+                    linear_clamp: Some(&sampler),
+                    bricks: Some(&bricks_v),
+                    ..Default::default()
+                }.entries(),
+                [
+                    ObjectBindings {
+                        object_ids: Some(&ids_v),
+                        objects: Some(&table_v),
+                        two_level: Some(&two_level_buffer),
+                        drawn_mask: Some(&drawn_v),
+                    }
+                    .entries(),
+                    ImportanceBindings {
+                        imp: Some(&params_buffer),
+                        footprint_out: Some(&footprint_v),
+                        bits_out: Some(&bits_v[0]),
+                        ..Default::default()
+                    }.entries(),
+                ]
+                .concat(),
             ],
             groups,
         );
@@ -307,7 +318,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             "dilate",
             &params_buffer,
             &bits_v,
-            (24, 23),
+            PingPong::Bits,
             separable,
             groups,
         );
@@ -315,10 +326,14 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             gpu,
             &mut encoder,
             "weigh",
-            &[
-                (20, params_buffer.as_entire_binding()),
-                (24, tex(&bits_v[bits_at])),
-                (25, tex(&sums_v[0])),
+            [
+                Vec::new(),
+                ImportanceBindings {
+                    imp: Some(&params_buffer),
+                    bits_in: Some(&bits_v[bits_at]),
+                    sum_out: Some(&sums_v[0]),
+                    ..Default::default()
+                }.entries(),
             ],
             groups,
         );
@@ -328,7 +343,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             "box",
             &params_buffer,
             &sums_v,
-            (26, 25),
+            PingPong::Sums,
             separable,
             groups,
         );
@@ -337,10 +352,14 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             gpu,
             &mut encoder,
             "jfa_init",
-            &[
-                (20, params_buffer.as_entire_binding()),
-                (27, tex(&footprint_v)),
-                (28, tex(&seeds_v[0])),
+            [
+                Vec::new(),
+                ImportanceBindings {
+                    imp: Some(&params_buffer),
+                    footprint_in: Some(&footprint_v),
+                    seed_out: Some(&seeds_v[0]),
+                    ..Default::default()
+                }.entries(),
             ],
             groups,
         );
@@ -357,7 +376,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             "jfa_step",
             &params_buffer,
             &seeds_v,
-            (29, 28),
+            PingPong::Seeds,
             &steps,
             groups,
         );
@@ -365,10 +384,14 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             gpu,
             &mut encoder,
             "reduce",
-            &[
-                (20, params_buffer.as_entire_binding()),
-                (27, tex(&footprint_v)),
-                (30, tex(&stats_v)),
+            [
+                Vec::new(),
+                ImportanceBindings {
+                    imp: Some(&params_buffer),
+                    footprint_in: Some(&footprint_v),
+                    stats_out: Some(&stats_v),
+                    ..Default::default()
+                }.entries(),
             ],
             (1, 1),
         );
@@ -376,14 +399,18 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             gpu,
             &mut encoder,
             "finish",
-            &[
-                (20, params_buffer.as_entire_binding()),
-                (26, tex(&sums_v[sum_at])),
-                (27, tex(&footprint_v)),
-                (29, tex(&seeds_v[seed_at])),
-                (31, tex(&stats_v)),
-                (32, tex(&buffer_v)),
-                (33, tex(&cut_v)),
+            [
+                Vec::new(),
+                ImportanceBindings {
+                    imp: Some(&params_buffer),
+                    sum_in: Some(&sums_v[sum_at]),
+                    footprint_in: Some(&footprint_v),
+                    seed_in: Some(&seeds_v[seed_at]),
+                    stats_in: Some(&stats_v),
+                    buffer_out: Some(&buffer_v),
+                    cut_out: Some(&cut_v),
+                    ..Default::default()
+                }.entries(),
             ],
             groups,
         );
@@ -416,5 +443,10 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
             "importance",
             TwoLevelUniforms::layout(),
         )
-        .uniform_in("importance", crate::raycast::RayUniforms::layout());
+        .uniform_in("importance", crate::raycast::RayUniforms::layout())
+        .bind_group(ImportanceBindings::layout())
+        .bind_group_in("importance", ObjectBindings::layout())
+        .bind_group_in("importance", crate::raycast::RayBindings::layout())
+        // In the module through ray_common.wgsl; the kernels write their own outputs.
+        .bind_group_in("importance", crate::raycast::RayOutputs::layout());
 }

@@ -3,6 +3,7 @@
 //! once. The registry, the program list and the uniform list are all built from those calls, so
 //! a kind is declared in its own module only.
 
+use crate::bindings::BindingLayout;
 use crate::stage::Fusable;
 use crate::uniforms::{GpuEnumLayout, UniformLayout};
 use crate::{Ctx, Registry, Value};
@@ -22,6 +23,7 @@ pub struct Kinds {
     pub(crate) programs: Vec<Program>,
     pub(crate) uniforms: Vec<UniformLayout>,
     pub(crate) gpu_enums: Vec<GpuEnumLayout>,
+    pub(crate) bind_groups: Vec<BindingLayout>,
     /// (kind, the file of the `declare` that declared it).
     pub(crate) files: Vec<(&'static str, &'static str)>,
     /// (the file of the `declare` that declared a program, the program's own part).
@@ -99,6 +101,18 @@ impl Kinds {
         self
     }
 
+    /// A typed bind group (checked against its program's bindings by tests/shaders.rs).
+    pub fn bind_group(&mut self, layout: BindingLayout) -> &mut Self {
+        self.bind_groups.push(layout);
+        self
+    }
+
+    /// A typed bind group that `program` uses as well as the program it was declared for (the
+    /// ray casters' shared group 0, the object tables).
+    pub fn bind_group_in(&mut self, program: &'static str, layout: BindingLayout) -> &mut Self {
+        self.bind_group(BindingLayout { program, ..layout })
+    }
+
     /// A uniform block that `program` uses as well as the program it was declared for (a
     /// shared block: the camera of the mesh shaders, the ray casters' `Ray`).
     pub fn uniform_in(&mut self, program: &'static str, layout: UniformLayout) -> &mut Self {
@@ -129,4 +143,9 @@ pub fn uniform_blocks() -> Vec<UniformLayout> {
 /// Every enum mirrored by WGSL constants, for the reflection test.
 pub fn gpu_enums() -> Vec<GpuEnumLayout> {
     Kinds::all().gpu_enums
+}
+
+/// Every typed bind group of every program, for the reflection test.
+pub fn bind_groups() -> Vec<BindingLayout> {
+    Kinds::all().bind_groups
 }

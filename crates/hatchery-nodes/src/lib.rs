@@ -3,6 +3,7 @@
 //! [`declaring_modules!`] below lists it once. docs/contributing.md has a worked example.
 
 pub mod annotations;
+pub mod bindings;
 pub mod context;
 pub mod export;
 pub mod framing;

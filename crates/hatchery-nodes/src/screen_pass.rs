@@ -196,7 +196,7 @@ pub fn render_specialised(
         ctx,
         program,
         &pipeline,
-        &bind_group,
+        &[&bind_group],
         format,
         (width, height),
     ))
@@ -262,7 +262,7 @@ pub fn draw(
     ctx: &mut Ctx,
     label: &str,
     pipeline: &wgpu::RenderPipeline,
-    bind_group: &wgpu::BindGroup,
+    bind_groups: &[&wgpu::BindGroup],
     format: wgpu::TextureFormat,
     (width, height): (u32, u32),
 ) -> wgpu::Texture {
@@ -271,20 +271,20 @@ pub fn draw(
         &ctx.gpu,
         label,
         pipeline,
-        bind_group,
+        bind_groups,
         std::slice::from_ref(&output),
     );
     ctx.submit(work);
     output
 }
 
-/// One full-frame triangle of `pipeline` with `bind_group` into `targets` (one colour attachment
-/// each, cleared to transparent); the work, not yet submitted.
+/// One full-frame triangle of `pipeline` with `bind_groups` (groups 0, 1, …) into `targets`
+/// (one colour attachment each, cleared to transparent); the work, not yet submitted.
 pub fn draw_into(
     gpu: &GpuContext,
     label: &str,
     pipeline: &wgpu::RenderPipeline,
-    bind_group: &wgpu::BindGroup,
+    bind_groups: &[&wgpu::BindGroup],
     targets: &[wgpu::Texture],
 ) -> wgpu::CommandBuffer {
     let views: Vec<wgpu::TextureView> = targets
@@ -313,7 +313,9 @@ pub fn draw_into(
             ..Default::default()
         });
         pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, bind_group, &[]);
+        for (i, group) in bind_groups.iter().enumerate() {
+            pass.set_bind_group(i as u32, *group, &[]);
+        }
         pass.draw(0..3, 0..1);
     }
     encoder.finish()

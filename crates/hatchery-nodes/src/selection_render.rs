@@ -458,29 +458,20 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             view(&lighting_texture),
             view(&mask),
         ];
-        let texture = |binding, view| wgpu::BindGroupEntry {
-            binding,
-            resource: wgpu::BindingResource::TextureView(view),
+        let shared = crate::raycast::RayBindings {
+            ray: Some(&ray_buffer),
+            volume: Some(&views[0]),
+            linear_clamp: Some(&sampler),
+            tf_table: Some(&views[1]),
+            lighting_table: Some(&views[2]),
+            ..Default::default()
         };
-        let entries = [
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: ray_buffer.as_entire_binding(),
-            },
-            texture(1, &views[0]),
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-            texture(3, &views[1]),
-            texture(4, &views[2]),
-            wgpu::BindGroupEntry {
-                binding: 13,
-                resource: selection_buffer.as_entire_binding(),
-            },
-            texture(14, &views[3]),
-        ];
-        let (image, gbuffer) = pipelines.run(ctx, &camera, &entries, kernel)?;
+        let own = SelectionBindings {
+            selection: Some(&selection_buffer),
+            selection_mask: Some(&views[3]),
+        };
+        let groups = [shared.entries(), own.entries()];
+        let (image, gbuffer) = pipelines.run(ctx, &camera, groups, kernel)?;
         let name = ids
             .iter()
             .map(|id| {
@@ -504,12 +495,23 @@ impl Node<Value, Ctx> for SelectionRenderNode {
 }
 
 
+crate::bind_group! {
+    /// SelectionRender's own bindings (shaders/selection_render.wgsl).
+    pub struct SelectionBindings in "selection_render", group 1 from 0 {
+        pub selection: Buffer,
+        pub selection_mask: TextureView,
+    }
+}
+
 /// This module's node kinds, shader programs and uniform blocks (see [`crate::kinds`]).
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(SelectionRenderNode)
         .program("selection_render", shaders::ray(shaders::part!("selection_render.wgsl")))
         .uniform(SelectionUniforms::layout())
+        .bind_group(SelectionBindings::layout())
+        .bind_group_in("selection_render", crate::raycast::RayBindings::layout())
+        .bind_group_in("selection_render", crate::raycast::RayOutputs::layout())
         .gpu_enum(Cutaway::wgsl())
         .uniform_in("selection_render", crate::raycast::RayUniforms::layout());
 }

@@ -4,10 +4,10 @@
 
 use crate::camera::Camera;
 use crate::raycast::objects::{
-    TABLE_WIDTH, TwoLevelUniforms, brick_table, check_labels_grid, object_tables,
+    ObjectBindings, TABLE_WIDTH, TwoLevelUniforms, brick_table, check_labels_grid, object_tables,
 };
 use crate::raycast::{
-    ImportancePipelines, Kernel, KernelChoice, PhongParams, RayOptions, RayPipelines, RayShading, RayUniforms, TableInfo,
+    ImportanceBindings, ImportancePipelines, Kernel, KernelChoice, PhongParams, RayBindings, RayOptions, RayPipelines, RayShading, RayUniforms, TableInfo,
 };
 use crate::value::{
     Compositing, Image, Importance, ImportanceMethod, ObjectStyle, RenderMode,
@@ -388,10 +388,6 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             drawn_mask.create_view(&Default::default()),
             placeholders.zero.create_view(&Default::default()),
         ];
-        let texture = |binding, view| wgpu::BindGroupEntry {
-            binding,
-            resource: wgpu::BindingResource::TextureView(view),
-        };
         let one = || placeholders.one.create_view(&Default::default());
         let (importance_view, cut_view) = match &importance {
             Some(i) => (
@@ -401,34 +397,30 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             None => (one(), one()),
         };
         let no_occluder = one();
-        let fixed = vec![
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: ray_buffer.as_entire_binding(),
-            },
-            texture(1, &views[0]),
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-            texture(3, &views[1]),
+        let shared = RayBindings {
+            ray: Some(&ray_buffer),
+            volume: Some(&views[0]),
+            linear_clamp: Some(&sampler),
+            tf_table: Some(&views[1]),
             // The lighting TF of shade_surface's `lighting` branch, which two-level never takes.
-            texture(4, &views[6]),
-            texture(9, &views[4]),
-            texture(14, &views[5]),
-            texture(11, &views[2]),
-            texture(12, &views[3]),
-            texture(15, &importance_view),
-            texture(16, &cut_view),
-        ];
-        let entries = |two_level, occluder| {
-            let mut all = fixed.clone();
-            all.push(wgpu::BindGroupEntry {
-                binding: 13,
-                resource: wgpu::BindingResource::Buffer(two_level),
-            });
-            all.push(texture(17, occluder));
-            all
+            lighting_table: Some(&views[6]),
+            bricks: Some(&views[4]),
+            ..Default::default()
+        };
+        // Group 1: the object tables, then this program's own bindings.
+        let own = |two_level, occluder| {
+            let objects = ObjectBindings {
+                object_ids: Some(&views[2]),
+                objects: Some(&views[3]),
+                two_level: Some(two_level),
+                drawn_mask: Some(&views[5]),
+            };
+            let importance = TwoLevelBindings {
+                importance_buffer: Some(&importance_view),
+                importance_cut: Some(&cut_view),
+                occluder_stats: Some(occluder),
+            };
+            [shared.entries(), [objects.entries(), importance.entries()].concat()]
         };
         let final_uniforms = two_level_buffer(false);
         let first_uniforms = two_level_buffer(true);
@@ -438,7 +430,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 let (occluding, _) = pipelines.run(
                     ctx,
                     &camera,
-                    &entries(first_uniforms.as_entire_buffer_binding(), &no_occluder),
+                    own(&first_uniforms, &no_occluder),
                     kernel,
                 )?;
                 Some(alpha_mean(ctx, &occluding).map_err(err)?)
@@ -451,8 +443,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let (image, gbuffer) = pipelines.run(
             ctx,
             &camera,
-            &entries(
-                final_uniforms.as_entire_buffer_binding(),
+            own(
+                &final_uniforms,
                 occluder_view.as_ref().unwrap_or(&no_occluder),
             ),
             kernel,
@@ -461,6 +453,15 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             Value::Image(Arc::new(Image { texture: image })),
             Value::GBuffer(Arc::new(gbuffer)),
         ])
+    }
+}
+
+crate::bind_group! {
+    /// TwoLevelRaycast's own bindings, after the object tables (shaders/two_level_raycast.wgsl).
+    pub struct TwoLevelBindings in "two_level_raycast", group 1 from 4 {
+        pub importance_buffer: TextureView,
+        pub importance_cut: TextureView,
+        pub occluder_stats: TextureView,
     }
 }
 
@@ -479,9 +480,13 @@ fn alpha_mean(ctx: &mut Ctx, picture: &wgpu::Texture) -> Result<wgpu::Texture, G
         gpu,
         &mut encoder,
         "alpha_mean",
-        &[
-            (34, wgpu::BindingResource::TextureView(&picture_view)),
-            (30, wgpu::BindingResource::TextureView(&stats_view)),
+        [
+            Vec::new(),
+            ImportanceBindings {
+                picture_in: Some(&picture_view),
+                stats_out: Some(&stats_view),
+                ..Default::default()
+            }.entries(),
         ],
         (1, 1),
     );
@@ -496,6 +501,10 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
     k.node(TwoLevelRaycastNode)
         .program("two_level_raycast", shaders::ray_objects(shaders::part!("two_level_raycast.wgsl")))
         .uniform(TwoLevelUniforms::layout())
+        .bind_group(TwoLevelBindings::layout())
+        .bind_group(ObjectBindings::layout())
+        .bind_group_in("two_level_raycast", RayBindings::layout())
+        .bind_group_in("two_level_raycast", crate::raycast::RayOutputs::layout())
         .gpu_enum(Global::wgsl())
         .gpu_enum(Sparseness::wgsl())
         .gpu_enum(RenderMode::wgsl())

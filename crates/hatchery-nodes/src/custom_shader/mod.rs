@@ -249,7 +249,7 @@ impl Node<Value, Ctx> for CustomShaderNode {
             ctx,
             &label,
             &pipeline.0,
-            &bind_group,
+            &[&bind_group],
             format,
             (width, height),
         );

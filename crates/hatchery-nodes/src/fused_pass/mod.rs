@@ -180,7 +180,7 @@ pub fn run_group(
                 .iter()
                 .map(|&f| gpu.render_target(label, width, height, f))
                 .collect();
-            let work = screen_pass::draw_into(gpu, label, &pipeline, &bind_group, &targets);
+            let work = screen_pass::draw_into(gpu, label, &pipeline, &[&bind_group], &targets);
             ctx.submit(work);
             targets
         }

@@ -60,30 +60,43 @@ impl ImportancePipelines {
         &self.pipelines[i]
     }
 
-    /// Records one dispatch of `entry` with its bindings (binding number, resource); `groups`
-    /// workgroups in x and y.
+    /// Records one dispatch of `entry` with bind groups 0 (the ray casters' shared group,
+    /// empty for kernels that cast no rays) and 1 (the object tables and [`ImportanceBindings`])
+    /// made of `bindings`' entries; `groups` workgroups in x and y.
     pub fn dispatch(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         entry: &str,
-        bindings: &[(u32, wgpu::BindingResource)],
+        bindings: [Vec<wgpu::BindGroupEntry>; 2],
         groups: (u32, u32),
     ) {
         let pipeline = self.get(entry);
-        let group = gpu.bind_group(entry, &pipeline.get_bind_group_layout(0), bindings);
+        let bind_groups: Vec<wgpu::BindGroup> = bindings
+            .iter()
+            .enumerate()
+            .map(|(i, entries)| {
+                gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(entry),
+                    layout: &pipeline.get_bind_group_layout(i as u32),
+                    entries,
+                })
+            })
+            .collect();
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(entry),
             timestamp_writes: None,
         });
         pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &group, &[]);
+        for (i, group) in bind_groups.iter().enumerate() {
+            pass.set_bind_group(i as u32, group, &[]);
+        }
         pass.dispatch_workgroups(groups.0, groups.1, 1);
     }
 
-    /// Passes of `entry` that read `views[i]` at binding `read` and write the other at `write`,
-    /// one per `(step, radius)` (`PassParams`), starting from `views[0]`; the index of the view
-    /// holding the result.
+    /// Passes of `entry` that read one of `views` and write the other (`which` says at which
+    /// bindings), one per `(step, radius)` (`PassParams`), starting from `views[0]`; the index
+    /// of the view holding the result.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn ping_pong(
         &self,
@@ -92,7 +105,7 @@ impl ImportancePipelines {
         entry: &str,
         params: &wgpu::Buffer,
         views: &[wgpu::TextureView; 2],
-        (read, write): (u32, u32),
+        which: PingPong,
         steps: &[[u32; 2]],
         groups: (u32, u32),
     ) -> usize {
@@ -108,20 +121,53 @@ impl ImportancePipelines {
                 }),
                 wgpu::BufferUsages::UNIFORM,
             );
-            self.dispatch(
-                gpu,
-                encoder,
-                entry,
-                &[
-                    (20, params.as_entire_binding()),
-                    (21, pass.as_entire_binding()),
-                    (read, wgpu::BindingResource::TextureView(&views[at])),
-                    (write, wgpu::BindingResource::TextureView(&views[1 - at])),
-                ],
-                groups,
-            );
+            let (read, write) = (Some(&views[at]), Some(&views[1 - at]));
+            let mut own = ImportanceBindings {
+                imp: Some(params),
+                pass_params: Some(&pass),
+                ..Default::default()
+            };
+            match which {
+                PingPong::Bits => (own.bits_in, own.bits_out) = (read, write),
+                PingPong::Sums => (own.sum_in, own.sum_out) = (read, write),
+                PingPong::Seeds => (own.seed_in, own.seed_out) = (read, write),
+            }
+            self.dispatch(gpu, encoder, entry, [Vec::new(), own.entries()], groups);
             at = 1 - at;
         }
         at
+    }
+}
+
+/// The texture pairs a ping-pong pass alternates between.
+#[derive(Clone, Copy)]
+pub(crate) enum PingPong {
+    /// Object bits (dilate).
+    Bits,
+    /// Importance sums (box).
+    Sums,
+    /// Jump-flooding seeds (jfa_step).
+    Seeds,
+}
+
+crate::bind_group! {
+    /// ImportanceCompositing's own bindings, after the object tables (shaders/importance.wgsl;
+    /// each kernel sets those it reads).
+    pub struct ImportanceBindings in "importance", group 1 from 4 {
+        pub imp: Buffer,
+        pub pass_params: Buffer,
+        pub footprint_out: TextureView,
+        pub bits_out: TextureView,
+        pub bits_in: TextureView,
+        pub sum_out: TextureView,
+        pub sum_in: TextureView,
+        pub footprint_in: TextureView,
+        pub seed_out: TextureView,
+        pub seed_in: TextureView,
+        pub stats_out: TextureView,
+        pub stats_in: TextureView,
+        pub buffer_out: TextureView,
+        pub cut_out: TextureView,
+        pub picture_in: TextureView,
     }
 }

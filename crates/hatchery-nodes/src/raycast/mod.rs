@@ -3,6 +3,7 @@
 //! skipping tables), `pass` (pipeline and draw); in WGSL, shaders/ray_common.wgsl (sampling,
 //! primary rays), ray_classify, ray_shade, ray_skip, and raycast.wgsl's compositing loop.
 
+mod bindings;
 mod importance_pass;
 mod iso_surface_raycast;
 pub mod objects;
@@ -10,7 +11,9 @@ mod pass;
 mod tables;
 mod uniforms;
 
-pub use importance_pass::{ImportancePipelines, PassUniforms};
+pub use bindings::{RayBindings, RayOutputs, StrokeBindings};
+pub use importance_pass::{ImportanceBindings, ImportancePipelines, PassUniforms};
+pub(crate) use importance_pass::PingPong;
 pub use crate::kernel::{Kernel, KernelChoice};
 pub use iso_surface_raycast::{IsoSurfaceRaycastNode, IsoSurfaceRaycastParams};
 pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
@@ -348,6 +351,9 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
         .program("raycast", shaders::ray(shaders::part!("raycast.wgsl")))
         .program("depth_from_texture", shaders::screen(shaders::part!("depth_from_texture.wgsl")))
         .uniform(RayUniforms::layout())
+        .bind_group(RayBindings::layout())
+        .bind_group(StrokeBindings::layout())
+        .bind_group(RayOutputs::layout())
         .uniform(StrokeUniforms::layout())
         .gpu_enum(RayMode::wgsl())
         .gpu_enum(RayShading::wgsl());

@@ -29,6 +29,17 @@ crate::uniform_block! {
     }
 }
 
+crate::bind_group! {
+    /// The object tables of shaders/ray_objects.wgsl, first in group 1 of both casters of
+    /// segmented volumes.
+    pub struct ObjectBindings in "two_level_raycast", group 1 from 0 {
+        pub object_ids: TextureView,
+        pub objects: TextureView,
+        pub two_level: Buffer,
+        pub drawn_mask: TextureView,
+    }
+}
+
 crate::wgsl_constants! {
     RenderMode in "two_level_raycast" {
         Dvr = "MODE_DVR",

@@ -1,5 +1,6 @@
 //! One ray-casting pass: the pipeline, the bind group and the draw (see shaders/raycast.wgsl).
 
+use super::bindings::{RayOutputs, StrokeBindings};
 use super::tables::RayTables;
 use super::uniforms::{RayShading, RayUniforms};
 use super::{Kernel, RayOptions};
@@ -280,41 +281,12 @@ pub fn cast(
         .map_or(&st.blank_mask, |s| &s.mask.texture)
         .create_view(&Default::default());
     let volume_view = volume_texture.texture.create_view(&Default::default());
-    let texture_views = [
-        (1, &volume_view),
-        (3, &tables.table),
-        (4, &tables.lighting),
-        (5, &tables.styles),
-        (6, &tables.index),
-        (7, &tables.labels),
-        (8, &tables.label_rows),
-        (9, &tables.bricks),
-        (10, &tables.visibility),
-        (15, &stroke_depth_view),
-        (16, &stroke_mask_view),
-    ];
-    let mut entries = vec![
-        wgpu::BindGroupEntry {
-            binding: 0,
-            resource: uniform.as_entire_binding(),
-        },
-        wgpu::BindGroupEntry {
-            binding: 2,
-            resource: wgpu::BindingResource::Sampler(&st.sampler),
-        },
-        wgpu::BindGroupEntry {
-            binding: 17,
-            resource: strokes_buffer.as_entire_binding(),
-        },
-    ];
-    entries.extend(
-        texture_views
-            .iter()
-            .map(|(binding, view)| wgpu::BindGroupEntry {
-                binding: *binding,
-                resource: wgpu::BindingResource::TextureView(view),
-            }),
-    );
+    let shared = tables.bindings(&uniform, &volume_view, &st.sampler);
+    let own = StrokeBindings {
+        stroke_depth: Some(&stroke_depth_view),
+        stroke_mask: Some(&stroke_mask_view),
+        strokes: Some(&strokes_buffer),
+    };
     // One pipeline per mode, shading, projection and exponent (the pipeline constants of
     // raycast.wgsl and ray_common.wgsl).
     let (mode, shading) = (uniforms.mode, uniforms.shading);
@@ -339,40 +311,37 @@ pub fn cast(
             },
         )
         .map_err(err)?;
-    pipelines.run(ctx, camera, &entries, o.kernel)
+    pipelines.run(ctx, camera, [shared.entries(), own.entries()], o.kernel)
 }
 
 impl RayPipelines {
-    /// Casts the rays of `camera`'s frame with bind group 0 made of `entries` (as the program
-    /// declares them; the auto-derived layout of the pipeline that runs) on `kernel`'s path.
-    /// Returns the image and the G-buffer.
+    /// Casts the rays of `camera`'s frame on `kernel`'s path with bind groups 0 (the shared
+    /// [`RayBindings`](super::RayBindings)) and 1 (the program's own) made of `groups`' entries
+    /// (against the auto-derived layout of the pipeline that runs). Returns the image and the
+    /// G-buffer.
     pub fn run(
         &self,
         ctx: &mut Ctx,
         camera: &Camera,
-        entries: &[wgpu::BindGroupEntry],
+        groups: [Vec<wgpu::BindGroupEntry>; 2],
         kernel: Kernel,
     ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
-        // Auto-derived layouts differ per pipeline object: bind against the one that runs.
-        let layout = match kernel {
-            Kernel::Compute => self.compute.get_bind_group_layout(0),
-            Kernel::Fragment => self.render.get_bind_group_layout(0),
-        };
-        // A binding the program reads but `entries` lacks is a validation error: report it
-        // on the node instead of drawing nothing.
-        let bind_group = ctx
-            .gpu
-            .checked("ray caster bind group", |device| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("ray caster"),
-                    layout: &layout,
-                    entries,
-                })
-            })
-            .map_err(|e| NodeError::new(e.to_string()))?;
+        // Auto-derived layouts differ per pipeline object: bind against the one that runs. A
+        // binding the program reads but `groups` lacks is a validation error: report it on the
+        // node instead of drawing nothing.
+        let bind_groups = crate::bindings::bind_groups(
+            &ctx.gpu,
+            "ray caster",
+            |i| match kernel {
+                Kernel::Compute => self.compute.get_bind_group_layout(i),
+                Kernel::Fragment => self.render.get_bind_group_layout(i),
+            },
+            &groups,
+        )
+        .map_err(|e| NodeError::new(e.to_string()))?;
         match kernel {
-            Kernel::Compute => self.cast_compute(ctx, camera, &bind_group),
-            Kernel::Fragment => self.cast_fragment(ctx, camera, &bind_group),
+            Kernel::Compute => self.cast_compute(ctx, camera, &bind_groups),
+            Kernel::Fragment => self.cast_fragment(ctx, camera, &bind_groups),
         }
     }
 
@@ -381,7 +350,7 @@ impl RayPipelines {
         &self,
         ctx: &mut Ctx,
         camera: &Camera,
-        bind_group: &wgpu::BindGroup,
+        bind_groups: &[wgpu::BindGroup],
     ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
         let gpu = &ctx.gpu;
         let (w, h) = (camera.width, camera.height);
@@ -413,7 +382,9 @@ impl RayPipelines {
                 ..Default::default()
             });
             pass.set_pipeline(&self.render);
-            pass.set_bind_group(0, bind_group, &[]);
+            for (i, group) in bind_groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, group, &[]);
+            }
             pass.draw(0..3, 0..1);
         }
         ctx.submit(encoder.finish());
@@ -433,7 +404,7 @@ impl RayPipelines {
         &self,
         ctx: &mut Ctx,
         camera: &Camera,
-        bind_group: &wgpu::BindGroup,
+        bind_groups: &[wgpu::BindGroup],
     ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
         let gpu = &ctx.gpu;
         let (w, h) = (camera.width, camera.height);
@@ -443,13 +414,15 @@ impl RayPipelines {
             gpu.storage_target("raycast depth values", w, h, wgpu::TextureFormat::R32Float);
         let depth = gpu.render_target("raycast depth", w, h, DEPTH_FORMAT);
         let views = [&image, &normal, &depth_values].map(|t| t.create_view(&Default::default()));
+        let outputs = RayOutputs {
+            out_color: Some(&views[0]),
+            out_normal: Some(&views[1]),
+            out_depth: Some(&views[2]),
+        };
         let outputs = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("raycast outputs"),
-            layout: &self.compute.get_bind_group_layout(1),
-            entries: &[0u32, 1, 2].map(|binding| wgpu::BindGroupEntry {
-                binding,
-                resource: wgpu::BindingResource::TextureView(&views[binding as usize]),
-            }),
+            layout: &self.compute.get_bind_group_layout(RayOutputs::GROUP),
+            entries: &outputs.entries(),
         });
         let copy_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("depth from texture"),
@@ -467,8 +440,10 @@ impl RayPipelines {
                 timestamp_writes: None,
             });
             pass.set_pipeline(&self.compute);
-            pass.set_bind_group(0, bind_group, &[]);
-            pass.set_bind_group(1, &outputs, &[]);
+            for (i, group) in bind_groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, group, &[]);
+            }
+            pass.set_bind_group(RayOutputs::GROUP, &outputs, &[]);
             pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
         }
         {

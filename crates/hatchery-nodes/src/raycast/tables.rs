@@ -4,6 +4,7 @@
 
 use super::uniforms::{RayMode, RayShading};
 use super::RayOptions;
+use super::bindings::RayBindings;
 use super::pass::Statics;
 use super::uniforms::TableInfo;
 use crate::value::{TransferFunction, Volume};
@@ -93,7 +94,7 @@ fn floats_texture(
     gpu.texture_2d_init(label, width, 1, format, bytemuck::cast_slice(data))
 }
 
-/// The views bound at bindings 3–10 of the ray casters (see shaders/ray_common.wgsl), and what
+/// The views of the ray casters' tables (group 0, see shaders/ray_common.wgsl), and what
 /// the tables put into the uniforms.
 pub struct RayTables {
     pub table: wgpu::TextureView,
@@ -273,6 +274,30 @@ impl RayTables {
             visibility: visibility.create_view(&Default::default()),
             info,
         })
+    }
+}
+
+impl RayTables {
+    /// Group 0 of a ray caster: `ray`, the volume and these tables.
+    pub fn bindings<'a>(
+        &'a self,
+        ray: &'a wgpu::Buffer,
+        volume: &'a wgpu::TextureView,
+        sampler: &'a wgpu::Sampler,
+    ) -> RayBindings<'a> {
+        RayBindings {
+            ray: Some(ray),
+            volume: Some(volume),
+            linear_clamp: Some(sampler),
+            tf_table: Some(&self.table),
+            lighting_table: Some(&self.lighting),
+            styles: Some(&self.styles),
+            style_index: Some(&self.index),
+            label_volume: Some(&self.labels),
+            label_rows: Some(&self.label_rows),
+            bricks: Some(&self.bricks),
+            visibility: Some(&self.visibility),
+        }
     }
 }
 
