@@ -259,7 +259,7 @@ impl RayUniforms {
             label_rows: t.label_count,
             use_labels: t.use_labels.into(),
             value_range: data.value_range,
-            brick_size: hatchery_data::bricks::BRICK as u32,
+            brick_size: hatchery_data::bricks::BRICK,
             visibility_bins: hatchery_data::bricks::VISIBILITY_BINS as u32,
             texel_values: texel_range,
             skip_empty: t.skip_empty.into(),
