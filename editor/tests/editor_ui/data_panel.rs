@@ -101,7 +101,20 @@ fn the_data_panel_button_picks_a_file_for_an_input() {
         .map(|n| n.rect())
         .find(|b| r.contains(b.center()))
         .expect("a pick button in the volume row");
-    super::selection::click_mod(&mut h, button.center(), Modifiers::NONE);
+    // The file dialog repaints while it reads the folder on another thread, as long as the
+    // machine takes (a loaded CI machine: more frames): click, then step a few frames instead of
+    // running to a frame that asks for no repaint.
+    h.event(egui::Event::PointerMoved(button.center()));
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: button.center(),
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+    h.run_steps(4);
     assert_asks_for(&h, "volume");
 }
 
