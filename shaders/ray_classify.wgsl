@@ -34,7 +34,7 @@ fn table_row_at(q: vec3<f32>) -> TableRow {
     r.domain = ray.tf_domain;
     r.node_count = f32(ray.style_nodes);
     if ray.use_labels != 0u {
-        let voxel = vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims - 1.0)));
+        let voxel = grid_texel(vec3<i32>(round(clamp(q, vec3<f32>(0.0), ray.dims - 1.0))));
         let label = round(ray.label_texels.x + textureLoad(label_volume, voxel, 0).r * (ray.label_texels.y - ray.label_texels.x));
         let slot = clamp(i32(label), 0, i32(ray.label_rows) - 1);
         r.row = i32(textureLoad(label_rows, vec2<i32>(slot, 0), 0).r + 0.5);

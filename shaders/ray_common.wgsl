@@ -74,11 +74,16 @@ struct Ray {
     texel_values: vec2<f32>,
     skip_empty: u32,
     embed_strokes: u32,
-    // Global alpha ρ scaling every sample's opacity (Raycast, DVR).
+    // Global alpha ρ scaling every sample's opacity (Raycast, DVR); 1 when the volume's grid
+    // textures are bricked (see grid_uv); the voxels of a brick's own per side (its stored side
+    // less the two apron voxels).
     rho: f32,
+    bricked: u32,
+    page_inner: f32,
     pad0: f32,
+    // 1 / the atlas size in texels (bricked grids).
+    atlas_inv: vec3<f32>,
     pad1: f32,
-    pad2: f32,
 };
 
 // Ray.mode (hatchery_nodes::raycast::RayMode).
@@ -105,6 +110,10 @@ const RAY_MODE_ISO: u32 = 2u;
 @group(0) @binding(9) var bricks: texture_3d<f32>;
 // Cumulative count of visible bins over the volume's value range (any table row, any object).
 @group(0) @binding(10) var visibility: texture_2d<f32>;
+// Bricked grids (hatchery_nodes::brick_pool): the atlas slot of each brick, x | y << 10 | z << 20.
+// Every texture on the volume's grid (volume, labels, masks) shares it: their atlases are laid
+// out alike.
+@group(0) @binding(11) var page_table: texture_3d<u32>;
 
 const LUT_SIZE: f32 = 256.0;
 const LIGHTING_SIZE: f32 = 64.0;
@@ -114,6 +123,43 @@ const LIGHTING_SIZE: f32 = 64.0;
 // sample — as a uniform branch both sides stayed in the loop on lavapipe.
 override RAY_ORTHOGRAPHIC: i32 = -1;
 override RAY_FAST_EXPONENT: i32 = -1;
+override RAY_BRICKED: i32 = -1;
+
+// Whether the grid textures are bricked (ray.bricked, unless RAY_BRICKED says).
+fn bricked() -> bool {
+    return select(ray.bricked != 0u, RAY_BRICKED > 0, RAY_BRICKED >= 0);
+}
+
+// The atlas texel where brick `brick`'s own first voxel lies (past the apron).
+fn brick_origin(brick: vec3<f32>) -> vec3<f32> {
+    let s = textureLoad(page_table, vec3<i32>(brick), 0).r;
+    let slot = vec3<u32>(s & 1023u, (s >> 10u) & 1023u, s >> 20u);
+    return vec3<f32>(slot) * (ray.page_inner + 2.0) + 1.0;
+}
+
+// Texture coordinates of voxel-space point q (clamped to the grid) in a filtered grid texture:
+// in the whole texture, or in the atlas slot of the brick holding q. The brick's one-voxel
+// apron (copies of its neighbours' voxels, or of the edge) holds the other corners of q's
+// trilinear footprint, so a bricked sample equals the whole texture's.
+fn grid_uv(q: vec3<f32>) -> vec3<f32> {
+    let p = clamp(q, vec3<f32>(0.0), ray.dims - 1.0);
+    if !bricked() {
+        return (p + 0.5) / ray.dims;
+    }
+    let brick = floor(p / ray.page_inner);
+    return (brick_origin(brick) + (p - brick * ray.page_inner) + 0.5) * ray.atlas_inv;
+}
+
+// Texel coordinates of voxel v (clamped to the grid) in a grid texture read without filtering.
+fn grid_texel(v: vec3<i32>) -> vec3<i32> {
+    let c = clamp(v, vec3<i32>(0), vec3<i32>(ray.dims) - 1);
+    if !bricked() {
+        return c;
+    }
+    let inner = i32(ray.page_inner);
+    let brick = c / inner;
+    return vec3<i32>(brick_origin(vec3<f32>(brick))) + c - brick * inner;
+}
 
 // Whether the camera is orthographic (ray.orthographic, unless RAY_ORTHOGRAPHIC says).
 fn orthographic() -> bool {
@@ -131,8 +177,7 @@ const NO_DATA: f32 = -1.0e30;
 
 // Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
 fn value_at(q: vec3<f32>) -> f32 {
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims - 1.0) + 0.5) / ray.dims;
-    let normalised = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+    let normalised = textureSampleLevel(volume, linear_clamp, grid_uv(q), 0.0).r;
     if normalised < -0.5 {
         return NO_DATA;
     }

@@ -48,8 +48,7 @@ fn object_info(id: u32, which: u32) -> vec4<f32> {
 }
 
 fn id_at(v: vec3<i32>) -> u32 {
-    let top = vec3<i32>(ray.dims) - 1;
-    return textureLoad(object_ids, clamp(v, vec3<i32>(0), top), 0).r;
+    return textureLoad(object_ids, grid_texel(v), 0).r;
 }
 
 // The object at voxel-space q: boundary filtering (§2.3) or the nearest voxel; 0 for none
@@ -124,7 +123,6 @@ fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
 
 // The drawn objects' union mask at voxel-space q, filtered trilinearly by the sampler.
 fn drawn_union(q: vec3<f32>) -> f32 {
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims - 1.0) + 0.5) / ray.dims;
-    return textureSampleLevel(drawn_mask, linear_clamp, uv, 0.0).r;
+    return textureSampleLevel(drawn_mask, linear_clamp, grid_uv(q), 0.0).r;
 }
 

@@ -18,13 +18,11 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     // end. Same samples as value_at; the same winner, except where two texels map to one f32
     // value (a tie there keeps the earliest sample, here the larger texel: same colour). "No data"
     // (texels below −0.5) never wins: the start is the float just below −0.5.
-    let top = ray.dims - 1.0;
     var best = bitcast<f32>(0xbf000001u);
     var best_t = -1.0;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
-        let uv = (clamp(r.q0 + r.dq * t, vec3<f32>(0.0), top) + 0.5) / ray.dims;
-        let texel = textureSampleLevel(volume, linear_clamp, uv, 0.0).r;
+        let texel = textureSampleLevel(volume, linear_clamp, grid_uv(r.q0 + r.dq * t), 0.0).r;
         if texel > best {
             best = texel;
             best_t = t;

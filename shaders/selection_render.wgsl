@@ -58,8 +58,7 @@ fn selected(q: vec3<f32>) -> f32 {
     if !inside_grid(q) {
         return 0.0;
     }
-    let uv = (clamp(q, vec3<f32>(0.0), ray.dims - 1.0) + 0.5) / ray.dims;
-    return textureSampleLevel(selection_mask, linear_clamp, uv, 0.0).r;
+    return textureSampleLevel(selection_mask, linear_clamp, grid_uv(q), 0.0).r;
 }
 
 // f_V at voxel-space q, NO_DATA outside the grid.

@@ -296,7 +296,7 @@ pub fn run(
         .iter()
         .map(|&(g, s)| {
             format!(
-                "{}:{} [{}{}]",
+                "{}:{} [{}{}{}]",
                 g + 1,
                 file_name(&graphs[g]),
                 scenarios[s].name(),
@@ -304,6 +304,16 @@ pub fn run(
                     ""
                 } else {
                     ", unfused"
+                },
+                if sessions[g]
+                    .ctx
+                    .gpu
+                    .volume_limits()
+                    .is_ok_and(|l| l.max_texture_3d.is_some())
+                {
+                    ", bricked"
+                } else {
+                    ""
                 }
             )
         })

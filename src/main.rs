@@ -99,6 +99,11 @@ enum Command {
         /// image-space passes (repeatable; list a graph twice to compare).
         #[arg(long, value_name = "N")]
         unfused: Vec<usize>,
+        /// Measure the N-th graph (1-based) with its volumes bricked: the single-texture limit
+        /// forced to 64 voxels per axis (HATCHERY_MAX_TEXTURE_3D; brick size and pool from the
+        /// environment). Repeatable; list a graph twice to compare bricked with one texture.
+        #[arg(long, value_name = "N")]
+        bricked: Vec<usize>,
     },
     /// Describe a volume or mesh file: dims, spacing, the voxel → world affine (RAS+ mm),
     /// value range, voxel type and which header rule placed it.
@@ -259,6 +264,7 @@ fn run(cli: Cli) -> Result<()> {
             scenario,
             set,
             unfused,
+            bricked,
         } => {
             let scenarios = scenario
                 .iter()
@@ -297,13 +303,20 @@ fn run(cli: Cli) -> Result<()> {
                 if unfused.contains(&(sessions.len() + 1)) {
                     session.executor.set_fusion(false);
                 }
+                if bricked.contains(&(sessions.len() + 1)) {
+                    let mut limits = session.ctx.gpu.volume_limits()?;
+                    limits.max_texture_3d = Some(limits.max_texture_3d.map_or(64, |m| m.min(64)));
+                    session.ctx.gpu.set_volume_limits(limits);
+                }
                 sessions.push(session);
             }
-            if let Some(n) = unfused.iter().find(|&&n| n == 0 || n > graphs.len()) {
-                bail!(
-                    "--unfused {n}: there are {} graphs (counted from 1)",
-                    graphs.len()
-                );
+            for (flag, list) in [("--unfused", &unfused), ("--bricked", &bricked)] {
+                if let Some(n) = list.iter().find(|&&n| n == 0 || n > graphs.len()) {
+                    bail!(
+                        "{flag} {n}: there are {} graphs (counted from 1)",
+                        graphs.len()
+                    );
+                }
             }
             bench::run(&graphs, &mut sessions, &scenarios, &size, frames.max(1))
         }

@@ -19,6 +19,7 @@ pub mod nifti_file;
 pub mod nifti_header;
 pub mod nrrd_file;
 pub mod procedural;
+pub mod pyramid;
 pub(crate) mod raw_voxels;
 pub mod segmentation;
 pub mod style;

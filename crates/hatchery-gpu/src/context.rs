@@ -15,6 +15,8 @@ pub enum GpuError {
     Validation { what: String, message: String },
     #[error("reading back {what} from the GPU failed: {message}")]
     Readback { what: String, message: String },
+    #[error("{message}")]
+    Setting { message: String },
     #[error("{what} is {size} but this GPU allows at most {limit}")]
     TooLarge {
         what: String,
@@ -35,6 +37,9 @@ pub struct GpuContext {
     pub adapter_info: wgpu::AdapterInfo,
     /// Errors that escaped an error scope; kept so that they surface as node errors, not panics.
     uncaptured: Arc<Mutex<Vec<String>>>,
+    /// When volumes are bricked and how large their pools grow (from the environment; a bad
+    /// value surfaces when a volume is uploaded).
+    volume_limits: Result<crate::VolumeLimits, String>,
 }
 
 fn backends_from_env() -> Option<wgpu::Backends> {
@@ -149,7 +154,21 @@ impl GpuContext {
             queue,
             adapter_info,
             uncaptured,
+            volume_limits: crate::VolumeLimits::from_env(),
         }
+    }
+
+    /// When volumes are bricked and how large their pools grow (see [`crate::VolumeLimits`]).
+    /// Errors: a malformed `HATCHERY_*` setting, named.
+    pub fn volume_limits(&self) -> Result<crate::VolumeLimits, GpuError> {
+        self.volume_limits
+            .clone()
+            .map_err(|message| GpuError::Setting { message })
+    }
+
+    /// Replaces the volume limits of this context (and of clones made after this call).
+    pub fn set_volume_limits(&mut self, limits: crate::VolumeLimits) {
+        self.volume_limits = Ok(limits);
     }
 
     /// One line naming the adapter, driver and backend (for logs and benchmark reports).

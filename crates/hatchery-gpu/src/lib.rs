@@ -4,8 +4,10 @@
 mod context;
 mod readback;
 mod timing;
+mod volume_limits;
 
 pub use context::{GpuContext, GpuError, NO_DATA_TEXEL};
 pub use readback::TextureData;
 pub use timing::GpuTimer;
+pub use volume_limits::{MIN_BRICK, VolumeLimits};
 pub use wgpu;

@@ -118,11 +118,14 @@ pub fn surface_pass(
         .map_err(err)?;
     let sampler = linear_clamp_sampler(ctx).map_err(err)?;
     let gpu = &ctx.gpu;
+    // The level of detail the device holds (see `Volume::resident`).
+    let volume = volume.resident(gpu).map_err(err)?;
     let v = &volume.data;
     let texture = volume.texture(gpu).map_err(err)?;
     let options = RayOptions::plain(1.0, false, 1.0, glam::Vec3::Z, Kernel::Fragment);
     let info = TableInfo::plain();
-    let ray = RayUniforms::new(camera, v, &options, &info, 1.0, texture.texel_range);
+    let ray = RayUniforms::new(camera, v, &options, &info, 1.0, texture.texel_range)
+        .with_bricks(texture.layout.as_ref());
     let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
     let params = CurvatureUniforms {
         step: step_voxels * min_spacing,
@@ -135,6 +138,7 @@ pub fn surface_pass(
     let params_buffer = uniform("curvature params", bytemuck::bytes_of(&params));
     let extra_buffer = extra.map(|bytes| uniform("curvature extra", bytes));
     let volume_view = texture.texture.create_view(&Default::default());
+    let page_view = texture.page_table.create_view(&Default::default());
     let depth_view = gbuffer.depth.create_view(&wgpu::TextureViewDescriptor {
         aspect: wgpu::TextureAspect::DepthOnly,
         ..Default::default()
@@ -143,6 +147,7 @@ pub fn surface_pass(
         ray: Some(&ray_buffer),
         volume: Some(&volume_view),
         linear_clamp: Some(&sampler),
+        page_table: Some(&page_view),
         ..Default::default()
     };
     let own = CurvatureBindings {

@@ -153,6 +153,8 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
     ) -> Result<Vec<Value>, NodeError> {
         let params = ImportanceCompositingParams::read(p)?;
         let labels = inputs.require("labels")?.labels("labels")?.clone();
+        // The level of detail the device holds (see `Labels::resident`).
+        let labels = labels.resident(&ctx.gpu).map_err(|e| NodeError::new(e.to_string()))?;
         let styles = inputs.require("styles")?.object_styles("styles")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let method = match params.method {
@@ -191,7 +193,10 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             skip_empty: true,
             ..TableInfo::plain()
         };
-        let ray = RayUniforms::for_grid(&camera, &grid, &options, &info, 1.0, [0.0, 1.0]);
+        let ids = labels.texture(gpu).map_err(err)?;
+        let ray = RayUniforms::for_grid(&camera, &grid, &options, &info, 1.0, [0.0, 1.0])
+            .with_bricks(ids.layout.as_ref());
+        let page_table = crate::brick_pool::page_table(gpu, ids.layout.as_ref());
         let tables = object_tables(&styles);
         let two_level = TwoLevelUniforms {
             boundary_filter: (params.boundary != Boundary::Point).into(),
@@ -225,11 +230,10 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let ray_buffer = uniform("importance ray", bytemuck::bytes_of(&ray));
         let two_level_buffer = uniform("importance objects", bytemuck::bytes_of(&two_level));
         let params_buffer = uniform("importance params", bytemuck::bytes_of(&params));
-        let ids = labels.texture(gpu).map_err(err)?;
         let mut drawn_ids: Vec<u16> = drawn.iter().map(|s| s.id).collect();
         drawn_ids.sort_unstable();
         let drawn_mask = labels.drawn_mask(gpu, &drawn_ids).map_err(err)?;
-        let (brick_dims, brick_ranges) = brick_table(&labels, &styles);
+        let (brick_dims, brick_ranges) = brick_table(labels, &styles);
         let brick_texture = gpu.texture_3d_init(
             "importance bricks",
             brick_dims,
@@ -269,11 +273,12 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let seeds_v = [view(&seeds[0]), view(&seeds[1])];
         let groups = (w.div_ceil(8), h.div_ceil(8));
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        let (ids_v, drawn_v, bricks_v, table_v) = (
-            view(ids),
-            view(&drawn_mask),
+        let (ids_v, drawn_v, bricks_v, table_v, pages_v) = (
+            view(&ids.texture),
+            view(&drawn_mask.texture),
             view(&brick_texture),
             view(&table_texture),
+            view(&page_table),
         );
         pipelines.dispatch(
             gpu,
@@ -284,6 +289,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
                     ray: Some(&ray_buffer),
                     linear_clamp: Some(&sampler),
                     bricks: Some(&bricks_v),
+                    page_table: Some(&pages_v),
                     ..Default::default()
                 }.entries(),
                 [

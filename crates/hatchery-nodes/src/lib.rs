@@ -4,6 +4,7 @@
 
 pub mod annotations;
 pub mod bindings;
+pub mod brick_pool;
 pub mod context;
 pub mod export;
 pub mod framing;

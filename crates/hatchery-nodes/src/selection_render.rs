@@ -335,8 +335,11 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         let params = SelectionRenderParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let labels = inputs.require("labels")?.labels("labels")?.clone();
+        // The level of detail the device holds (see `Volume::resident`).
+        let volume = volume.resident(&ctx.gpu).map_err(|e| NodeError::new(e.to_string()))?;
+        let labels = labels.resident(&ctx.gpu).map_err(|e| NodeError::new(e.to_string()))?;
         let camera = inputs.require("camera")?.camera("camera")?.clone();
-        crate::raycast::objects::check_labels_grid(&labels, &volume)?;
+        crate::raycast::objects::check_labels_grid(labels, volume)?;
         let background = color_tf(inputs, "tf")?.expect("a required input");
         let ghost = color_tf(inputs, "tf_ghost")?.unwrap_or_else(|| background.clone());
         let selected = color_tf(inputs, "tf_selection")?.unwrap_or_else(|| background.clone());
@@ -348,7 +351,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         )
         .map_err(|e| NodeError::new(format!("parameter `objects`: {e}")))?;
         let ids = parse_ids(&text)?;
-        let (centre, bounds) = extent_of(&labels, &ids).ok_or_else(|| {
+        let (centre, bounds) = extent_of(labels, &ids).ok_or_else(|| {
             NodeError::new(format!(
                 "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {})",
                 labels
@@ -401,7 +404,8 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             &info,
             max_gradient,
             volume_texture.texel_range,
-        );
+        )
+        .with_bricks(volume_texture.layout.as_ref());
         let to_voxel = v.geometry.to_voxel().as_mat4();
         let selection = SelectionUniforms {
             to_source: (to_voxel * transform.inverse()).to_cols_array_2d(),
@@ -456,7 +460,8 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             view(&volume_texture.texture),
             view(&tf_texture),
             view(&lighting_texture),
-            view(&mask),
+            view(&mask.texture),
+            view(&volume_texture.page_table),
         ];
         let shared = crate::raycast::RayBindings {
             ray: Some(&ray_buffer),
@@ -464,6 +469,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             linear_clamp: Some(&sampler),
             tf_table: Some(&views[1]),
             lighting_table: Some(&views[2]),
+            page_table: Some(&views[4]),
             ..Default::default()
         };
         let own = SelectionBindings {

@@ -256,11 +256,14 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let params = TwoLevelRaycastParams::read(p)?;
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let labels = inputs.require("labels")?.labels("labels")?.clone();
+        // The level of detail the device holds (see `Volume::resident`).
+        let volume = volume.resident(&ctx.gpu).map_err(|e| NodeError::new(e.to_string()))?;
+        let labels = labels.resident(&ctx.gpu).map_err(|e| NodeError::new(e.to_string()))?;
         let mut styles: Vec<ObjectStyle> =
             inputs.require("styles")?.object_styles("styles")?.to_vec();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let importance = importance_input(inputs, &camera, &mut styles)?;
-        check_labels_grid(&labels, &volume)?;
+        check_labels_grid(labels, volume)?;
         let v = &volume.data;
         if !styles.iter().any(|s| s.enabled) {
             ctx.warn("no object of the table is enabled: the picture is empty");
@@ -312,7 +315,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             &info,
             max_gradient,
             volume_texture.texel_range,
-        );
+        )
+        .with_bricks(volume_texture.layout.as_ref());
         let tables = object_tables(&styles);
         let limit = gpu.device.limits().max_texture_dimension_2d;
         if tables.rows > limit {
@@ -372,7 +376,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let mut drawn: Vec<u16> = styles.iter().filter(|s| s.enabled).map(|s| s.id).collect();
         drawn.sort_unstable();
         let drawn_mask = labels.drawn_mask(gpu, &drawn).map_err(err)?;
-        let (brick_dims, brick_ranges) = brick_table(&labels, &styles);
+        let (brick_dims, brick_ranges) = brick_table(labels, &styles);
         let brick_texture = gpu.texture_3d_init(
             "object bricks",
             brick_dims,
@@ -382,11 +386,12 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let views = [
             volume_texture.texture.create_view(&Default::default()),
             tf_texture.create_view(&Default::default()),
-            ids.create_view(&Default::default()),
+            ids.texture.create_view(&Default::default()),
             table_texture.create_view(&Default::default()),
             brick_texture.create_view(&Default::default()),
-            drawn_mask.create_view(&Default::default()),
+            drawn_mask.texture.create_view(&Default::default()),
             placeholders.zero.create_view(&Default::default()),
+            volume_texture.page_table.create_view(&Default::default()),
         ];
         let one = || placeholders.one.create_view(&Default::default());
         let (importance_view, cut_view) = match &importance {
@@ -405,6 +410,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             // The lighting TF of shade_surface's `lighting` branch, which two-level never takes.
             lighting_table: Some(&views[6]),
             bricks: Some(&views[4]),
+            page_table: Some(&views[7]),
             ..Default::default()
         };
         // Group 1: the object tables, then this program's own bindings.

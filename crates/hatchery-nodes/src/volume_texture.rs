@@ -25,15 +25,20 @@
 //! 2⁻¹¹ of the range). "No data" (non-finite f32) texels hold `NO_DATA_TEXEL` (−1000) in the
 //! normalised formats; shaders treat a sample below −0.5 as no data.
 
+use crate::brick_pool::grid_texture;
 use hatchery_data::VolumeData;
 use hatchery_data::voxels::Voxels;
 use hatchery_gpu::{GpuContext, GpuError, NO_DATA_TEXEL};
 use wgpu::TextureFormat;
 
-/// A volume texture and how its texels map to data values: `value = lo + (hi − lo) · texel`.
+/// A volume texture and how its texels map to data values: `value = lo + (hi − lo) · texel`;
+/// bricked where the grid exceeds one texture (`layout`, see [`crate::brick_pool`]), with its
+/// page table (a 1×1×1 stand-in otherwise).
 pub struct VolumeTexture {
     pub texture: wgpu::Texture,
     pub texel_range: [f32; 2],
+    pub layout: Option<crate::brick_pool::BrickLayout>,
+    pub page_table: wgpu::Texture,
 }
 
 /// Voxels up to which 8-bit volumes are widened to R16Float on CPU adapters (64 Mi: 64 MiB more
@@ -85,57 +90,69 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
     let (format, range, texture) = match &data.voxels {
         Voxels::U8(v) if widen_8bit => {
             let fill = slabs(v, slice, |x: u8| half(normalise(x as f32)));
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
             ("R16Float (8-bit widened, normalised)", [lo, hi], t)
         }
         Voxels::I8(v) if widen_8bit => {
             let fill = slabs(v, slice, |x: i8| half(normalise(x as f32)));
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
             ("R16Float (8-bit widened, normalised)", [lo, hi], t)
         }
         Voxels::U8(v) => {
-            let t =
-                gpu.volume_texture_by_slabs(label, dims, TextureFormat::R8Unorm, |z0, z1, out| {
-                    out.extend_from_slice(&v[z0 as usize * slice..z1 as usize * slice]);
-                })?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R8Unorm, |z0, z1, out| {
+                out.extend_from_slice(&v[z0 as usize * slice..z1 as usize * slice]);
+            })?;
             ("R8Unorm", [0.0, 255.0], t)
         }
         Voxels::I8(v) => {
             let fill = slabs(v, slice, |x: i8| [(x as i16 + 128) as u8]);
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R8Unorm, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R8Unorm, fill)?;
             ("R8Unorm (+128)", [-128.0, 127.0], t)
         }
         Voxels::U16(v) if norm16 => {
             let fill = slabs(v, slice, |x: u16| x.to_le_bytes());
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Unorm, fill)?;
             ("R16Unorm", [0.0, 65535.0], t)
         }
         Voxels::I16(v) if norm16 => {
             let fill = slabs(v, slice, |x: i16| ((x as i32 + 32768) as u16).to_le_bytes());
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Unorm, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Unorm, fill)?;
             ("R16Unorm (+32768)", [-32768.0, 32767.0], t)
         }
         Voxels::U16(v) => {
             let fill = slabs(v, slice, |x: u16| half(normalise(x as f32)));
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
             ("R16Float (normalised)", [lo, hi], t)
         }
         Voxels::I16(v) => {
             let fill = slabs(v, slice, |x: i16| half(normalise(x as f32)));
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
             ("R16Float (normalised)", [lo, hi], t)
         }
         Voxels::F32(v) if float32 => {
             let fill = slabs(v, slice, |x: f32| normalise(x).to_le_bytes());
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R32Float, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R32Float, fill)?;
             ("R32Float (normalised)", [lo, hi], t)
         }
         Voxels::F32(v) => {
             let fill = slabs(v, slice, |x: f32| half(normalise(x)));
-            let t = gpu.volume_texture_by_slabs(label, dims, TextureFormat::R16Float, fill)?;
+            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
             ("R16Float (normalised)", [lo, hi], t)
         }
     };
+    let (texture, layout) = (texture.texture, texture.layout);
+    if let Some(l) = &layout {
+        let side = gpu
+            .volume_limits()?
+            .texture_side(gpu.device.limits().max_texture_dimension_3d);
+        let [x, y, z] = dims;
+        tracing::info!(
+            "{label}: {x}×{y}×{z} voxels exceed one texture ({side} per axis): bricked, {}, {} MiB",
+            l.describe(),
+            l.atlas_bytes(texture.format().block_copy_size(None).unwrap_or(4) as u64) >> 20
+        );
+    }
+    let page_table = crate::brick_pool::page_table(gpu, layout.as_ref());
     // A constant volume: every texel is 0 and means `lo`.
     let texel_range = if range[1] > range[0] {
         range
@@ -146,6 +163,8 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
     Ok(VolumeTexture {
         texture,
         texel_range,
+        layout,
+        page_table,
     })
 }
 

@@ -16,6 +16,7 @@ crate::bind_group! {
         pub label_rows: TextureView,
         pub bricks: TextureView,
         pub visibility: TextureView,
+        pub page_table: TextureView,
     }
 }
 

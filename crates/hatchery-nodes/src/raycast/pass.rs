@@ -217,6 +217,12 @@ pub fn cast(
     o: &RayOptions,
 ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
     let err = |e: GpuError| NodeError::new(e.to_string());
+    // The level of detail the device holds (see `Volume::resident`).
+    let volume = volume.resident(&ctx.gpu).map_err(err)?;
+    let labels = match labels {
+        Some(l) => Some(l.resident(&ctx.gpu).map_err(err)?),
+        None => None,
+    };
     let st = ctx.cached("raycast.statics", statics).map_err(err)?;
     let gpu = &ctx.gpu;
     let volume_texture = volume.texture(gpu).map_err(err)?;
@@ -234,7 +240,8 @@ pub fn cast(
         &tables.info,
         max_gradient,
         volume_texture.texel_range,
-    );
+    )
+    .with_bricks(volume_texture.layout.as_ref());
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::bytes_of(&uniforms),
@@ -281,15 +288,16 @@ pub fn cast(
         .map_or(&st.blank_mask, |s| &s.mask.texture)
         .create_view(&Default::default());
     let volume_view = volume_texture.texture.create_view(&Default::default());
-    let shared = tables.bindings(&uniform, &volume_view, &st.sampler);
+    let page_view = volume_texture.page_table.create_view(&Default::default());
+    let shared = tables.bindings(&uniform, &volume_view, &page_view, &st.sampler);
     let own = StrokeBindings {
         stroke_depth: Some(&stroke_depth_view),
         stroke_mask: Some(&stroke_mask_view),
         strokes: Some(&strokes_buffer),
     };
-    // One pipeline per mode, shading, projection and exponent (the pipeline constants of
+    // One pipeline per mode, shading, projection, exponent and bricking (the pipeline constants of
     // raycast.wgsl and ray_common.wgsl).
-    let (mode, shading) = (uniforms.mode, uniforms.shading);
+    let (mode, shading, bricked) = (uniforms.mode, uniforms.shading, uniforms.bricked);
     // Schlick's exponent matters to context-preserving shading only: one pipeline otherwise.
     let orthographic = uniforms.orthographic;
     let fast = if shading == RayShading::ContextPreserving.code() {
@@ -299,13 +307,14 @@ pub fn cast(
     };
     let pipelines = ctx
         .cached(
-            &format!("raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}"),
+            &format!("raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}"),
             |gpu| {
                 let constants = [
                     ("RAY_MODE", mode as f64),
                     ("RAY_SHADING", shading as f64),
                     ("RAY_ORTHOGRAPHIC", orthographic as f64),
                     ("RAY_FAST_EXPONENT", fast as f64),
+                    ("RAY_BRICKED", bricked as f64),
                 ];
                 RayPipelines::specialised(gpu, "raycast", &constants)
             },

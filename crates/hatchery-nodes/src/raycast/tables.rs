@@ -278,11 +278,13 @@ impl RayTables {
 }
 
 impl RayTables {
-    /// Group 0 of a ray caster: `ray`, the volume and these tables.
+    /// Group 0 of a ray caster: `ray`, the volume (whole or its atlas) with its page table, and
+    /// these tables.
     pub fn bindings<'a>(
         &'a self,
         ray: &'a wgpu::Buffer,
         volume: &'a wgpu::TextureView,
+        page_table: &'a wgpu::TextureView,
         sampler: &'a wgpu::Sampler,
     ) -> RayBindings<'a> {
         RayBindings {
@@ -297,6 +299,7 @@ impl RayTables {
             label_rows: Some(&self.label_rows),
             bricks: Some(&self.bricks),
             visibility: Some(&self.visibility),
+            page_table: Some(page_table),
         }
     }
 }

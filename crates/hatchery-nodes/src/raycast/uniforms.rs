@@ -59,9 +59,11 @@ crate::uniform_block! {
         pub skip_empty: u32,
         pub embed_strokes: u32,
         pub rho: f32,
+        pub bricked: u32,
+        pub page_inner: f32,
         pub pad0: f32,
+        pub atlas_inv: [f32; 3],
         pub pad1: f32,
-        pub pad2: f32,
     }
 }
 
@@ -166,6 +168,17 @@ impl TableInfo {
 }
 
 impl RayUniforms {
+    /// This block with the grid textures read through `layout`'s page table (bricked), or as
+    /// whole textures (`None`); see `grid_uv` in shaders/ray_common.wgsl.
+    pub fn with_bricks(mut self, layout: Option<&crate::brick_pool::BrickLayout>) -> Self {
+        if let Some(l) = layout {
+            self.bricked = 1;
+            self.page_inner = l.inner as f32;
+            self.atlas_inv = l.atlas_dims().map(|d| 1.0 / d as f32);
+        }
+        self
+    }
+
     /// The block for one pass. `max_gradient` normalises |∇f| (eq. 5, 8, 2); `texel_range` maps
     /// the volume texture's texels back to data values.
     pub fn new(
@@ -265,9 +278,11 @@ impl RayUniforms {
             skip_empty: t.skip_empty.into(),
             embed_strokes: o.embed.into(),
             rho: o.rho,
+            bricked: 0,
+            page_inner: 1.0,
             pad0: 0.0,
+            atlas_inv: [1.0; 3],
             pad1: 0.0,
-            pad2: 0.0,
         }
     }
 }

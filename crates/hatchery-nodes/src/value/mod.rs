@@ -7,8 +7,10 @@
 pub mod annotations;
 pub mod camera;
 pub mod light;
+mod resident;
 pub mod strokes;
 
+use crate::brick_pool::GridTexture;
 use crate::volume_texture::VolumeTexture;
 use hatchery_data::{MeshData, VolumeData};
 use hatchery_gpu::{GpuContext, GpuError};
@@ -24,6 +26,8 @@ pub struct Volume {
     /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
     bricks: OnceLock<wgpu::Texture>,
     frame_points: OnceLock<Vec<glam::Vec3>>,
+    /// The next coarser level of detail, made when a brick pool cannot hold this one.
+    coarser: OnceLock<Arc<Volume>>,
 }
 
 impl Volume {
@@ -38,6 +42,7 @@ impl Volume {
             max_gradient: OnceLock::new(),
             bricks: OnceLock::new(),
             frame_points: OnceLock::new(),
+            coarser: OnceLock::new(),
         }
     }
     /// What a Camera frames (see [`crate::framing`]), found once: the outline of the volume's
@@ -70,6 +75,10 @@ impl Volume {
         }
         let t = crate::volume_texture::upload(gpu, "volume", &self.data)?;
         Ok(self.texture.get_or_init(|| t))
+    }
+    /// How the uploaded texture is bricked (`None`: one texture, or not uploaded yet).
+    pub fn bricked(&self) -> Option<&crate::brick_pool::BrickLayout> {
+        self.texture.get().and_then(|t| t.layout.as_ref())
     }
     /// The `[min, max]` value of each brick of voxels (see `hatchery_data::bricks`), computed and
     /// uploaded once. Ranges are widened by 1/1000 of the value range: the volume texture stores
@@ -106,13 +115,15 @@ impl Volume {
 /// first use: read with `textureLoad` only, never filtered as numbers (Hadwiger §2.3).
 pub struct Labels {
     pub data: Arc<hatchery_data::segmentation::LabelData>,
-    texture: OnceLock<wgpu::Texture>,
+    texture: OnceLock<GridTexture>,
     bricks: OnceLock<BrickObjects>,
     /// The last union mask of drawn objects, with the ids it was made for.
-    drawn_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
+    drawn_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<GridTexture>)>>,
     /// The last selection mask (SelectionRender), with its ids.
-    selection_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<wgpu::Texture>)>>,
+    selection_mask: std::sync::Mutex<Option<(Vec<u16>, Arc<GridTexture>)>>,
     frame_points: OnceLock<Vec<glam::Vec3>>,
+    /// The next coarser level of detail, made when a brick pool cannot hold this one.
+    coarser: OnceLock<Arc<Labels>>,
 }
 
 /// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
@@ -136,6 +147,7 @@ impl Labels {
             drawn_mask: std::sync::Mutex::new(None),
             selection_mask: std::sync::Mutex::new(None),
             frame_points: OnceLock::new(),
+            coarser: OnceLock::new(),
         }
     }
 
@@ -156,7 +168,7 @@ impl Labels {
         &self,
         gpu: &GpuContext,
         drawn: &[u16],
-    ) -> Result<Arc<wgpu::Texture>, GpuError> {
+    ) -> Result<Arc<GridTexture>, GpuError> {
         self.indicator(gpu, drawn, false)
     }
 
@@ -168,7 +180,7 @@ impl Labels {
         &self,
         gpu: &GpuContext,
         ids: &[u16],
-    ) -> Result<Arc<wgpu::Texture>, GpuError> {
+    ) -> Result<Arc<GridTexture>, GpuError> {
         let wide = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
             && gpu
                 .device
@@ -182,7 +194,7 @@ impl Labels {
         gpu: &GpuContext,
         drawn: &[u16],
         wide: bool,
-    ) -> Result<Arc<wgpu::Texture>, GpuError> {
+    ) -> Result<Arc<GridTexture>, GpuError> {
         let slot = if wide {
             &self.selection_mask
         } else {
@@ -206,7 +218,8 @@ impl Labels {
             (wgpu::TextureFormat::R8Unorm, &[255])
         };
         let zero = vec![0u8; one.len()];
-        let texture = Arc::new(gpu.volume_texture_by_slabs(
+        let texture = Arc::new(crate::brick_pool::grid_texture(
+            gpu,
             "object indicator",
             self.data.dims,
             format,
@@ -218,6 +231,11 @@ impl Labels {
         )?);
         *cached = Some((drawn.to_vec(), texture.clone()));
         Ok(texture)
+    }
+
+    /// How the uploaded id texture is bricked (`None`: one texture, or not uploaded yet).
+    pub fn bricked(&self) -> Option<&crate::brick_pool::BrickLayout> {
+        self.texture.get().and_then(|t| t.layout.as_ref())
     }
 
     /// The ids each brick's samples can see, computed once.
@@ -256,15 +274,16 @@ impl Labels {
         })
     }
 
-    /// The id texture (R16Uint, dims of the label volume). Errors: dims over the adapter's
-    /// 3-D texture limit.
-    pub fn texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
+    /// The id texture (R16Uint, dims of the label volume; bricked like a volume of these dims,
+    /// see [`crate::brick_pool`]). Errors: dims beyond a brick pool.
+    pub fn texture(&self, gpu: &GpuContext) -> Result<&GridTexture, GpuError> {
         if let Some(t) = self.texture.get() {
             return Ok(t);
         }
         let [nx, ny, _] = self.data.dims.map(|d| d as usize);
         let ids = &self.data.ids;
-        let t = gpu.volume_texture_by_slabs(
+        let t = crate::brick_pool::grid_texture(
+            gpu,
             "labels",
             self.data.dims,
             wgpu::TextureFormat::R16Uint,

@@ -1,0 +1,115 @@
+//! How large a volume texture may be before a volume is bricked, and how large the brick pool
+//! may grow (issue 30). Read from the environment when a context opens; tests set them per
+//! context ([`crate::GpuContext::set_volume_limits`]) so that one process can render a volume
+//! both ways.
+
+/// The limits the volume upload works under.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VolumeLimits {
+    /// Voxels per axis above which a volume is bricked instead of uploaded as one texture.
+    /// `None`: the adapter's `max_texture_dimension_3d` (`HATCHERY_MAX_TEXTURE_3D` forces it
+    /// lower). A brick pool's atlas is bounded by the adapter's limit and `pool_bytes` only.
+    pub max_texture_3d: Option<u32>,
+    /// Stored brick side in voxels, a one-voxel apron on each side included (so a brick holds
+    /// `brick − 2` voxels of its own). `HATCHERY_BRICK`, default 64.
+    pub brick: u32,
+    /// Bytes each brick pool (one atlas texture per volume grid texture) may use, counted at 4
+    /// bytes a voxel whatever its format. `HATCHERY_GPU_POOL_MB`, default 2048.
+    pub pool_bytes: u64,
+}
+
+impl Default for VolumeLimits {
+    fn default() -> Self {
+        Self {
+            max_texture_3d: None,
+            brick: 64,
+            pool_bytes: 2048 << 20,
+        }
+    }
+}
+
+/// Smallest stored brick side: 2 voxels of apron leave at least 2 of the brick's own.
+pub const MIN_BRICK: u32 = 4;
+
+impl VolumeLimits {
+    /// The defaults, overridden by `HATCHERY_MAX_TEXTURE_3D`, `HATCHERY_BRICK` and
+    /// `HATCHERY_GPU_POOL_MB`. Errors: a value that is not a whole number in range, naming the
+    /// variable.
+    pub fn from_env() -> Result<Self, String> {
+        Self::from_vars(|name| std::env::var(name).ok())
+    }
+
+    /// [`Self::from_env`] over any source of variables (testable without touching the process
+    /// environment).
+    pub fn from_vars(var: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
+        let number = |name: &str, min: u64| -> Result<Option<u64>, String> {
+            let Some(text) = var(name) else {
+                return Ok(None);
+            };
+            match text.trim().parse::<u64>() {
+                Ok(n) if n >= min => Ok(Some(n)),
+                _ => Err(format!(
+                    "{name}={text:?}: expected a whole number of at least {min}"
+                )),
+            }
+        };
+        let mut limits = Self::default();
+        if let Some(n) = number("HATCHERY_MAX_TEXTURE_3D", MIN_BRICK as u64)? {
+            limits.max_texture_3d = Some(n.min(u32::MAX as u64) as u32);
+        }
+        if let Some(n) = number("HATCHERY_BRICK", MIN_BRICK as u64)? {
+            limits.brick = n.min(4096) as u32;
+        }
+        if let Some(n) = number("HATCHERY_GPU_POOL_MB", 1)? {
+            limits.pool_bytes = n.saturating_mul(1 << 20);
+        }
+        Ok(limits)
+    }
+
+    /// The largest side of any volume texture on a device whose own limit is `device_max`.
+    pub fn texture_side(&self, device_max: u32) -> u32 {
+        self.max_texture_3d
+            .map_or(device_max, |m| m.min(device_max))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vars(pairs: &[(&str, &str)]) -> impl Fn(&str) -> Option<String> {
+        let pairs: Vec<(String, String)> = pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+        move |name| {
+            pairs
+                .iter()
+                .find(|(k, _)| k == name)
+                .map(|(_, v)| v.clone())
+        }
+    }
+
+    #[test]
+    fn settings_come_from_the_variables_and_bad_values_name_theirs() {
+        assert_eq!(
+            VolumeLimits::from_vars(vars(&[])),
+            Ok(VolumeLimits::default())
+        );
+        let l = VolumeLimits::from_vars(vars(&[
+            ("HATCHERY_MAX_TEXTURE_3D", "64"),
+            ("HATCHERY_BRICK", "16"),
+            ("HATCHERY_GPU_POOL_MB", "3"),
+        ]))
+        .unwrap();
+        assert_eq!(l.max_texture_3d, Some(64));
+        assert_eq!(l.brick, 16);
+        assert_eq!(l.pool_bytes, 3 << 20);
+        assert_eq!(l.texture_side(2048), 64);
+        assert_eq!(VolumeLimits::default().texture_side(2048), 2048);
+        let e = VolumeLimits::from_vars(vars(&[("HATCHERY_BRICK", "2")])).unwrap_err();
+        assert!(e.contains("HATCHERY_BRICK=\"2\""), "{e}");
+        let e = VolumeLimits::from_vars(vars(&[("HATCHERY_GPU_POOL_MB", "lots")])).unwrap_err();
+        assert!(e.contains("HATCHERY_GPU_POOL_MB"), "{e}");
+    }
+}
