@@ -124,6 +124,52 @@ pub fn coarser_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
     Ok(coarse)
 }
 
+/// A volume of labels (ids stored as voxel values, e.g. a style TF's per-label rows) at half the
+/// resolution: each voxel the value most of its block holds (ties: the smaller), never a mean,
+/// which would invent ids between two objects. Errors: a grid with no coarser level.
+pub fn coarser_label_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
+    if !has_coarser(v.dims) {
+        return Err(DataError::Invalid(format!(
+            "a {:?} volume has no coarser level",
+            v.dims
+        )));
+    }
+    let count = coarser_dims(v.dims).iter().map(|&d| d as usize).product();
+    fn majority<T: Copy + PartialEq + PartialOrd>(values: &[T], block: &[usize]) -> T {
+        let mut best = (0, values[block[0]]);
+        for &i in block {
+            let x = values[i];
+            let n = block.iter().filter(|&&j| values[j] == x).count();
+            if n > best.0 || (n == best.0 && x < best.1) {
+                best = (n, x);
+            }
+        }
+        best.1
+    }
+    macro_rules! by_majority {
+        ($values:expr, $variant:ident) => {{
+            let mut out = Vec::with_capacity(count);
+            for_each_block(v.dims, |_, block| out.push(majority($values, block)));
+            Voxels::$variant(out)
+        }};
+    }
+    let voxels = match &v.voxels {
+        Voxels::U8(x) => by_majority!(x, U8),
+        Voxels::I8(x) => by_majority!(x, I8),
+        Voxels::U16(x) => by_majority!(x, U16),
+        Voxels::I16(x) => by_majority!(x, I16),
+        Voxels::F32(x) => by_majority!(x, F32),
+    };
+    let mut coarse = VolumeData::from_voxels(
+        coarser_dims(v.dims),
+        coarser_geometry(v.dims, &v.geometry),
+        voxels,
+    )?;
+    coarse.stored_type = v.stored_type;
+    coarse.placement.clone_from(&v.placement);
+    Ok(coarse)
+}
+
 /// The label map at half the resolution: each voxel the id most of its block holds (ties: the
 /// smaller id, so background loses to no object only by count). Object names are kept.
 /// Errors: a grid with no coarser level.
@@ -222,6 +268,16 @@ mod tests {
         assert_eq!(c.id(1, 0, 0), 0);
         assert_eq!(c.objects[&3], "liver");
         assert!(!has_coarser([3, 2, 2]));
+        // The same ids as a volume (a style TF's label input): the majority, not the mean.
+        let ids: Vec<f32> = l.ids.iter().map(|&i| i as f32).collect();
+        let v = VolumeData::with_geometry(l.dims, l.geometry, ids).unwrap();
+        let c = coarser_label_volume(&v).unwrap();
+        assert_eq!(c.value(0, 0, 0), 3.0);
+        assert_eq!(
+            c.value(1, 0, 0),
+            0.0,
+            "a tie of 0 and 5: the smaller, never 2.5"
+        );
         assert!(coarser_labels(&LabelData::new([2, 2, 2], l.geometry, vec![0; 8])).is_err());
     }
 }

@@ -220,7 +220,7 @@ pub fn cast(
     // The level of detail the device holds (see `Volume::resident`).
     let volume = volume.resident(&ctx.gpu).map_err(err)?;
     let labels = match labels {
-        Some(l) => Some(l.resident(&ctx.gpu).map_err(err)?),
+        Some(l) => Some(l.resident_labels(&ctx.gpu).map_err(err)?),
         None => None,
     };
     let st = ctx.cached("raycast.statics", statics).map_err(err)?;

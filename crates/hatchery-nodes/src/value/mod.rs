@@ -26,8 +26,10 @@ pub struct Volume {
     /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
     bricks: OnceLock<wgpu::Texture>,
     frame_points: OnceLock<Vec<glam::Vec3>>,
-    /// The next coarser level of detail, made when a brick pool cannot hold this one.
+    /// The next coarser level of detail, made when a brick pool cannot hold this one (and the
+    /// same by majority, for a volume of label ids).
     coarser: OnceLock<Arc<Volume>>,
+    coarser_labels: OnceLock<Arc<Volume>>,
 }
 
 impl Volume {
@@ -43,6 +45,7 @@ impl Volume {
             bricks: OnceLock::new(),
             frame_points: OnceLock::new(),
             coarser: OnceLock::new(),
+            coarser_labels: OnceLock::new(),
         }
     }
     /// What a Camera frames (see [`crate::framing`]), found once: the outline of the volume's
@@ -82,26 +85,27 @@ impl Volume {
     }
     /// The `[min, max]` value of each brick of voxels (see `hatchery_data::bricks`), computed and
     /// uploaded once. Ranges are widened by 1/1000 of the value range: the volume texture stores
-    /// values in half precision.
-    pub fn bricks(&self, gpu: &GpuContext) -> &wgpu::Texture {
-        self.bricks.get_or_init(|| {
-            use hatchery_data::bricks::{brick_dims, brick_range_layers};
-            let [lo, hi] = self.data.value_range;
-            let pad = (hi - lo) * 1e-3;
-            // Built and uploaded a slab of brick layers at a time: the whole table (8 MiB at
-            // 800³) never sits in host memory next to its staging copy and the texture.
-            gpu.volume_texture_by_slabs(
-                "bricks",
-                brick_dims(&self.data),
-                wgpu::TextureFormat::Rg32Float,
-                |z0, z1, out| {
-                    let ranges = brick_range_layers(&self.data, pad, z0..z1);
-                    out.extend_from_slice(bytemuck::cast_slice(&ranges));
-                },
-            )
-            // The table has 1/512 of the voxels, 8 bytes each: it fits wherever the volume did.
-            .expect("the brick table fits the adapter's limits")
-        })
+    /// values in half precision. Errors: the table (1/8 of the grid per axis) beyond the
+    /// adapter's 3-D texture limit — a grid over 8 × that limit along an axis.
+    pub fn bricks(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
+        if let Some(t) = self.bricks.get() {
+            return Ok(t);
+        }
+        use hatchery_data::bricks::{brick_dims, brick_range_layers};
+        let [lo, hi] = self.data.value_range;
+        let pad = (hi - lo) * 1e-3;
+        // Built and uploaded a slab of brick layers at a time: the whole table (8 MiB at
+        // 800³) never sits in host memory next to its staging copy and the texture.
+        let t = gpu.volume_texture_by_slabs(
+            "empty-space skipping table",
+            brick_dims(&self.data),
+            wgpu::TextureFormat::Rg32Float,
+            |z0, z1, out| {
+                let ranges = brick_range_layers(&self.data, pad, z0..z1);
+                out.extend_from_slice(bytemuck::cast_slice(&ranges));
+            },
+        )?;
+        Ok(self.bricks.get_or_init(|| t))
     }
     /// The largest gradient magnitude (world units), computed once: normalises |g| to [0, 1].
     pub fn max_gradient(&self) -> f32 {

@@ -54,12 +54,29 @@ impl Volume {
         finest_fitting(gpu, self, |v| v.data.dims, |v| v.coarser())
     }
 
+    /// [`Self::resident`] for a volume of label ids (Raycast's `labels`): coarser levels keep
+    /// the id most of each 2×2×2 block holds instead of the mean.
+    pub fn resident_labels(&self, gpu: &GpuContext) -> Result<&Volume, GpuError> {
+        finest_fitting(gpu, self, |v| v.data.dims, |v| v.coarser_labels())
+    }
+
     fn coarser(&self) -> Result<&Volume, String> {
         if let Some(c) = self.coarser.get() {
             return Ok(c);
         }
         let data = hatchery_data::pyramid::coarser_volume(&self.data).map_err(|e| e.to_string())?;
         Ok(self.coarser.get_or_init(|| Arc::new(Volume::new(data))))
+    }
+
+    fn coarser_labels(&self) -> Result<&Volume, String> {
+        if let Some(c) = self.coarser_labels.get() {
+            return Ok(c);
+        }
+        let data =
+            hatchery_data::pyramid::coarser_label_volume(&self.data).map_err(|e| e.to_string())?;
+        Ok(self
+            .coarser_labels
+            .get_or_init(|| Arc::new(Volume::new(data))))
     }
 }
 
