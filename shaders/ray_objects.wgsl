@@ -51,6 +51,25 @@ fn id_at(v: vec3<i32>) -> u32 {
     return textureLoad(object_ids, grid_texel(v), 0).r;
 }
 
+// The ids at the 8 corners base + (c & 1, c >> 1 & 1, c >> 2 & 1) of a trilinear footprint
+// (base = floor(p) of a clamped point). Bricked, the footprint lies in base's brick and its
+// apron: one page-table fetch for all 8.
+fn corner_ids(base: vec3<i32>) -> array<u32, 8> {
+    var ids: array<u32, 8>;
+    if bricked() {
+        let origin = grid_texel(base);
+        for (var c = 0; c < 8; c++) {
+            let o = vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1);
+            ids[c] = textureLoad(object_ids, origin + o, 0).r;
+        }
+    } else {
+        for (var c = 0; c < 8; c++) {
+            ids[c] = id_at(base + vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1));
+        }
+    }
+    return ids;
+}
+
 // The object at voxel-space q: boundary filtering (§2.3) or the nearest voxel; 0 for none
 // (background, or no object's filtered mask above 0.5, as at a junction of three objects).
 fn object_at(q: vec3<f32>) -> u32 {
@@ -60,11 +79,10 @@ fn object_at(q: vec3<f32>) -> u32 {
     }
     let base = vec3<i32>(floor(p));
     let f = p - floor(p);
-    var ids: array<u32, 8>;
+    let ids = corner_ids(base);
     var weights: array<f32, 8>;
     for (var c = 0; c < 8; c++) {
         let o = vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1);
-        ids[c] = id_at(base + o);
         let w3 = select(1.0 - f, f, vec3<bool>(o == vec3<i32>(1)));
         weights[c] = w3.x * w3.y * w3.z;
     }
@@ -89,9 +107,10 @@ fn object_mask(q: vec3<f32>, id: u32) -> f32 {
     let base = vec3<i32>(floor(p));
     let f = p - floor(p);
     var mask = 0.0;
+    let ids = corner_ids(base);
     for (var c = 0; c < 8; c++) {
         let o = vec3<i32>(c & 1, (c >> 1u) & 1, (c >> 2u) & 1);
-        if id_at(base + o) == id {
+        if ids[c] == id {
             let w3 = select(1.0 - f, f, vec3<bool>(o == vec3<i32>(1)));
             mask += w3.x * w3.y * w3.z;
         }

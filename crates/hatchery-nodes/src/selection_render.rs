@@ -388,9 +388,11 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
+        // Bricked or not as a pipeline constant (RAY_BRICKED, shaders/ray_common.wgsl).
+        let bricked = volume.texture(&ctx.gpu).map_err(err)?.layout.is_some();
         let pipelines = ctx
-            .cached("selection_render.pipelines", |gpu| {
-                RayPipelines::new(gpu, "selection_render")
+            .cached(&format!("selection_render.pipelines.{bricked}"), |gpu| {
+                RayPipelines::specialised(gpu, "selection_render", &[("RAY_BRICKED", bricked.into())])
             })
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;

@@ -286,9 +286,11 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
+        // Bricked or not as a pipeline constant (RAY_BRICKED, shaders/ray_common.wgsl).
+        let bricked = volume.texture(&ctx.gpu).map_err(err)?.layout.is_some();
         let pipelines = ctx
-            .cached("two_level_raycast.pipelines", |gpu| {
-                RayPipelines::new(gpu, "two_level_raycast")
+            .cached(&format!("two_level_raycast.pipelines.{bricked}"), |gpu| {
+                RayPipelines::specialised(gpu, "two_level_raycast", &[("RAY_BRICKED", bricked.into())])
             })
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;

@@ -1191,7 +1191,10 @@ fn drop_file(h: &mut Harness<EditorApp>, path: &Path, at: egui::Pos2) {
     h.input_mut()
         .dropped_files
         .push(std::sync::Arc::new(DroppedPath(path.to_path_buf())));
-    h.run();
+    // The frames `Harness::run` would take to settle, without requiring it to settle: a drop that
+    // starts a render keeps the worker repainting for as long as the machine takes (a loaded CI
+    // machine: more than run's 4 steps). Tests that need the picture wait for it.
+    h.run_steps(4);
 }
 
 #[test]
