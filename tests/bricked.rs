@@ -133,6 +133,15 @@ fn nudged_render(path: &Path, saver: &str) -> image::RgbaImage {
     common::saver_input(&mut s, saver).unwrap()
 }
 
+/// [`procedural_graph`] of a 128³ volume, written to a temporary folder as `name`.
+fn procedural_graph_file(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("hatchery-bricked-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, procedural_graph(128)).unwrap();
+    path
+}
+
 /// A ray-cast graph over a procedural volume of `resolution`³ voxels.
 fn procedural_graph(resolution: u32) -> String {
     format!(
@@ -161,11 +170,7 @@ fn procedural_graph(resolution: u32) -> String {
 
 #[test]
 fn a_volume_four_times_beyond_the_texture_limit_per_axis_renders() {
-    let text = procedural_graph(128);
-    let dir = std::env::temp_dir().join(format!("hatchery-bricked-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("beyond.ron");
-    std::fs::write(&path, &text).unwrap();
+    let path = procedural_graph_file("beyond.ron");
     let limits = VolumeLimits {
         max_texture_3d: Some(32),
         brick: 16,
@@ -190,11 +195,7 @@ fn a_volume_four_times_beyond_the_texture_limit_per_axis_renders() {
 
 #[test]
 fn a_volume_beyond_the_brick_pool_renders_the_finest_level_that_fits() {
-    let text = procedural_graph(128);
-    let dir = std::env::temp_dir().join(format!("hatchery-lod-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("lod.ron");
-    std::fs::write(&path, &text).unwrap();
+    let path = procedural_graph_file("lod.ron");
     // A 1 MiB pool holds 64 bricks of 16³ (14³ voxels each): level 0 (128³) needs 1000,
     // level 1 (64³) 125, level 2 (32³) 27.
     let limits = VolumeLimits {

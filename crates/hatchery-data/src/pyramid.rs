@@ -35,6 +35,29 @@ pub fn coarser_geometry(dims: [u32; 3], geometry: &Geometry) -> Geometry {
     g
 }
 
+/// Errors for a grid of `dims` without a coarser level (`what`: "volume", "label map").
+fn no_coarser_is_an_error(dims: [u32; 3], what: &str) -> Result<(), DataError> {
+    if has_coarser(dims) {
+        Ok(())
+    } else {
+        Err(DataError::Invalid(format!(
+            "a {dims:?} {what} has no coarser level"
+        )))
+    }
+}
+
+/// The coarser level of `v` holding `voxels`, with `v`'s stored type and placement.
+fn coarser_of(v: &VolumeData, voxels: Voxels) -> Result<VolumeData, DataError> {
+    let mut coarse = VolumeData::from_voxels(
+        coarser_dims(v.dims),
+        coarser_geometry(v.dims, &v.geometry),
+        voxels,
+    )?;
+    coarse.stored_type = v.stored_type;
+    coarse.placement.clone_from(&v.placement);
+    Ok(coarse)
+}
+
 /// The level-k voxel indices (per axis, up to 2) a coarse voxel `i` covers.
 fn children(i: u32, halve: bool, n: u32) -> std::ops::Range<u32> {
     if halve {
@@ -73,12 +96,7 @@ fn for_each_block(dims: [u32; 3], mut f: impl FnMut(usize, &[usize])) {
 /// (rounded for integer types, which are kept), "no data" where it covers none. Errors: a grid
 /// with no coarser level ([`has_coarser`]).
 pub fn coarser_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
-    if !has_coarser(v.dims) {
-        return Err(DataError::Invalid(format!(
-            "a {:?} volume has no coarser level",
-            v.dims
-        )));
-    }
+    no_coarser_is_an_error(v.dims, "volume")?;
     let count = coarser_dims(v.dims).iter().map(|&d| d as usize).product();
     // Mean of the finite values of a block, as f64.
     fn mean<T: Copy>(values: &[T], block: &[usize], f: impl Fn(T) -> f64) -> Option<f64> {
@@ -114,26 +132,14 @@ pub fn coarser_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
             Voxels::F32(out)
         }
     };
-    let mut coarse = VolumeData::from_voxels(
-        coarser_dims(v.dims),
-        coarser_geometry(v.dims, &v.geometry),
-        voxels,
-    )?;
-    coarse.stored_type = v.stored_type;
-    coarse.placement.clone_from(&v.placement);
-    Ok(coarse)
+    coarser_of(v, voxels)
 }
 
 /// A volume of labels (ids stored as voxel values, e.g. a style TF's per-label rows) at half the
 /// resolution: each voxel the value most of its block holds (ties: the smaller), never a mean,
 /// which would invent ids between two objects. Errors: a grid with no coarser level.
 pub fn coarser_label_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
-    if !has_coarser(v.dims) {
-        return Err(DataError::Invalid(format!(
-            "a {:?} volume has no coarser level",
-            v.dims
-        )));
-    }
+    no_coarser_is_an_error(v.dims, "volume")?;
     let count = coarser_dims(v.dims).iter().map(|&d| d as usize).product();
     fn majority<T: Copy + PartialEq + PartialOrd>(values: &[T], block: &[usize]) -> T {
         let mut best = (0, values[block[0]]);
@@ -160,26 +166,14 @@ pub fn coarser_label_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
         Voxels::I16(x) => by_majority!(x, I16),
         Voxels::F32(x) => by_majority!(x, F32),
     };
-    let mut coarse = VolumeData::from_voxels(
-        coarser_dims(v.dims),
-        coarser_geometry(v.dims, &v.geometry),
-        voxels,
-    )?;
-    coarse.stored_type = v.stored_type;
-    coarse.placement.clone_from(&v.placement);
-    Ok(coarse)
+    coarser_of(v, voxels)
 }
 
 /// The label map at half the resolution: each voxel the id most of its block holds (ties: the
 /// smaller id, so background loses to no object only by count). Object names are kept.
 /// Errors: a grid with no coarser level.
 pub fn coarser_labels(l: &LabelData) -> Result<LabelData, DataError> {
-    if !has_coarser(l.dims) {
-        return Err(DataError::Invalid(format!(
-            "a {:?} label map has no coarser level",
-            l.dims
-        )));
-    }
+    no_coarser_is_an_error(l.dims, "label map")?;
     let count = coarser_dims(l.dims).iter().map(|&d| d as usize).product();
     let mut ids = vec![0u16; count];
     for_each_block(l.dims, |at, block| {
