@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Writes tests/fixtures/world/: one small asymmetric synthetic anatomy written by independent
-writers (nibabel, SimpleITK, tifffile, VTK) in several volume formats, and truth.json with, for each
+writers (nibabel, SimpleITK, tifffile, VTK, ome-zarr-py) in several volume formats, and truth.json with, for each
 file, the voxel -> world affine in RAS+ mm as an independent reader reports it and the world
 centroid of the object's voxels. The truth comes from the writer side, never from hatchery.
 
-Usage (Python 3.11):  pip install SimpleITK nibabel tifffile vtk numpy
+Usage (Python 3.11):  pip install SimpleITK nibabel tifffile vtk numpy ome-zarr
                       python3 scripts/make_world_fixtures.py [WRITER...]
 
 With writer names (e.g. `write_vti`), only those files are written again and their records
@@ -308,6 +308,99 @@ def write_vti(out) -> dict:
                  "uint8 point data, zlib, mirroring oblique Direction, extent from (3, -2, 5)")
 
 
+# --- OME-Zarr (ome-zarr-py writes and reads back; no anatomical frame in the format) -----------
+
+# hatchery's convention for OME-Zarr, which names axes but no anatomy: the space axes x, y, z are
+# world R, A, S; a voxel's centre is scale * index + translation (the spec's), in the axis unit,
+# converted to mm.
+UNIT_MM = {"millimeter": 1.0, "micrometer": 1e-3, "nanometer": 1e-6, "centimeter": 10.0}
+
+
+def labels_ijk() -> np.ndarray:
+    """The anatomy as a label map: the box is object 1, its knob object 2."""
+    a = np.zeros(DIMS, np.uint8)
+    a[4:12, 3:10, 2:8] = 1
+    a[12:15, 5:7, 4:6] = 2
+    return a
+
+
+def write_ome_zarr(out, name, version, unit, scale_zyx, translation_zyx, note) -> dict:
+    """Writes the anatomy (array axes z, y, x) with a label image `organs` whose objects carry
+    names, then reads both back with ome-zarr-py's Reader."""
+    import shutil
+    import zarr
+    import ome_zarr
+    from ome_zarr.format import FormatV04, FormatV05
+    from ome_zarr.io import parse_url
+    from ome_zarr.reader import Reader
+    from ome_zarr.writer import write_multiscale, write_multiscale_labels
+    fmt = {"0.4": FormatV04(), "0.5": FormatV05()}[version]
+    path = out / name
+    shutil.rmtree(path, ignore_errors=True)
+    root = zarr.open_group(str(path), mode="w", zarr_format=2 if version == "0.4" else 3)
+    axes = [{"name": a, "type": "space", "unit": unit} for a in "zyx"]
+    # Zarr v2 stores as bioformats2raw and older ome-zarr-py wrote them (Blosc/LZ4, byte
+    # shuffle); v3 with ome-zarr-py's default (zstd).
+    storage = {"chunks": (8, 8, 8)}
+    if version == "0.4":
+        from numcodecs import Blosc
+        storage["compressor"] = Blosc(cname="lz4", clevel=5, shuffle=Blosc.SHUFFLE)
+    # Two levels: the second halves y and x (ome-zarr-py's default pyramid keeps z).
+    transforms = [
+        [{"type": "scale", "scale": list(scale_zyx)},
+         {"type": "translation", "translation": list(translation_zyx)}],
+        [{"type": "scale", "scale": [scale_zyx[0], 2 * scale_zyx[1], 2 * scale_zyx[2]]},
+         {"type": "translation", "translation": list(translation_zyx)}],
+    ]
+    # Level 1 takes every second voxel along y and x (index 0 stays put: same translation).
+    pyramid = lambda a: [np.ascontiguousarray(a.transpose(2, 1, 0)),
+                         np.ascontiguousarray(a.transpose(2, 1, 0)[:, ::2, ::2])]
+    write_multiscale(pyramid(anatomy()), root, fmt=fmt, axes=axes,
+                     coordinate_transformations=transforms, storage_options=storage)
+    write_multiscale_labels(pyramid(labels_ijk()), root, name="organs", fmt=fmt, axes=axes,
+                            coordinate_transformations=transforms,
+                            storage_options=storage,
+                            label_metadata={"properties": [{"label-value": 1, "name": "box"},
+                                                           {"label-value": 2, "name": "knob"}]})
+    nodes = list(Reader(parse_url(str(path), fmt=fmt))())
+    image = nodes[0]
+    data = np.asarray(image.data[0]).transpose(2, 1, 0)
+    ms = image.metadata
+    axis_names = [a["name"] for a in ms["axes"]]
+    scale = ms["coordinateTransformations"][0][0]["scale"]
+    shift = ms["coordinateTransformations"][0][1]["translation"]
+    affine = np.eye(4)
+    for voxel_axis, axis in enumerate("xyz"):
+        a = axis_names.index(axis)
+        mm = UNIT_MM[ms["axes"][a]["unit"]]
+        affine[voxel_axis, voxel_axis] = scale[a] * mm
+        affine[voxel_axis, 3] = shift[a] * mm
+    label = next(n for n in nodes if any(type(s).__name__ == "Label" for s in n.specs))
+    back = np.asarray(label.data[0]).transpose(2, 1, 0)
+    names = {str(v): p["name"] for v, p in label.metadata["properties"].items()}
+    if not np.array_equal(back, labels_ijk()) or names != {"1": "box", "2": "knob"}:
+        sys.exit(f"{name}: ome-zarr-py did not read back the label image and its names")
+    record = entry(name, "ome-zarr", f"ome-zarr-py {ome_zarr.__version__}",
+                   "ome-zarr-py Reader (axes x, y, z = R, A, S)", data, affine, note)
+    record["labels"] = {"path": "labels/organs", "names": names,
+                        "voxels": {str(v): int((labels_ijk() == v).sum()) for v in (1, 2)}}
+    return record
+
+
+def write_ome_zarr_v04(out) -> dict:
+    return write_ome_zarr(out, "ome_v04.zarr", "0.4", "micrometer", (2000.0, 1500.0, 800.0),
+                          (5000.0, -20000.0, 10000.0),
+                          "OME-Zarr 0.4 (Zarr v2, Blosc LZ4 + shuffle), uint8, micrometre scale + translation, "
+                          "labels/organs with names")
+
+
+def write_ome_zarr_v05(out) -> dict:
+    return write_ome_zarr(out, "ome_v05.zarr", "0.5", "millimeter", (2.0, 1.5, 0.8),
+                          (5.0, -20.0, 10.0),
+                          "OME-Zarr 0.5 (Zarr v3, zstd), uint8, millimetre scale + translation, "
+                          "labels/organs with names")
+
+
 WRITERS = [
     write_nifti_ras,
     write_nifti_las,
@@ -322,6 +415,8 @@ WRITERS = [
     write_mhd,
     write_tiff,
     write_vti,
+    write_ome_zarr_v04,
+    write_ome_zarr_v05,
 ]
 
 

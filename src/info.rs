@@ -87,5 +87,44 @@ pub fn describe(path: &Path) -> Result<String> {
     } else {
         format!("  value range: none (all {no_data} voxels are no data: NaN/inf)\n")
     };
+    if hatchery_data::ome_zarr::is_zarr(path) {
+        out += &ome_zarr_levels(path)?;
+    }
+    Ok(out)
+}
+
+/// An OME-Zarr image's pyramid and label images, one line each.
+fn ome_zarr_levels(path: &Path) -> Result<String> {
+    use hatchery_data::ome_zarr::{Multiscale, label_images};
+    let image = Multiscale::open(path)?;
+    let mut out = String::new();
+    for (k, l) in image.levels.iter().enumerate() {
+        let [x, y, z] = l.dims;
+        let s = l.geometry.spacing;
+        out += &format!(
+            "  level {k} ({}): {x} x {y} x {z}, spacing {:.6} {:.6} {:.6}\n",
+            l.path, s.x, s.y, s.z
+        );
+    }
+    for name in label_images(path) {
+        let label = Multiscale::open(&path.join("labels").join(&name))?;
+        let names = label.label_names();
+        out += &format!(
+            "  label image labels/{name}: {} named objects{}\n",
+            names.len(),
+            if names.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " ({})",
+                    names
+                        .iter()
+                        .map(|(id, n)| format!("{id} {n}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            }
+        );
+    }
     Ok(out)
 }

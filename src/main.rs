@@ -3,6 +3,7 @@
 mod batch;
 mod bench;
 mod catalogue;
+mod convert;
 mod info;
 mod logging;
 mod orbit;
@@ -108,6 +109,9 @@ enum Command {
     /// Describe a volume or mesh file: dims, spacing, the voxel → world affine (RAS+ mm),
     /// value range, voxel type and which header rule placed it.
     Info { file: PathBuf },
+    /// Write a volume (any format `info` reads), and optionally a label map on its grid, as an
+    /// OME-Zarr 0.5 multiscale image: a pyramid of 2×2×2 means in zstd chunks (docs/data.md).
+    Convert(convert::Args),
     /// Render a batch job: a parameter sweep, camera path and data sets over one graph, this
     /// process's shard of it (docs/batch.md).
     Batch(batch::Args),
@@ -320,6 +324,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             bench::run(&graphs, &mut sessions, &scenarios, &size, frames.max(1))
         }
+        Command::Convert(args) => convert::command(args),
         Command::Batch(args) => {
             let code = batch::command(args)?;
             if code != 0 {

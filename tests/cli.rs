@@ -195,10 +195,48 @@ fn bad_command_line_input_is_one_clean_error() {
             &["validate", "graphs/nope.ron"],
             &["graphs/nope.ron", "cannot read graph file"],
         ),
+        (
+            &["convert", "tests/fixtures/world/nifti_ras.nii", "out.nii"],
+            &["out.nii", "name it with the ending .zarr"],
+        ),
+        (
+            &["convert", "tests/fixtures/world/nope.nii", "out.zarr"],
+            &["nope.nii"],
+        ),
+        (
+            &[
+                "convert",
+                "tests/fixtures/world/nifti_ras.nii",
+                "out.zarr",
+                "--names",
+                "names.csv",
+            ],
+            &["--labels FILE"],
+        ),
+        (
+            &["info", "tests/fixtures/world/ome_v05.zarr/labels/organs/s0"],
+            &["a Zarr array, not an OME-Zarr image", "labels/organs/s0"],
+        ),
     ];
     for (args, needles) in cases {
         let output = hatchery(args);
         assert_clean_failure(&output, needles);
+    }
+}
+
+#[test]
+fn info_lists_an_ome_zarr_pyramid_and_its_named_label_images() {
+    let output = hatchery(&["info", "tests/fixtures/world/ome_v04.zarr"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8_lossy(&output.stdout);
+    for needle in [
+        "dims: 20 x 16 x 12",
+        "spacing: 0.800000 1.500000 2.000000",
+        "OME-Zarr 0.4 multiscales",
+        "level 1 (s1): 10 x 8 x 12, spacing 1.600000 3.000000 2.000000",
+        "label image labels/organs: 2 named objects (1 box, 2 knob)",
+    ] {
+        assert!(text.contains(needle), "`{needle}` missing from:\n{text}");
     }
 }
 

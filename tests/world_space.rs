@@ -111,6 +111,34 @@ fn las_and_ras_copies_of_one_object_ray_cast_alike() {
     }
 }
 
+/// One anatomy written by ome-zarr-py in micrometres (OME-Zarr 0.4, Zarr v2, Blosc) and in
+/// millimetres (0.5, Zarr v3, zstd): the same world, so the same pictures.
+#[test]
+fn ome_zarr_in_micrometres_and_millimetres_ray_cast_alike() {
+    let mut s = session();
+    let um = fixture("ome_v04.zarr");
+    let mm = fixture("ome_v05.zarr");
+    assert!((um.data.world_min() - mm.data.world_min()).length() < 1e-4);
+    assert!((um.data.world_max() - mm.data.world_max()).length() < 1e-4);
+    let f = tf(&[
+        (0.0, [0.2, 0.3, 0.9, 0.0]),
+        (90.0, [0.9, 0.6, 0.2, 0.0]),
+        (200.0, [1.0, 0.3, 0.2, 0.9]),
+    ]);
+    let centre = (mm.data.world_min() + mm.data.world_max()) / 2.0;
+    for (azimuth, elevation) in [(0.0, 0.0), (30.0, 40.0)] {
+        let cam = ortho(centre, azimuth, elevation, 20.0);
+        let a = render(&mut s, &um, &cam, f.clone());
+        let b = render(&mut s, &mm, &cam, f.clone());
+        assert!(
+            a.iter().filter(|p| p[3] > 0.1).count() > 100,
+            "the object is in view"
+        );
+        let name = format!("az {azimuth} el {elevation}: µm vs mm");
+        common::assert_images_close(&name, &a, &b, SIZE, 1.0 / 255.0);
+    }
+}
+
 #[test]
 fn no_data_voxels_are_transparent_to_the_ray_caster() {
     let mut s = session();

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 /// Extensions of the volumes `VolumeFile` reads (`.nii.gz` ends in `gz`); see
 /// `hatchery_data::volume_file::VOLUME_ENDINGS`.
 pub const VOLUME_EXTENSIONS: &[&str] = &[
-    "nii", "gz", "mgz", "mgh", "vti", "nrrd", "nhdr", "mha", "mhd", "tif", "tiff", "dcm",
+    "nii", "gz", "mgz", "mgh", "vti", "nrrd", "nhdr", "mha", "mhd", "tif", "tiff", "dcm", "zarr",
 ];
 /// Extensions of the meshes `MeshFile` reads.
 pub const MESH_EXTENSIONS: &[&str] = &["obj", "ply", "stl"];

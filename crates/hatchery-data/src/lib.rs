@@ -1,5 +1,5 @@
 //! hatchery's CPU-side data: volumes and triangle meshes, the file formats they come from
-//! (NIfTI, NRRD, MetaImage, TIFF stacks, DICOM series, VTK ImageData, OBJ, PLY, STL), label
+//! (NIfTI, NRRD, MetaImage, TIFF stacks, DICOM series, VTK ImageData, OME-Zarr, OBJ, PLY, STL), label
 //! masks, procedural default data sets and marching cubes.
 
 pub mod bricks;
@@ -18,6 +18,7 @@ pub mod mgh_file;
 pub mod nifti_file;
 pub mod nifti_header;
 pub mod nrrd_file;
+pub mod ome_zarr;
 pub mod procedural;
 pub mod pyramid;
 pub(crate) mod raw_voxels;

@@ -12,9 +12,9 @@ use crate::{DataError, VolumeData};
 
 /// File name endings [`load_volume`] reads (matched case-insensitively); folders are read as
 /// DICOM series too.
-pub const VOLUME_ENDINGS: [&str; 12] = [
+pub const VOLUME_ENDINGS: [&str; 13] = [
     ".nii", ".nii.gz", ".mgz", ".mgh", ".vti", ".nrrd", ".nhdr", ".mha", ".mhd", ".tif", ".tiff",
-    ".dcm",
+    ".dcm", ".zarr",
 ];
 
 /// Choices a user can make when loading a volume (the VolumeFile node's parameters).
@@ -33,7 +33,8 @@ pub fn load_volume(path: &Path) -> Result<VolumeData, DataError> {
 /// Loads a volume, choosing the format by the (case-insensitive) end of the file name:
 /// `.nii` and `.nii.gz` with [`load_nifti`], `.vti` with [`load_vti`], `.nrrd` and `.nhdr` with
 /// [`load_nrrd`], `.mha` and `.mhd` with [`load_metaimage`], `.tif` and `.tiff` with
-/// [`load_tiff_stack`]; a folder, or a `.dcm` file meaning the series it belongs to, with
+/// [`load_tiff_stack`]; an OME-Zarr image (a Zarr group, usually `.zarr`) with
+/// [`crate::ome_zarr::load_ome_zarr`] (`options.array` may name a label image); another folder, or a `.dcm` file meaning the series it belongs to, with
 /// [`load_dicom_series`]. Every format's voxels
 /// are placed in hatchery's RAS+ world (see [`crate::geometry`]).
 pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData, DataError> {
@@ -42,7 +43,9 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    if path.is_dir() || name.ends_with(".dcm") {
+    if crate::ome_zarr::is_zarr(path) || name.ends_with(".zarr") {
+        crate::ome_zarr::load_ome_zarr(path, options.array.as_deref())
+    } else if path.is_dir() || name.ends_with(".dcm") {
         load_dicom_series(path)
     } else if name.ends_with(".nii") || name.ends_with(".nii.gz") {
         load_nifti(path)

@@ -144,7 +144,16 @@ fn every_fixture_lands_where_its_writer_put_it() {
         assert!(!v.placement.is_empty(), "{name}");
         formats.push(entry["format"].as_str().unwrap().to_string());
     }
-    for format in ["nifti", "nifti2", "mgh", "nrrd", "metaimage", "tiff", "vti"] {
+    for format in [
+        "nifti",
+        "nifti2",
+        "mgh",
+        "nrrd",
+        "metaimage",
+        "tiff",
+        "vti",
+        "ome-zarr",
+    ] {
         assert!(
             formats.iter().any(|f| f == format),
             "no {format} fixture was checked"
@@ -164,6 +173,8 @@ fn stored_types_and_placement_notes() {
         ("nifti2_oblique.nii.gz", "int16", "NIfTI-2 sform"),
         ("freesurfer_oblique.mgz", "float32", "MGH vox2ras"),
         ("freesurfer_coronal.mgh", "uint8", "MGH vox2ras"),
+        ("ome_v04.zarr", "uint8", "OME-Zarr 0.4 multiscales"),
+        ("ome_v05.zarr", "uint8", "OME-Zarr 0.5 multiscales"),
     ];
     for (name, stored, note) in cases {
         let v = load_volume(&dir.join(name)).unwrap();

@@ -19,7 +19,8 @@ hatchery_graph::node_params! {
     pub struct LabelFileParams {
         /// the label map file, or a DICOM folder
         pub path: FilePath = "", reads(hatchery_graph::InputKind::Labels);
-        /// the named data array to read (VTK); empty: the active scalars
+        /// the named data array to read (VTK; OME-Zarr: a label image of labels/); empty: the
+        /// active scalars (OME-Zarr: the first label image)
         pub array: String = "";
         /// object names: CSV `id,name` or ITK-SNAP label file (optional)
         pub names: FilePath = "", reads(hatchery_graph::InputKind::Names);
@@ -37,7 +38,7 @@ impl Node<Value, Ctx> for LabelFileNode {
                   from any volume format VolumeFile reads, placed in the world the same way. \
                   Object names come from `names` (a CSV/TSV table `id,name` or an ITK-SNAP label \
                   description file) or from the file itself (3D Slicer's segment names in a \
-                  .seg.nrrd header); objects without a name are called \"object N\".",
+                  .seg.nrrd header, an OME-Zarr label image's properties); objects without a name are called \"object N\".",
             inputs: vec![],
             outputs: vec![labels_output()],
             params: LabelFileParams::specs(),
@@ -80,8 +81,15 @@ impl Node<Value, Ctx> for LabelFileNode {
         let options = hatchery_data::volume_file::LoadOptions {
             array: (!array.is_empty()).then(|| array.to_owned()),
         };
-        let volume = hatchery_data::volume_file::load_volume_with(&path, &options)
-            .map_err(|e| NodeError::new(e.to_string()))?;
+        // An OME-Zarr group names its label images and their objects itself.
+        let (volume, zarr_names) = if hatchery_data::ome_zarr::is_zarr(&path) {
+            hatchery_data::ome_zarr::load_label_image(&path, options.array.as_deref())
+                .map_err(|e| NodeError::new(e.to_string()))?
+        } else {
+            let volume = hatchery_data::volume_file::load_volume_with(&path, &options)
+                .map_err(|e| NodeError::new(e.to_string()))?;
+            (volume, Default::default())
+        };
         if !volume.warnings.is_empty() {
             ctx.warn(format!(
                 "{}: {}",
@@ -91,6 +99,7 @@ impl Node<Value, Ctx> for LabelFileNode {
         }
         let mut data = LabelData::from_volume(&volume)
             .map_err(|e| NodeError::new(format!("{}: {e}", path.display())))?;
+        data.name_objects(&zarr_names);
         // 3D Slicer writes segment names into the NRRD header.
         let extension = path.to_string_lossy().to_ascii_lowercase();
         if extension.ends_with(".nrrd") || extension.ends_with(".nhdr") {

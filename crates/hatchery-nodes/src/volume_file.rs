@@ -12,8 +12,9 @@ hatchery_graph::node_params! {
     pub struct VolumeFileParams {
         /// the volume file, or a folder holding a DICOM series
         pub path: FilePath = "", reads(hatchery_graph::InputKind::Volume);
-        /// the named data array to read from a file with several (VTK); empty: the file's active
-        /// scalars, else the first array
+        /// the named data array to read from a file with several (VTK; OME-Zarr: a label image
+        /// of labels/); empty: the file's active scalars, else the first array (OME-Zarr: the
+        /// image)
         pub array: String = "";
     }
 }
