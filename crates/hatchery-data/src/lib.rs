@@ -2,6 +2,7 @@
 //! (NIfTI, NRRD, MetaImage, TIFF stacks, DICOM series, VTK ImageData, OME-Zarr, OBJ, PLY, STL), label
 //! masks, procedural default data sets and marching cubes.
 
+pub mod brick_source;
 pub mod bricks;
 pub mod dicom_series;
 pub mod error;

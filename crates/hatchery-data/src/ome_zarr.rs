@@ -80,7 +80,9 @@ pub struct Multiscale {
     pub warnings: Vec<String>,
     /// The `image-label` metadata where this is a label image.
     image_label: Option<Value>,
-    store: Arc<FilesystemStore>,
+    /// Each level's array (opened once: bricks read boxes of them).
+    arrays: Vec<Array<FilesystemStore>>,
+    grids: Vec<crate::brick_source::LevelGrid>,
 }
 
 fn group_attributes(
@@ -199,7 +201,7 @@ impl Multiscale {
         if axes[rank - 3..].iter().all(|a| a.unit.is_none()) {
             warnings.push("the space axes give no unit: taken as millimetres".into());
         }
-        let mut levels = Vec::new();
+        let (mut levels, mut arrays) = (Vec::new(), Vec::new());
         for d in datasets {
             let level_path = dataset_path(path, d)?;
             let array = open_array(&store, path, &level_path)?;
@@ -262,6 +264,7 @@ impl Multiscale {
                 dims,
                 geometry,
             });
+            arrays.push(array);
         }
         for (a, axis) in axes[..rank - 3].iter().enumerate() {
             if levels[0].shape[a] > 1 {
@@ -305,11 +308,18 @@ impl Multiscale {
             version,
             name,
             axes,
-            levels,
             placement,
             warnings,
             image_label: ome.get("image-label").cloned(),
-            store,
+            grids: levels
+                .iter()
+                .map(|l| crate::brick_source::LevelGrid {
+                    dims: l.dims,
+                    geometry: l.geometry,
+                })
+                .collect(),
+            levels,
+            arrays,
         })
     }
 
@@ -333,16 +343,42 @@ impl Multiscale {
                 limit: MAX_VOXELS,
             });
         }
-        let array = open_array(&self.store, path, &l.path)?;
+        let (values, stored) = self.read_subset(level, [0; 3], l.dims)?;
+        let mut volume =
+            VolumeData::from_voxels(l.dims, l.geometry, values).map_err(|e| e.in_file(path))?;
+        volume.stored_type = stored;
+        volume.placement = if level == 0 {
+            self.placement.clone()
+        } else {
+            format!("{} (level {level}: {})", self.placement, l.path)
+        };
+        volume.warnings = self.warnings.clone();
+        Ok(volume)
+    }
+
+    /// Voxels `lo .. lo + size` (voxel axes i, j, k) of `level`, at index 0 of non-space axes,
+    /// with the name of the stored type.
+    fn read_subset(
+        &self,
+        level: usize,
+        lo: [u32; 3],
+        size: [u32; 3],
+    ) -> Result<(Voxels, &'static str), DataError> {
+        let path = &self.path;
+        let l = &self.levels[level];
+        let array = &self.arrays[level];
         let rank = l.shape.len();
         let ranges: Vec<std::ops::Range<u64>> = (0..rank)
-            .map(|a| if a + 3 < rank { 0..1 } else { 0..l.shape[a] })
+            .map(|a| match (rank - 1).checked_sub(a) {
+                Some(v) if v < 3 => lo[v] as u64..(lo[v] + size[v]) as u64,
+                _ => 0..1,
+            })
             .collect();
         let subset = ArraySubset::new_with_ranges(&ranges);
         let fail =
             |e: zarrs::array::ArrayError| DataError::format(path, format!("level {}: {e}", l.path));
         let dt = array.data_type();
-        let (values, stored) = if *dt == data_type::uint8() {
+        Ok(if *dt == data_type::uint8() {
             (
                 Voxels::U8(array.retrieve_array_subset(&subset).map_err(fail)?),
                 "uint8",
@@ -383,17 +419,7 @@ impl Multiscale {
                 };
             }
             wide!(u32 => uint32, i32 => int32, u64 => uint64, i64 => int64, f64 => float64)
-        };
-        let mut volume =
-            VolumeData::from_voxels(l.dims, l.geometry, values).map_err(|e| e.in_file(path))?;
-        volume.stored_type = stored;
-        volume.placement = if level == 0 {
-            self.placement.clone()
-        } else {
-            format!("{} (level {level}: {})", self.placement, l.path)
-        };
-        volume.warnings = self.warnings.clone();
-        Ok(volume)
+        })
     }
 
     /// The finest level one volume in memory may hold ([`MAX_VOXELS`]), with a warning when
@@ -541,4 +567,17 @@ fn open_array(
 ) -> Result<Array<FilesystemStore>, DataError> {
     Array::open(store.clone(), &format!("/{level}"))
         .map_err(|e| DataError::format(path, format!("level {level}: {e}")))
+}
+
+/// Bricks of an OME-Zarr pyramid read box by box from its chunks (only the chunks a box touches).
+impl crate::brick_source::BrickSource for Multiscale {
+    fn levels(&self) -> &[crate::brick_source::LevelGrid] {
+        &self.grids
+    }
+
+    fn read_box(&self, level: usize, lo: [u32; 3], size: [u32; 3]) -> Result<Voxels, DataError> {
+        crate::brick_source::check_box(&self.grids, level, lo, size)
+            .map_err(|e| e.in_file(&self.path))?;
+        Ok(self.read_subset(level, lo, size)?.0)
+    }
 }
