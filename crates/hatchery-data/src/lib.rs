@@ -22,6 +22,7 @@ pub mod nrrd_file;
 pub mod ome_zarr;
 pub mod procedural;
 pub mod pyramid;
+pub mod raw_source;
 pub(crate) mod raw_voxels;
 pub mod segmentation;
 pub mod style;

@@ -43,7 +43,7 @@ const MAX_HEADER_BYTES: u64 = 1 << 20;
 pub fn load_metaimage(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
     let header = read_header(path, &mut BufReader::new(file))?;
-    let layout = check_header(path, &header)?;
+    let layout = check_header(path, &header, crate::voxels::MAX_VOXELS)?;
     let bytes = read_data(path, &layout)?;
     let voxels = raw_voxels::decode(&bytes, layout.element, layout.big_endian);
     let mut volume = VolumeData::from_voxels(layout.dims, layout.geometry, voxels)
@@ -51,6 +51,30 @@ pub fn load_metaimage(path: &Path) -> Result<VolumeData, DataError> {
     volume.stored_type = layout.element.name();
     volume.placement = layout.placement;
     Ok(volume)
+}
+
+/// A MetaImage file's voxels read box by box from the memory-mapped data file, without holding
+/// them (streaming, [`crate::brick_source`]); any size. Errors: as [`load_metaimage`];
+/// compressed data (which cannot be read a box at a time: convert it to OME-Zarr).
+pub fn metaimage_source(path: &Path) -> Result<crate::raw_source::RawSource, DataError> {
+    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let header = read_header(path, &mut BufReader::new(file))?;
+    // 2⁴⁸ voxels: far beyond any disk, low enough that byte counts cannot overflow.
+    let layout = check_header(path, &header, 1 << 48)?;
+    if layout.compressed {
+        return Err(DataError::unsupported(
+            path,
+            "compressed voxel data cannot be read a brick at a time (`hatchery convert` it to OME-Zarr)",
+        ));
+    }
+    crate::raw_source::RawSource::open(
+        &layout.data_file,
+        layout.offset,
+        layout.element,
+        layout.big_endian,
+        layout.dims,
+        layout.geometry,
+    )
 }
 
 /// The header's `Key = Value` pairs (keys matched without regard to case) and the byte where
@@ -131,7 +155,8 @@ struct Layout {
     placement: String,
 }
 
-fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
+/// The header's layout, refused above `limit` voxels.
+fn check_header(path: &Path, h: &Header, limit: u64) -> Result<Layout, DataError> {
     let require = |name: &str| {
         h.get(&[name])
             .ok_or_else(|| DataError::format(path, format!("header has no `{name}`")))
@@ -156,7 +181,7 @@ fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
     if sizes.contains(&0) {
         return Err(DataError::format(path, format!("bad DimSize {sizes:?}")));
     }
-    let count = raw_voxels::checked_count(path, &sizes)? as usize;
+    let count = raw_voxels::checked_count_within(path, &sizes, limit)? as usize;
     let dims = sizes.map(|d| d as u32);
     let channels: u32 = h
         .get(&["ElementNumberOfChannels"])

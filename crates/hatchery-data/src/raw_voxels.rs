@@ -53,15 +53,24 @@ impl Element {
 
 /// `dims` multiplied out, refused above [`MAX_VOXELS`] (before anything is allocated).
 pub(crate) fn checked_count(path: &Path, dims: &[u64]) -> Result<u64, DataError> {
+    checked_count_within(path, dims, MAX_VOXELS)
+}
+
+/// `dims` multiplied out, refused above `limit` voxels or where a side exceeds `u32::MAX`.
+pub(crate) fn checked_count_within(
+    path: &Path,
+    dims: &[u64],
+    limit: u64,
+) -> Result<u64, DataError> {
     let count = dims
         .iter()
         .try_fold(1u64, |acc, &d| acc.checked_mul(d))
         .unwrap_or(u64::MAX);
-    if count > MAX_VOXELS {
+    if count > limit || dims.iter().any(|&d| d > u32::MAX as u64) {
         return Err(DataError::TooLarge {
             path: path.to_path_buf(),
             voxels: count,
-            limit: MAX_VOXELS,
+            limit,
         });
     }
     Ok(count)

@@ -175,3 +175,37 @@ fn worker_threads_read_each_requested_brick_once() {
         }
     }
 }
+
+#[test]
+fn bricks_of_a_memory_mapped_metaimage_equal_the_loaded_volume() {
+    // sitk.mhd: int16 in a detached sitk.raw, as SimpleITK writes it.
+    let path = fixture("sitk.mhd");
+    let whole = load_volume(&path).unwrap();
+    let source = hatchery_data::metaimage_file::metaimage_source(&path).unwrap();
+    assert_eq!(source.levels()[0].dims, whole.dims);
+    assert_eq!(source.levels()[0].geometry, whole.geometry);
+    for id in every_brick(whole.dims, 7, 0) {
+        let brick = read_brick(&source, id, 7).unwrap();
+        assert!(matches!(brick, Voxels::I16(_)));
+        assert_eq!(as_f32(&brick), expected(&whole, id.brick, 7), "{id:?}");
+    }
+    // A compressed file cannot be read a box at a time: said so, naming it.
+    let err = hatchery_data::metaimage_file::metaimage_source(&fixture("sitk.mha"))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("sitk.mha") && err.contains("compressed"),
+        "{err}"
+    );
+    // A data file shorter than the header says.
+    let dir = tempfile::tempdir().unwrap();
+    let header = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(dir.path().join("short.mhd"), header).unwrap();
+    std::fs::write(dir.path().join("sitk.raw"), [0u8; 100]).unwrap();
+    let err = hatchery_data::metaimage_file::metaimage_source(&dir.path().join("short.mhd"))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.contains("too few"), "{err}");
+}
