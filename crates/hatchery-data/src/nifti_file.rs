@@ -55,7 +55,7 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
             DataError::format(path, format!("bad NIfTI header: {message}"))
         }
     })?;
-    let layout = check_header(path, &header)?;
+    let layout = check_header(path, &header, MAX_VOXELS)?;
 
     // Skip the extensions between the header and the voxel data.
     let skip = layout.data_offset - header.size;
@@ -115,6 +115,44 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
         layout.placement
     };
     Ok(volume)
+}
+
+/// An uncompressed `.nii` file's voxels read box by box from the memory-mapped file, without
+/// holding them (streaming, [`crate::brick_source`]); any size, scaled by `scl_slope` and
+/// `scl_inter` as [`load_nifti`] does. Errors: as [`load_nifti`]; a gzip-compressed file (which
+/// cannot be read a box at a time: `gunzip` it, or `hatchery convert` it to OME-Zarr).
+pub fn nifti_source(path: &Path) -> Result<crate::raw_source::RawSource, DataError> {
+    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let mut buffered = BufReader::new(file);
+    let head = buffered.fill_buf().map_err(|e| DataError::io(path, e))?;
+    if head.starts_with(&[0x1f, 0x8b]) {
+        return Err(DataError::unsupported(
+            path,
+            "gzip-compressed voxels cannot be read a brick at a time (gunzip it, or \
+             `hatchery convert` it to OME-Zarr)",
+        ));
+    }
+    let header = nifti_header::read(&mut buffered).map_err(|e| match e {
+        HeaderError::Io(e) => DataError::io(path, e),
+        HeaderError::NotNifti => DataError::format(path, "not a NIfTI file"),
+        HeaderError::Other(message) => {
+            DataError::format(path, format!("bad NIfTI header: {message}"))
+        }
+    })?;
+    // 2⁴⁸ voxels: far beyond any disk, low enough that byte counts cannot overflow.
+    let layout = check_header(path, &header, 1 << 48)?;
+    let (datatype, big_endian) = (layout.datatype, header.big_endian);
+    let (slope, intercept) = (layout.slope, layout.intercept);
+    let decode: crate::raw_source::Decode =
+        Box::new(move |raw| decode_voxels(datatype, raw, big_endian, slope, intercept));
+    crate::raw_source::RawSource::open_with(
+        path,
+        Some(layout.data_offset),
+        datatype.size_of(),
+        decode,
+        layout.dims,
+        layout.geometry,
+    )
 }
 
 /// Voxel bytes as voxels: 8- and 16-bit integers and f32 in their own type, the wider types
@@ -235,7 +273,8 @@ struct Layout {
     data_offset: u64,
 }
 
-fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
+/// The header's layout, refused above `limit` voxels.
+fn check_header(path: &Path, h: &Header, limit: u64) -> Result<Layout, DataError> {
     if h.pair {
         return Err(DataError::unsupported(
             path,
@@ -300,7 +339,7 @@ fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
         .iter()
         .map(|&i| extra(i) as u64)
         .fold(1u64, u64::saturating_mul);
-    let voxels = voxel_count(path, dims)?;
+    let voxels = voxel_count_within(path, dims, limit)?;
 
     let datatype = nifti_header::datatype(h.datatype).ok_or_else(|| {
         DataError::unsupported(
@@ -445,15 +484,20 @@ fn nifti_geometry(path: &Path, h: &Header) -> Result<(Geometry, String), DataErr
 
 /// The voxel count of `dims`; TooLarge above [`MAX_VOXELS`] (refused before any allocation).
 pub(crate) fn voxel_count(path: &Path, dims: [u32; 3]) -> Result<u64, DataError> {
+    voxel_count_within(path, dims, MAX_VOXELS)
+}
+
+/// The voxel count of `dims`; TooLarge above `limit`.
+fn voxel_count_within(path: &Path, dims: [u32; 3], limit: u64) -> Result<u64, DataError> {
     // Three 32-bit dims can overflow 64 bits: saturate (a fuzzed header found it).
     let voxels = dims
         .iter()
         .fold(1u64, |n, &d| n.saturating_mul(u64::from(d)));
-    if voxels > MAX_VOXELS {
+    if voxels > limit {
         return Err(DataError::TooLarge {
             path: path.to_path_buf(),
             voxels,
-            limit: MAX_VOXELS,
+            limit,
         });
     }
     Ok(voxels)

@@ -1,5 +1,5 @@
 //! Raw voxel data read box by box from a memory-mapped file (streaming, issue 30): the bytes of a
-//! header-plus-raw format (MetaImage today) stay in the page cache, and only the rows a brick
+//! header-plus-raw format (MetaImage, uncompressed NIfTI) stay in the page cache, and only the rows a brick
 //! needs are decoded, so a volume larger than memory can be read a brick at a time.
 
 use std::path::{Path, PathBuf};
@@ -12,13 +12,16 @@ use crate::geometry::Geometry;
 use crate::raw_voxels::{self, Element};
 use crate::voxels::Voxels;
 
+/// Turns the bytes of whole voxels into voxels (byte order, scaling: the format's rules).
+pub(crate) type Decode = Box<dyn Fn(Vec<u8>) -> Voxels + Send + Sync>;
+
 /// One level of raw voxels (x fastest) at `offset` bytes into a memory-mapped file.
 pub struct RawSource {
     path: PathBuf,
     map: Mmap,
     offset: usize,
-    element: Element,
-    big_endian: bool,
+    voxel_bytes: usize,
+    decode: Decode,
     grids: Vec<LevelGrid>,
 }
 
@@ -33,13 +36,26 @@ impl RawSource {
         dims: [u32; 3],
         geometry: Geometry,
     ) -> Result<Self, DataError> {
+        let decode: Decode = Box::new(move |b| raw_voxels::decode(&b, element, big_endian));
+        Self::open_with(data_file, offset, element.size(), decode, dims, geometry)
+    }
+
+    /// [`Self::open`] for voxels of `voxel_bytes` bytes each, turned into voxels by `decode`.
+    pub(crate) fn open_with(
+        data_file: &Path,
+        offset: Option<u64>,
+        voxel_bytes: usize,
+        decode: Decode,
+        dims: [u32; 3],
+        geometry: Geometry,
+    ) -> Result<Self, DataError> {
         let file = std::fs::File::open(data_file).map_err(|e| DataError::io(data_file, e))?;
         // Safety: the map is read-only and private to this source; hatchery never writes the
         // file. Another program truncating it while it is mapped would fault the reads (as for
         // every reader that maps files, e.g. nibabel's mmap mode), so bounds are checked against
         // the length it had when mapped.
         let map = unsafe { Mmap::map(&file) }.map_err(|e| DataError::io(data_file, e))?;
-        let bytes = dims.iter().map(|&d| d as u64).product::<u64>() * element.size() as u64;
+        let bytes = dims.iter().map(|&d| d as u64).product::<u64>() * voxel_bytes as u64;
         let len = map.len() as u64;
         let offset = match offset {
             Some(o) => o,
@@ -57,8 +73,8 @@ impl RawSource {
             path: data_file.to_path_buf(),
             map,
             offset: offset as usize,
-            element,
-            big_endian,
+            voxel_bytes,
+            decode,
             grids: vec![LevelGrid { dims, geometry }],
         })
     }
@@ -72,7 +88,7 @@ impl BrickSource for RawSource {
     fn read_box(&self, level: usize, lo: [u32; 3], size: [u32; 3]) -> Result<Voxels, DataError> {
         check_box(&self.grids, level, lo, size).map_err(|e| e.in_file(&self.path))?;
         let [nx, ny, _] = self.grids[0].dims.map(|d| d as usize);
-        let e = self.element.size();
+        let e = self.voxel_bytes;
         let row = size[0] as usize * e;
         let mut bytes = Vec::with_capacity(row * size[1] as usize * size[2] as usize);
         for z in lo[2] as usize..(lo[2] + size[2]) as usize {
@@ -81,6 +97,6 @@ impl BrickSource for RawSource {
                 bytes.extend_from_slice(&self.map[start..start + row]);
             }
         }
-        Ok(raw_voxels::decode(&bytes, self.element, self.big_endian))
+        Ok((self.decode)(bytes))
     }
 }

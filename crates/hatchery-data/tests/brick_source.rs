@@ -209,3 +209,31 @@ fn bricks_of_a_memory_mapped_metaimage_equal_the_loaded_volume() {
         .to_string();
     assert!(err.contains("too few"), "{err}");
 }
+
+#[test]
+fn bricks_of_a_memory_mapped_nifti_equal_the_loaded_volume() {
+    // NIfTI-1 little-endian and NIfTI-2 big-endian, as nibabel writes them.
+    for name in ["nifti_ras.nii", "nifti2_big_endian.nii"] {
+        let path = fixture(name);
+        let whole = load_volume(&path).unwrap();
+        let source = hatchery_data::nifti_file::nifti_source(&path).unwrap();
+        assert_eq!(source.levels()[0].dims, whole.dims, "{name}");
+        assert_eq!(source.levels()[0].geometry, whole.geometry, "{name}");
+        for id in every_brick(whole.dims, 6, 0) {
+            let brick = read_brick(&source, id, 6).unwrap();
+            assert_eq!(
+                as_f32(&brick),
+                expected(&whole, id.brick, 6),
+                "{name} {id:?}"
+            );
+        }
+    }
+    let err = hatchery_data::nifti_file::nifti_source(&fixture("nifti_las.nii.gz"))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("nifti_las.nii.gz") && err.contains("gzip"),
+        "{err}"
+    );
+}
