@@ -58,7 +58,7 @@ const KNOWN_FIELDS: &str = "content number type blocksize dimension space spaced
 pub fn load_nrrd(path: &Path) -> Result<VolumeData, DataError> {
     let file = File::open(path).map_err(|e| DataError::io(path, e))?;
     let header = read_header(path, &mut BufReader::new(file))?;
-    let layout = check_header(path, &header)?;
+    let layout = check_header(path, &header, crate::voxels::MAX_VOXELS)?;
 
     let mut bytes = Vec::new();
     let per_file = layout.element_count * layout.element.size() / layout.sources.len();
@@ -81,6 +81,43 @@ pub fn load_nrrd(path: &Path) -> Result<VolumeData, DataError> {
     volume.stored_type = layout.element.name();
     volume.placement = layout.placement;
     Ok(volume)
+}
+
+/// A raw-encoded NRRD's voxels (attached or in one detached file) read box by box from the
+/// memory-mapped data, without holding them (streaming, [`crate::brick_source`]); any size.
+/// Errors: as [`load_nrrd`]; encodings other than raw (gzip, text cannot be read a box at a
+/// time: `hatchery convert` to OME-Zarr), several data files, a `line skip`, a 4-D file.
+pub fn nrrd_source(path: &Path) -> Result<crate::raw_source::RawSource, DataError> {
+    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let header = read_header(path, &mut BufReader::new(file))?;
+    // 2⁴⁸ voxels: far beyond any disk, low enough that byte counts cannot overflow.
+    let layout = check_header(path, &header, 1 << 48)?;
+    let refuse = |why: &str| {
+        Err(DataError::unsupported(
+            path,
+            format!("{why}: not read a brick at a time (`hatchery convert` it to OME-Zarr)"),
+        ))
+    };
+    if layout.encoding != Encoding::Raw {
+        return refuse("compressed or text voxel data");
+    }
+    let [source] = layout.sources.as_slice() else {
+        return refuse("several data files");
+    };
+    if layout.line_skip > 0 {
+        return refuse("`line skip`");
+    }
+    if layout.skipped_axis != (1, 1) {
+        return refuse("a non-spatial axis");
+    }
+    crate::raw_source::RawSource::open(
+        &source.path,
+        layout.byte_skip.map(|b| source.offset + b),
+        layout.element,
+        layout.big_endian,
+        layout.dims,
+        layout.geometry,
+    )
 }
 
 /// The header's fields in file order (names lower case without spaces), where the data
@@ -209,7 +246,8 @@ struct Source {
     offset: u64,
 }
 
-fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
+/// The header's layout, refused above `limit` voxels.
+fn check_header(path: &Path, h: &Header, limit: u64) -> Result<Layout, DataError> {
     let require = |name: &str| {
         h.get(name)
             .ok_or_else(|| DataError::format(path, format!("header has no `{name}` field")))
@@ -228,7 +266,7 @@ fn check_header(path: &Path, h: &Header) -> Result<Layout, DataError> {
             format!("`sizes` must give {dimension} positive sizes, got {sizes:?}"),
         ));
     }
-    let element_count = raw_voxels::checked_count(path, &sizes)? as usize;
+    let element_count = raw_voxels::checked_count_within(path, &sizes, limit)? as usize;
     let element = element_type(path, require("type")?)?;
     let encoding = match require("encoding")?.to_ascii_lowercase().as_str() {
         "raw" => Encoding::Raw,

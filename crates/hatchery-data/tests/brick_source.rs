@@ -237,3 +237,72 @@ fn bricks_of_a_memory_mapped_nifti_equal_the_loaded_volume() {
         "{err}"
     );
 }
+
+#[test]
+fn bricks_of_a_memory_mapped_nrrd_equal_the_loaded_volume() {
+    let dir = tempfile::tempdir().unwrap();
+    // A detached header over the MetaImage fixture's raw int16 data, 100 bytes in (byte skip),
+    // and one whose data ends its file (byte skip -1).
+    let raw = std::fs::read(fixture("sitk.raw")).unwrap();
+    let mut padded = vec![0xAB; 100];
+    padded.extend_from_slice(&raw);
+    std::fs::write(dir.path().join("padded.raw"), &padded).unwrap();
+    let header = |skip: i64| {
+        format!(
+            "NRRD0004\ntype: short\ndimension: 3\nspace: left-posterior-superior\nsizes: 20 16 12\n\
+             space directions: (0.8,0,0) (0,0.8,0) (0,0,2.5)\nendian: little\nencoding: raw\n\
+             space origin: (3,-7,-12)\nbyte skip: {skip}\ndata file: padded.raw\n"
+        )
+    };
+    std::fs::write(dir.path().join("skip.nhdr"), header(100)).unwrap();
+    std::fs::write(dir.path().join("end.nhdr"), header(-1)).unwrap();
+    for path in [
+        fixture("sitk.nrrd"),
+        dir.path().join("skip.nhdr"),
+        dir.path().join("end.nhdr"),
+    ] {
+        let whole = load_volume(&path).unwrap();
+        let source = hatchery_data::nrrd_file::nrrd_source(&path).unwrap();
+        assert_eq!(source.levels()[0].geometry, whole.geometry, "{path:?}");
+        for id in every_brick(whole.dims, 6, 0) {
+            let brick = read_brick(&source, id, 6).unwrap();
+            assert_eq!(
+                as_f32(&brick),
+                expected(&whole, id.brick, 6),
+                "{path:?} {id:?}"
+            );
+        }
+    }
+    let err = hatchery_data::nrrd_file::nrrd_source(&fixture("sitk_gzip.nhdr"))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("sitk_gzip.nhdr") && err.contains("compressed"),
+        "{err}"
+    );
+}
+
+#[test]
+fn open_picks_the_streaming_reader_by_format() {
+    for (name, levels) in [
+        ("ome_v05.zarr", 2),
+        ("nifti_ras.nii", 1),
+        ("sitk.nrrd", 1),
+        ("sitk.mhd", 1),
+    ] {
+        let source = hatchery_data::brick_source::open(&fixture(name)).unwrap();
+        assert_eq!(source.levels().len(), levels, "{name}");
+        assert_eq!(source.levels()[0].dims, [20, 16, 12], "{name}");
+    }
+    for name in ["nifti_las.nii.gz", "imagej_stack.tif"] {
+        let err = hatchery_data::brick_source::open(&fixture(name))
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains(name) && err.contains("hatchery convert"),
+            "{err}"
+        );
+    }
+}
