@@ -12,6 +12,7 @@ pub fn describe(path: &Path) -> Result<String> {
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
+    let path = hatchery_data::ome_zarr::group_of(path);
     let is_volume = VOLUME_ENDINGS.iter().any(|e| name.ends_with(e)) || path.is_dir();
     if !is_volume && !MESH_ENDINGS.iter().any(|e| name.ends_with(e)) {
         anyhow::bail!(

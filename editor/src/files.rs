@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 /// `hatchery_data::volume_file::VOLUME_ENDINGS`.
 pub const VOLUME_EXTENSIONS: &[&str] = &[
     "nii", "gz", "mgz", "mgh", "vti", "nrrd", "nhdr", "mha", "mhd", "tif", "tiff", "dcm", "zarr",
+    // An OME-Zarr folder is chosen by its zarr.json (the dialog picks files).
+    "json",
 ];
 /// Extensions of the meshes `MeshFile` reads.
 pub const MESH_EXTENSIONS: &[&str] = &["obj", "ply", "stl"];
@@ -29,6 +31,9 @@ impl FileKind {
         let ext = name.rsplit('.').next()?;
         if name.ends_with(".ron") {
             Some(FileKind::Graph)
+        } else if name == "zarr.json" || name == ".zattrs" {
+            // An OME-Zarr group's metadata file stands for the group (a file dialog picks files).
+            Some(FileKind::Volume)
         } else if hatchery_data::volume_file::VOLUME_ENDINGS
             .iter()
             .any(|e| name.ends_with(e))
@@ -120,7 +125,8 @@ impl FilePicker {
         let filter = match kind {
             Some(FileKind::Graph) => Some(("Graphs (.ron)", vec!["ron"])),
             Some(FileKind::Volume) => Some((
-                "Volumes (.nii, .nii.gz, .mgz, .mgh, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm)",
+                "Volumes (.nii, .nii.gz, .mgz, .mgh, .vti, .nrrd, .nhdr, .mha, .mhd, .tif, .dcm; \
+                 OME-Zarr: its zarr.json)",
                 VOLUME_EXTENSIONS.to_vec(),
             )),
             Some(FileKind::Mesh) => Some(("Meshes (.obj, .ply, .stl)", MESH_EXTENSIONS.to_vec())),
@@ -178,6 +184,14 @@ mod tests {
         assert_eq!(FileKind::of(Path::new("x.ron")), Some(FileKind::Graph));
         assert_eq!(FileKind::of(Path::new("archive.tar.gz")), None);
         assert_eq!(FileKind::of(Path::new("notes.txt")), None);
+        assert_eq!(
+            FileKind::of(Path::new("cells.zarr/zarr.json")),
+            Some(FileKind::Volume)
+        );
+        assert_eq!(
+            FileKind::of(Path::new("cells.zarr")),
+            Some(FileKind::Volume)
+        );
     }
 
     #[test]

@@ -349,6 +349,7 @@ pub const STREAMED_FORMATS: &str = "OME-Zarr (.zarr), uncompressed NIfTI (.nii),
 /// chunks, the raw formats from the memory-mapped file (one level). Errors: another format, or
 /// compressed data in a raw format (the error says to `hatchery convert` it to OME-Zarr).
 pub fn open(path: &std::path::Path) -> Result<Arc<dyn BrickSource>, DataError> {
+    let path = crate::ome_zarr::group_of(path);
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())

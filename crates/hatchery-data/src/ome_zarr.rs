@@ -42,6 +42,18 @@ pub fn is_zarr(path: &Path) -> bool {
             .any(|f| path.join(f).is_file())
 }
 
+/// The Zarr group a path means: the folder itself, or the folder of a group metadata file
+/// (`zarr.json`, `.zattrs`, `.zgroup`) — what a file dialog, which picks files, can choose.
+pub fn group_of(path: &Path) -> &Path {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_ascii_lowercase());
+    match (name.as_deref(), path.parent()) {
+        (Some("zarr.json" | ".zattrs" | ".zgroup"), Some(parent)) if is_zarr(parent) => parent,
+        _ => path,
+    }
+}
+
 /// An axis of an image's arrays.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
@@ -529,6 +541,7 @@ pub fn load_label_image(
     path: &Path,
     array: Option<&str>,
 ) -> Result<(VolumeData, BTreeMap<u16, String>), DataError> {
+    let path = group_of(path);
     let mut chosen = resolve(path, array)?;
     let mut note = None;
     if array.is_none_or(str::is_empty) {
@@ -556,6 +569,7 @@ pub fn load_label_image(
 /// that holds more than [`MAX_VOXELS`] the finest level within it, with a warning naming it
 /// (a pyramid's point is that a coarser level stands in for the whole).
 pub fn load_ome_zarr(path: &Path, array: Option<&str>) -> Result<VolumeData, DataError> {
+    let path = group_of(path);
     let image = Multiscale::open(&resolve(path, array)?)?;
     image.read_finest_in_memory()
 }

@@ -43,7 +43,8 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    if crate::ome_zarr::is_zarr(path) || name.ends_with(".zarr") {
+    let zarr = crate::ome_zarr::group_of(path);
+    if crate::ome_zarr::is_zarr(zarr) || name.ends_with(".zarr") {
         crate::ome_zarr::load_ome_zarr(path, options.array.as_deref())
     } else if path.is_dir() || name.ends_with(".dcm") {
         load_dicom_series(path)

@@ -74,6 +74,21 @@ fn label_images_load_with_their_names_on_the_image_grid() {
     }
 }
 
+/// A file dialog picks files: the group's metadata file stands for the group.
+#[test]
+fn a_groups_metadata_file_opens_the_group() {
+    for (name, file) in [("ome_v05.zarr", "zarr.json"), ("ome_v04.zarr", ".zattrs")] {
+        let root = world_dir().join(name);
+        assert_eq!(
+            load_volume(&root.join(file)).unwrap(),
+            load_volume(&root).unwrap()
+        );
+        let labels = root.join("labels/organs").join(file);
+        let (_, names) = ome_zarr::load_label_image(&labels, None).unwrap();
+        assert_eq!(names.len(), 2, "{name}");
+    }
+}
+
 #[test]
 fn pyramid_levels_are_placed_by_their_own_transformations() {
     for name in ["ome_v04.zarr", "ome_v05.zarr"] {

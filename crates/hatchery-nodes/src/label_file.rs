@@ -82,7 +82,7 @@ impl Node<Value, Ctx> for LabelFileNode {
             array: (!array.is_empty()).then(|| array.to_owned()),
         };
         // An OME-Zarr group names its label images and their objects itself.
-        let (volume, zarr_names) = if hatchery_data::ome_zarr::is_zarr(&path) {
+        let (volume, zarr_names) = if hatchery_data::ome_zarr::is_zarr(hatchery_data::ome_zarr::group_of(&path)) {
             hatchery_data::ome_zarr::load_label_image(&path, options.array.as_deref())
                 .map_err(|e| NodeError::new(e.to_string()))?
         } else {
