@@ -25,6 +25,7 @@ pub mod pyramid;
 pub mod raw_source;
 pub(crate) mod raw_voxels;
 pub mod segmentation;
+pub mod stream_file;
 pub mod style;
 pub mod tiff_stack;
 pub mod transfer_function;

@@ -291,12 +291,12 @@ fn open_picks_the_streaming_reader_by_format() {
         ("sitk.nrrd", 1),
         ("sitk.mhd", 1),
     ] {
-        let source = hatchery_data::brick_source::open(&fixture(name)).unwrap();
+        let source = hatchery_data::stream_file::open_stream(&fixture(name)).unwrap();
         assert_eq!(source.levels().len(), levels, "{name}");
         assert_eq!(source.levels()[0].dims, [20, 16, 12], "{name}");
     }
     for name in ["nifti_las.nii.gz", "imagej_stack.tif"] {
-        let err = hatchery_data::brick_source::open(&fixture(name))
+        let err = hatchery_data::stream_file::open_stream(&fixture(name))
             .err()
             .unwrap()
             .to_string();
