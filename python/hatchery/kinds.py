@@ -756,15 +756,16 @@ class LabelFile:
     """Reads a label map (object id per voxel, whole numbers 0–65535, 0 = background) from any
         volume format VolumeFile reads, placed in the world the same way. Object names come from
         `names` (a CSV/TSV table `id,name` or an ITK-SNAP label description file) or from the
-        file itself (3D Slicer's segment names in a .seg.nrrd header); objects without a name
-        are called "object N".
+        file itself (3D Slicer's segment names in a .seg.nrrd header, an OME-Zarr label image's
+        properties); objects without a name are called "object N".
 
     Outputs:
         labels (Labels): object ids on the volume's grid, with names
 
     Parameters:
         path (path; default ''): the label map file, or a DICOM folder
-        array (text; default ''): the named data array to read (VTK); empty: the active scalars
+        array (text; default ''): the named data array to read (VTK; OME-Zarr: a label image of
+            labels/); empty: the active scalars (OME-Zarr: the first label image)
         names (path; default ''): object names: CSV `id,name` or ITK-SNAP label file (optional)
 
     """
@@ -1661,8 +1662,9 @@ class VolumeFile:
 
     Parameters:
         path (path; default ''): the volume file, or a folder holding a DICOM series
-        array (text; default ''): the named data array to read from a file with several (VTK);
-            empty: the file's active scalars, else the first array
+        array (text; default ''): the named data array to read from a file with several (VTK;
+            OME-Zarr: a label image of labels/); empty: the file's active scalars, else the
+            first array (OME-Zarr: the image)
 
     """
 
