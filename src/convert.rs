@@ -47,18 +47,8 @@ fn stem(path: &Path) -> String {
 }
 
 fn load_labels(path: &Path, names: Option<&Path>) -> Result<LabelData> {
-    let (volume, mut table) = if ome_zarr::is_zarr(path) {
-        ome_zarr::load_label_image(path, None)?
-    } else {
-        let volume = load_volume_with(path, &LoadOptions::default())?;
-        let lower = path.to_string_lossy().to_ascii_lowercase();
-        let table = if lower.ends_with(".nrrd") || lower.ends_with(".nhdr") {
-            segmentation::nrrd_segment_names(path)?
-        } else {
-            Default::default()
-        };
-        (volume, table)
-    };
+    let (volume, mut table) =
+        hatchery_data::volume_file::load_label_volume(path, &LoadOptions::default())?;
     for w in &volume.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }

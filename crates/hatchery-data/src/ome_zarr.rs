@@ -117,9 +117,10 @@ impl Multiscale {
     /// metadata. Errors: not a Zarr group, no `multiscales`, not three space axes (the last
     /// three, as the spec requires), a transformation other than scale/translation, a zero scale.
     pub fn open(path: &Path) -> Result<Self, DataError> {
-        let v3_array = std::fs::read_to_string(path.join("zarr.json")).is_ok_and(|t| {
-            t.contains("\"node_type\"") && t.contains("\"array\"") && !t.contains("\"group\"")
-        });
+        let v3_array = std::fs::read_to_string(path.join("zarr.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+            .is_some_and(|m| m.get("node_type").and_then(Value::as_str) == Some("array"));
         if path.join(".zarray").is_file() || v3_array {
             return Err(DataError::format(
                 path,
@@ -390,48 +391,33 @@ impl Multiscale {
         let fail =
             |e: zarrs::array::ArrayError| DataError::format(path, format!("level {}: {e}", l.path));
         let dt = array.data_type();
-        Ok(if *dt == data_type::uint8() {
-            (
-                Voxels::U8(array.retrieve_array_subset(&subset).map_err(fail)?),
-                "uint8",
-            )
-        } else if *dt == data_type::int8() {
-            (
-                Voxels::I8(array.retrieve_array_subset(&subset).map_err(fail)?),
-                "int8",
-            )
-        } else if *dt == data_type::uint16() {
-            (
-                Voxels::U16(array.retrieve_array_subset(&subset).map_err(fail)?),
-                "uint16",
-            )
-        } else if *dt == data_type::int16() {
-            (
-                Voxels::I16(array.retrieve_array_subset(&subset).map_err(fail)?),
-                "int16",
-            )
-        } else if *dt == data_type::float32() {
-            (
-                Voxels::F32(array.retrieve_array_subset(&subset).map_err(fail)?),
-                "float32",
-            )
-        } else {
-            let widened = |v: Vec<f64>| Voxels::F32(v.into_iter().map(|x| x as f32).collect());
-            macro_rules! wide {
-                ($($t:ty => $f:ident),*) => {
-                    $(if *dt == data_type::$f() {
-                        let v: Vec<$t> = array.retrieve_array_subset(&subset).map_err(fail)?;
-                        (widened(v.into_iter().map(|x| x as f64).collect()), stringify!($f))
-                    } else)* {
-                        return Err(DataError::unsupported(
-                            path,
-                            format!("level {}: data type {dt:?} is not a number hatchery reads", l.path),
-                        ));
-                    }
-                };
-            }
-            wide!(u32 => uint32, i32 => int32, u64 => uint64, i64 => int64, f64 => float64)
-        })
+        // Types hatchery keeps natively, then those it widens to f32 (through f64, as the other
+        // loaders do).
+        macro_rules! read {
+            ($($t:ty => $f:ident $variant:ident),*; $($w:ty => $wf:ident),*) => {
+                $(if *dt == data_type::$f() {
+                    let v: Vec<$t> = array.retrieve_array_subset(&subset).map_err(fail)?;
+                    return Ok((Voxels::$variant(v), stringify!($f)));
+                })*
+                $(if *dt == data_type::$wf() {
+                    let v: Vec<$w> = array.retrieve_array_subset(&subset).map_err(fail)?;
+                    let v = v.into_iter().map(|x| x as f64 as f32).collect();
+                    return Ok((Voxels::F32(v), stringify!($wf)));
+                })*
+            };
+        }
+        read!(
+            u8 => uint8 U8, i8 => int8 I8, u16 => uint16 U16, i16 => int16 I16,
+            f32 => float32 F32;
+            u32 => uint32, i32 => int32, u64 => uint64, i64 => int64, f64 => float64
+        );
+        Err(DataError::unsupported(
+            path,
+            format!(
+                "level {}: data type {dt:?} is not a number hatchery reads",
+                l.path
+            ),
+        ))
     }
 
     /// The finest level one volume in memory may hold ([`MAX_VOXELS`]), with a warning when

@@ -75,6 +75,27 @@ pub fn load_volume_with(path: &Path, options: &LoadOptions) -> Result<VolumeData
     }
 }
 
+/// A label map and the object names its file carries: an OME-Zarr label image's `image-label`
+/// properties ([`crate::ome_zarr::load_label_image`]: `options.array` names the label image,
+/// else the group's first), 3D Slicer's segment names in a `.seg.nrrd` header; none for other
+/// formats. Errors: as [`load_volume_with`].
+pub fn load_label_volume(
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<(VolumeData, std::collections::BTreeMap<u16, String>), DataError> {
+    if crate::ome_zarr::is_zarr(crate::ome_zarr::group_of(path)) {
+        return crate::ome_zarr::load_label_image(path, options.array.as_deref());
+    }
+    let volume = load_volume_with(path, options)?;
+    let name = path.to_string_lossy().to_ascii_lowercase();
+    let names = if name.ends_with(".nrrd") || name.ends_with(".nhdr") {
+        crate::segmentation::nrrd_segment_names(path)?
+    } else {
+        Default::default()
+    };
+    Ok((volume, names))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

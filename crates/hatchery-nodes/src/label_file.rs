@@ -7,7 +7,7 @@ use crate::label_sources::labels_output;
 use crate::label_sources::names_table;
 use crate::memory_inputs::{self, InputData};
 use crate::{Ctx, Value};
-use hatchery_data::segmentation::{self, LabelData};
+use hatchery_data::segmentation::LabelData;
 use hatchery_graph::{
     FilePath, NodeError, NodeInputs, NodeSchema, Params,
     executor::Node,
@@ -81,15 +81,10 @@ impl Node<Value, Ctx> for LabelFileNode {
         let options = hatchery_data::volume_file::LoadOptions {
             array: (!array.is_empty()).then(|| array.to_owned()),
         };
-        // An OME-Zarr group names its label images and their objects itself.
-        let (volume, zarr_names) = if hatchery_data::ome_zarr::is_zarr(hatchery_data::ome_zarr::group_of(&path)) {
-            hatchery_data::ome_zarr::load_label_image(&path, options.array.as_deref())
-                .map_err(|e| NodeError::new(e.to_string()))?
-        } else {
-            let volume = hatchery_data::volume_file::load_volume_with(&path, &options)
+        // Names the file carries (an OME-Zarr label image's, a .seg.nrrd's) come with it.
+        let (volume, file_names) =
+            hatchery_data::volume_file::load_label_volume(&path, &options)
                 .map_err(|e| NodeError::new(e.to_string()))?;
-            (volume, Default::default())
-        };
         if !volume.warnings.is_empty() {
             ctx.warn(format!(
                 "{}: {}",
@@ -99,14 +94,7 @@ impl Node<Value, Ctx> for LabelFileNode {
         }
         let mut data = LabelData::from_volume(&volume)
             .map_err(|e| NodeError::new(format!("{}: {e}", path.display())))?;
-        data.name_objects(&zarr_names);
-        // 3D Slicer writes segment names into the NRRD header.
-        let extension = path.to_string_lossy().to_ascii_lowercase();
-        if extension.ends_with(".nrrd") || extension.ends_with(".nhdr") {
-            let table = segmentation::nrrd_segment_names(&path)
-                .map_err(|e| NodeError::new(e.to_string()))?;
-            data.name_objects(&table);
-        }
+        data.name_objects(&file_names);
         data.name_objects(&names_table(ctx, &params.names)?);
         finish(ctx, &path.display().to_string(), data)
     }
