@@ -58,6 +58,32 @@ pub fn check_box(
     Ok(())
 }
 
+/// Voxels `lo .. lo + size` of `level` of `source` as a volume placed where they lie in the world
+/// (the level's voxel → world transform moved to voxel `lo`), its value range `value_range` when
+/// given (the whole source's, so a transfer function maps values the same in every region),
+/// else the region's own. Errors: the box outside the level, under 2 voxels along an axis, a
+/// read failure.
+pub fn region_volume(
+    source: &dyn BrickSource,
+    level: usize,
+    lo: [u32; 3],
+    size: [u32; 3],
+    value_range: Option<[f32; 2]>,
+) -> Result<VolumeData, DataError> {
+    check_box(source.levels(), level, lo, size)?;
+    let grid = &source.levels()[level];
+    let mut geometry = grid.geometry;
+    let shift = glam::DVec3::from_array(lo.map(f64::from));
+    geometry.origin =
+        grid.geometry.origin + grid.geometry.direction * (grid.geometry.spacing * shift);
+    let voxels = source.read_box(level, lo, size)?;
+    let mut v = VolumeData::from_voxels(size, geometry, voxels)?;
+    if let Some(r) = value_range {
+        v.value_range = r;
+    }
+    Ok(v)
+}
+
 /// A brick: its level and its index in that level's brick grid (`ceil(dims / inner)` per axis).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct BrickId {

@@ -10,7 +10,7 @@ use crate::voxels::Voxels;
 use crate::{DataError, VolumeData};
 
 /// Which axes of a grid of `dims` a coarser level halves.
-fn halved(dims: [u32; 3]) -> [bool; 3] {
+pub fn halved(dims: [u32; 3]) -> [bool; 3] {
     dims.map(|d| d >= 4)
 }
 
@@ -19,8 +19,12 @@ pub fn has_coarser(dims: [u32; 3]) -> bool {
     halved(dims).iter().any(|&h| h)
 }
 
-fn coarser_dims(dims: [u32; 3]) -> [u32; 3] {
-    let h = halved(dims);
+/// The dims of the coarser level of a grid of `dims`.
+pub fn coarser_dims(dims: [u32; 3]) -> [u32; 3] {
+    halve_dims(dims, halved(dims))
+}
+
+fn halve_dims(dims: [u32; 3], h: [bool; 3]) -> [u32; 3] {
     [0, 1, 2].map(|a| if h[a] { dims[a].div_ceil(2) } else { dims[a] })
 }
 
@@ -68,9 +72,13 @@ fn children(i: u32, halve: bool, n: u32) -> std::ops::Range<u32> {
 }
 
 /// Calls `f(coarse index, fine indices)` for every coarse voxel of a grid of `dims`.
-fn for_each_block(dims: [u32; 3], mut f: impl FnMut(usize, &[usize])) {
-    let h = halved(dims);
-    let c = coarser_dims(dims);
+fn for_each_block(dims: [u32; 3], f: impl FnMut(usize, &[usize])) {
+    for_each_block_halving(dims, halved(dims), f)
+}
+
+/// [`for_each_block`] halving the axes `h` (a box of a grid halves the grid's axes).
+fn for_each_block_halving(dims: [u32; 3], h: [bool; 3], mut f: impl FnMut(usize, &[usize])) {
+    let c = halve_dims(dims, h);
     let [nx, ny, nz] = dims;
     let mut fine = Vec::with_capacity(8);
     let mut at = 0;
@@ -97,7 +105,24 @@ fn for_each_block(dims: [u32; 3], mut f: impl FnMut(usize, &[usize])) {
 /// with no coarser level ([`has_coarser`]).
 pub fn coarser_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
     no_coarser_is_an_error(v.dims, "volume")?;
-    let count = coarser_dims(v.dims).iter().map(|&d| d as usize).product();
+    let voxels = mean_blocks(&v.voxels, v.dims, halved(v.dims));
+    coarser_of(v, voxels)
+}
+
+/// The coarser level of a box of `dims` voxels of a grid whose coarser level halves axes `h`
+/// ([`halved`] of the grid's dims), the box starting at an even voxel along them: the same
+/// voxels as the matching box of the grid's coarser level — by mean ([`coarser_volume`]) or,
+/// for label ids, by majority ([`coarser_label_volume`]). Returns the voxels, x fastest.
+pub fn coarser_box(voxels: &Voxels, dims: [u32; 3], h: [bool; 3], labels: bool) -> Voxels {
+    if labels {
+        majority_blocks(voxels, dims, h)
+    } else {
+        mean_blocks(voxels, dims, h)
+    }
+}
+
+fn mean_blocks(voxels: &Voxels, dims: [u32; 3], h: [bool; 3]) -> Voxels {
+    let count = halve_dims(dims, h).iter().map(|&d| d as usize).product();
     // Mean of the finite values of a block, as f64.
     fn mean<T: Copy>(values: &[T], block: &[usize], f: impl Fn(T) -> f64) -> Option<f64> {
         let (mut sum, mut n) = (0.0, 0);
@@ -113,26 +138,25 @@ pub fn coarser_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
     macro_rules! integer {
         ($values:expr, $variant:ident, $t:ty) => {{
             let mut out = vec![0 as $t; count];
-            for_each_block(v.dims, |at, block| {
+            for_each_block_halving(dims, h, |at, block| {
                 out[at] = mean($values, block, |x| x as f64).unwrap_or(0.0).round() as $t;
             });
             Voxels::$variant(out)
         }};
     }
-    let voxels = match &v.voxels {
+    match voxels {
         Voxels::U8(x) => integer!(x, U8, u8),
         Voxels::I8(x) => integer!(x, I8, i8),
         Voxels::U16(x) => integer!(x, U16, u16),
         Voxels::I16(x) => integer!(x, I16, i16),
         Voxels::F32(x) => {
             let mut out = vec![0.0f32; count];
-            for_each_block(v.dims, |at, block| {
+            for_each_block_halving(dims, h, |at, block| {
                 out[at] = mean(x, block, |x| x as f64).map_or(f32::NAN, |m| m as f32);
             });
             Voxels::F32(out)
         }
-    };
-    coarser_of(v, voxels)
+    }
 }
 
 /// A volume of labels (ids stored as voxel values, e.g. a style TF's per-label rows) at half the
@@ -140,7 +164,12 @@ pub fn coarser_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
 /// which would invent ids between two objects. Errors: a grid with no coarser level.
 pub fn coarser_label_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
     no_coarser_is_an_error(v.dims, "volume")?;
-    let count = coarser_dims(v.dims).iter().map(|&d| d as usize).product();
+    let voxels = majority_blocks(&v.voxels, v.dims, halved(v.dims));
+    coarser_of(v, voxels)
+}
+
+fn majority_blocks(voxels: &Voxels, dims: [u32; 3], h: [bool; 3]) -> Voxels {
+    let count = halve_dims(dims, h).iter().map(|&d| d as usize).product();
     fn majority<T: Copy + PartialEq + PartialOrd>(values: &[T], block: &[usize]) -> T {
         let mut best = (0, values[block[0]]);
         for &i in block {
@@ -155,18 +184,17 @@ pub fn coarser_label_volume(v: &VolumeData) -> Result<VolumeData, DataError> {
     macro_rules! by_majority {
         ($values:expr, $variant:ident) => {{
             let mut out = Vec::with_capacity(count);
-            for_each_block(v.dims, |_, block| out.push(majority($values, block)));
+            for_each_block_halving(dims, h, |_, block| out.push(majority($values, block)));
             Voxels::$variant(out)
         }};
     }
-    let voxels = match &v.voxels {
+    match voxels {
         Voxels::U8(x) => by_majority!(x, U8),
         Voxels::I8(x) => by_majority!(x, I8),
         Voxels::U16(x) => by_majority!(x, U16),
         Voxels::I16(x) => by_majority!(x, I16),
         Voxels::F32(x) => by_majority!(x, F32),
-    };
-    coarser_of(v, voxels)
+    }
 }
 
 /// The label map at half the resolution: each voxel the id most of its block holds (ties: the

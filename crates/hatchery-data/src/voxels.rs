@@ -120,6 +120,23 @@ impl Voxels {
         }
     }
 
+    /// Appends `other`'s values (slabs of one grid read one after another); `other` of another
+    /// type is turned into f32 with this array (one source never mixes types, so this is rare).
+    pub fn append(&mut self, other: Voxels) {
+        match (self, other) {
+            (Voxels::U8(a), Voxels::U8(b)) => a.extend(b),
+            (Voxels::I8(a), Voxels::I8(b)) => a.extend(b),
+            (Voxels::U16(a), Voxels::U16(b)) => a.extend(b),
+            (Voxels::I16(a), Voxels::I16(b)) => a.extend(b),
+            (Voxels::F32(a), Voxels::F32(b)) => a.extend(b),
+            (this, b) => {
+                let mut a = std::mem::replace(this, Voxels::F32(Vec::new())).into_f32();
+                a.extend(b.into_f32());
+                *this = Voxels::F32(a);
+            }
+        }
+    }
+
     /// Applies `value * slope + intercept` (NIfTI scl_*, DICOM rescale). The identity keeps the
     /// native type; anything else gives f32.
     pub fn rescaled(self, slope: f64, intercept: f64) -> Voxels {

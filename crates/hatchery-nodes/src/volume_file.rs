@@ -5,6 +5,7 @@ use crate::{Ctx, Value};
 use hatchery_graph::{
     FilePath, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
+use std::path::Path;
 use std::sync::Arc;
 
 hatchery_graph::node_params! {
@@ -67,6 +68,9 @@ impl Node<Value, Ctx> for VolumeFileNode {
         let options = hatchery_data::volume_file::LoadOptions {
             array: (!array.is_empty()).then(|| array.to_owned()),
         };
+        if let Some(volume) = streamed(ctx, &path, options.array.as_deref())? {
+            return Ok(vec![Value::Volume(Arc::new(volume))]);
+        }
         let data = hatchery_data::volume_file::load_volume_with(&path, &options)
             .map_err(|e| NodeError::new(e.to_string()))?;
         // What the loader worked around (a resampled slice gap, skipped files) and what the
@@ -94,6 +98,39 @@ impl Node<Value, Ctx> for VolumeFileNode {
         );
         Ok(vec![Value::Volume(Arc::new(Volume::new(data)))])
     }
+}
+
+/// The volume streamed from `path` when it is beyond the host budget (see
+/// [`crate::value::stream`]); `None`: load it whole.
+fn streamed(ctx: &mut Ctx, path: &Path, array: Option<&str>) -> Result<Option<Volume>, NodeError> {
+    use hatchery_data::stream_file::{host_budget, open_beyond_budget};
+    let budget = host_budget().map_err(NodeError::new)?;
+    let Some(s) = open_beyond_budget(path, array, budget, false)
+        .map_err(|e| NodeError::new(e.to_string()))?
+    else {
+        return Ok(None);
+    };
+    let levels = s.source.levels();
+    let [x, y, z] = levels[0].dims;
+    let [px, py, pz] = s.preview.dims;
+    let message = format!(
+        "{}: {x}×{y}×{z} voxels exceed the host budget ({} MiB, HATCHERY_HOST_BUDGET_MB): \
+         streamed, {} levels; ray casters read the region and level each view needs, other \
+         nodes the preview level {} ({px}×{py}×{pz})",
+        path.display(),
+        budget >> 20,
+        levels.len(),
+        s.preview_level
+    );
+    ctx.warn(message);
+    let stream = crate::value::stream::Stream::new(
+        s.source,
+        path.to_path_buf(),
+        s.preview.value_range,
+        s.preview_level,
+        budget / 8,
+    );
+    Ok(Some(Volume::streamed(s.preview, Arc::new(stream))))
 }
 
 /// The volume a `memory:` key names (see [`crate::memory_inputs`]): a volume as it is, a label

@@ -217,9 +217,20 @@ pub fn cast(
     o: &RayOptions,
 ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
     let err = |e: GpuError| NodeError::new(e.to_string());
-    // The level of detail the device holds (see `Volume::resident`).
-    let volume = volume.resident(&ctx.gpu).map_err(err)?;
+    // A streamed volume: the region and level this view needs (see `value::stream`).
+    let pool = ctx.gpu.volume_limits().map_err(err)?.pool_bytes;
+    let (view, why) = volume.for_view(camera, pool).map_err(NodeError::new)?;
+    let whole = view.whole().cloned();
     let labels = match labels {
+        Some(l) => Some(l.for_view(camera, pool).map_err(NodeError::new)?.0),
+        None => None,
+    };
+    if let Some(why) = why {
+        ctx.warn(why);
+    }
+    // The level of detail the device holds (see `Volume::resident`).
+    let volume = view.resident(&ctx.gpu).map_err(err)?;
+    let labels = match &labels {
         Some(l) => Some(l.resident_labels(&ctx.gpu).map_err(err)?),
         None => None,
     };
@@ -242,6 +253,17 @@ pub fn cast(
         volume_texture.texel_range,
     )
     .with_bricks(volume_texture.layout.as_ref());
+    let uniforms = match &whole {
+        Some(w) => {
+            let grid = super::uniforms::Grid {
+                dims: w.dims,
+                geometry: &w.geometry,
+                value_range: volume.data.value_range,
+            };
+            uniforms.with_whole_grid(camera, &grid)
+        }
+        None => uniforms,
+    };
     let uniform = gpu.buffer_init(
         "raycast",
         bytemuck::bytes_of(&uniforms),

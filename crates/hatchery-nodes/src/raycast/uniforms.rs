@@ -179,6 +179,14 @@ impl RayUniforms {
         self
     }
 
+    /// This block with the eye-to-box distances (eq. 5) of the whole grid `whole` that the
+    /// volume is a region of (a streamed view, `value::stream`), so a region shades as the
+    /// whole grid does.
+    pub fn with_whole_grid(mut self, camera: &Camera, whole: &Grid) -> Self {
+        [self.distance_near, self.distance_far] = corner_distances(camera, whole);
+        self
+    }
+
     /// The block for one pass. `max_gradient` normalises |∇f| (eq. 5, 8, 2); `texel_range` maps
     /// the volume texture's texels back to data values.
     pub fn new(

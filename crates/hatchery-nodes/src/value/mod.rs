@@ -8,6 +8,7 @@ pub mod annotations;
 pub mod camera;
 pub mod light;
 mod resident;
+pub mod stream;
 pub mod strokes;
 
 use crate::brick_pool::GridTexture;
@@ -30,6 +31,9 @@ pub struct Volume {
     /// same by majority, for a volume of label ids).
     coarser: OnceLock<Arc<Volume>>,
     coarser_labels: OnceLock<Arc<Volume>>,
+    /// The file a volume beyond the host budget streams from (`data` is then its preview
+    /// level; see [`stream`]).
+    stream: Option<Arc<stream::Stream>>,
 }
 
 impl Volume {
@@ -46,6 +50,7 @@ impl Volume {
             frame_points: OnceLock::new(),
             coarser: OnceLock::new(),
             coarser_labels: OnceLock::new(),
+            stream: None,
         }
     }
     /// What a Camera frames (see [`crate::framing`]), found once: the outline of the volume's
