@@ -5,7 +5,7 @@
 #   preview — a 256² frame of the whole volume: the level held in memory (the first picture an
 #             interactive view shows);
 #   whole   — a 1024² frame of the whole volume: the level its pixels need, within the budget;
-#   close   — a 1024² close-up through a 12° cone: a region of the finest level.
+#   close   — a 1024² close-up through a 6° cone: a region of the finest level.
 # Prints one line per render: size, view, seconds, peak RSS, and which level and region was read.
 #
 #   scripts/bench-out-of-core.sh [--sizes "512 1024 2048"] [--budget MB] [--work DIR] BIN
@@ -71,8 +71,8 @@ for n in $sizes; do
     fi
     disk=$(du -sh "$zarr" | cut -f1)
     whole='"framing": "fit", "azimuth": 30.0, "elevation": 25.0, "fov": 30.0'
-    # 30 % of the radius above the ball's top, looking down through a 12° cone.
-    close="\"framing\": \"fixed\", \"target\": (0.0, 0.0, $((n * 45 / 100))), \"distance\": $((n * 15 / 100)), \"azimuth\": 30.0, \"elevation\": 89.0, \"fov\": 12.0"
+    # 30 % of the radius above the ball's top, looking down through a 6° cone.
+    close="\"framing\": \"fixed\", \"target\": (0.0, 0.0, $((n * 45 / 100))), \"distance\": $((n * 15 / 100)), \"azimuth\": 30.0, \"elevation\": 89.0, \"fov\": 6.0"
     for view in preview whole close; do
         case $view in
             preview) cam=$whole; size=256x256 ;;
@@ -86,6 +86,8 @@ for n in $sizes; do
         secs=$(awk -F': ' '/Elapsed \(wall clock\)/{n=split($2,t,":"); s=0; for(i=1;i<=n;i++) s=s*60+t[i]; print s}' "$log")
         rss=$(awk -F': ' '/Maximum resident set size/{printf "%.0f", $2/1024}' "$log")
         read_=$(grep -o 'lod=[0-9]* lo=\[[0-9, ]*\] size=\[[0-9, ]*\]' "$log" | tail -1 || true)
+        took=$(grep -o 'seconds=[0-9.]*' "$log" | tail -1 | cut -d= -f2 || true)
+        [ -z "$took" ] || read_="$read_ in $(printf '%.2f' "$took") s"
         streamed=$(grep -q "exceed the host budget" "$log" && echo streamed || echo "in memory")
         echo "N=$n ($disk on disk) $view $size: ${secs} s, peak RSS ${rss} MiB, $streamed, read: ${read_:-the preview level only}"
     done

@@ -208,7 +208,7 @@ fn a_close_view_reads_only_the_region_it_shows_at_full_resolution() {
     let target = [CENTRE[0], CENTRE[1], CENTRE[2] + 40.0];
     let g = graph(dir.path(), &mha, target, 150.0, 89.0, 10.0);
     let (want, _) = render(&g, 160, &[], &dir.path().join("held.png"));
-    // 12 MiB: still under twice the ball's 8 MiB, so it streams; regions up to 1.5 M voxels.
+    // 12 MiB: under 4 × the ball's 8 MiB, so it streams; regions up to 1.5 M voxels.
     let budget = ("HATCHERY_HOST_BUDGET_MB", "12");
     let (got, log) = render(&g, 160, &[budget], &dir.path().join("streamed.png"));
     let line = log

@@ -76,6 +76,8 @@ pub struct Preview {
     sent: Option<Key>,
     /// The request whose answer has not arrived yet.
     awaiting: Option<u64>,
+    /// The picture shown is a streamed volume's preview level; the refined one is on its way.
+    pub refining: bool,
     pub viewport: Option<Shown>,
     pub thumbnails: BTreeMap<Port, Shown>,
     /// Pinned ports that have no picture, and why (a mesh, a camera, a failed node).
@@ -236,7 +238,9 @@ impl Preview {
     }
 
     fn show(&mut self, ctx: &egui::Context, answer: Rendered) {
-        if self.awaiting == Some(answer.id) {
+        // A coarse first frame keeps the request out: its refined answer follows.
+        self.refining = !answer.refining.is_empty();
+        if self.awaiting == Some(answer.id) && !self.refining {
             self.awaiting = None;
         }
         self.answers += 1;

@@ -19,6 +19,7 @@ use std::time::{Duration, Instant};
 pub type Port = (String, String);
 
 /// What to render.
+#[derive(Clone)]
 pub struct Request {
     /// Increases with every request; the answer carries it back.
     pub id: u64,
@@ -72,6 +73,8 @@ pub struct Rendered {
     pub elapsed: Duration,
     /// The adapter rendered on (for the times' caption).
     pub adapter: String,
+    /// Nodes that drew a streamed volume's preview level: a refined answer follows.
+    pub refining: Vec<String>,
 }
 
 impl Rendered {
@@ -89,6 +92,7 @@ impl Rendered {
             object_names: BTreeMap::new(),
             elapsed: Duration::ZERO,
             adapter: String::new(),
+            refining: Vec::new(),
         }
     }
 }
@@ -117,7 +121,16 @@ impl RenderWorker {
                     session: None,
                     copy_back: !shared_device,
                 };
-                while let Ok(mut request) = inbox.recv() {
+                // A request to render after a streamed volume's coarse first frame.
+                let mut next: Option<Request> = None;
+                loop {
+                    let mut request = match next.take() {
+                        Some(r) => r,
+                        None => match inbox.recv() {
+                            Ok(r) => r,
+                            Err(_) => return,
+                        },
+                    };
                     // Skip to the newest request: older ones are out of date.
                     loop {
                         match inbox.try_recv() {
@@ -126,21 +139,28 @@ impl RenderWorker {
                             Err(TryRecvError::Disconnected) => return,
                         }
                     }
-                    let id = request.id;
-                    // A bug in a node must not end the previews: report it and start afresh.
-                    let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                        worker.render(request)
-                    }));
-                    let answer = rendered.unwrap_or_else(|panic| {
-                        worker.session = None;
-                        let what = panic
-                            .downcast_ref::<String>()
-                            .map(String::as_str)
-                            .or_else(|| panic.downcast_ref::<&str>().copied())
-                            .unwrap_or("unknown");
-                        Rendered::failed(id, format!("internal error while rendering: {what}"))
-                    });
-                    if outbox.send(answer).is_err() {
+                    let again = request.clone();
+                    if outbox.send(worker.render_caught(request)).is_err() {
+                        return;
+                    }
+                    repaint.request_repaint();
+                    // Nodes that drew a streamed volume's preview level because the region
+                    // their view needs was not read yet: read it and draw again, unless the
+                    // view changed meanwhile (then the newer request comes first).
+                    let coarse = worker.take_coarse_nodes();
+                    if coarse.is_empty() {
+                        continue;
+                    }
+                    match inbox.try_recv() {
+                        Ok(newer) => {
+                            next = Some(newer);
+                            continue;
+                        }
+                        Err(TryRecvError::Disconnected) => return,
+                        Err(TryRecvError::Empty) => {}
+                    }
+                    let refined = worker.refine(again, &coarse);
+                    if outbox.send(refined).is_err() {
                         return;
                     }
                     repaint.request_repaint();
@@ -158,6 +178,11 @@ impl RenderWorker {
         self.requests
             .send(request)
             .map_err(|_| "the render thread has stopped".to_owned())
+    }
+
+    /// The oldest answer not taken yet, if any (one at a time, unlike [`Self::newest`]).
+    pub fn next_answer(&self) -> Option<Rendered> {
+        self.answers.try_recv().ok()
     }
 
     /// The newest answer that arrived since the last call, if any.
@@ -179,6 +204,47 @@ struct Worker {
 }
 
 impl Worker {
+    /// [`Self::render`], a panic in a node reported as an error (and the session started
+    /// afresh) instead of ending the previews.
+    fn render_caught(&mut self, request: Request) -> Rendered {
+        let id = request.id;
+        let rendered =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| self.render(request)));
+        rendered.unwrap_or_else(|panic| {
+            self.session = None;
+            let what = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("unknown");
+            Rendered::failed(id, format!("internal error while rendering: {what}"))
+        })
+    }
+
+    /// The nodes the last render drew coarse (see `Ctx::take_coarse_nodes`).
+    fn take_coarse_nodes(&mut self) -> Vec<String> {
+        self.session
+            .as_mut()
+            .map(|s| s.ctx.take_coarse_nodes())
+            .unwrap_or_default()
+    }
+
+    /// Renders `request` again with the `coarse` nodes re-run at the level their views need
+    /// (their regions read now).
+    fn refine(&mut self, request: Request, coarse: &[String]) -> Rendered {
+        if let Some(s) = self.session.as_mut() {
+            for node in coarse {
+                s.executor.invalidate(node);
+            }
+            s.ctx.set_coarse_first(false);
+        }
+        let answer = self.render_caught(request);
+        if let Some(s) = self.session.as_mut() {
+            s.ctx.set_coarse_first(true);
+        }
+        answer
+    }
+
     fn session(&mut self, graph: Graph, size: (u32, u32)) -> Result<&mut Session, SessionError> {
         match &mut self.session {
             Some(session) => {
@@ -194,7 +260,10 @@ impl Worker {
                     Some(gpu) => gpu.clone(),
                     None => self.gpu.insert(GpuContext::new()?).clone(),
                 };
-                self.session = Some(Session::with_gpu(registry(), graph, gpu, size.0, size.1)?);
+                let mut session = Session::with_gpu(registry(), graph, gpu, size.0, size.1)?;
+                // Interactive: a streamed volume shows its preview first, then refines.
+                session.ctx.set_coarse_first(true);
+                self.session = Some(session);
             }
         }
         Ok(self.session.as_mut().expect("made above"))
@@ -325,6 +394,7 @@ impl Worker {
                 answer.object_names.insert(node.clone(), names);
             }
         }
+        answer.refining = session.ctx.coarse_nodes().to_vec();
         answer.elapsed = started.elapsed();
         answer
     }

@@ -44,7 +44,8 @@ pub fn open_stream(path: &Path) -> Result<Arc<dyn BrickSource>, DataError> {
 }
 
 /// The host memory budget for volumes in bytes: `HATCHERY_HOST_BUDGET_MB` (default 4096).
-/// A volume whose finest level would need more (≈ 2 × its stored bytes while loading) is
+/// A volume whose finest level would need more (loading and framing it peak at about 4 × its
+/// stored bytes: a 1024³ uint16 OME-Zarr took 10 GiB) is
 /// streamed ([`open_beyond_budget`]). Errors: a value that is not a whole number ≥ 1.
 pub fn host_budget() -> Result<u64, String> {
     match std::env::var("HATCHERY_HOST_BUDGET_MB") {
@@ -69,7 +70,7 @@ pub struct Streamed {
 }
 
 /// Opens `path` (`array`: an OME-Zarr label image) for streaming when its format streams and
-/// its finest level is beyond `budget` bytes (twice its stored bytes, or more voxels than a
+/// its finest level is beyond `budget` bytes (4 × its stored bytes, or more voxels than a
 /// volume in memory may hold); `None` otherwise (load it whole). The preview is the finest
 /// level of at most `budget / 8` bytes, read whole; `labels`: derive coarser levels by
 /// majority. Errors: the file's metadata or preview cannot be read.
@@ -95,7 +96,7 @@ pub fn open_beyond_budget(
     let probe = base.read_box(0, [0; 3], [1; 3])?;
     let voxel_bytes = probe.bytes_per_voxel() as u64;
     let bytes = voxels(top.dims) * voxel_bytes;
-    if bytes.saturating_mul(2) <= budget && voxels(top.dims) <= MAX_VOXELS {
+    if bytes.saturating_mul(4) <= budget && voxels(top.dims) <= MAX_VOXELS {
         return Ok(None);
     }
     let source: Arc<dyn BrickSource> = Arc::new(DerivedLevels::new(base, labels));

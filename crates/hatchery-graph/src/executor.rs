@@ -403,6 +403,12 @@ impl<V: Clone> Executor<V> {
     pub fn clear(&mut self) {
         self.cache.clear();
     }
+
+    /// Drops `node`'s cached outputs: the next pass re-runs it, and what depends on it when its
+    /// outputs change version (a streamed view refined after a coarse first frame).
+    pub fn invalidate(&mut self, node: &str) {
+        self.cache.remove(node);
+    }
 }
 
 impl<V: Clone> Executor<V> {

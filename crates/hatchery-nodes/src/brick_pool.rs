@@ -68,8 +68,22 @@ pub fn plan(
     limits: &VolumeLimits,
     device_max: u32,
 ) -> Result<Option<BrickLayout>, GpuError> {
+    plan_on(dims, limits, device_max, None)
+}
+
+/// [`plan`] where one texture must also hold at most `bytes.1` bytes at `bytes.0` bytes a
+/// texel (the device's `max_buffer_size`: a 1024³ 16-bit grid is 2³¹ bytes, one more than
+/// lavapipe allows), else the grid is bricked.
+pub fn plan_on(
+    dims: [u32; 3],
+    limits: &VolumeLimits,
+    device_max: u32,
+    bytes: Option<(u64, u64)>,
+) -> Result<Option<BrickLayout>, GpuError> {
     let side = limits.texture_side(device_max);
-    if dims.iter().all(|&d| d <= side) {
+    let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
+    let fits_bytes = bytes.is_none_or(|(texel, max)| voxels.saturating_mul(texel) <= max);
+    if dims.iter().all(|&d| d <= side) && fits_bytes {
         return Ok(None);
     }
     let stored = limits.brick.min(device_max).max(hatchery_gpu::MIN_BRICK);
@@ -133,7 +147,9 @@ pub fn grid_texture(
 ) -> Result<GridTexture, GpuError> {
     let limits = gpu.volume_limits()?;
     let device_max = gpu.device.limits().max_texture_dimension_3d;
-    let Some(layout) = plan(dims, &limits, device_max)? else {
+    let texel = format.block_copy_size(None).unwrap_or(4) as u64;
+    let max_bytes = gpu.device.limits().max_buffer_size;
+    let Some(layout) = plan_on(dims, &limits, device_max, Some((texel, max_bytes)))? else {
         let texture = gpu.volume_texture_by_slabs(label, dims, format, fill)?;
         return Ok(GridTexture {
             texture,
@@ -141,7 +157,7 @@ pub fn grid_texture(
         });
     };
     tracing::debug!(label, ?dims, bricks = %layout.describe(), "bricked grid texture");
-    let texel = format.block_copy_size(None).unwrap_or(4) as usize;
+    let texel = texel as usize;
     let atlas = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: extent(layout.atlas_dims()),
@@ -293,6 +309,24 @@ mod tests {
         let slots: std::collections::HashSet<[u32; 3]> =
             (0..l.brick_count()).map(|i| l.slot(i)).collect();
         assert_eq!(slots.len(), 72);
+    }
+
+    #[test]
+    fn a_grid_beyond_the_device_buffer_size_is_bricked() {
+        let l = limits(2048, 64, 8192);
+        let lavapipe = Some((2, (1u64 << 31) - 1));
+        // (17³ bricks of 62³ take 4913 × 1 MiB of pool at 4 bytes a voxel: 8 GiB holds them.)
+        // 1024³ 16-bit texels are 2³¹ bytes: one more than lavapipe's max_buffer_size.
+        assert!(plan_on([1024; 3], &l, 2048, lavapipe).unwrap().is_some());
+        assert_eq!(
+            plan_on([1024, 1024, 1023], &l, 2048, lavapipe).unwrap(),
+            None
+        );
+        assert_eq!(
+            plan([1024; 3], &l, 2048).unwrap(),
+            None,
+            "no byte limit given"
+        );
     }
 
     #[test]

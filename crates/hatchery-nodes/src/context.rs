@@ -28,6 +28,10 @@ pub struct RenderContext {
     image_kernel: crate::kernel::Kernel,
     /// Graph inputs given as data in memory, by key (see [`crate::memory_inputs`]).
     memory: HashMap<String, crate::memory_inputs::InputData>,
+    /// Render streamed volumes from their preview level where the view's region is not read
+    /// yet, noting the nodes that did (an interactive view's coarse first frame).
+    coarse_first: bool,
+    coarse_nodes: Vec<String>,
 }
 
 impl RenderContext {
@@ -42,6 +46,8 @@ impl RenderContext {
             warnings: BTreeMap::new(),
             resolved: BTreeMap::new(),
             memory: HashMap::new(),
+            coarse_first: false,
+            coarse_nodes: Vec::new(),
             image_kernel: crate::kernel::Kernel::choose(
                 std::env::var("HATCHERY_IMAGE_KERNEL")
                     .ok()
@@ -63,6 +69,34 @@ impl RenderContext {
     /// Overrides [`Self::image_kernel`] (tests compare both paths on one adapter).
     pub fn set_image_kernel(&mut self, kernel: crate::kernel::Kernel) {
         self.image_kernel = kernel;
+    }
+
+    /// Whether ray casters render a streamed volume's preview level when the region a view
+    /// needs has not been read yet (the editor: a coarse first frame, refined by the next pass
+    /// with this off). Off by default: `render` waits for the region.
+    pub fn set_coarse_first(&mut self, on: bool) {
+        self.coarse_first = on;
+    }
+
+    pub fn coarse_first(&self) -> bool {
+        self.coarse_first
+    }
+
+    /// Notes that the executing node rendered a coarser level than its view needs.
+    pub fn note_coarse(&mut self) {
+        if let Some(node) = self.current_node.clone() {
+            self.coarse_nodes.push(node);
+        }
+    }
+
+    /// The nodes that rendered coarse since the last [`Self::take_coarse_nodes`].
+    pub fn coarse_nodes(&self) -> &[String] {
+        &self.coarse_nodes
+    }
+
+    /// The nodes that rendered coarse since the last call (to re-run for the refined frame).
+    pub fn take_coarse_nodes(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.coarse_nodes)
     }
 
     pub fn size(&self) -> (u32, u32) {

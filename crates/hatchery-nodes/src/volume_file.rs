@@ -116,11 +116,12 @@ fn streamed(ctx: &mut Ctx, path: &Path, array: Option<&str>) -> Result<Option<Vo
     let message = format!(
         "{}: {x}×{y}×{z} voxels exceed the host budget ({} MiB, HATCHERY_HOST_BUDGET_MB): \
          streamed, {} levels; ray casters read the region and level each view needs, other \
-         nodes the preview level {} ({px}×{py}×{pz})",
+         nodes the preview level {} ({px}×{py}×{pz}); values span its range {:?}",
         path.display(),
         budget >> 20,
         levels.len(),
-        s.preview_level
+        s.preview_level,
+        s.preview.value_range
     );
     ctx.warn(message);
     let stream = crate::value::stream::Stream::new(

@@ -61,7 +61,12 @@ impl Panel for Viewport {
         ui.horizontal(|ui| {
             ui.checkbox(&mut app.preview.show_times, "Node times")
                 .on_hover_text("Show each node's last CPU and GPU time on the canvas");
-            if app.preview.is_busy() {
+            if app.preview.refining {
+                ui.label("refining…").on_hover_text(
+                    "a streamed volume is shown at its preview level while the region this \
+                     view needs is read at full resolution",
+                );
+            } else if app.preview.is_busy() {
                 // No spinner: it would repaint the UI all the time the frame renders.
                 ui.label("rendering…");
             } else if let Some((elapsed, adapter)) = &app.preview.last_render {

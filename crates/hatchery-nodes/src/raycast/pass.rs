@@ -219,12 +219,32 @@ pub fn cast(
     let err = |e: GpuError| NodeError::new(e.to_string());
     // A streamed volume: the region and level this view needs (see `value::stream`).
     let pool = ctx.gpu.volume_limits().map_err(err)?.pool_bytes;
-    let (view, why) = volume.for_view(camera, pool).map_err(NodeError::new)?;
+    let (quick, mut coarse) = (ctx.coarse_first(), false);
+    let (view, why) = volume
+        .for_view(camera, pool, quick, &mut coarse)
+        .map_err(NodeError::new)?;
     let whole = view.whole().cloned();
     let labels = match labels {
-        Some(l) => Some(l.for_view(camera, pool).map_err(NodeError::new)?.0),
+        Some(l) => Some(
+            l.for_view(camera, pool, quick, &mut coarse)
+                .map_err(NodeError::new)?
+                .0,
+        ),
         None => None,
     };
+    if coarse {
+        ctx.note_coarse();
+    }
+    if let Some(l) = &labels
+        && l.whole().is_some() != view.whole().is_some()
+    {
+        return Err(NodeError::at_port(
+            "labels",
+            "one of the volume and its label volume is streamed (beyond HATCHERY_HOST_BUDGET_MB) \
+             and the other is not: raise the budget so both load whole, or give both as \
+             streamable files (OME-Zarr, .nii, .nrrd, .mha)",
+        ));
+    }
     if let Some(why) = why {
         ctx.warn(why);
     }

@@ -7,23 +7,27 @@ use super::{Labels, Volume};
 use hatchery_gpu::{GpuContext, GpuError};
 use std::sync::Arc;
 
-/// Whether a grid of `dims` fits the device as one texture or in a brick pool.
-fn fits(gpu: &GpuContext, dims: [u32; 3]) -> Result<bool, GpuError> {
+/// Whether a grid of `dims` fits the device as one texture of `texel` bytes a voxel (against
+/// `max_buffer_size`) or in a brick pool.
+fn fits(gpu: &GpuContext, dims: [u32; 3], texel: u64) -> Result<bool, GpuError> {
     let limits = gpu.volume_limits()?;
-    let device_max = gpu.device.limits().max_texture_dimension_3d;
-    Ok(crate::brick_pool::plan(dims, &limits, device_max).is_ok())
+    let device = gpu.device.limits();
+    let bytes = Some((texel, device.max_buffer_size));
+    Ok(crate::brick_pool::plan_on(dims, &limits, device.max_texture_dimension_3d, bytes).is_ok())
 }
 
-/// Walks down the levels from `top` until one fits; `coarser` makes the next level.
+/// Walks down the levels from `top` until one fits; `coarser` makes the next level; `texel`:
+/// bytes of a texel of its texture (at most: 8-bit data may be widened to 16 bits).
 fn finest_fitting<'a, T>(
     gpu: &GpuContext,
     top: &'a T,
     dims: impl Fn(&T) -> [u32; 3],
+    texel: u64,
     coarser: impl Fn(&'a T) -> Result<&'a T, String>,
 ) -> Result<&'a T, GpuError> {
     let mut level = top;
     let mut k = 0;
-    while !fits(gpu, dims(level))? {
+    while !fits(gpu, dims(level), texel)? {
         let d = dims(level);
         if !hatchery_data::pyramid::has_coarser(d) {
             // Report why the coarsest level does not fit either.
@@ -51,13 +55,25 @@ impl Volume {
     /// placed where the block lies; made once). Errors: not even the coarsest level fits, a
     /// malformed limit setting.
     pub fn resident(&self, gpu: &GpuContext) -> Result<&Volume, GpuError> {
-        finest_fitting(gpu, self, |v| v.data.dims, |v| v.coarser())
+        finest_fitting(gpu, self, |v| v.data.dims, self.texel(), |v| v.coarser())
     }
 
     /// [`Self::resident`] for a volume of label ids (Raycast's `labels`): coarser levels keep
     /// the id most of each 2×2×2 block holds instead of the mean.
     pub fn resident_labels(&self, gpu: &GpuContext) -> Result<&Volume, GpuError> {
-        finest_fitting(gpu, self, |v| v.data.dims, |v| v.coarser_labels())
+        finest_fitting(
+            gpu,
+            self,
+            |v| v.data.dims,
+            self.texel(),
+            |v| v.coarser_labels(),
+        )
+    }
+
+    /// Bytes of a texel of this volume's texture, at most (see `volume_texture`: 8-bit data may
+    /// be widened to 16 bits, f32 kept).
+    fn texel(&self) -> u64 {
+        (self.data.voxels.bytes_per_voxel() as u64).max(2)
     }
 
     fn coarser(&self) -> Result<&Volume, String> {
@@ -84,7 +100,8 @@ impl Labels {
     /// The level of detail GPU nodes render, as [`Volume::resident`] (each voxel the id most of
     /// its 2×2×2 block holds).
     pub fn resident(&self, gpu: &GpuContext) -> Result<&Labels, GpuError> {
-        finest_fitting(gpu, self, |l| l.data.dims, |l| l.coarser())
+        // Ids are R16Uint texels.
+        finest_fitting(gpu, self, |l| l.data.dims, 2, |l| l.coarser())
     }
 
     fn coarser(&self) -> Result<&Labels, String> {

@@ -3,8 +3,8 @@
 //! file as a multi-resolution [`BrickSource`]; each view reads only the region it shows, at the
 //! level whose voxels match its pixels (screen-space error), and renders that.
 //!
-//! The region: the blocks of the finest level not wholly outside one clip plane of the view
-//! (frustum culling), with a margin for trilinear samples and gradients. The level: the
+//! The region: the blocks (at most 64 per axis) of the finest level not wholly outside one clip
+//! plane of the view (frustum culling), with a margin for trilinear samples and gradients. The level: the
 //! coarsest whose finest spacing is at most the footprint of a pixel at the nearest visible
 //! point, and coarser still while the region holds more voxels than the budgets allow
 //! (a warning says so). Regions are cached (LRU) so a still view reads nothing twice.
@@ -71,8 +71,12 @@ impl Stream {
         }
     }
 
+    /// Region `r` when it has been read already.
+    pub fn cached(&self, r: Region) -> Option<Arc<Volume>> {
+        self.regions.lock().ok()?.get(&r).cloned()
+    }
+
     /// Region `r` as a volume (read once, then cached), its value range the stream's.
-    /// `labels`: the voxels are label ids (kept for reporting only; the source derives levels).
     pub fn region(&self, r: Region) -> Result<Arc<Volume>, String> {
         if let Some(v) = self.regions.lock().map_err(|e| e.to_string())?.get(&r) {
             return Ok(v.clone());
@@ -147,11 +151,14 @@ impl Volume {
     /// and level the view needs ([`view_region`]) under the host budget and the GPU pool
     /// (`pool_bytes`, 4 bytes a voxel), with a message when the budget made it coarser.
     /// Gradients are normalised by the whole volume's largest (its preview's) unless the region
-    /// is a whole level. Errors: a read failure naming the file.
+    /// is a whole level. With `coarse_first`, a region not read yet is not read: the preview is
+    /// returned and `coarse` set. Errors: a read failure naming the file.
     pub fn for_view(
         &self,
         camera: &Camera,
         pool_bytes: u64,
+        coarse_first: bool,
+        coarse: &mut bool,
     ) -> Result<(ViewVolume<'_>, Option<String>), String> {
         let Some(stream) = &self.stream else {
             return Ok((ViewVolume::Held(self), None));
@@ -163,7 +170,14 @@ impl Volume {
         if region.level == stream.preview_level && region.size == levels[region.level].dims {
             return Ok((ViewVolume::Held(self), why));
         }
-        let v = stream.region(region)?;
+        let v = match stream.cached(region) {
+            Some(v) => v,
+            None if coarse_first => {
+                *coarse = true;
+                return Ok((ViewVolume::Held(self), None));
+            }
+            None => stream.region(region)?,
+        };
         if region.size != levels[region.level].dims {
             let _ = v.max_gradient.set(self.max_gradient());
         }
@@ -209,8 +223,9 @@ fn corners(grid: &LevelGrid, lo: Vec3, hi: Vec3) -> [Vec3; 8] {
     })
 }
 
-/// Blocks per axis the finest level is cut into for culling.
-const CULL_BLOCKS: u32 = 16;
+/// Blocks per axis the finest level is cut into for culling (at most; blocks have at least 4
+/// voxels a side): 64³ corner tests at most, a few milliseconds.
+const CULL_BLOCKS: u32 = 64;
 
 /// The region of `levels` (finest first) `camera` needs: see the module docs. Also returns why
 /// the level is coarser than the pixels ask for, when it is. With nothing in view: the coarsest
@@ -222,7 +237,7 @@ pub fn view_region(
 ) -> (Region, Option<String>) {
     let top = &levels[0];
     let view_proj = camera.view_proj();
-    let step = top.dims.map(|d| d.div_ceil(CULL_BLOCKS).max(1));
+    let step = top.dims.map(|d| d.div_ceil(CULL_BLOCKS).max(4));
     // The visible blocks' world corners and the nearest view depth among them.
     let mut world_lo = Vec3::splat(f32::INFINITY);
     let mut world_hi = Vec3::splat(f32::NEG_INFINITY);
@@ -375,8 +390,8 @@ mod tests {
             "the frustum reaches down to the bottom face"
         );
         // At the bottom face (611 below the eye) the cone reaches x, y ≤ 64 + 611·tan 15° = 228:
-        // 8 culling blocks of 32 voxels, and the margin snapped to 16.
-        assert_eq!((r.size[0], r.size[1], r.size[2]), (272, 272, 512), "{r:?}");
+        // 29 culling blocks of 8 voxels (to 232), 2 of margin, snapped to 16.
+        assert_eq!((r.size[0], r.size[1], r.size[2]), (240, 240, 512), "{r:?}");
         // The same view under a small budget renders a coarser level, and says why.
         let (small, why) = view_region(&levels, &cam, r.voxels() / 4);
         assert!(small.level > 0 && small.voxels() <= r.voxels() / 4);
