@@ -57,7 +57,7 @@ impl DataError {
     }
 
     /// Attach a file path to an error that was produced without one (e.g. by `MeshData::new`).
-    pub(crate) fn in_file(self, path: &Path) -> Self {
+    pub fn in_file(self, path: &Path) -> Self {
         match self {
             DataError::Invalid(message) => DataError::format(path, message),
             other => other,

@@ -46,15 +46,16 @@ pub fn open_stream(path: &Path) -> Result<Arc<dyn BrickSource>, DataError> {
 /// The host memory budget for volumes in bytes: `HATCHERY_HOST_BUDGET_MB` (default 4096).
 /// A volume whose finest level would need more (loading and framing it peak at about 4 × its
 /// stored bytes: a 1024³ uint16 OME-Zarr took 10 GiB) is
-/// streamed ([`open_beyond_budget`]). Errors: a value that is not a whole number ≥ 1.
-pub fn host_budget() -> Result<u64, String> {
+/// streamed ([`open_beyond_budget`]). Errors: a value that is not a whole number ≥ 1
+/// ([`DataError::Invalid`], naming the variable).
+pub fn host_budget() -> Result<u64, DataError> {
     match std::env::var("HATCHERY_HOST_BUDGET_MB") {
         Err(_) => Ok(4096 << 20),
         Ok(text) => match text.trim().parse::<u64>() {
             Ok(n) if n >= 1 => Ok(n.saturating_mul(1 << 20)),
-            _ => Err(format!(
+            _ => Err(DataError::Invalid(format!(
                 "HATCHERY_HOST_BUDGET_MB={text:?}: expected a whole number of MiB, at least 1"
-            )),
+            ))),
         },
     }
 }

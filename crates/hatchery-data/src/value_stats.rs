@@ -43,12 +43,16 @@ pub fn otsu(volume: &VolumeData) -> Option<f32> {
     }
     let width = (hi - lo) as f64 / OTSU_BINS as f64;
     let mut hist = [0u64; OTSU_BINS];
-    for &v in volume.values_f32().iter() {
-        if v.is_finite() {
-            let bin = (((v - lo) as f64 / width) as usize).min(OTSU_BINS - 1);
-            hist[bin] += 1;
+    // Over the stored type: no f32 copy of the volume (2 × a uint16 volume's bytes).
+    crate::with_voxels!(&volume.voxels, values => {
+        for &x in values.iter() {
+            let v = crate::voxels::Voxel::to_f32(x);
+            if v.is_finite() {
+                let bin = (((v - lo) as f64 / width) as usize).min(OTSU_BINS - 1);
+                hist[bin] += 1;
+            }
         }
-    }
+    });
     let total: u64 = hist.iter().sum();
     let centre = |i: usize| lo as f64 + (i as f64 + 0.5) * width;
     let sum_all: f64 = hist

@@ -104,7 +104,7 @@ impl Node<Value, Ctx> for VolumeFileNode {
 /// [`crate::value::stream`]); `None`: load it whole.
 fn streamed(ctx: &mut Ctx, path: &Path, array: Option<&str>) -> Result<Option<Volume>, NodeError> {
     use hatchery_data::stream_file::{host_budget, open_beyond_budget};
-    let budget = host_budget().map_err(NodeError::new)?;
+    let budget = host_budget().map_err(|e| NodeError::new(e.to_string()))?;
     let Some(s) = open_beyond_budget(path, array, budget, false)
         .map_err(|e| NodeError::new(e.to_string()))?
     else {

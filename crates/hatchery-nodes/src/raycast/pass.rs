@@ -222,12 +222,12 @@ pub fn cast(
     let (quick, mut coarse) = (ctx.coarse_first(), false);
     let (view, why) = volume
         .for_view(camera, pool, quick, &mut coarse)
-        .map_err(NodeError::new)?;
+        .map_err(|e| NodeError::new(e.to_string()))?;
     let whole = view.whole().cloned();
     let labels = match labels {
         Some(l) => Some(
             l.for_view(camera, pool, quick, &mut coarse)
-                .map_err(NodeError::new)?
+                .map_err(|e| NodeError::new(e.to_string()))?
                 .0,
         ),
         None => None,

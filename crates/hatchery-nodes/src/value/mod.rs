@@ -59,10 +59,12 @@ impl Volume {
     pub fn frame_points(&self) -> &[glam::Vec3] {
         self.frame_points.get_or_init(|| {
             let d = &self.data;
-            let values = d.values_f32();
+            // Voxels read in their stored type: an f32 copy would double a uint16 volume.
             let points = hatchery_data::value_stats::otsu(d)
                 .map(|t| {
-                    crate::framing::occupied_block_outline(d.dims, &d.geometry, |i| values[i] >= t)
+                    crate::framing::occupied_block_outline(d.dims, &d.geometry, |i| {
+                        d.voxels.get(i) >= t
+                    })
                 })
                 .unwrap_or_default();
             if points.is_empty() {

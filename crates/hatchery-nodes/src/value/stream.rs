@@ -12,6 +12,7 @@
 use super::Volume;
 use super::camera::Camera;
 use glam::{Vec3, Vec4};
+use hatchery_data::DataError;
 use hatchery_data::brick_source::{BrickSource, LevelGrid, region_volume};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -77,9 +78,10 @@ impl Stream {
     }
 
     /// Region `r` as a volume (read once, then cached), its value range the stream's.
-    pub fn region(&self, r: Region) -> Result<Arc<Volume>, String> {
-        if let Some(v) = self.regions.lock().map_err(|e| e.to_string())?.get(&r) {
-            return Ok(v.clone());
+    /// Errors: a read failure, naming the file.
+    pub fn region(&self, r: Region) -> Result<Arc<Volume>, DataError> {
+        if let Some(v) = self.cached(r) {
+            return Ok(v);
         }
         let started = std::time::Instant::now();
         let data = region_volume(
@@ -89,7 +91,7 @@ impl Stream {
             r.size,
             Some(self.value_range),
         )
-        .map_err(|e| format!("{}: {e}", self.path.display()))?;
+        .map_err(|e| e.in_file(&self.path))?;
         tracing::info!(
             path = %self.path.display(),
             lod = r.level,
@@ -99,10 +101,10 @@ impl Stream {
             "streamed region read"
         );
         let v = Arc::new(Volume::new(data));
-        self.regions
-            .lock()
-            .map_err(|e| e.to_string())?
-            .put(r, v.clone());
+        // A poisoned cache (a panic while it was held) only loses the caching.
+        if let Ok(mut regions) = self.regions.lock() {
+            regions.put(r, v.clone());
+        }
         Ok(v)
     }
 }
@@ -159,7 +161,7 @@ impl Volume {
         pool_bytes: u64,
         coarse_first: bool,
         coarse: &mut bool,
-    ) -> Result<(ViewVolume<'_>, Option<String>), String> {
+    ) -> Result<(ViewVolume<'_>, Option<String>), DataError> {
         let Some(stream) = &self.stream else {
             return Ok((ViewVolume::Held(self), None));
         };
