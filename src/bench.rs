@@ -300,10 +300,13 @@ pub fn run(
                 g + 1,
                 file_name(&graphs[g]),
                 scenarios[s].name(),
-                if sessions[g].executor.fusion() {
-                    ""
-                } else {
-                    ", unfused"
+                match (
+                    sessions[g].executor.fusion(),
+                    sessions[g].executor.keep_fused()
+                ) {
+                    (false, _) => ", unfused",
+                    (true, true) => ", interactive",
+                    (true, false) => "",
                 },
                 if sessions[g]
                     .ctx

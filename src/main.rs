@@ -100,6 +100,11 @@ enum Command {
         /// image-space passes (repeatable; list a graph twice to compare).
         #[arg(long, value_name = "N")]
         unfused: Vec<usize>,
+        /// Measure the N-th graph (1-based) as the editor runs it: fused passes write every
+        /// member output something reads, so an edit re-runs only what is downstream of it
+        /// (repeatable; list a graph twice to compare).
+        #[arg(long, value_name = "N")]
+        interactive: Vec<usize>,
         /// Measure the N-th graph (1-based) with its volumes bricked: the single-texture limit
         /// forced to 64 voxels per axis (HATCHERY_MAX_TEXTURE_3D; brick size and pool from the
         /// environment). Repeatable; list a graph twice to compare bricked with one texture.
@@ -268,6 +273,7 @@ fn run(cli: Cli) -> Result<()> {
             scenario,
             set,
             unfused,
+            interactive,
             bricked,
         } => {
             let scenarios = scenario
@@ -307,6 +313,9 @@ fn run(cli: Cli) -> Result<()> {
                 if unfused.contains(&(sessions.len() + 1)) {
                     session.executor.set_fusion(false);
                 }
+                if interactive.contains(&(sessions.len() + 1)) {
+                    session.executor.set_keep_fused(true);
+                }
                 if bricked.contains(&(sessions.len() + 1)) {
                     let mut limits = session.ctx.gpu.volume_limits()?;
                     limits.max_texture_3d = Some(limits.max_texture_3d.map_or(64, |m| m.min(64)));
@@ -314,7 +323,11 @@ fn run(cli: Cli) -> Result<()> {
                 }
                 sessions.push(session);
             }
-            for (flag, list) in [("--unfused", &unfused), ("--bricked", &bricked)] {
+            for (flag, list) in [
+                ("--unfused", &unfused),
+                ("--interactive", &interactive),
+                ("--bricked", &bricked),
+            ] {
                 if let Some(n) = list.iter().find(|&&n| n == 0 || n > graphs.len()) {
                     bail!(
                         "{flag} {n}: there are {} graphs (counted from 1)",

@@ -261,8 +261,10 @@ impl Worker {
                     None => self.gpu.insert(GpuContext::new()?).clone(),
                 };
                 let mut session = Session::with_gpu(registry(), graph, gpu, size.0, size.1)?;
-                // Interactive: a streamed volume shows its preview first, then refines.
+                // Interactive: a streamed volume shows its preview first, then refines; fused
+                // passes keep every member's output, so an edit re-runs only what follows it.
                 session.ctx.set_coarse_first(true);
+                session.executor.set_keep_fused(true);
                 self.session = Some(session);
             }
         }

@@ -69,6 +69,8 @@ pub struct Executor<V> {
     next_version: u64,
     pub(crate) stats: BTreeMap<String, NodeStats>,
     fusion: bool,
+    /// Fused passes write every member output something reads (see [`Self::set_keep_fused`]).
+    keep_fused: bool,
 }
 
 impl<V> Default for Executor<V> {
@@ -78,6 +80,7 @@ impl<V> Default for Executor<V> {
             next_version: 1,
             stats: BTreeMap::new(),
             fusion: true,
+            keep_fused: false,
         }
     }
 }
@@ -109,10 +112,19 @@ impl<V: Clone> Executor<V> {
             .filter(|id| wanted.contains(id))
             .collect();
         let (dirty, forced) = self.predict(graph, registry, ctx, &order, &roots);
+        // Members that write every output something reads: all of them in an interactive
+        // session, else those re-run only because an earlier pass did not write their outputs
+        // (an edit downstream of them: once written, the next such edit leaves them cached).
+        let keep_all = if self.keep_fused { &dirty } else { &forced };
         let units = match (&registry.fuser, self.fusion) {
-            (Some(fuser), true) => {
-                fusion::plan(graph, registry, fuser.as_ref(), ctx, &order, &dirty, &roots)
-            }
+            (Some(fuser), true) => fusion::plan(
+                graph,
+                registry,
+                fuser.as_ref(),
+                ctx,
+                &order,
+                (&dirty, &roots, keep_all),
+            ),
             _ => order.iter().map(|&id| Unit::Single(id)).collect(),
         };
         let mut report = PassReport::default();
@@ -141,6 +153,19 @@ impl<V: Clone> Executor<V> {
 
     pub fn fusion(&self) -> bool {
         self.fusion
+    }
+
+    /// With `on` (an interactive session: the editor), a fused pass writes every member output
+    /// that something reads, not only those read outside the pass, so an edit of one member
+    /// re-runs only it and what is downstream. Off by default: a one-shot render writes only
+    /// what it needs. Either way, a member re-run only because an earlier pass did not write
+    /// its outputs writes them all.
+    pub fn set_keep_fused(&mut self, on: bool) {
+        self.keep_fused = on;
+    }
+
+    pub fn keep_fused(&self) -> bool {
+        self.keep_fused
     }
 
     /// The node's schema and behaviour.

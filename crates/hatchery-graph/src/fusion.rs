@@ -79,15 +79,16 @@ pub(crate) enum Unit<'g> {
 type Consumers<'g> = HashMap<&'g str, Vec<(&'g str, usize, usize)>>;
 
 /// Groups the `dirty` nodes of `order` (topological, only what the pass needs) and orders the
-/// steps so every step comes after its inputs. `roots` are the pass's targets (always kept).
+/// steps so every step comes after its inputs. `roots` are the pass's targets (always kept);
+/// members in `keep_all` write every output something reads, inside the group or not, so a
+/// later pass that changes only what is downstream of them finds their outputs cached.
 pub(crate) fn plan<'g, V, C>(
     graph: &'g Graph,
     schemas: &dyn SchemaLookup,
     fuser: &dyn Fuser<V, C>,
     ctx: &C,
     order: &[&'g str],
-    dirty: &BTreeSet<&'g str>,
-    roots: &BTreeSet<&'g str>,
+    (dirty, roots, keep_all): (&BTreeSet<&'g str>, &BTreeSet<&'g str>, &BTreeSet<&'g str>),
 ) -> Vec<Unit<'g>> {
     let position: HashMap<&str, usize> = order.iter().enumerate().map(|(i, &id)| (id, i)).collect();
     let mut consumers: Consumers = HashMap::new();
@@ -114,6 +115,7 @@ pub(crate) fn plan<'g, V, C>(
         schemas,
         dirty,
         roots,
+        keep_all,
         consumers: &consumers,
         pointwise: &pointwise,
         order,
@@ -211,6 +213,7 @@ struct Planner<'p, 'g> {
     schemas: &'p dyn SchemaLookup,
     dirty: &'p BTreeSet<&'g str>,
     roots: &'p BTreeSet<&'g str>,
+    keep_all: &'p BTreeSet<&'g str>,
     consumers: &'p Consumers<'g>,
     pointwise: &'p HashMap<&'g str, Vec<bool>>,
     order: &'p [&'g str],
@@ -218,8 +221,9 @@ struct Planner<'p, 'g> {
 
 impl<'g> Planner<'_, 'g> {
     /// Per output port of `id`: whether a target or a consumer outside `group` that runs in this
-    /// pass reads it.
+    /// pass reads it — or, for a member of `keep_all`, any consumer at all.
     fn keep(&self, id: &str, group: &[&str]) -> Vec<bool> {
+        let all = self.keep_all.contains(id);
         let outputs = self
             .graph
             .node(id)
@@ -234,7 +238,7 @@ impl<'g> Planner<'_, 'g> {
                         .into_iter()
                         .flatten()
                         .any(|&(c, _, out)| {
-                            out == port && !group.contains(&c) && self.dirty.contains(c)
+                            out == port && (all || (!group.contains(&c) && self.dirty.contains(c)))
                         })
             })
             .collect()
