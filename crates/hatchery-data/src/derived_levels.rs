@@ -19,7 +19,7 @@ pub const COARSEST_VOXELS: u64 = 64 * 64 * 64;
 const SLAB_VOXELS: u64 = 16 << 20;
 
 fn voxels(dims: [u32; 3]) -> u64 {
-    dims.iter().map(|&d| d as u64).product()
+    dims.iter().fold(1u64, |n, &d| n.saturating_mul(d as u64))
 }
 
 /// A source with coarser levels derived below its stored ones.
@@ -69,6 +69,11 @@ impl BrickSource for DerivedLevels {
 
     fn read_box(&self, level: usize, lo: [u32; 3], size: [u32; 3]) -> Result<Voxels, DataError> {
         check_box(&self.grids, level, lo, size)?;
+        if size.contains(&0) {
+            return Err(DataError::Invalid(format!(
+                "an empty box {size:?} of level {level}"
+            )));
+        }
         if level < self.stored {
             return self.base.read_box(level, lo, size);
         }

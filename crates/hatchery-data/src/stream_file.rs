@@ -93,17 +93,17 @@ pub fn open_beyond_budget(
         }
     };
     let top = base.levels()[0].clone();
-    let voxels = |d: [u32; 3]| d.iter().map(|&n| n as u64).product::<u64>();
+    let voxels = |d: [u32; 3]| d.iter().fold(1u64, |n, &d| n.saturating_mul(d as u64));
     let probe = base.read_box(0, [0; 3], [1; 3])?;
     let voxel_bytes = probe.bytes_per_voxel() as u64;
-    let bytes = voxels(top.dims) * voxel_bytes;
+    let bytes = voxels(top.dims).saturating_mul(voxel_bytes);
     if bytes.saturating_mul(4) <= budget && voxels(top.dims) <= MAX_VOXELS {
         return Ok(None);
     }
     let source: Arc<dyn BrickSource> = Arc::new(DerivedLevels::new(base, labels));
     let levels = source.levels();
     let preview_level = (0..levels.len())
-        .find(|&k| voxels(levels[k].dims) * voxel_bytes <= budget / 8)
+        .find(|&k| voxels(levels[k].dims).saturating_mul(voxel_bytes) <= budget / 8)
         .unwrap_or(levels.len() - 1);
     let dims = levels[preview_level].dims;
     let preview = region_volume(source.as_ref(), preview_level, [0; 3], dims, None)?;

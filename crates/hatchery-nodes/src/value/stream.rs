@@ -169,7 +169,9 @@ impl Volume {
         let max_voxels = stream.max_region_voxels.min(pool_bytes / 4).max(8);
         let (region, why) = view_region(levels, camera, max_voxels);
         tracing::debug!(?region, "streamed view");
-        if region.level == stream.preview_level && region.size == levels[region.level].dims {
+        // At or below the preview's resolution the preview in memory serves: a coarser level
+        // would be derived from the file (a whole raw file read for a far view).
+        if region.level >= stream.preview_level {
             return Ok((ViewVolume::Held(self), why));
         }
         let v = match stream.cached(region) {
@@ -317,11 +319,13 @@ fn region_in(grid: &LevelGrid, level: usize, lo: Vec3, hi: Vec3) -> Region {
     let mut size = [0u32; 3];
     for a in 0..3 {
         let n = grid.dims[a];
-        let first = ((v_lo[a].floor() - 2.0).max(0.0) as u32 / SNAP * SNAP).min(n - 2);
+        // (A level of under 2 voxels along an axis gives a box the read refuses, not a panic.)
+        let first =
+            ((v_lo[a].floor() - 2.0).max(0.0) as u32 / SNAP * SNAP).min(n.saturating_sub(2));
         let last = (v_hi[a].ceil() + 2.0).max(0.0) as u32;
-        let end = (last.div_ceil(SNAP) * SNAP).clamp(first + 2, n);
+        let end = (last.div_ceil(SNAP) * SNAP).max(first + 2).min(n);
         r_lo[a] = first;
-        size[a] = end - first;
+        size[a] = end.saturating_sub(first);
     }
     Region {
         level,
