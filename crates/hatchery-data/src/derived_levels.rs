@@ -18,7 +18,8 @@ pub const COARSEST_VOXELS: u64 = 64 * 64 * 64;
 /// per level at a time, whatever the box).
 const SLAB_VOXELS: u64 = 16 << 20;
 
-fn voxels(dims: [u32; 3]) -> u64 {
+/// Voxels of a grid of `dims` (saturating: absurd shapes from a file never overflow).
+pub(crate) fn voxels(dims: [u32; 3]) -> u64 {
     dims.iter().fold(1u64, |n, &d| n.saturating_mul(d as u64))
 }
 

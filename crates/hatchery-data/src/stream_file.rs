@@ -93,7 +93,7 @@ pub fn open_beyond_budget(
         }
     };
     let top = base.levels()[0].clone();
-    let voxels = |d: [u32; 3]| d.iter().fold(1u64, |n, &d| n.saturating_mul(d as u64));
+    use crate::derived_levels::voxels;
     let probe = base.read_box(0, [0; 3], [1; 3])?;
     let voxel_bytes = probe.bytes_per_voxel() as u64;
     let bytes = voxels(top.dims).saturating_mul(voxel_bytes);

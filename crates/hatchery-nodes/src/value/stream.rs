@@ -202,7 +202,8 @@ fn pixel_footprint(camera: &Camera, depth: f32) -> f32 {
 /// Whether the box of world-space `corners` lies wholly outside one plane of `view_proj`'s
 /// frustum (wgpu clip space: −w ≤ x, y ≤ w, 0 ≤ z ≤ w).
 fn outside(view_proj: glam::Mat4, corners: &[Vec3; 8]) -> bool {
-    let clip: Vec<Vec4> = corners.iter().map(|c| view_proj * c.extend(1.0)).collect();
+    // An array, not a Vec: this runs for up to 64³ blocks on every frame of a streamed view.
+    let clip: [Vec4; 8] = corners.map(|c| view_proj * c.extend(1.0));
     let planes: [fn(Vec4) -> f32; 6] = [
         |c| c.x + c.w,
         |c| c.w - c.x,
