@@ -8,9 +8,14 @@ fn brick_range(q: vec3<f32>) -> vec2<f32> {
     return textureLoad(bricks, brick, 0).xy;
 }
 
-// Whether no value in `range` is visible under any row of the transfer function.
+// Whether no value in `range` is visible under any row of the transfer function. A brick of
+// only the lowest value (range.y = lo, see hatchery_data::bricks) asks the table's last entry:
+// whether that value itself is visible, which its bin can overstate.
 fn range_is_invisible(range: vec2<f32>) -> bool {
     let lo = ray.value_range.x;
+    if range.y <= lo {
+        return textureLoad(visibility, vec2<i32>(i32(ray.visibility_bins), 0), 0).r == 0.0;
+    }
     let span = max(ray.value_range.y - lo, 1e-30);
     let last = i32(ray.visibility_bins) - 1;
     let a = clamp(i32(floor((range.x - lo) / span * f32(ray.visibility_bins))), 0, last);

@@ -17,7 +17,7 @@
 // opacity enhancement (eq. 8): α_B ← α_B · (1 − g)^(1 − e), e = 1 − min(1, s_α + 1 − |N|), so
 // g = 0 leaves the background as it is, g = 1 removes it, and in between enhanced contours
 // (e > 0) fade more slowly than the rest.
-// Prepended: ray_common, ray_classify, ray_shade.
+// Prepended: ray_common, ray_classify, ray_shade, ray_skip.
 
 struct Selection {
     // World → voxel coordinates of the selection's source: to_voxel · T⁻¹.
@@ -34,9 +34,16 @@ struct Selection {
     cutaway: u32,
     // 1 to shade with the lighting transfer function.
     shaded: u32,
-    pad0: f32,
+    // 1 to skip bricks the background transfer function hides (ray_skip).
+    skip_empty: u32,
     pad1: f32,
     pad2: f32,
+    // The voxel-space box beyond which f_S is 0: the selected voxels' box widened by one voxel
+    // (a trilinear sample reaches one voxel), on the volume's grid and on the source's.
+    mask_min: vec3<f32>,
+    pad3: f32,
+    mask_max: vec3<f32>,
+    pad4: f32,
 };
 
 // Selection.cutaway (hatchery_nodes::selection_render::Cutaway).
@@ -49,11 +56,12 @@ const CUT_NONE: u32 = 3u;
 // volume's grid: filtered trilinearly it is f_S.
 @group(1) @binding(1) var selection_mask: texture_3d<f32>;
 
+// Whether voxel-space q lies in the box of voxel centres (the domain Raycast samples).
 fn inside_grid(q: vec3<f32>) -> bool {
-    return all(q >= vec3<f32>(-0.5)) && all(q <= ray.dims - 0.5);
+    return all(q >= ray.box_min) && all(q <= ray.box_max);
 }
 
-// f_S at voxel-space q (0 outside the grid).
+// f_S at voxel-space q (0 outside the box).
 fn selected(q: vec3<f32>) -> f32 {
     if !inside_grid(q) {
         return 0.0;
@@ -61,7 +69,7 @@ fn selected(q: vec3<f32>) -> f32 {
     return textureSampleLevel(selection_mask, linear_clamp, grid_uv(q), 0.0).r;
 }
 
-// f_V at voxel-space q, NO_DATA outside the grid.
+// f_V at voxel-space q, NO_DATA outside the box.
 fn value_inside(q: vec3<f32>) -> f32 {
     if !inside_grid(q) {
         return NO_DATA;
@@ -88,6 +96,11 @@ fn member(v: f32, degree: f32, row: i32, domain: vec2<f32>) -> Member {
     return m;
 }
 
+// Index of the first lattice sample (t = start + k·h) at or after t.
+fn first_sample(t: f32, start: f32, h: f32) -> f32 {
+    return max(ceil((t - start) / h), 0.0);
+}
+
 fn cast_selection(position: vec2<f32>) -> RayResult {
     var out: RayResult;
     out.color = vec4<f32>(0.0);
@@ -103,10 +116,14 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
     let dq = (ray.to_voxel * vec4<f32>(dir, 0.0)).xyz;
     let s0 = (selection.to_source * vec4<f32>(p0, 1.0)).xyz;
     let ds = (selection.to_source * vec4<f32>(dir, 0.0)).xyz;
-    let a = box_interval(q0, dq);
-    let b = box_interval(s0, ds);
-    let t_in = min(a.x, b.x);
-    let t_out = max(a.y, b.y);
+    // Where each object can be non-zero along the ray: the background in the volume's box,
+    // the ghost in the mask's box on the volume's grid, the selection in the mask's box on
+    // its source. Outside them a sample's membership is exactly 0, so their work is skipped.
+    let volume_span = box_interval(q0, dq, ray.box_min, ray.box_max);
+    let ghost_span = box_interval(q0, dq, selection.mask_min, selection.mask_max);
+    let moved_span = box_interval(s0, ds, selection.mask_min, selection.mask_max);
+    let t_in = min(volume_span.x, moved_span.x);
+    let t_out = max(volume_span.y, moved_span.y);
     if t_in > t_out {
         return out;
     }
@@ -119,22 +136,37 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
         start += h * hash(position);
     }
     let count = min(u32(max(floor((t_out - start) / h), -1.0) + 1.0), 65536u);
+    let last = f32(count) - 1.0;
     let cutaway = selection.cutaway;
     // The cutaway region along this ray: in front of the far side of the ghost and/or the
-    // selection (the last sample where its selection set exceeds 1/2).
+    // selection (the last sample where its selection set exceeds 1/2), searched backwards
+    // from the far end of that object's span.
     var t_cut = -1.0e30;
     if cutaway != CUT_NONE && selection.ghosting > 0.0 {
-        for (var k = 0u; k < count; k++) {
-            let t = start + f32(k) * h;
-            let ghost = (cutaway == CUT_GHOST || cutaway == CUT_BOTH) && selected(q0 + dq * t) > 0.5;
-            let moved = (cutaway == CUT_SELECTION || cutaway == CUT_BOTH) && selected(s0 + ds * t) > 0.5;
-            if ghost || moved {
-                t_cut = t;
+        if cutaway == CUT_GHOST || cutaway == CUT_BOTH {
+            let lo = first_sample(ghost_span.x, start, h);
+            for (var k = min(floor((ghost_span.y - start) / h) + 1.0, last); k >= lo; k -= 1.0) {
+                let t = start + k * h;
+                if selected(q0 + dq * t) > 0.5 {
+                    t_cut = t;
+                    break;
+                }
+            }
+        }
+        if cutaway == CUT_SELECTION || cutaway == CUT_BOTH {
+            let lo = max(first_sample(moved_span.x, start, h), first_sample(t_cut, start, h));
+            for (var k = min(floor((moved_span.y - start) / h) + 1.0, last); k >= lo; k -= 1.0) {
+                let t = start + k * h;
+                if selected(s0 + ds * t) > 0.5 {
+                    t_cut = max(t_cut, t);
+                    break;
+                }
             }
         }
     }
     let g = selection.ghosting;
     let shaded = selection.shaded != 0u;
+    let skipping = selection.skip_empty != 0u;
     let l = ray.light;
     var color = vec3<f32>(0.0);
     var alpha = 0.0;
@@ -143,10 +175,44 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
         let t = start + f32(k) * h;
         let q = q0 + dq * t;
         let qs = s0 + ds * t;
+        let in_ghost = t >= ghost_span.x && t <= ghost_span.y;
+        let in_moved = t >= moved_span.x && t <= moved_span.y;
+        if !in_ghost && !in_moved {
+            // Only the background can show here: jump over what it hides — outside the
+            // volume, and bricks whose values its transfer function makes transparent — to the
+            // next sample on the lattice that may show something.
+            var skip_to = -1.0;
+            if t < volume_span.x || t > volume_span.y {
+                skip_to = select(t_out, volume_span.x, t < volume_span.x);
+            } else if skipping {
+                let range = brick_range(q);
+                if range.x > range.y || range_is_invisible(range) {
+                    skip_to = brick_exit(q, dq, t) - 1e-4 * h;
+                }
+            }
+            if skip_to > t {
+                if ghost_span.x > t {
+                    skip_to = min(skip_to, ghost_span.x);
+                }
+                if moved_span.x > t {
+                    skip_to = min(skip_to, moved_span.x);
+                }
+                let next = min(max(ceil((skip_to - start) / h), f32(k + 1u)), f32(count));
+                k = u32(next) - 1u;
+                continue;
+            }
+        }
         let v = value_inside(q);
-        let vs = value_inside(qs);
-        let f_s = selected(q);
-        let sel = member(vs, selected(qs), 2, selection.selection_domain);
+        var f_s = 0.0;
+        if in_ghost {
+            f_s = selected(q);
+        }
+        var sel: Member;
+        sel.mu = 0.0;
+        sel.color = vec3<f32>(0.0);
+        if in_moved {
+            sel = member(value_inside(qs), selected(qs), 2, selection.selection_domain);
+        }
         let ghost = member(v, f_s, 1, selection.ghost_domain);
         var back = member(v, 1.0 - f_s, 0, selection.background_domain);
         let total = sel.mu + ghost.mu + back.mu;
@@ -206,18 +272,18 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
     return out;
 }
 
-// Where a ray (voxel space) enters and leaves the box of voxel centres; (1e30, −1e30) if not.
-fn box_interval(q0: vec3<f32>, dq: vec3<f32>) -> vec2<f32> {
+// Where a ray (voxel space) enters and leaves the box [lo, hi]; (1e30, −1e30) if not.
+fn box_interval(q0: vec3<f32>, dq: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>) -> vec2<f32> {
     var t_in = 0.0;
     var t_out = 1e30;
     for (var axis = 0; axis < 3; axis++) {
         if abs(dq[axis]) < 1e-12 {
-            if q0[axis] < ray.box_min[axis] || q0[axis] > ray.box_max[axis] {
+            if q0[axis] < lo[axis] || q0[axis] > hi[axis] {
                 return vec2<f32>(1e30, -1e30);
             }
         } else {
-            let a = (ray.box_min[axis] - q0[axis]) / dq[axis];
-            let b = (ray.box_max[axis] - q0[axis]) / dq[axis];
+            let a = (lo[axis] - q0[axis]) / dq[axis];
+            let b = (hi[axis] - q0[axis]) / dq[axis];
             t_in = max(t_in, min(a, b));
             t_out = min(t_out, max(a, b));
         }

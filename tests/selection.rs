@@ -44,7 +44,9 @@ fn scene() -> (VolumeData, LabelData) {
                 let r = Vec3::new(x as f32 - half, y as f32 - half, z as f32 - half).length();
                 values.push(if cube {
                     200.0
-                } else if r < 0.85 * half && z >= 20 {
+                } else if (r < 0.85 * half && z >= 20) || z == 0 {
+                    // A half-ball, and the grid's last layer along the view: samples beyond
+                    // its voxel centres (the half voxel outside) are outside the volume.
                     100.0
                 } else {
                     0.0

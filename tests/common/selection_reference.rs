@@ -4,8 +4,9 @@
 //! - Rays as in [`super::raycast_reference`] (no jitter), marched over the union of the
 //!   volume's box and the displaced selection's box (the source box seen through T⁻¹), on a
 //!   lattice anchored at the near plane: `t = k h` for the k with `t_in ≤ t ≤ t_out`.
-//! - f_S: the trilinear interpolation of the selected ids' indicator (clamped at the grid's
-//!   border), 0 outside the grid (`[−½, n − ½]` per axis); f_V likewise, "none" outside.
+//! - f_S: the trilinear interpolation of the selected ids' indicator, 0 outside the box of
+//!   voxel centres (`[0, n − 1]` per axis, widened by the ray casters' 1e-4); f_V likewise,
+//!   "none" outside — the domain Raycast samples.
 //! - Cutaway region: samples before the last one where f_S (ghost) or f_S∘T⁻¹ (selection) > ½.
 //! - Per sample: S = min(f_S(T⁻¹p), α_S(f_V(T⁻¹p))), G = min(f_S(p), α_G(f_V(p))),
 //!   B = min(1 − f_S(p), α_B(f_V(p))), B × (1 − g) in the cutaway region; colour = Σ cμ / Σ μ,
@@ -38,14 +39,19 @@ pub struct Setup<'a> {
     pub ghosting: f32,
 }
 
-fn inside(volume: &VolumeData, q: Vec3) -> bool {
-    (0..3).all(|a| q[a] >= -0.5 && q[a] <= volume.dims[a] as f32 - 0.5)
+/// Whether voxel-space q lies in the box of voxel centres of a grid of `dims`.
+fn in_box(dims: [u32; 3], q: Vec3) -> bool {
+    (0..3).all(|a| q[a] >= -1e-4 && q[a] <= dims[a] as f32 - 1.0 + 1e-4)
 }
 
-/// The filtered indicator of `ids` at voxel-space q (0 outside the grid).
+fn inside(volume: &VolumeData, q: Vec3) -> bool {
+    in_box(volume.dims, q)
+}
+
+/// The filtered indicator of `ids` at voxel-space q (0 outside the box of voxel centres).
 pub fn selected(labels: &LabelData, ids: &[u16], q: Vec3) -> f32 {
     let dims = labels.dims;
-    if !(0..3).all(|a| q[a] >= -0.5 && q[a] <= dims[a] as f32 - 0.5) {
+    if !in_box(dims, q) {
         return 0.0;
     }
     let top = Vec3::new(

@@ -11,6 +11,9 @@ use rayon::prelude::*;
 pub const BRICK: u32 = 8;
 /// Bins of the visibility table over the volume's value range.
 pub const VISIBILITY_BINS: usize = 1024;
+/// Entries of the visibility table: the bins' prefix counts, then whether the volume's lowest
+/// value itself is visible (see [`visibility_prefix`]).
+pub const VISIBILITY_ENTRIES: usize = VISIBILITY_BINS + 1;
 
 /// `[min, max]` of the values a trilinear sample can take inside each brick.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,8 +33,13 @@ pub fn brick_dims(volume: &VolumeData) -> [u32; 3] {
 /// the grid) lies in brick `floor(q / BRICK)` and interpolates voxels `floor(q)` and
 /// `floor(q) + 1` along each axis, so a brick's range covers its voxels plus one more layer on
 /// its upper sides. `pad` (data units) widens every range, for a GPU that stores the volume in a
-/// lower precision than the data. Non-finite values ("no data") are left out; a brick of only
-/// no data gets the empty range `[f32::MAX, f32::MIN]` (min > max).
+/// lower precision than the data — except above a brick holding only the volume's lowest value
+/// (`value_range[0]`: air, padding, the background of a label map), whose range is
+/// `[lo − pad, lo]`: that value is texel 0 in the normalised texture formats and an exact code
+/// in the integer ones, so its samples are `lo` to within float rounding, and a transfer
+/// function that starts transparent at `lo` and ramps up right after it still skips it.
+/// Non-finite values ("no data") are left out; a brick of only no data gets the empty range
+/// `[f32::MAX, f32::MIN]` (min > max).
 pub fn brick_ranges(volume: &VolumeData, pad: f32) -> BrickRanges {
     let dims = brick_dims(volume);
     let ranges = brick_range_layers(volume, pad, 0..dims[2]);
@@ -46,6 +54,7 @@ pub fn brick_range_layers(
     layers: std::ops::Range<u32>,
 ) -> Vec<[f32; 2]> {
     let [nx, ny, nz] = volume.dims;
+    let minimum = volume.value_range[0];
     let dims = brick_dims(volume);
     let per_layer = dims[0] as usize * dims[1] as usize;
     let count = per_layer * layers.len();
@@ -78,6 +87,9 @@ pub fn brick_range_layers(
                 // Only "no data": every sample in the brick is transparent.
                 return [f32::MAX, f32::MIN];
             }
+            if hi == minimum {
+                return [lo - pad, hi];
+            }
             [lo - pad, hi + pad]
         })
         .collect()
@@ -95,38 +107,46 @@ pub struct OpacityRow<'a> {
 /// `prefix[b] - prefix[a - 1]` is 0 (with `prefix[-1] = 0`). Conservative: a bin counts as
 /// visible when any table entry its values interpolate between has opacity above 0. Values
 /// outside a row's domain clamp to its end entry alone (so a transparent first entry hides
-/// everything below the domain, as the ray caster's lookup does).
+/// everything below the domain, as the ray caster's lookup does). One more entry follows the
+/// bins ([`VISIBILITY_ENTRIES`] in all): 1 when the lowest value `value_range[0]` itself is
+/// visible, else 0 — exact where the first bin is not, for the bricks of [`brick_ranges`] that
+/// hold only that value.
 pub fn visibility_prefix(value_range: [f32; 2], rows: &[OpacityRow]) -> Vec<f32> {
     let [lo, hi] = value_range;
     let width = (hi - lo) / VISIBILITY_BINS as f32;
-    let mut prefix = Vec::with_capacity(VISIBILITY_BINS);
+    // A constant volume (no value range) counts as visible everywhere.
+    let degenerate = width.is_nan() || width <= 0.0;
+    // Whether any row shows a value in [a, b].
+    let visible = |a: f32, b: f32| {
+        degenerate
+            || rows.iter().any(|row| {
+                let span = row.domain[1] - row.domain[0];
+                let entry = |v: f32| {
+                    let u = if span > 0.0 {
+                        ((v - row.domain[0]) / span).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    u * (LUT_SIZE - 1) as f32
+                };
+                // A value at table position x mixes entries floor(x) and floor(x) + 1 with
+                // weight fract(x): positions in [x_a, x_b] reach entries floor(x_a) ..= ceil(x_b).
+                let last_entry = row.opacity.len().saturating_sub(1);
+                let first = (entry(a).floor() as usize).min(last_entry);
+                let last = (entry(b).ceil() as usize).min(last_entry);
+                row.opacity[first..=last].iter().any(|&o| o > 0.0)
+            })
+    };
+    let mut prefix = Vec::with_capacity(VISIBILITY_ENTRIES);
     let mut count = 0.0f32;
     for bin in 0..VISIBILITY_BINS {
         let (a, b) = (lo + bin as f32 * width, lo + (bin + 1) as f32 * width);
-        let visible = rows.iter().any(|row| {
-            let span = row.domain[1] - row.domain[0];
-            let entry = |v: f32| {
-                let u = if span > 0.0 {
-                    ((v - row.domain[0]) / span).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                u * (LUT_SIZE - 1) as f32
-            };
-            // A value at table position x mixes entries floor(x) and floor(x) + 1 with weight
-            // fract(x): positions in [x_a, x_b] reach entries floor(x_a) ..= ceil(x_b).
-            let last_entry = row.opacity.len().saturating_sub(1);
-            let first = (entry(a).floor() as usize).min(last_entry);
-            let last = (entry(b).ceil() as usize).min(last_entry);
-            row.opacity[first..=last].iter().any(|&o| o > 0.0)
-        });
-        // A constant volume (no value range) counts as visible everywhere.
-        let degenerate = width.is_nan() || width <= 0.0;
-        if visible || degenerate {
+        if visible(a, b) {
             count += 1.0;
         }
         prefix.push(count);
     }
+    prefix.push(if visible(lo, lo) { 1.0 } else { 0.0 });
     prefix
 }
 
@@ -180,7 +200,9 @@ mod tests {
             opacity: &opacity,
         }];
         let prefix = visibility_prefix([0.0, 100.0], &rows);
-        assert_eq!(prefix.len(), VISIBILITY_BINS);
+        assert_eq!(prefix.len(), VISIBILITY_ENTRIES);
+        // The lowest value is entry 0 exactly: transparent.
+        assert_eq!(prefix[VISIBILITY_BINS], 0.0);
         let visible = |bin: usize| prefix[bin] - if bin > 0 { prefix[bin - 1] } else { 0.0 };
         // Values below entry 127 interpolate between invisible entries only.
         assert_eq!(visible(0), 0.0);
@@ -207,5 +229,29 @@ mod tests {
         ];
         let prefix = visibility_prefix([0.0, 100.0], &both);
         assert_eq!(prefix[0], 1.0);
+        assert_eq!(prefix[VISIBILITY_BINS], 1.0);
+    }
+
+    #[test]
+    fn a_transfer_function_ramping_up_from_the_lowest_value_hides_only_that_value() {
+        // Transparent at the lowest value, visible from the next entry on: the first bin is
+        // visible, the lowest value itself is not.
+        let opacity: Vec<f32> = (0..LUT_SIZE).map(|k| k as f32 / 255.0).collect();
+        let rows = [OpacityRow {
+            domain: [0.0, 29.0],
+            opacity: &opacity,
+        }];
+        let prefix = visibility_prefix([0.0, 29.0], &rows);
+        assert_eq!(prefix[0], 1.0);
+        assert_eq!(prefix[VISIBILITY_BINS], 0.0);
+        // Bricks of only the lowest value get no pad above it, others do.
+        // (Voxel x = 8 lies in bricks 0 and 1: a brick reaches one voxel past its own.)
+        let mut values = vec![0.0f32; 24 * 8 * 8];
+        values[8] = 3.0;
+        let v = VolumeData::new([24, 8, 8], [1.0; 3], [0.0; 3], values).unwrap();
+        assert_eq!(
+            brick_ranges(&v, 0.5).ranges,
+            vec![[-0.5, 3.5], [-0.5, 3.5], [-0.5, 0.0]]
+        );
     }
 }

@@ -29,9 +29,14 @@ crate::uniform_block! {
         /// A [`Cutaway`] code.
         pub cutaway: u32,
         pub shaded: u32,
-        pub pad0: f32,
+        pub skip_empty: u32,
         pub pad1: f32,
         pub pad2: f32,
+        /// The selected voxels' box widened by one voxel (voxel space): f_S is 0 outside it.
+        pub mask_min: [f32; 3],
+        pub pad3: f32,
+        pub mask_max: [f32; 3],
+        pub pad4: f32,
     }
 }
 
@@ -123,9 +128,15 @@ fn parse_ids(text: &str) -> Result<Vec<u16>, NodeError> {
     Ok(ids)
 }
 
-/// The world-space centre (mean voxel position) of the voxels holding `ids` and their world
-/// box (of voxel centres), or None when there are none.
-fn extent_of(labels: &Labels, ids: &[u16]) -> Option<(Vec3, [Vec3; 2])> {
+/// Where the voxels holding `ids` are: their world-space centre (mean voxel position), their
+/// world box (of voxel centres) and their voxel-index box; None when there are none.
+struct Extent {
+    centre: Vec3,
+    bounds: [Vec3; 2],
+    voxels: [Vec3; 2],
+}
+
+fn extent_of(labels: &Labels, ids: &[u16]) -> Option<Extent> {
     let l = &labels.data;
     let [nx, ny, _] = l.dims.map(|d| d as usize);
     let (mut sum, mut count) = (glam::DVec3::ZERO, 0u64);
@@ -150,7 +161,11 @@ fn extent_of(labels: &Labels, ids: &[u16]) -> Option<(Vec3, [Vec3; 2])> {
     let corners = hatchery_annotation::box_corners(lo.as_vec3(), hi.as_vec3()).map(world);
     let min = corners.iter().copied().fold(Vec3::INFINITY, Vec3::min);
     let max = corners.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max);
-    Some((world((sum / count as f64).as_vec3()), [min, max]))
+    Some(Extent {
+        centre: world((sum / count as f64).as_vec3()),
+        bounds: [min, max],
+        voxels: [lo.as_vec3(), hi.as_vec3()],
+    })
 }
 
 /// The ghost (anchor 0, where the selection was) and the selection (anchor 1, where it is
@@ -351,7 +366,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         )
         .map_err(|e| NodeError::new(format!("parameter `objects`: {e}")))?;
         let ids = parse_ids(&text)?;
-        let (centre, bounds) = extent_of(labels, &ids).ok_or_else(|| {
+        let extent = extent_of(labels, &ids).ok_or_else(|| {
             NodeError::new(format!(
                 "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {})",
                 labels
@@ -363,6 +378,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
                     .join(", ")
             ))
         })?;
+        let (centre, bounds) = (extent.centre, extent.bounds);
         let placement = params.placement;
         let transform = selection_transform(
             &camera,
@@ -418,10 +434,30 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             ghosting: params.ghosting,
             cutaway: params.cutaway.code(),
             shaded: shaded.into(),
-            pad0: 0.0,
+            skip_empty: 1,
             pad1: 0.0,
             pad2: 0.0,
+            // One voxel for the trilinear footprint, a little more for rounding.
+            mask_min: (extent.voxels[0] - 1.01).to_array(),
+            pad3: 0.0,
+            mask_max: (extent.voxels[1] + 1.01).to_array(),
+            pad4: 0.0,
         };
+        // Which values the background shows, for skipping the bricks it hides (ray_skip).
+        let visibility = gpu.texture_2d_init(
+            "selection visibility",
+            hatchery_data::bricks::VISIBILITY_ENTRIES as u32,
+            1,
+            wgpu::TextureFormat::R32Float,
+            bytemuck::cast_slice(&hatchery_data::bricks::visibility_prefix(
+                v.value_range,
+                &[hatchery_data::bricks::OpacityRow {
+                    domain: background.domain,
+                    opacity: &background.lut.iter().map(|e| e[3]).collect::<Vec<_>>(),
+                }],
+            )),
+        );
+        let bricks = volume.bricks(gpu).map_err(err)?;
         let tf_rows: Vec<f32> = [&background, &ghost, &selected]
             .iter()
             .flat_map(|f| f.lut.iter().flatten().copied())
@@ -464,6 +500,8 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             view(&lighting_texture),
             view(&mask.texture),
             view(&volume_texture.page_table),
+            view(bricks),
+            view(&visibility),
         ];
         let shared = crate::raycast::RayBindings {
             ray: Some(&ray_buffer),
@@ -472,6 +510,8 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             tf_table: Some(&views[1]),
             lighting_table: Some(&views[2]),
             page_table: Some(&views[4]),
+            bricks: Some(&views[5]),
+            visibility: Some(&views[6]),
             ..Default::default()
         };
         let own = SelectionBindings {

@@ -223,7 +223,7 @@ impl RayTables {
         let visibility = floats_texture(
             gpu,
             "visibility",
-            bricks::VISIBILITY_BINS as u32,
+            bricks::VISIBILITY_ENTRIES as u32,
             wgpu::TextureFormat::R32Float,
             &bricks::visibility_prefix(data.value_range, &rows),
         );
