@@ -109,7 +109,7 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
             var object = 0u;
             if info.z >= 0.0 {
                 object = u32(info.z);
-            } else if two_level.boundary_filter != 0u && drawn_union(q) < 0.45 {
+            } else if boundary_filtered() && drawn_union(q) < 0.45 {
                 object = 0u;
             } else {
                 object = object_at(q);

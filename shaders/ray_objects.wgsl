@@ -43,6 +43,19 @@ struct TwoLevel {
 };
 @group(1) @binding(2) var<uniform> two_level: TwoLevel;
 
+// The boundary filter and mask normals as pipeline constants where a node specialises its
+// pipeline (TwoLevelRaycast does; −1, the default, reads `two_level`).
+override TL_FILTER: i32 = -1;
+override TL_MASK_NORMALS: i32 = -1;
+
+fn boundary_filtered() -> bool {
+    return select(two_level.boundary_filter != 0u, TL_FILTER > 0, TL_FILTER >= 0);
+}
+
+fn mask_normals() -> bool {
+    return select(two_level.mask_normals != 0u, TL_MASK_NORMALS > 0, TL_MASK_NORMALS >= 0);
+}
+
 fn object_info(id: u32, which: u32) -> vec4<f32> {
     return textureLoad(objects, vec2<i32>(i32(id % 256u), i32((id / 256u) * 2u + which)), 0);
 }
@@ -74,7 +87,7 @@ fn corner_ids(base: vec3<i32>) -> array<u32, 8> {
 // (background, or no object's filtered mask above 0.5, as at a junction of three objects).
 fn object_at(q: vec3<f32>) -> u32 {
     let p = clamp(q, vec3<f32>(0.0), ray.dims - 1.0);
-    if two_level.boundary_filter == 0u {
+    if !boundary_filtered() {
         return id_at(vec3<i32>(round(p)));
     }
     let base = vec3<i32>(floor(p));
@@ -134,7 +147,7 @@ fn object_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
 
 // The gradient that shades a sample of object `id`: the data's, or the object mask's.
 fn shading_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
-    if two_level.mask_normals != 0u {
+    if mask_normals() {
         return object_gradient(q, id);
     }
     return gradient_at(q);

@@ -72,6 +72,33 @@ const LOCAL_MIP: u32 = 1u;
 const LOCAL_ISO: u32 = 2u;
 const LOCAL_SUM: u32 = 3u;
 
+// Pipeline constants (TwoLevelRaycast specialises its pipeline on what the table and the node
+// use; −1, the default, reads the uniforms and keeps every branch): the global mode, the
+// importance method, and bit masks of the rendering modes (1 << MODE_*)
+// and local compositing modes (1 << LOCAL_*) that any drawn object (or the sparse style) has.
+// On lavapipe every branch compiled into the march costs per sample even when no lane takes it.
+override TL_GLOBAL: i32 = -1;
+override TL_METHOD: i32 = -1;
+override TL_MODES: i32 = -1;
+override TL_LOCALS: i32 = -1;
+
+fn global_mode_of() -> u32 {
+    return select(two_level.global_mode, u32(TL_GLOBAL), TL_GLOBAL >= 0);
+}
+
+fn method_of() -> u32 {
+    return select(two_level.method, u32(TL_METHOD), TL_METHOD >= 0);
+}
+
+// Whether an object may have rendering mode `m` / local compositing `c`.
+fn may_mode(m: u32) -> bool {
+    return (TL_MODES & (1 << m)) != 0;
+}
+
+fn may_local(c: u32) -> bool {
+    return (TL_LOCALS & (1 << c)) != 0;
+}
+
 // Cool-to-warm tone shading (Gooch et al. 1998; the tutorial's "tone shading").
 fn tone(c: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> vec3<f32> {
     let t = (1.0 + dot(n, l)) * 0.5;
@@ -116,12 +143,12 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         start += h * hash(position);
     }
     let l = ray.light;
-    let global_mode = two_level.global_mode;
+    let global_mode = global_mode_of();
     let columns = two_level.columns;
     let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
 
     // Importance-driven rendering: this pixel's buffers and the ray's view depth z(t).
-    let method = two_level.method;
+    let method = method_of();
     let level = two_level.level;
     let focus = two_level.focus;
     let first_pass = two_level.first_pass != 0u;
@@ -161,6 +188,8 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
     var previous_value = NO_DATA;
     var previous_t = 0.0;
 
+    var info_brick = vec3<i32>(-1);
+    var info = vec4<f32>(0.0);
     for (var k = 0u; k <= count; k++) {
         // One step past the last sample closes the last segment.
         var id = 0u;
@@ -170,8 +199,12 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         // samples, which close the open segment exactly as stepping through them would.
         var jump = false;
         if k < count {
+            // Consecutive samples mostly share a brick: fetch its entry when the brick changes.
             let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
-            let info = textureLoad(bricks, brick, 0);
+            if any(brick != info_brick) {
+                info = textureLoad(bricks, brick, 0);
+                info_brick = brick;
+            }
             jump = ray.skip_empty != 0u && info.x > info.y;
             // Inside a brick of one object no sample needs its 8 voxels; where the drawn
             // objects' union mask is below 0.5 (0.45: a margin for the filter's fixed-point
@@ -180,7 +213,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 id = 0u;
             } else if info.z >= 0.0 {
                 id = u32(info.z);
-            } else if two_level.boundary_filter != 0u && drawn_union(q) < 0.45 {
+            } else if boundary_filtered() && drawn_union(q) < 0.45 {
                 id = 0u;
             } else {
                 id = object_at(q);
@@ -189,7 +222,8 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         if k < count && !jump {
             if id >= columns {
                 id = 0u;
-            } else if id != 0u && object_info(id, 0u).x < 0.5 {
+            } else if id != 0u && id != current && object_info(id, 0u).x < 0.5 {
+                // (The open segment's object is drawn: it passed this test when it opened.)
                 id = 0u;
             }
         }
@@ -285,13 +319,13 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             s = 1.0;
         }
         // Just behind a countersink cut the cut surface shades the context (MImP).
-        let on_cut = t >= t_cut && t - t_cut <= two_level.cut_band;
+        let on_cut = method == IMP_MIMP && t >= t_cut && t - t_cut <= two_level.cut_band;
         let v = value_at(q);
         if no_data(v) {
             previous_value = NO_DATA;
             continue;
         }
-        if local == LOCAL_ISO {
+        if may_local(LOCAL_ISO) && local == LOCAL_ISO {
             if v >= iso {
                 var t_hit = t;
                 if !no_data(previous_value) && v != previous_value {
@@ -305,9 +339,9 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 let hv = normalize(l + view_direction(p));
                 let base = table_lookup_row(iso, row, domain).rgb;
                 var c = base;
-                if mode == MODE_SHADED || mode == MODE_ISO {
+                if (may_mode(MODE_SHADED) && mode == MODE_SHADED) || (may_mode(MODE_ISO) && mode == MODE_ISO) {
                     c = shade_surface(base, n, l, hv, 1);
-                } else if mode == MODE_TONE {
+                } else if may_mode(MODE_TONE) && mode == MODE_TONE {
                     c = tone(base, n, l);
                 }
                 let sparse = sparse_sample(c, 1.0, s, level);
@@ -338,7 +372,10 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         var c = entry.rgb;
         var a = entry.a;
         var n = vec3<f32>(0.0);
-        if mode == MODE_SHADED || mode == MODE_TONE || mode == MODE_CONTOURS {
+        let shaded = may_mode(MODE_SHADED) && mode == MODE_SHADED;
+        let toned = may_mode(MODE_TONE) && mode == MODE_TONE;
+        let contoured = may_mode(MODE_CONTOURS) && mode == MODE_CONTOURS;
+        if shaded || toned || contoured {
             let p = r.p0 + r.dir * t;
             let g = shading_gradient(q, current);
             n = view_normal(g);
@@ -346,9 +383,9 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                 n = cut.xyz;
             }
             let v_dir = view_direction(p);
-            if mode == MODE_SHADED {
+            if shaded {
                 c = clamp(c * phong_term(n, l, normalize(l + v_dir)), vec3<f32>(0.0), vec3<f32>(1.0));
-            } else if mode == MODE_TONE {
+            } else if toned {
                 c = tone(c, n, l);
             } else {
                 let g_norm = clamp(length(g) / max(ray.max_gradient, 1e-20), 0.0, 1.0);
@@ -360,10 +397,10 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             c = sparse.rgb;
             a = sparse.a;
         }
-        if local == LOCAL_MIP {
+        if may_local(LOCAL_MIP) && local == LOCAL_MIP {
             // Contours maximise their intensity, the other modes the data value.
             var key = v;
-            if mode == MODE_CONTOURS {
+            if contoured {
                 key = a;
             }
             if key > best && a > 0.0 {
@@ -383,7 +420,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             seg_first_t = t;
             seg_normal = n;
         }
-        if local == LOCAL_OVER {
+        if !may_local(LOCAL_SUM) || local == LOCAL_OVER {
             seg += (1.0 - seg.a) * vec4<f32>(c * a, a);
             // Early termination inside the segment: what follows adds less than 1 − alpha.
             seg_done = seg.a >= ray.early_termination;

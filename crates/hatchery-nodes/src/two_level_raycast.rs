@@ -286,11 +286,38 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
-        // Bricked or not as a pipeline constant (RAY_BRICKED, shaders/ray_common.wgsl).
+        let filtered = params.boundary != Boundary::Point;
+        let [sparse_mode, sparse_local] =
+            sparse_codes(params.sparse_mode, params.sparse_compositing);
+        let object_normals = params.normals == Normals::Objects;
+        // What the march needs as pipeline constants (shaders/two_level_raycast.wgsl): bricked
+        // or not, the global mode, the importance method, the boundary filter, the normals, and
+        // which rendering and compositing modes the drawn objects (and the sparse style) use —
+        // the branches of the others are folded away.
         let bricked = volume.texture(&ctx.gpu).map_err(err)?.layout.is_some();
+        let (mut modes, mut locals) = (0i32, 0i32);
+        for s in styles.iter().filter(|s| s.enabled) {
+            modes |= 1 << s.mode.code();
+            locals |= 1 << s.compositing.code();
+        }
+        if importance.is_some() {
+            modes |= 1 << sparse_mode;
+            locals |= 1 << sparse_local;
+        }
+        let method = importance.as_ref().map_or(0, |i| i.method.code());
+        let constants = [
+            ("RAY_BRICKED", f64::from(u8::from(bricked))),
+            ("TL_GLOBAL", f64::from(params.global.code())),
+            ("TL_METHOD", f64::from(method)),
+            ("TL_FILTER", f64::from(u8::from(filtered))),
+            ("TL_MASK_NORMALS", f64::from(u8::from(object_normals))),
+            ("TL_MODES", f64::from(modes)),
+            ("TL_LOCALS", f64::from(locals)),
+        ];
+        let key = constants.iter().map(|(_, v)| v.to_string()).collect::<Vec<_>>().join(".");
         let pipelines = ctx
-            .cached(&format!("two_level_raycast.pipelines.{bricked}"), |gpu| {
-                RayPipelines::specialised(gpu, "two_level_raycast", &[("RAY_BRICKED", bricked.into())])
+            .cached(&format!("two_level_raycast.pipelines.{key}"), |gpu| {
+                RayPipelines::specialised(gpu, "two_level_raycast", &constants)
             })
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
@@ -302,7 +329,6 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let contours = styles
             .iter()
             .any(|s| s.enabled && s.mode == RenderMode::Contours);
-        let object_normals = params.normals == Normals::Objects;
         // A mask's central difference across a 0 → 1 step is at most 0.5 per voxel.
         let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
         let max_gradient = match (object_normals, contours) {
@@ -330,15 +356,12 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 ),
             ));
         }
-        let filtered = params.boundary != Boundary::Point;
-        let [sparse_mode, sparse_local] =
-            sparse_codes(params.sparse_mode, params.sparse_compositing);
         let two_level = |first_pass: bool| TwoLevelUniforms {
             global_mode: params.global.code(),
             boundary_filter: filtered.into(),
             columns: tables.columns,
             mask_normals: object_normals.into(),
-            method: importance.as_ref().map_or(0, |i| i.method.code()),
+            method,
             level: importance.as_ref().map_or(0, |_| params.sparseness.code()),
             focus: importance.as_ref().map_or(0, |i| u32::from(i.focus)),
             first_pass: (importance.is_some() && first_pass).into(),
