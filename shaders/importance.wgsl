@@ -32,7 +32,8 @@ struct ImportanceParams {
     pixel_world: f32,
     // The focus object's id.
     focus: u32,
-    pad0: f32,
+    // The bits of every drawn object's table row (slots 0..32).
+    all_rows: u32,
     pad1: f32,
     // Importance of table row i (the drawn objects, in table order) at weights[i / 4][i % 4].
     weights: array<vec4<f32>, 8>,
@@ -80,6 +81,47 @@ fn view_depth(p: vec3<f32>) -> f32 {
     return -(ray.view * vec4<f32>(p, 1.0)).z;
 }
 
+// The drawn object a footprint sample at voxel-space q sees (0 for none), and how far the
+// answer holds along the ray: `until` is the ray parameter past which the next sample must
+// look again — the exit of q's brick (in the direction of `dq`, less a margin) when the brick
+// holds no drawn object, only one, or (`known`: rows already met) no drawn object outside
+// `known` (`object` is then 0) — else t itself.
+struct Seen {
+    object: u32,
+    until: f32,
+};
+
+fn seen_at(q: vec3<f32>, dq: vec3<f32>, t: f32, known: u32) -> Seen {
+    var s: Seen;
+    s.object = 0u;
+    s.until = t;
+    let h = ray.step_world;
+    let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
+    let info = textureLoad(bricks, brick, 0);
+    let rows = select(u32(info.w), 0xffffffffu, info.w < 0.0);
+    if (ray.skip_empty != 0u && info.x > info.y) || (info.z < 0.0 && (rows & ~known) == 0u) {
+        s.until = brick_exit(q, dq, t) - 1e-4 * h;
+        return s;
+    }
+    if info.z >= 0.0 {
+        // A brick of one object: every sample in it sees that object.
+        s.object = u32(info.z);
+        s.until = brick_exit(q, dq, t) - 1e-4 * h;
+    } else if !(boundary_filtered() && drawn_union(q) < 0.45) {
+        s.object = object_at(q);
+    }
+    if s.object >= two_level.columns || object_info(s.object, 0u).x < 0.5 {
+        s.object = 0u;
+    }
+    return s;
+}
+
+// The table-row bit of a drawn object (0 past slot 31).
+fn row_bit(object: u32) -> u32 {
+    let slot = u32(object_info(object, 0u).x + 0.5) - 1u;
+    return select(0u, 1u << slot, slot < 32u);
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_frame(id.xy) {
@@ -90,47 +132,53 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
     var last = -1.0;
     var bits = 0u;
     let focus = imp.focus;
-    let columns = two_level.columns;
     if r.hits {
         let h = ray.step_world;
         let count = min(u32(max(floor((r.t_out - r.t_in) / h), -1.0) + 1.0), 65536u);
-        for (var k = 0u; k < count; k++) {
+        // Forward from the front: the bits of the objects met, and the focus's first hit and
+        // its hits up to there. Bricks of no drawn object or of one are taken at once; after
+        // the first hit, so are bricks of objects already met (the focus included: its last
+        // hit is searched from the back). The march ends early once every bit is set.
+        var k = 0u;
+        var k_hit = count;
+        for (; k < count; k++) {
             let t = r.t_in + f32(k) * h;
-            let q = r.q0 + r.dq * t;
-            let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
-            let info = textureLoad(bricks, brick, 0);
-            if ray.skip_empty != 0u && info.x > info.y {
-                // No drawn object reaches this brick: jump to the first sample after it.
-                let exit = brick_exit(q, r.dq, t) - 1e-4 * h;
-                let next = min(max(ceil((exit - r.t_in) / h), f32(k + 1u)), f32(count));
-                k = u32(next) - 1u;
-                continue;
+            // Before the first hit the focus is never "known": its samples are all looked at.
+            var known = 0u;
+            if first >= 0.0 {
+                known = bits;
             }
-            var object = 0u;
-            if info.z >= 0.0 {
-                object = u32(info.z);
-            } else if boundary_filtered() && drawn_union(q) < 0.45 {
-                object = 0u;
-            } else {
-                object = object_at(q);
-            }
-            if object == 0u || object >= columns {
-                continue;
-            }
-            let row = object_info(object, 0u).x;
-            if row < 0.5 {
-                continue;
-            }
-            let slot = u32(row + 0.5) - 1u;
-            if slot < 32u {
-                bits = bits | (1u << slot);
-            }
-            if object == focus {
-                let d = view_depth(r.p0 + r.dir * t);
-                if first < 0.0 {
-                    first = d;
+            let seen = seen_at(r.q0 + r.dq * t, r.dq, t, known);
+            let next = min(max(ceil((seen.until - r.t_in) / h), f32(k + 1u)), f32(count));
+            if seen.object != 0u {
+                bits = bits | row_bit(seen.object);
+                if seen.object == focus && first < 0.0 {
+                    first = view_depth(r.p0 + r.dir * t);
+                    last = view_depth(r.p0 + r.dir * (r.t_in + (next - 1.0) * h));
+                    k_hit = u32(next) - 1u;
                 }
-                last = d;
+            }
+            k = u32(next) - 1u;
+            if first >= 0.0 && (bits & imp.all_rows) == imp.all_rows {
+                break;
+            }
+        }
+        // Backward from the back to the focus's last hit, down to where its first hit ended.
+        if first >= 0.0 && count > k_hit + 1u {
+            var j = count - 1u;
+            loop {
+                let t = r.t_in + f32(j) * h;
+                let seen = seen_at(r.q0 + r.dq * t, -r.dq, -t, 0u);
+                if seen.object == focus {
+                    last = view_depth(r.p0 + r.dir * t);
+                    break;
+                }
+                // (seen.until is −(the brick's front, less a margin) for a brick taken at once.)
+                let previous = min(floor((-seen.until - r.t_in) / h), f32(j) - 1.0);
+                if previous <= f32(k_hit) {
+                    break;
+                }
+                j = u32(previous);
             }
         }
     }

@@ -3,9 +3,10 @@
 // filtering, Hadwiger §2.3). Prepended after ray_common (needs `ray`, `value_at`,
 // `gradient_at`, `linear_clamp`).
 
-// Binding 9 (`bricks`, see ray_common) holds (0, 1, id, 0) for bricks a drawn object reaches
-// and (1, 0, id, 0) for the others, so an empty brick reads as one to skip; id is the one object
-// every sample of the brick sees, −1 where several meet.
+// Binding 9 (`bricks`, see ray_common) holds (0, 1, id, rows) for bricks a drawn object reaches
+// and (1, 0, id, rows) for the others, so an empty brick reads as one to skip; id is the one
+// object every sample of the brick sees, −1 where several meet; rows the bits of the drawn
+// objects' table rows in the brick, as an exact float (−1 when a row past 23 is among them).
 // Object ids (R16Uint), on the volume's grid.
 @group(1) @binding(0) var object_ids: texture_3d<u32>;
 // Per id, at column id % 256 of rows 2 · (id / 256) and the one after: (table row + 1, or 0

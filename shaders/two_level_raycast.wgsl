@@ -145,7 +145,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
     let l = ray.light;
     let global_mode = global_mode_of();
     let columns = two_level.columns;
-    let count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
+    var count = min(u32(max(floor((r.t_out - start) / h), -1.0) + 1.0), 65536u);
 
     // Importance-driven rendering: this pixel's buffers and the ray's view depth z(t).
     let method = method_of();
@@ -166,6 +166,24 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
     var t_cut = -1.0e30;
     if method == IMP_MIMP && imp.z < 0.5 && imp.x > -1.0e29 && abs(dz) > 1e-12 {
         t_cut = (imp.x - z0) / dz;
+    }
+    // Samples every sample of which importance drops are not marched (one sample of margin
+    // each way, taken by the rule below): MImP drops the context in front of the countersink
+    // around the footprint, so the ray starts at the cut; VPImC's first pass draws only the
+    // context in front of the focus in its footprint, so it returns at once elsewhere and
+    // stops at the focus's first hit there.
+    var k_first = 0u;
+    if method == IMP_MIMP && t_cut > start && dz > 1e-12 {
+        k_first = u32(min(max(floor((t_cut - start) / h) - 1.0, 0.0), f32(count)));
+    }
+    if method == IMP_VPIMC && first_pass {
+        if imp.z < 0.5 {
+            return out;
+        }
+        if dz > 1e-12 {
+            let t_focus = (imp.x - z0) / dz;
+            count = min(count, u32(max(ceil((t_focus - start) / h) + 1.0, 0.0)));
+        }
     }
 
     var total = vec4<f32>(0.0);
@@ -190,7 +208,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
 
     var info_brick = vec3<i32>(-1);
     var info = vec4<f32>(0.0);
-    for (var k = 0u; k <= count; k++) {
+    for (var k = k_first; k <= count; k++) {
         // One step past the last sample closes the last segment.
         var id = 0u;
         var t = start + f32(k) * h;

@@ -31,7 +31,8 @@ crate::uniform_block! {
         pub orthographic: u32,
         pub pixel_world: f32,
         pub focus: u32,
-        pub pad0: f32,
+        /// The bits of every drawn object's table row (slots 0..32).
+        pub all_rows: u32,
         pub pad1: f32,
         pub weights: [[f32; 4]; 8],
     }
@@ -221,7 +222,10 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             orthographic: camera.orthographic.into(),
             pixel_world: 2.0 / (proj_y * h as f32),
             focus: focus.into(),
-            pad0: 0.0,
+            all_rows: match tables.rows {
+                32.. => u32::MAX,
+                n => (1 << n) - 1,
+            },
             pad1: 0.0,
             weights,
         };

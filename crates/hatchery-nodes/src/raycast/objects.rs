@@ -124,13 +124,15 @@ pub(crate) fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
     }
 }
 
-/// Per 8³-voxel brick: (0, 1, id, 0) where a sample in the brick can belong to a drawn object,
-/// (1, 0, id, 0) (an empty range: "skip") elsewhere; id = the one object every sample in the
-/// brick sees, or −1 where there are several (then each sample filters its 8 voxels).
+/// Per 8³-voxel brick: (0, 1, id, rows) where a sample in the brick can belong to a drawn
+/// object, (1, 0, id, rows) (an empty range: "skip") elsewhere; id = the one object every sample
+/// in the brick sees, or −1 where there are several (then each sample filters its 8 voxels);
+/// rows = the bits of the table rows of the drawn objects in the brick (−1: a row past 23).
 pub(crate) fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3], Vec<[f32; 4]>) {
-    let mut drawn = vec![false; u16::MAX as usize + 1];
-    for s in styles.iter().filter(|s| s.enabled) {
-        drawn[s.id as usize] = true;
+    // Each drawn id's table row (its slot among the enabled styles), None if not drawn.
+    let mut row = vec![None; u16::MAX as usize + 1];
+    for (slot, s) in styles.iter().filter(|s| s.enabled).enumerate() {
+        row[s.id as usize] = Some(slot);
     }
     let bricks = labels.brick_objects();
     let table = bricks
@@ -142,10 +144,15 @@ pub(crate) fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3],
             } else {
                 -1.0
             };
-            if ids.iter().any(|&id| drawn[id as usize]) {
-                [0.0, 1.0, single, 0.0]
+            // The rows of the drawn objects the brick holds, as bits (exact in an f32 up to
+            // slot 23; −1 when a later slot is among them).
+            let rows = ids.iter().filter_map(|&id| row[id as usize]);
+            let mask = rows.clone().try_fold(0u32, |m, slot| (slot < 24).then(|| m | 1 << slot));
+            let mask = mask.map_or(-1.0, |m| m as f32);
+            if rows.count() > 0 {
+                [0.0, 1.0, single, mask]
             } else {
-                [1.0, 0.0, single, 0.0]
+                [1.0, 0.0, single, mask]
             }
         })
         .collect();
