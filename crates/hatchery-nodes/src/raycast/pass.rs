@@ -102,14 +102,24 @@ impl RayPipelines {
     }
 
     /// [`Self::new`] with values for the program's `override` constants (raycast.wgsl's
-    /// RAY_MODE and RAY_SHADING: one pipeline per mode and shading, see there).
+    /// RAY_MODE and RAY_SHADING: one pipeline per mode and shading, see there), compiled as
+    /// `const`s of a specialised source ([`crate::shaders::specialise`]).
     pub fn specialised(
         gpu: &GpuContext,
         program: &str,
         constants: &[(&str, f64)],
     ) -> Result<Self, GpuError> {
         let source = crate::kinds::source(program).expect("registered program");
+        // The constants are written into the source (see `shaders::specialise`: lavapipe folds
+        // `const`s better than pipeline-overridable constants).
+        let source = crate::shaders::specialise(&source, constants).map_err(|message| {
+            GpuError::Validation {
+                what: format!("specialising {program}"),
+                message,
+            }
+        })?;
         let module = gpu.shader(program, &source)?;
+        let constants: &[(&str, f64)] = &[];
         let render = full_screen_pipeline(
             gpu,
             program,
