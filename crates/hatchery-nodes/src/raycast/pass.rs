@@ -46,8 +46,12 @@ pub struct Statics {
 /// (`cs_main`), and the pass that moves the kernel's r32float depths into the G-buffer's depth
 /// texture.
 pub struct RayPipelines {
-    render: wgpu::RenderPipeline,
-    compute: wgpu::ComputePipeline,
+    program: String,
+    module: wgpu::ShaderModule,
+    // Made on first use: a node runs one of the two paths, and each costs a shader compilation
+    // (~150 ms for TwoLevelRaycast on lavapipe).
+    render: std::sync::OnceLock<wgpu::RenderPipeline>,
+    compute: std::sync::OnceLock<wgpu::ComputePipeline>,
     depth_copy: wgpu::RenderPipeline,
 }
 
@@ -58,7 +62,6 @@ fn full_screen_pipeline(
     name: &str,
     module: &wgpu::ShaderModule,
     targets: &[Option<wgpu::ColorTargetState>],
-    constants: &[(&str, f64)],
 ) -> Result<wgpu::RenderPipeline, GpuError> {
     gpu.checked(&format!("pipeline {name}"), |device| {
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -82,10 +85,7 @@ fn full_screen_pipeline(
             fragment: Some(wgpu::FragmentState {
                 module,
                 entry_point: Some("fs_main"),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants,
-                    ..Default::default()
-                },
+                compilation_options: Default::default(),
                 targets,
             }),
             multiview_mask: None,
@@ -119,35 +119,48 @@ impl RayPipelines {
             }
         })?;
         let module = gpu.shader(program, &source)?;
-        let constants: &[(&str, f64)] = &[];
-        let render = full_screen_pipeline(
+        let copy_source = crate::kinds::source("depth_from_texture").expect("registered program");
+        let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
+        let depth_copy = full_screen_pipeline(gpu, "depth_from_texture", &copy_module, &[])?;
+        Ok(Self {
+            program: program.to_owned(),
+            module,
+            render: Default::default(),
+            compute: Default::default(),
+            depth_copy,
+        })
+    }
+
+    /// The fragment path's pipeline, made on first use.
+    fn render(&self, gpu: &GpuContext) -> Result<&wgpu::RenderPipeline, GpuError> {
+        if let Some(p) = self.render.get() {
+            return Ok(p);
+        }
+        let p = full_screen_pipeline(
             gpu,
-            program,
-            &module,
+            &self.program,
+            &self.module,
             &[Some(IMAGE_FORMAT.into()), Some(NORMAL_FORMAT.into())],
-            constants,
         )?;
-        let compute = gpu.checked(&format!("pipeline {program} (compute)"), |device| {
+        Ok(self.render.get_or_init(|| p))
+    }
+
+    /// The compute path's pipeline, made on first use.
+    fn compute(&self, gpu: &GpuContext) -> Result<&wgpu::ComputePipeline, GpuError> {
+        if let Some(p) = self.compute.get() {
+            return Ok(p);
+        }
+        let p = gpu.checked(&format!("pipeline {} (compute)", self.program), |device| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(program),
+                label: Some(&self.program),
                 layout: None,
-                module: &module,
+                module: &self.module,
                 entry_point: Some("cs_main"),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants,
-                    ..Default::default()
-                },
+                compilation_options: Default::default(),
                 cache: None,
             })
         })?;
-        let copy_source = crate::kinds::source("depth_from_texture").expect("registered program");
-        let copy_module = gpu.shader("depth_from_texture", &copy_source)?;
-        let depth_copy = full_screen_pipeline(gpu, "depth_from_texture", &copy_module, &[], &[])?;
-        Ok(Self {
-            render,
-            compute,
-            depth_copy,
-        })
+        Ok(self.compute.get_or_init(|| p))
     }
 }
 
@@ -390,19 +403,24 @@ impl RayPipelines {
         // Auto-derived layouts differ per pipeline object: bind against the one that runs. A
         // binding the program reads but `groups` lacks is a validation error: report it on the
         // node instead of drawing nothing.
-        let bind_groups = crate::bindings::bind_groups(
-            &ctx.gpu,
-            "ray caster",
-            |i| match kernel {
-                Kernel::Compute => self.compute.get_bind_group_layout(i),
-                Kernel::Fragment => self.render.get_bind_group_layout(i),
-            },
-            &groups,
-        )
-        .map_err(|e| NodeError::new(e.to_string()))?;
+        let err = |e: GpuError| NodeError::new(e.to_string());
         match kernel {
-            Kernel::Compute => self.cast_compute(ctx, camera, &bind_groups),
-            Kernel::Fragment => self.cast_fragment(ctx, camera, &bind_groups),
+            Kernel::Compute => {
+                let pipeline = self.compute(&ctx.gpu).map_err(err)?;
+                let layout_of = |i| pipeline.get_bind_group_layout(i);
+                let bind_groups =
+                    crate::bindings::bind_groups(&ctx.gpu, "ray caster", layout_of, &groups)
+                        .map_err(err)?;
+                self.cast_compute(ctx, camera, &bind_groups, pipeline)
+            }
+            Kernel::Fragment => {
+                let pipeline = self.render(&ctx.gpu).map_err(err)?;
+                let layout_of = |i| pipeline.get_bind_group_layout(i);
+                let bind_groups =
+                    crate::bindings::bind_groups(&ctx.gpu, "ray caster", layout_of, &groups)
+                        .map_err(err)?;
+                self.cast_fragment(ctx, camera, &bind_groups, pipeline)
+            }
         }
     }
 
@@ -412,6 +430,7 @@ impl RayPipelines {
         ctx: &mut Ctx,
         camera: &Camera,
         bind_groups: &[wgpu::BindGroup],
+        pipeline: &wgpu::RenderPipeline,
     ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
         let gpu = &ctx.gpu;
         let (w, h) = (camera.width, camera.height);
@@ -442,7 +461,7 @@ impl RayPipelines {
                 depth_stencil_attachment: Some(crate::mesh_pass::cleared_depth(&depth_view)),
                 ..Default::default()
             });
-            pass.set_pipeline(&self.render);
+            pass.set_pipeline(pipeline);
             for (i, group) in bind_groups.iter().enumerate() {
                 pass.set_bind_group(i as u32, group, &[]);
             }
@@ -466,6 +485,7 @@ impl RayPipelines {
         ctx: &mut Ctx,
         camera: &Camera,
         bind_groups: &[wgpu::BindGroup],
+        pipeline: &wgpu::ComputePipeline,
     ) -> Result<(wgpu::Texture, GBuffer), NodeError> {
         let gpu = &ctx.gpu;
         let (w, h) = (camera.width, camera.height);
@@ -482,7 +502,7 @@ impl RayPipelines {
         };
         let outputs = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("raycast outputs"),
-            layout: &self.compute.get_bind_group_layout(RayOutputs::GROUP),
+            layout: &pipeline.get_bind_group_layout(RayOutputs::GROUP),
             entries: &outputs.entries(),
         });
         let copy_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -500,7 +520,7 @@ impl RayPipelines {
                 label: Some("raycast compute"),
                 timestamp_writes: None,
             });
-            pass.set_pipeline(&self.compute);
+            pass.set_pipeline(pipeline);
             for (i, group) in bind_groups.iter().enumerate() {
                 pass.set_bind_group(i as u32, group, &[]);
             }
