@@ -84,14 +84,14 @@ fn render_writes_the_picture_and_every_requested_dump() {
         "the render is blank"
     );
 
-    let image = hatchery_nodes::export::read_npy(Path::new(&p("image.npy"))).unwrap();
+    let image = common::npy::read_npy(Path::new(&p("image.npy"))).unwrap();
     assert_eq!(image.shape, vec![150, 200, 4]);
     // The dumped PNG and the saved picture are the same pixels.
     assert_eq!(common::read_png(Path::new(&p("image.png"))), picture);
-    let mesh = hatchery_nodes::export::read_npy(Path::new(&p("mesh.npy"))).unwrap();
+    let mesh = common::npy::read_npy(Path::new(&p("mesh.npy"))).unwrap();
     assert_eq!(mesh.shape[1], 6);
     assert!(mesh.shape[0] > 1000);
-    let volume = hatchery_nodes::export::read_npy(Path::new(&p("volume.npy"))).unwrap();
+    let volume = common::npy::read_npy(Path::new(&p("volume.npy"))).unwrap();
     assert_eq!(volume.shape, vec![40, 40, 40]);
 }
 
@@ -383,9 +383,7 @@ fn every_intermediate_buffer_of_the_hidden_structures_preset_can_be_dumped() {
     let output = hatchery(&args);
     assert!(output.status.success(), "{}", stderr(&output));
     for (node, port, channels) in ports {
-        let array =
-            hatchery_nodes::export::read_npy(&dir.path().join(format!("{node}.{port}.npy")))
-                .unwrap();
+        let array = common::npy::read_npy(&dir.path().join(format!("{node}.{port}.npy"))).unwrap();
         let mut shape = vec![120, 160];
         if channels > 0 {
             shape.push(channels);
@@ -399,8 +397,8 @@ fn every_intermediate_buffer_of_the_hidden_structures_preset_can_be_dumped() {
         assert_eq!(picture.dimensions(), (160, 120), "{node}.{port}");
     }
     // Layer 1 and layer 2 differ (peeling did something), and the silhouettes are not empty.
-    let l1 = hatchery_nodes::export::read_npy(&dir.path().join("layer1.gbuffer.npy")).unwrap();
-    let l2 = hatchery_nodes::export::read_npy(&dir.path().join("layer2.gbuffer.npy")).unwrap();
+    let l1 = common::npy::read_npy(&dir.path().join("layer1.gbuffer.npy")).unwrap();
+    let l2 = common::npy::read_npy(&dir.path().join("layer2.gbuffer.npy")).unwrap();
     let behind = l1
         .data
         .chunks(4)
@@ -411,8 +409,7 @@ fn every_intermediate_buffer_of_the_hidden_structures_preset_can_be_dumped() {
         behind > 1000,
         "layer 2 must lie behind layer 1 on the block: {behind} pixels"
     );
-    let silhouettes =
-        hatchery_nodes::export::read_npy(&dir.path().join("silhouette2.mask.npy")).unwrap();
+    let silhouettes = common::npy::read_npy(&dir.path().join("silhouette2.mask.npy")).unwrap();
     assert!(silhouettes.data.iter().filter(|v| **v > 0.5).count() > 100);
 }
 

@@ -100,5 +100,10 @@ fn relative_values_follow_the_range_of_other_data() {
     assert_eq!(resolve(Percentile(100.0), &head).unwrap(), 1500.0);
     // A constant volume has no two classes: a clear error, not a number.
     let flat = common::field_on_cube(8, |_| 7.0);
-    assert!(resolve(Otsu, &flat).unwrap_err().contains("two classes"));
+    assert!(
+        resolve(Otsu, &flat)
+            .unwrap_err()
+            .to_string()
+            .contains("two classes")
+    );
 }

@@ -284,7 +284,7 @@ pub fn node_points(
     range: [f32; 2],
 ) -> Result<Vec<ControlPoint>, String> {
     if preset == "custom" {
-        TransferFunction1D::parse_points(points_text)
+        TransferFunction1D::parse_points(points_text).map_err(|e| e.to_string())
     } else {
         TransferFunction1D::preset(preset, range)
             .ok_or_else(|| format!("unknown preset `{preset}`"))

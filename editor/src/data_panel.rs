@@ -20,10 +20,10 @@ pub fn set_input(state: &mut EditorState, name: &str, path: &Path) -> Result<(),
         .ok_or_else(|| format!("no input `{name}`"))?;
     let kind =
         InputKind::parse(&input.kind).ok_or_else(|| format!("input `{name}`: unknown type"))?;
-    hatchery_nodes::graph_inputs::check_input_file(name, kind, path)?;
+    hatchery_nodes::graph_inputs::check_input_file(name, kind, path).map_err(|e| e.to_string())?;
     let stored = crate::files::path_for_graph(state.base_dir().as_deref(), path);
     state.apply(None, |d, _| {
-        hatchery_graph::inputs::set_in_document(d, name, &stored)
+        hatchery_graph::inputs::set_in_document(d, name, &stored).map_err(|e| e.to_string())
     })?;
     state.status = format!("input `{name}`: {}", path.display());
     Ok(())

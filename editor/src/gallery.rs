@@ -95,7 +95,7 @@ fn render(path: &Path) -> Result<image::RgbaImage, String> {
         .output(&node, port)
         .ok_or("no picture")?
         .clone();
-    hatchery_nodes::export::to_rgba8(&value, &session.ctx.gpu)
+    hatchery_nodes::export::to_rgba8(&value, &session.ctx.gpu).map_err(|e| e.to_string())
 }
 
 /// Thumbnails: cached files loaded as textures, missing ones rendered by one background thread.

@@ -176,7 +176,9 @@ impl EditorState {
     /// Groups the selected nodes (one undo step); the new group becomes the selection.
     pub fn group_selection(&mut self) -> Result<String, String> {
         let ids: Vec<String> = self.selection.iter().cloned().collect();
-        let group = self.apply(None, |d, _| edit::group_nodes(d, &ids))?;
+        let group = self.apply(None, |d, _| {
+            edit::group_nodes(d, &ids).map_err(|e| e.to_string())
+        })?;
         self.select_click(&group, crate::selection::ClickMode::Replace);
         self.status = format!("grouped {} nodes into {group}", ids.len());
         Ok(group)
@@ -192,7 +194,7 @@ impl EditorState {
         let freed = self.apply(None, |d, _| {
             let mut freed = Vec::new();
             for g in &groups {
-                freed.extend(edit::ungroup(d, g)?);
+                freed.extend(edit::ungroup(d, g).map_err(|e| e.to_string())?);
             }
             Ok(freed)
         })?;

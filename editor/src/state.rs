@@ -374,7 +374,7 @@ impl EditorState {
     pub fn add_node(&mut self, kind: &str, at: EditorPos) -> Result<String, String> {
         let level = self.level.clone();
         let id = self.apply(None, |d, r| {
-            let id = edit::add_node(d, r, kind, at)?;
+            let id = edit::add_node(d, r, kind, at).map_err(|e| e.to_string())?;
             join(d, std::slice::from_ref(&id), level);
             Ok(id)
         })?;
@@ -391,10 +391,10 @@ impl EditorState {
     ) -> Result<String, String> {
         let level = self.level.clone();
         let id = self.apply(None, |d, r| {
-            let id = edit::add_node(d, r, kind, at)?;
+            let id = edit::add_node(d, r, kind, at).map_err(|e| e.to_string())?;
             join(d, std::slice::from_ref(&id), level);
             for (name, value) in params {
-                edit::set_param(d, r, &id, name, value.clone())?;
+                edit::set_param(d, r, &id, name, value.clone()).map_err(|e| e.to_string())?;
             }
             Ok(id)
         })?;
@@ -406,7 +406,7 @@ impl EditorState {
         self.apply(None, |d, _| {
             for id in ids {
                 if d.group(id).is_some() {
-                    hatchery_graph::edit::remove_group(d, id)?;
+                    hatchery_graph::edit::remove_group(d, id).map_err(|e| e.to_string())?;
                     continue;
                 }
                 edit::remove_node(d, id).ok_or_else(|| format!("no node `{id}`"))?;
@@ -424,7 +424,9 @@ impl EditorState {
         from: (&str, &str),
         to: (&str, &str),
     ) -> Result<Option<EdgeDoc>, String> {
-        self.apply(None, |d, r| edit::connect(d, r, from, to))
+        self.apply(None, |d, r| {
+            edit::connect(d, r, from, to).map_err(|e| e.to_string())
+        })
     }
 
     pub fn disconnect(&mut self, from: (&str, &str), to: (&str, &str)) -> bool {
@@ -448,7 +450,9 @@ impl EditorState {
     ) -> Result<(), String> {
         let key = format!("param:{node}.{name}");
         let group = dragging.then_some(key.as_str());
-        self.apply(group, |d, r| edit::set_param(d, r, node, name, value))
+        self.apply(group, |d, r| {
+            edit::set_param(d, r, node, name, value).map_err(|e| e.to_string())
+        })
     }
 
     /// Sets several parameters of one node as one edit; edits with the same `group` (a viewport
@@ -461,7 +465,7 @@ impl EditorState {
     ) -> Result<(), String> {
         self.apply(Some(group), |d, r| {
             for (name, value) in values {
-                edit::set_param(d, r, node, name, value.clone())?;
+                edit::set_param(d, r, node, name, value.clone()).map_err(|e| e.to_string())?;
             }
             Ok(())
         })
@@ -496,7 +500,7 @@ impl EditorState {
     pub fn paste(&mut self, text: &str, offset: EditorPos) -> Result<Vec<String>, String> {
         let level = self.level.clone();
         let ids = self.apply(None, |d, _| {
-            let ids = edit::paste_nodes(d, text, offset)?;
+            let ids = edit::paste_nodes(d, text, offset).map_err(|e| e.to_string())?;
             join(d, &ids, level);
             Ok(ids)
         })?;

@@ -67,7 +67,8 @@ fn parse(text: &str) -> Vec<Entry> {
     split_entries(text)
         .into_iter()
         .map(|e| {
-            if e.to_ascii_lowercase().ends_with(".png") {
+            let lower = e.to_ascii_lowercase();
+            if [".png", ".jpg", ".jpeg"].iter().any(|x| lower.ends_with(x)) {
                 return Entry::Other(e);
             }
             match parse_procedural(&e) {

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use crate::errors::JobError;
 
 fn load(job: &Path) -> PyResult<hatchery_batch::Job> {
-    hatchery_batch::load(job).map_err(JobError::new_err)
+    hatchery_batch::load(job).map_err(|e| JobError::new_err(e.to_string()))
 }
 
 /// The job's work list: dicts `{index, output, input, params, frame}` (params: {"node.param":
@@ -55,7 +55,7 @@ pub fn batch_run(
     }
     let summary = py
         .detach(|| hatchery_batch::run(&job, &out, &indices, &tag, &mut |_, _, _| {}))
-        .map_err(JobError::new_err)?;
+        .map_err(|e| JobError::new_err(e.to_string()))?;
     let d = PyDict::new(py);
     d.set_item("rendered", summary.rendered)?;
     d.set_item("skipped", summary.skipped)?;
@@ -69,7 +69,8 @@ pub fn batch_run(
 #[pyfunction]
 pub fn batch_merge(py: Python<'_>, job: PathBuf, out: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let job = load(&job)?;
-    let merged = hatchery_batch::manifest::merge(&job, &out).map_err(JobError::new_err)?;
+    let merged = hatchery_batch::manifest::merge(&job, &out)
+        .map_err(|e| JobError::new_err(e.to_string()))?;
     let d = PyDict::new(py);
     d.set_item("complete", merged.complete)?;
     d.set_item("problems", merged.problems)?;

@@ -45,11 +45,16 @@ create_exception!(
     "A batch job file that cannot be read or expanded, or a batch run that cannot start."
 );
 
-/// A session error as the exception of what failed: graph errors as GraphError, the rest as
-/// RenderError.
+/// A session error as the exception of what failed, chosen by the error's type: an invalid graph
+/// or an unknown node or port as GraphError, a graph input that cannot take what was given as
+/// InputError, a parameter value as ParamError, the rest (a node that failed, the GPU, a file
+/// that cannot be written) as RenderError.
 pub fn render_error(e: SessionError) -> PyErr {
+    let message = e.to_string();
     match e {
-        SessionError::Graph(g) => GraphError::new_err(g.to_string()),
-        other => RenderError::new_err(other.to_string()),
+        SessionError::Graph(_) | SessionError::NotFound(_) => GraphError::new_err(message),
+        SessionError::Input(_) => InputError::new_err(message),
+        SessionError::Param { .. } => ParamError::new_err(message),
+        _ => RenderError::new_err(message),
     }
 }

@@ -441,7 +441,7 @@ impl Graph {
             let (node, port) = inner
                 .session(size)?
                 .picture_port(node.as_deref(), port.as_deref())
-                .map_err(GraphError::new_err)?;
+                .map_err(render_error)?;
             let value = output_after_run(inner, &node, &port, size)?;
             let session = inner.session(None)?;
             let picture = hatchery_nodes::export::to_rgba8(&value, &session.ctx.gpu)

@@ -5,6 +5,7 @@
 
 pub mod images;
 pub mod importance_reference;
+pub mod npy;
 pub mod raycast_reference;
 pub mod selection_reference;
 pub mod two_level_reference;

@@ -16,6 +16,7 @@
 //! as Inkscape layers.
 //!
 //! Units: pixels with the origin at the frame's top-left corner and y down, unless stated.
+#![forbid(unsafe_code)]
 
 mod anchor;
 mod geometry;

@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
+use crate::BatchError;
 use crate::files::{temp_beside, write_atomic};
 
 /// The animation formats, by file extension.
@@ -20,7 +21,7 @@ pub enum Format {
 }
 
 /// The format a path's extension names. Errors: any other extension.
-pub fn format_of(path: &Path) -> Result<Format, String> {
+pub fn format_of(path: &Path) -> Result<Format, BatchError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
@@ -31,34 +32,36 @@ pub fn format_of(path: &Path) -> Result<Format, String> {
         "mp4" => Format::Mp4,
         "webm" => Format::Webm,
         _ => {
-            return Err(format!(
+            return Err(BatchError::Animation(format!(
                 "{}: an animation is .mp4, .webm, .gif or .png/.apng (animated PNG)",
                 path.display()
-            ));
+            )));
         }
     })
 }
 
 /// Writes `frames` (all one size) as an animation at `fps` frames per second, looping.
 /// Errors: no frames, frames of different sizes, an encoder failure, no ffmpeg for MP4/WebM.
-pub fn write(path: &Path, frames: &[RgbaImage], fps: f64) -> Result<(), String> {
+pub fn write(path: &Path, frames: &[RgbaImage], fps: f64) -> Result<(), BatchError> {
     let first = frames
         .first()
-        .ok_or("an animation needs at least one frame")?;
+        .ok_or_else(|| BatchError::Animation("an animation needs at least one frame".into()))?;
     let (w, h) = first.dimensions();
     if let Some(i) = frames.iter().position(|f| f.dimensions() != (w, h)) {
-        return Err(format!(
+        return Err(BatchError::Animation(format!(
             "frame {i} is {:?}, frame 0 is {w}×{h}",
             frames[i].dimensions()
-        ));
+        )));
     }
     if !(fps > 0.0 && fps <= 240.0) {
-        return Err(format!("{fps} frames per second: give 0 < fps ≤ 240"));
+        return Err(BatchError::Animation(format!(
+            "{fps} frames per second: give 0 < fps ≤ 240"
+        )));
     }
     match format_of(path)? {
-        Format::Gif => write_atomic(path, &gif(frames, fps)?),
-        Format::Apng => write_atomic(path, &apng(frames, fps)?),
-        format => ffmpeg(path, frames, fps, format),
+        Format::Gif => write_atomic(path, &gif(frames, fps).map_err(BatchError::Animation)?),
+        Format::Apng => write_atomic(path, &apng(frames, fps).map_err(BatchError::Animation)?),
+        format => ffmpeg(path, frames, fps, format).map_err(BatchError::Animation),
     }
 }
 
@@ -223,6 +226,7 @@ mod tests {
         assert!(
             write(&dir.path().join("a.avi"), &frames(), 10.0)
                 .unwrap_err()
+                .to_string()
                 .contains(".mp4, .webm")
         );
         assert!(write(&gif_path, &[], 10.0).is_err());

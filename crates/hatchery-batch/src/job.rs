@@ -1,6 +1,7 @@
 //! Job files: a graph, a frame size and the work (input files × a parameter sweep × a camera
 //! path), expanded into a deterministic list of items, each with its output path.
 
+use crate::BatchError;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -105,7 +106,11 @@ pub struct Job {
 /// Loads a job file and expands its work list. Errors (one line, naming the job file): RON
 /// syntax, an output pattern with an unknown placeholder or an extension other than .png/.svg,
 /// an empty sweep list, a camera path of no frames, two items writing one file.
-pub fn load(path: &Path) -> Result<Job, String> {
+pub fn load(path: &Path) -> Result<Job, BatchError> {
+    read_job(path).map_err(BatchError::Job)
+}
+
+fn read_job(path: &Path) -> Result<Job, String> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("{}: cannot read the job file: {e}", path.display()))?;
     let file: JobFile = ron::from_str(&text).map_err(|e| {
@@ -117,7 +122,7 @@ pub fn load(path: &Path) -> Result<Job, String> {
             e.code
         )
     })?;
-    expand(path, &file).map_err(|e| format!("{}: {e}", path.display()))
+    work_list(path, &file).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn folder(path: &Path) -> PathBuf {
@@ -125,8 +130,13 @@ fn folder(path: &Path) -> PathBuf {
     abs.parent().map(Path::to_path_buf).unwrap_or_default()
 }
 
-/// The work list of a parsed job (`path` locates relative files).
-pub fn expand(path: &Path, file: &JobFile) -> Result<Job, String> {
+/// The work list of a parsed job (`path` locates relative files). Errors: [`BatchError::Job`],
+/// as for [`load`].
+pub fn expand(path: &Path, file: &JobFile) -> Result<Job, BatchError> {
+    work_list(path, file).map_err(BatchError::Job)
+}
+
+fn work_list(path: &Path, file: &JobFile) -> Result<Job, String> {
     let base = folder(path);
     let (w, h) = file.size;
     if !(1..=16384).contains(&w) || !(1..=16384).contains(&h) {
@@ -168,7 +178,7 @@ pub fn expand(path: &Path, file: &JobFile) -> Result<Job, String> {
                  {{node.param}} placeholders, not {{frame}} or {{index}}"
             ));
         }
-        crate::animation::format_of(Path::new(animation))?;
+        crate::animation::format_of(Path::new(animation)).map_err(|e| e.to_string())?;
     }
     let sweep = sweep_points(&file.sweep)?;
     let frames = camera_frames(file.camera.as_ref())?;
@@ -416,7 +426,7 @@ mod tests {
 
     fn job(body: &str) -> Result<Job, String> {
         let file: JobFile = ron::from_str(body).map_err(|e| e.to_string())?;
-        expand(Path::new("/jobs/j.ron"), &file)
+        expand(Path::new("/jobs/j.ron"), &file).map_err(|e| e.to_string())
     }
 
     #[test]

@@ -4,12 +4,15 @@
 //! already done, writing outputs atomically and a manifest after each item; `merge` checks that
 //! every item is there once. Schedulers (Slurm arrays, Kubernetes Indexed Jobs, Dask) only start
 //! processes: this crate is what each one runs.
+#![forbid(unsafe_code)]
 
 pub mod animation;
+pub mod error;
 pub mod files;
 pub mod job;
 pub mod manifest;
 pub mod run;
 
+pub use error::BatchError;
 pub use job::{Item, Job, load};
 pub use run::{Outcome, Shard, Summary, run};

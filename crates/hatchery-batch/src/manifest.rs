@@ -6,6 +6,7 @@ use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use crate::BatchError;
 use crate::job::Job;
 
 /// One item's record.
@@ -53,7 +54,7 @@ pub fn path(out: &Path, tag: &str) -> PathBuf {
 
 /// Every shard manifest in `out` (`manifest-*.json`, not the merged `manifest.json`), by file
 /// name. Unreadable or malformed ones are errors naming the file.
-pub fn read_all(out: &Path) -> Result<Vec<(PathBuf, Manifest)>, String> {
+pub fn read_all(out: &Path) -> Result<Vec<(PathBuf, Manifest)>, BatchError> {
     let Ok(dir) = std::fs::read_dir(out) else {
         return Ok(Vec::new());
     };
@@ -70,9 +71,10 @@ pub fn read_all(out: &Path) -> Result<Vec<(PathBuf, Manifest)>, String> {
         .into_iter()
         .map(|p| {
             let text = std::fs::read_to_string(&p)
-                .map_err(|e| format!("{}: cannot read: {e}", p.display()))?;
-            let m = serde_json::from_str(&text)
-                .map_err(|e| format!("{}: not a batch manifest: {e}", p.display()))?;
+                .map_err(|e| BatchError::Manifest(format!("{}: cannot read: {e}", p.display())))?;
+            let m = serde_json::from_str(&text).map_err(|e| {
+                BatchError::Manifest(format!("{}: not a batch manifest: {e}", p.display()))
+            })?;
             Ok((p, m))
         })
         .collect()
@@ -107,7 +109,7 @@ pub struct Merged {
 /// Checks that every item of `job` is present once in the shard manifests in `out`, done with
 /// the job's current parameters and with its output file unchanged, and writes the merged
 /// `manifest.json` (items in order) when they all are.
-pub fn merge(job: &Job, out: &Path) -> Result<Merged, String> {
+pub fn merge(job: &Job, out: &Path) -> Result<Merged, BatchError> {
     let manifests = read_all(out)?;
     let mut by_index: BTreeMap<usize, Vec<(&Path, &Entry)>> = BTreeMap::new();
     for (file, m) in &manifests {
@@ -195,7 +197,7 @@ pub fn merge(job: &Job, out: &Path) -> Result<Merged, String> {
 }
 
 /// Writes each animation of the job from its frames' PNGs (in frame order).
-fn animations(job: &Job, out: &Path) -> Result<Vec<PathBuf>, String> {
+fn animations(job: &Job, out: &Path) -> Result<Vec<PathBuf>, BatchError> {
     let mut groups: BTreeMap<&str, Vec<&crate::job::Item>> = BTreeMap::new();
     for item in &job.items {
         if let Some(a) = &item.animation {
@@ -211,7 +213,7 @@ fn animations(job: &Job, out: &Path) -> Result<Vec<PathBuf>, String> {
                 let path = out.join(&i.output);
                 image::open(&path)
                     .map(|p| p.to_rgba8())
-                    .map_err(|e| format!("{}: {e}", path.display()))
+                    .map_err(|e| BatchError::Animation(format!("{}: {e}", path.display())))
             })
             .collect::<Result<Vec<_>, _>>()?;
         let path = out.join(animation);

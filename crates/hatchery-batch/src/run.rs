@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::BatchError;
 use crate::job::{Item, Job, Setting};
 use crate::manifest::{self, Entry, Manifest};
 
@@ -20,8 +21,12 @@ impl Shard {
     pub const ALL: Shard = Shard { index: 0, count: 1 };
 
     /// Parses "K/N" (0 ≤ K < N).
-    pub fn parse(text: &str) -> Result<Shard, String> {
-        let bad = || format!("--shard `{text}`: expected K/N with 0 ≤ K < N, e.g. 0/4");
+    pub fn parse(text: &str) -> Result<Shard, BatchError> {
+        let bad = || {
+            BatchError::Shard(format!(
+                "--shard `{text}`: expected K/N with 0 ≤ K < N, e.g. 0/4"
+            ))
+        };
         let (k, n) = text.split_once('/').ok_or_else(bad)?;
         let (index, count) = (
             k.trim().parse::<usize>().map_err(|_| bad())?,
@@ -38,6 +43,13 @@ impl Shard {
     /// Kubernetes Indexed Job (`JOB_COMPLETION_INDEX`, of `count` or `HATCHERY_SHARD_COUNT`).
     /// `None` when neither is set.
     pub fn from_env(
+        var: impl Fn(&str) -> Option<String>,
+        count: Option<usize>,
+    ) -> Result<Option<Shard>, BatchError> {
+        Self::from_variables(var, count).map_err(BatchError::Shard)
+    }
+
+    fn from_variables(
         var: impl Fn(&str) -> Option<String>,
         count: Option<usize>,
     ) -> Result<Option<Shard>, String> {
@@ -130,12 +142,12 @@ pub fn run(
     indices: &[usize],
     tag: &str,
     progress: &mut dyn FnMut(&Item, &Outcome, f64),
-) -> Result<Summary, String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+) -> Result<Summary, BatchError> {
+    std::fs::create_dir_all(out)
+        .map_err(|e| BatchError::Io(format!("cannot create {}: {e}", out.display())))?;
     remove_stale_temporaries(job, out);
     let done = done_entries(out)?;
-    let mut session =
-        Session::open(&job.graph, job.size.0, job.size.1).map_err(|e| e.to_string())?;
+    let mut session = Session::open(&job.graph, job.size.0, job.size.1)?;
     let adapter = session.ctx.gpu.describe();
     let start_values = start_values(&session, job);
     let mut manifest = Manifest {
@@ -251,7 +263,7 @@ fn remove_stale_temporaries(job: &Job, out: &Path) {
 }
 
 /// The good entries of every manifest in `out`, by item index (the last one read wins).
-fn done_entries(out: &Path) -> Result<BTreeMap<usize, Entry>, String> {
+fn done_entries(out: &Path) -> Result<BTreeMap<usize, Entry>, BatchError> {
     let mut done = BTreeMap::new();
     for (_, m) in manifest::read_all(out)? {
         for e in m.items.into_iter().filter(|e| e.status == "ok") {
@@ -362,7 +374,7 @@ fn render_item(
         picture
             .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
             .map_err(|e| format!("cannot encode the picture: {e}"))?;
-        crate::files::write_atomic(target, &png)?;
+        crate::files::write_atomic(target, &png).map_err(|e| e.to_string())?;
         Ok(manifest::sha256(&png))
     }
 }
@@ -381,7 +393,7 @@ mod tests {
 
     #[test]
     fn shards_from_flags_and_schedulers() {
-        assert_eq!(Shard::parse("1/3"), Ok(Shard { index: 1, count: 3 }));
+        assert_eq!(Shard::parse("1/3").unwrap(), Shard { index: 1, count: 3 });
         assert!(Shard::parse("3/3").is_err() && Shard::parse("a/2").is_err());
         let slurm = [
             ("SLURM_ARRAY_TASK_ID", "5"),
@@ -389,21 +401,21 @@ mod tests {
             ("SLURM_ARRAY_TASK_COUNT", "3"),
         ];
         assert_eq!(
-            Shard::from_env(env(&slurm), None),
-            Ok(Some(Shard { index: 1, count: 3 }))
+            Shard::from_env(env(&slurm), None).unwrap(),
+            Some(Shard { index: 1, count: 3 })
         );
         let k8s = [("JOB_COMPLETION_INDEX", "2"), ("HATCHERY_SHARD_COUNT", "4")];
         assert_eq!(
-            Shard::from_env(env(&k8s), None),
-            Ok(Some(Shard { index: 2, count: 4 }))
+            Shard::from_env(env(&k8s), None).unwrap(),
+            Some(Shard { index: 2, count: 4 })
         );
         assert_eq!(
-            Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "2")]), Some(3)),
-            Ok(Some(Shard { index: 2, count: 3 }))
+            Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "2")]), Some(3)).unwrap(),
+            Some(Shard { index: 2, count: 3 })
         );
         assert!(Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "2")]), None).is_err());
         assert!(Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "5")]), Some(3)).is_err());
-        assert_eq!(Shard::from_env(env(&[]), None), Ok(None));
+        assert_eq!(Shard::from_env(env(&[]), None).unwrap(), None);
     }
 
     #[test]

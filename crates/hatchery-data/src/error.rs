@@ -24,7 +24,8 @@ pub enum DataError {
         voxels: u64,
         limit: u64,
     },
-    /// In-memory data that breaks an invariant (no file involved).
+    /// In-memory data that breaks an invariant, or parameter text that does not parse (a
+    /// transfer function's points, a label list): no file involved.
     #[error("{0}")]
     Invalid(String),
     /// A valid file using a feature or format we do not read.
@@ -62,6 +63,19 @@ impl DataError {
             DataError::Invalid(message) => DataError::format(path, message),
             other => other,
         }
+    }
+}
+
+/// A message about in-memory data or parameter text (no file involved) is [`DataError::Invalid`].
+impl From<String> for DataError {
+    fn from(message: String) -> Self {
+        DataError::Invalid(message)
+    }
+}
+
+impl From<&str> for DataError {
+    fn from(message: &str) -> Self {
+        DataError::Invalid(message.to_owned())
     }
 }
 

@@ -253,14 +253,14 @@ pub fn label_counts(volume: &VolumeData) -> BTreeMap<i64, u64> {
 
 /// Parses a label list such as `3`, `3,4, 7`, `1-5` or `2-4,9` (ranges inclusive, negative
 /// labels allowed: `-2--1`). Returns the labels sorted and without duplicates.
-pub fn parse_label_list(text: &str) -> Result<Vec<i64>, String> {
+pub fn parse_label_list(text: &str) -> Result<Vec<i64>, DataError> {
     if text.trim().is_empty() {
         return Err("no labels given".into());
     }
     let mut labels = Vec::new();
     for token in text.split(',').map(str::trim) {
         if token.is_empty() {
-            return Err(format!("`{text}`: empty entry in the label list"));
+            return Err(format!("`{text}`: empty entry in the label list").into());
         }
         if let Ok(label) = token.parse::<i64>() {
             labels.push(label);
@@ -273,7 +273,7 @@ pub fn parse_label_list(text: &str) -> Result<Vec<i64>, String> {
             .find(|&(_, c)| c == '-')
             .map(|(i, _)| i);
         let Some((a, b)) = split.map(|i| (token[..i].trim(), token[i + 1..].trim())) else {
-            return Err(format!("`{token}`: not a label number"));
+            return Err(format!("`{token}`: not a label number").into());
         };
         let parse = |s: &str| {
             s.parse::<i64>()
@@ -281,12 +281,10 @@ pub fn parse_label_list(text: &str) -> Result<Vec<i64>, String> {
         };
         let (a, b) = (parse(a)?, parse(b)?);
         if a > b {
-            return Err(format!("`{token}`: range start is after its end"));
+            return Err(format!("`{token}`: range start is after its end").into());
         }
         if b.saturating_sub(a) >= MAX_RANGE_LEN {
-            return Err(format!(
-                "`{token}`: range is longer than {MAX_RANGE_LEN} labels"
-            ));
+            return Err(format!("`{token}`: range is longer than {MAX_RANGE_LEN} labels").into());
         }
         labels.extend(a..=b);
     }
@@ -557,41 +555,35 @@ mod tests {
 
     #[test]
     fn label_lists() {
-        assert_eq!(parse_label_list("3"), Ok(vec![3]));
-        assert_eq!(parse_label_list("3,4, 7"), Ok(vec![3, 4, 7]));
-        assert_eq!(parse_label_list("1-5"), Ok(vec![1, 2, 3, 4, 5]));
-        assert_eq!(parse_label_list(" 2-4 ,9"), Ok(vec![2, 3, 4, 9]));
-        assert_eq!(parse_label_list("9,2-4,3"), Ok(vec![2, 3, 4, 9]));
-        assert_eq!(parse_label_list("-2--1, 5 - 6"), Ok(vec![-2, -1, 5, 6]));
-        assert_eq!(parse_label_list("4-4"), Ok(vec![4]));
-        assert_eq!(parse_label_list("x"), Err("`x`: not a label number".into()));
+        let parse = |text: &str| parse_label_list(text).map_err(|e| e.to_string());
+        assert_eq!(parse("3"), Ok(vec![3]));
+        assert_eq!(parse("3,4, 7"), Ok(vec![3, 4, 7]));
+        assert_eq!(parse("1-5"), Ok(vec![1, 2, 3, 4, 5]));
+        assert_eq!(parse(" 2-4 ,9"), Ok(vec![2, 3, 4, 9]));
+        assert_eq!(parse("9,2-4,3"), Ok(vec![2, 3, 4, 9]));
+        assert_eq!(parse("-2--1, 5 - 6"), Ok(vec![-2, -1, 5, 6]));
+        assert_eq!(parse("4-4"), Ok(vec![4]));
+        assert_eq!(parse("x"), Err("`x`: not a label number".into()));
+        assert_eq!(parse("1,x"), Err("`x`: not a label number".into()));
+        assert_eq!(parse("2.5"), Err("`2.5`: not a label number".into()));
+        assert_eq!(parse("1-b"), Err("`1-b`: `b` is not a label number".into()));
         assert_eq!(
-            parse_label_list("1,x"),
-            Err("`x`: not a label number".into())
-        );
-        assert_eq!(
-            parse_label_list("2.5"),
-            Err("`2.5`: not a label number".into())
-        );
-        assert_eq!(
-            parse_label_list("1-b"),
-            Err("`1-b`: `b` is not a label number".into())
-        );
-        assert_eq!(
-            parse_label_list("5-1"),
+            parse("5-1"),
             Err("`5-1`: range start is after its end".into())
         );
         assert!(
-            parse_label_list("1,,2")
+            parse("1,,2")
                 .unwrap_err()
+                .to_string()
                 .contains("empty entry")
         );
-        assert!(parse_label_list("1-").is_err());
-        assert!(parse_label_list("").is_err());
-        assert!(parse_label_list(" ").is_err());
+        assert!(parse("1-").is_err());
+        assert!(parse("").is_err());
+        assert!(parse(" ").is_err());
         assert!(
-            parse_label_list("0-1000000000")
+            parse("0-1000000000")
                 .unwrap_err()
+                .to_string()
                 .contains("longer than")
         );
     }

@@ -1,6 +1,8 @@
 //! hatchery's CPU-side data: volumes and triangle meshes, the file formats they come from
 //! (NIfTI, NRRD, MetaImage, TIFF stacks, DICOM series, VTK ImageData, OME-Zarr, OBJ, PLY, STL), label
 //! masks, procedural default data sets and marching cubes.
+// One `unsafe` block (raw_source.rs: the memory map), allowed there with its reason.
+#![deny(unsafe_code)]
 
 pub mod brick_source;
 pub mod bricks;

@@ -1,6 +1,7 @@
 //! Lit-sphere (MatCap) shading styles (Bruckner & Gröller 2007, §3.1): the colour of a shaded
 //! sphere under orthographic projection as a function of the eye-space normal's x and y.
 
+use crate::DataError;
 use glam::Vec3;
 
 /// Names accepted by [`procedural`].
@@ -143,16 +144,15 @@ fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
 /// with a power-of-two side. Texels whose centre lies outside the unit disk are replaced by the
 /// nearest texel inside the disk along the same radius (whatever was painted there is never
 /// meant to be read).
-pub fn from_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<LitSphere, String> {
+pub fn from_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<LitSphere, DataError> {
     if width != height {
-        return Err(format!(
-            "a lit-sphere image must be square, got {width}x{height}"
-        ));
+        return Err(format!("a lit-sphere image must be square, got {width}x{height}").into());
     }
     if !width.is_power_of_two() {
         return Err(format!(
             "a lit-sphere image side must be a power of two (for mip-mapping), got {width}"
-        ));
+        )
+        .into());
     }
     let size = width;
     let n = size as usize * size as usize;
@@ -161,7 +161,8 @@ pub fn from_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<LitSphere, Str
             "a {size}x{size} RGBA8 image needs {} bytes, got {}",
             n * 4,
             rgba.len()
-        ));
+        )
+        .into());
     }
     let mut texels: Vec<[f32; 4]> = rgba
         .chunks_exact(4)
@@ -422,13 +423,24 @@ mod tests {
 
     #[test]
     fn from_rgba8_converts_and_cleans_the_corners() {
-        assert!(from_rgba8(4, 2, &[0; 32]).unwrap_err().contains("square"));
+        assert!(
+            from_rgba8(4, 2, &[0; 32])
+                .unwrap_err()
+                .to_string()
+                .contains("square")
+        );
         assert!(
             from_rgba8(6, 6, &[0; 144])
                 .unwrap_err()
+                .to_string()
                 .contains("power of two")
         );
-        assert!(from_rgba8(4, 4, &[0; 10]).unwrap_err().contains("bytes"));
+        assert!(
+            from_rgba8(4, 4, &[0; 10])
+                .unwrap_err()
+                .to_string()
+                .contains("bytes")
+        );
         // Red inside the disk, green garbage outside.
         let size = 16u32;
         let mut bytes = Vec::new();

@@ -54,6 +54,7 @@ impl RawSource {
         // file. Another program truncating it while it is mapped would fault the reads (as for
         // every reader that maps files, e.g. nibabel's mmap mode), so bounds are checked against
         // the length it had when mapped.
+        #[allow(unsafe_code)]
         let map = unsafe { Mmap::map(&file) }.map_err(|e| DataError::io(data_file, e))?;
         let bytes = dims.iter().map(|&d| d as u64).product::<u64>() * voxel_bytes as u64;
         let len = map.len() as u64;

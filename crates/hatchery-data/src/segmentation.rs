@@ -297,7 +297,7 @@ pub fn ids_for_names(
     separator: char,
     key_end: Option<char>,
     objects: &BTreeMap<u16, String>,
-) -> Result<String, String> {
+) -> Result<String, DataError> {
     let mut out = Vec::new();
     for entry in text.split(separator) {
         let (key, rest) = match key_end.and_then(|k| entry.split_once(k)) {
@@ -359,7 +359,9 @@ mod name_tests {
             .unwrap(),
             " 10: iso iso; 9: tone over"
         );
-        let e = ids_for_names("spleen", ',', None, &objects).unwrap_err();
+        let e = ids_for_names("spleen", ',', None, &objects)
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("`spleen`") && e.contains("large intestine, liver"),
             "{e}"

@@ -2,6 +2,7 @@
 //! lit-sphere style instead of a colour (§3.2, lookup as in §4.1), curvature-controlled style
 //! contours (§3.3) and illustrative transparency (§3.4, eq. 2).
 
+use crate::DataError;
 use crate::lit_sphere::LitSphere;
 use crate::transfer_function::{
     LUT_SIZE, entries, lut_position, parse_entry, segment, table_position,
@@ -34,17 +35,15 @@ impl StyleTransferFunction {
     /// `style < style_count` and opacity in [0, 1]. Between nodes `k` and `k + 1` the index goes
     /// linearly from `k` to `k + 1` and α_u linearly between the nodes' opacities; outside the
     /// nodes both are clamped. A single node gives a constant function.
-    pub fn from_nodes(nodes: &[StyleNode], style_count: usize) -> Result<Self, String> {
+    pub fn from_nodes(nodes: &[StyleNode], style_count: usize) -> Result<Self, DataError> {
         if nodes.is_empty() {
             return Err("a style transfer function needs at least one node".into());
         }
         for (n, node) in nodes.iter().enumerate() {
             if !node.value.is_finite() {
-                return Err(format!(
-                    "style node {} has a non-finite value {}",
-                    n + 1,
-                    node.value
-                ));
+                return Err(
+                    format!("style node {} has a non-finite value {}", n + 1, node.value).into(),
+                );
             }
             if node.style >= style_count {
                 return Err(format!(
@@ -52,7 +51,7 @@ impl StyleTransferFunction {
                     n + 1,
                     node.value,
                     node.style
-                ));
+                ).into());
             }
             if !(0.0..=1.0).contains(&node.opacity) {
                 return Err(format!(
@@ -60,7 +59,8 @@ impl StyleTransferFunction {
                     n + 1,
                     node.value,
                     node.opacity
-                ));
+                )
+                .into());
             }
             if n > 0 && node.value <= nodes[n - 1].value {
                 return Err(format!(
@@ -68,7 +68,8 @@ impl StyleTransferFunction {
                     n + 1,
                     node.value,
                     nodes[n - 1].value
-                ));
+                )
+                .into());
             }
         }
         let ift = nodes.iter().map(|n| n.style as u32).collect();
@@ -101,7 +102,7 @@ impl StyleTransferFunction {
     /// Parses `"value: style opacity; ..."`, e.g. `"40: 0 0.05; 90: 1 0.6; 150: 2 1.0"`
     /// (numbers separated by spaces and/or commas; entries by `;` or newlines). The style must
     /// be a non-negative integer. [`StyleTransferFunction::from_nodes`] checks the rest.
-    pub fn parse(text: &str) -> Result<Vec<StyleNode>, String> {
+    pub fn parse(text: &str) -> Result<Vec<StyleNode>, DataError> {
         let mut nodes = Vec::new();
         for (n, entry) in entries(text).enumerate() {
             let (value, numbers) = parse_entry(entry, n, 2, "style opacity")?;
@@ -110,7 +111,8 @@ impl StyleTransferFunction {
                 return Err(format!(
                     "entry {} \"{entry}\": style {style} is not a style number (0, 1, 2, ...)",
                     n + 1
-                ));
+                )
+                .into());
             }
             nodes.push(StyleNode {
                 value,
@@ -327,10 +329,13 @@ mod tests {
     #[test]
     fn from_nodes_and_parse_errors() {
         assert!(StyleTransferFunction::from_nodes(&[], 1).is_err());
-        let e = StyleTransferFunction::from_nodes(&[node(0.0, 2, 1.0)], 2).unwrap_err();
+        let e = StyleTransferFunction::from_nodes(&[node(0.0, 2, 1.0)], 2)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("style 2") && e.contains("2 style"), "{e}");
         let e = StyleTransferFunction::from_nodes(&[node(1.0, 0, 1.0), node(1.0, 0, 1.0)], 1)
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("increase strictly"), "{e}");
         assert!(StyleTransferFunction::from_nodes(&[node(1.0, 0, 1.5)], 1).is_err());
         assert!(StyleTransferFunction::from_nodes(&[node(f32::NAN, 0, 1.0)], 1).is_err());
@@ -344,13 +349,21 @@ mod tests {
             StyleTransferFunction::parse("1:0,1;").unwrap(),
             [node(1.0, 0, 1.0)]
         );
-        let e = StyleTransferFunction::parse("40: 0 0.05; 90: 1.5 0.6").unwrap_err();
+        let e = StyleTransferFunction::parse("40: 0 0.05; 90: 1.5 0.6")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("entry 2") && e.contains("style 1.5"), "{e}");
-        let e = StyleTransferFunction::parse("40: 0 0.05; 90: -1 0.6").unwrap_err();
+        let e = StyleTransferFunction::parse("40: 0 0.05; 90: -1 0.6")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("entry 2"), "{e}");
-        let e = StyleTransferFunction::parse("40: 0").unwrap_err();
+        let e = StyleTransferFunction::parse("40: 0")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("entry 1") && e.contains("1 numbers"), "{e}");
-        let e = StyleTransferFunction::parse("40 0 1").unwrap_err();
+        let e = StyleTransferFunction::parse("40 0 1")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("missing ':'"), "{e}");
         assert!(StyleTransferFunction::parse("").is_err());
     }

@@ -4,6 +4,8 @@
 //! The lookup rule of [`TransferFunction1D::lookup`] is the one the GPU ray caster implements;
 //! the style transfer function and the lighting transfer function use the same rule.
 
+use crate::DataError;
+
 /// Entries in a transfer function lookup table.
 pub const LUT_SIZE: usize = 256;
 
@@ -35,20 +37,19 @@ impl TransferFunction1D {
     ///
     /// Needs at least two points with finite, strictly increasing values and every channel in
     /// [0, 1]. The domain is `[first.value, last.value]`.
-    pub fn from_points(points: &[ControlPoint]) -> Result<Self, String> {
+    pub fn from_points(points: &[ControlPoint]) -> Result<Self, DataError> {
         if points.len() < 2 {
             return Err(format!(
                 "a transfer function needs at least 2 control points, got {}",
                 points.len()
-            ));
+            )
+            .into());
         }
         for (n, p) in points.iter().enumerate() {
             if !p.value.is_finite() {
-                return Err(format!(
-                    "control point {} has a non-finite value {}",
-                    n + 1,
-                    p.value
-                ));
+                return Err(
+                    format!("control point {} has a non-finite value {}", n + 1, p.value).into(),
+                );
             }
             if let Some(c) = p
                 .rgba
@@ -60,7 +61,8 @@ impl TransferFunction1D {
                     n + 1,
                     p.value,
                     p.rgba
-                ));
+                )
+                .into());
             }
             if n > 0 && p.value <= points[n - 1].value {
                 return Err(format!(
@@ -68,7 +70,8 @@ impl TransferFunction1D {
                     n + 1,
                     p.value,
                     points[n - 1].value
-                ));
+                )
+                .into());
             }
         }
         let first = points[0].value;
@@ -159,7 +162,7 @@ impl TransferFunction1D {
     /// Parses `"value: r g b a; value: r g b a; ..."` (numbers separated by spaces and/or
     /// commas; entries by `;` or newlines; empty entries are skipped). Only the syntax is
     /// checked here; [`TransferFunction1D::from_points`] checks the values.
-    pub fn parse_points(text: &str) -> Result<Vec<ControlPoint>, String> {
+    pub fn parse_points(text: &str) -> Result<Vec<ControlPoint>, DataError> {
         let mut points = Vec::new();
         for (n, entry) in entries(text).enumerate() {
             let (value, numbers) = parse_entry(entry, n, 4, "r g b a")?;
@@ -284,8 +287,8 @@ pub(crate) fn parse_entry(
 fn parse_number(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(x) if x.is_finite() => Ok(x),
-        Ok(x) => Err(format!("{x} is not finite")),
-        Err(_) => Err(format!("\"{s}\" is not a number")),
+        Ok(x) => Err(format!("{x} is not finite").into()),
+        Err(_) => Err(format!("\"{s}\" is not a number").into()),
     }
 }
 
@@ -379,9 +382,13 @@ mod tests {
     fn from_points_validates() {
         let ok = pt(0.0, [0.0; 4]);
         assert!(TransferFunction1D::from_points(&[ok]).is_err());
-        let e = TransferFunction1D::from_points(&[ok, pt(0.0, [1.0; 4])]).unwrap_err();
+        let e = TransferFunction1D::from_points(&[ok, pt(0.0, [1.0; 4])])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("increase strictly"), "{e}");
-        let e = TransferFunction1D::from_points(&[ok, pt(1.0, [1.0, 1.5, 0.0, 0.0])]).unwrap_err();
+        let e = TransferFunction1D::from_points(&[ok, pt(1.0, [1.0, 1.5, 0.0, 0.0])])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("point 2") && e.contains("outside [0, 1]"), "{e}");
         assert!(TransferFunction1D::from_points(&[ok, pt(f32::NAN, [1.0; 4])]).is_err());
         assert!(TransferFunction1D::from_points(&[ok, pt(1.0, [f32::NAN; 4])]).is_err());
@@ -431,16 +438,24 @@ mod tests {
         assert_eq!(p.len(), 3);
         assert_eq!(p[1], pt(10.5, [1.0, 0.5, 0.25, 1.0]));
         assert_eq!(p[2].rgba, [1.0; 4]);
-        let e = TransferFunction1D::parse_points("0: 0 0 0 0; 5 1 1 1 1").unwrap_err();
+        let e = TransferFunction1D::parse_points("0: 0 0 0 0; 5 1 1 1 1")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("entry 2") && e.contains("missing ':'"), "{e}");
-        let e = TransferFunction1D::parse_points("0: 0 0 0 0; 5: 1 1 x 1").unwrap_err();
+        let e = TransferFunction1D::parse_points("0: 0 0 0 0; 5: 1 1 x 1")
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("entry 2") && e.contains("\"x\" is not a number"),
             "{e}"
         );
-        let e = TransferFunction1D::parse_points("0: 0 0 0").unwrap_err();
+        let e = TransferFunction1D::parse_points("0: 0 0 0")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("entry 1") && e.contains("3 numbers"), "{e}");
-        let e = TransferFunction1D::parse_points("abc: 0 0 0 0").unwrap_err();
+        let e = TransferFunction1D::parse_points("abc: 0 0 0 0")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("entry 1") && e.contains("value"), "{e}");
         assert!(TransferFunction1D::parse_points(" ; ").is_err());
         assert!(TransferFunction1D::parse_points("0: inf 0 0 0").is_err());

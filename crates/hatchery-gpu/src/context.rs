@@ -154,7 +154,7 @@ impl GpuContext {
             queue,
             adapter_info,
             uncaptured,
-            volume_limits: crate::VolumeLimits::from_env(),
+            volume_limits: crate::VolumeLimits::from_env().map_err(|e| e.to_string()),
         }
     }
 

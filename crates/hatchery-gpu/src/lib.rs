@@ -1,5 +1,6 @@
 //! hatchery's GPU layer: one headless wgpu device (a real GPU, or Mesa's software drivers on a
 //! machine without one), render-target and upload helpers, read-back, and per-node GPU timing.
+#![forbid(unsafe_code)]
 
 mod context;
 mod readback;

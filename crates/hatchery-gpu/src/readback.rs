@@ -83,7 +83,7 @@ impl GpuContext {
         );
         self.queue.submit([encoder.finish()]);
         let bytes = self
-            .map_buffer(&buffer)
+            .map_bytes(&buffer)
             .map_err(|message| GpuError::Readback {
                 what: what.clone(),
                 message,
@@ -104,7 +104,7 @@ impl GpuContext {
 
     /// The first `bytes` of a COPY_SRC buffer (rounded up to the 4-byte copy alignment, at most
     /// the whole buffer), copied into a staging buffer and read back, waiting for the GPU.
-    pub fn read_buffer(&self, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+    pub fn read_buffer(&self, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, GpuError> {
         let size = (bytes.div_ceil(4).max(1) * 4).min(buffer.size());
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
@@ -140,7 +140,16 @@ impl GpuContext {
     }
 
     /// Maps a MAP_READ buffer and returns a copy of its contents, waiting for the GPU.
-    pub fn map_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
+    /// Errors: [`GpuError::Readback`] when the device is lost or the mapping fails.
+    pub fn map_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+        self.map_bytes(buffer)
+            .map_err(|message| GpuError::Readback {
+                what: buffer_name(buffer),
+                message,
+            })
+    }
+
+    fn map_bytes(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
         let (tx, rx) = std::sync::mpsc::channel();
         buffer.map_async(wgpu::MapMode::Read, .., move |result| {
             let _ = tx.send(result);
@@ -158,6 +167,10 @@ impl GpuContext {
         buffer.unmap();
         Ok(bytes)
     }
+}
+
+fn buffer_name(buffer: &wgpu::Buffer) -> String {
+    format!("a buffer of {} bytes", buffer.size())
 }
 
 fn convert_row(format: wgpu::TextureFormat, line: &[u8], out: &mut Vec<f32>) {

@@ -3,6 +3,8 @@
 //! context ([`crate::GpuContext::set_volume_limits`]) so that one process can render a volume
 //! both ways.
 
+use crate::GpuError;
+
 /// The limits the volume upload works under.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct VolumeLimits {
@@ -35,22 +37,22 @@ impl VolumeLimits {
     /// The defaults, overridden by `HATCHERY_MAX_TEXTURE_3D`, `HATCHERY_BRICK` and
     /// `HATCHERY_GPU_POOL_MB`. Errors: a value that is not a whole number in range, naming the
     /// variable.
-    pub fn from_env() -> Result<Self, String> {
+    pub fn from_env() -> Result<Self, GpuError> {
         Self::from_vars(|name| std::env::var(name).ok())
     }
 
     /// [`Self::from_env`] over any source of variables (testable without touching the process
     /// environment).
-    pub fn from_vars(var: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
-        let number = |name: &str, min: u64| -> Result<Option<u64>, String> {
+    pub fn from_vars(var: impl Fn(&str) -> Option<String>) -> Result<Self, GpuError> {
+        let number = |name: &str, min: u64| -> Result<Option<u64>, GpuError> {
             let Some(text) = var(name) else {
                 return Ok(None);
             };
             match text.trim().parse::<u64>() {
                 Ok(n) if n >= min => Ok(Some(n)),
-                _ => Err(format!(
-                    "{name}={text:?}: expected a whole number of at least {min}"
-                )),
+                _ => Err(GpuError::Setting {
+                    message: format!("{name}={text:?}: expected a whole number of at least {min}"),
+                }),
             }
         };
         let mut limits = Self::default();
@@ -93,8 +95,8 @@ mod tests {
     #[test]
     fn settings_come_from_the_variables_and_bad_values_name_theirs() {
         assert_eq!(
-            VolumeLimits::from_vars(vars(&[])),
-            Ok(VolumeLimits::default())
+            VolumeLimits::from_vars(vars(&[])).ok(),
+            Some(VolumeLimits::default())
         );
         let l = VolumeLimits::from_vars(vars(&[
             ("HATCHERY_MAX_TEXTURE_3D", "64"),
@@ -107,9 +109,13 @@ mod tests {
         assert_eq!(l.pool_bytes, 3 << 20);
         assert_eq!(l.texture_side(2048), 64);
         assert_eq!(VolumeLimits::default().texture_side(2048), 2048);
-        let e = VolumeLimits::from_vars(vars(&[("HATCHERY_BRICK", "2")])).unwrap_err();
+        let e = VolumeLimits::from_vars(vars(&[("HATCHERY_BRICK", "2")]))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("HATCHERY_BRICK=\"2\""), "{e}");
-        let e = VolumeLimits::from_vars(vars(&[("HATCHERY_GPU_POOL_MB", "lots")])).unwrap_err();
+        let e = VolumeLimits::from_vars(vars(&[("HATCHERY_GPU_POOL_MB", "lots")]))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("HATCHERY_GPU_POOL_MB"), "{e}");
     }
 }

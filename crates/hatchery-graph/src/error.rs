@@ -48,35 +48,40 @@ impl GraphError {
     }
 }
 
-#[derive(Clone, Debug, PartialEq)]
+/// What is wrong with a graph; the messages are the text users see (one line each).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ErrorKind {
-    Io {
-        message: String,
-    },
-    Syntax {
-        message: String,
-    },
-    UnsupportedVersion {
-        found: u32,
-        supported: u32,
-    },
-    DuplicateId {
-        node: String,
-    },
-    BadNodeId {
-        node: String,
-        reason: String,
-    },
+    #[error("{message}")]
+    Io { message: String },
+    #[error("syntax error: {message}")]
+    Syntax { message: String },
+    #[error(
+        "unsupported graph format version {found} (this hatchery reads versions 1 to {supported})"
+    )]
+    UnsupportedVersion { found: u32, supported: u32 },
+    #[error("node `{node}`: duplicate node id")]
+    DuplicateId { node: String },
+    #[error("node `{node}`: invalid node id: {reason}")]
+    BadNodeId { node: String, reason: String },
+    #[error(
+        "node `{node}`: unknown node kind `{kind}` (known kinds: {})",
+        list(known)
+    )]
     UnknownKind {
         node: String,
         kind: String,
         known: Vec<&'static str>,
     },
     /// An edge refers to a node id that does not exist.
+    #[error("edge into `{}.{}`: no node with id `{missing}`", edge_to.0, edge_to.1)]
     UnknownNode {
         missing: String,
         edge_to: (String, String),
     },
+    #[error(
+        "node `{node}` ({kind}) has no {} port `{port}` (its {} are: {})",
+        side(*output), side(*output).to_owned() + "s", list(available)
+    )]
     UnknownPort {
         node: String,
         kind: String,
@@ -84,52 +89,60 @@ pub enum ErrorKind {
         output: bool,
         available: Vec<&'static str>,
     },
+    #[error(
+        "edge `{}.{}` -> `{}.{}`: type mismatch: output is {from_ty}, input expects {to_ty}",
+        from.0, from.1, to.0, to.1
+    )]
     TypeMismatch {
         from: (String, String),
         from_ty: PortType,
         to: (String, String),
         to_ty: PortType,
     },
-    Cycle {
-        nodes: Vec<String>,
-    },
+    #[error("cycle through nodes {}", joined(nodes.iter().map(|n| format!("`{n}`")), " -> "))]
+    Cycle { nodes: Vec<String> },
+    #[error(
+        "node `{node}`, input `{port}`: {} edges lead into one input ({})",
+        sources.len(),
+        joined(sources.iter().map(|(n, p)| format!("`{n}.{p}`")), ", ")
+    )]
     MultipleInputs {
         node: String,
         port: String,
         sources: Vec<(String, String)>,
     },
+    #[error("node `{node}`: required input `{port}` ({ty}) is not connected")]
     MissingInput {
         node: String,
         port: String,
         ty: PortType,
     },
+    #[error(
+        "node `{node}` ({kind}) has no parameter `{param}` (its parameters are: {})",
+        list(available)
+    )]
     UnknownParam {
         node: String,
         kind: String,
         param: String,
         available: Vec<&'static str>,
     },
+    #[error("node `{node}`, parameter `{param}`: {message}")]
     BadParam {
         node: String,
         param: String,
         message: String,
     },
     /// A node names a group that the file does not declare.
-    UnknownGroup {
-        node: String,
-        group: String,
-    },
+    #[error("node `{node}`: no group with id `{group}` (declare it in `groups`)")]
+    UnknownGroup { node: String, group: String },
     /// A node whose ports come from a file (a custom shader) cannot read or use it; the
     /// message names the file, line and column.
-    NodeDefinition {
-        node: String,
-        message: String,
-    },
+    #[error("node `{node}`: {message}")]
+    NodeDefinition { node: String, message: String },
     /// A graph input (version 3) that is declared wrongly.
-    BadInput {
-        input: String,
-        reason: String,
-    },
+    #[error("input `{input}`: {reason}")]
+    BadInput { input: String, reason: String },
 }
 
 fn list(names: &[&str]) -> String {
@@ -140,105 +153,44 @@ fn list(names: &[&str]) -> String {
     }
 }
 
-impl fmt::Display for ErrorKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use ErrorKind::*;
-        match self {
-            Io { message } => write!(f, "{message}"),
-            Syntax { message } => write!(f, "syntax error: {message}"),
-            UnsupportedVersion { found, supported } => write!(
-                f,
-                "unsupported graph format version {found} (this hatchery reads versions 1 to {supported})"
-            ),
-            DuplicateId { node } => write!(f, "node `{node}`: duplicate node id"),
-            BadNodeId { node, reason } => write!(f, "node `{node}`: invalid node id: {reason}"),
-            UnknownKind { node, kind, known } => {
-                write!(
-                    f,
-                    "node `{node}`: unknown node kind `{kind}` (known kinds: {})",
-                    list(known)
-                )
-            }
-            UnknownNode { missing, edge_to } => write!(
-                f,
-                "edge into `{}.{}`: no node with id `{missing}`",
-                edge_to.0, edge_to.1
-            ),
-            UnknownPort {
-                node,
-                kind,
-                port,
-                output,
-                available,
-            } => write!(
-                f,
-                "node `{node}` ({kind}) has no {} port `{port}` (its {} are: {})",
-                if *output { "output" } else { "input" },
-                if *output { "outputs" } else { "inputs" },
-                list(available)
-            ),
-            TypeMismatch {
-                from,
-                from_ty,
-                to,
-                to_ty,
-            } => write!(
-                f,
-                "edge `{}.{}` -> `{}.{}`: type mismatch: output is {from_ty}, input expects {to_ty}",
-                from.0, from.1, to.0, to.1
-            ),
-            Cycle { nodes } => write!(
-                f,
-                "cycle through nodes {}",
-                nodes
-                    .iter()
-                    .map(|n| format!("`{n}`"))
-                    .collect::<Vec<_>>()
-                    .join(" -> ")
-            ),
-            MultipleInputs {
-                node,
-                port,
-                sources,
-            } => write!(
-                f,
-                "node `{node}`, input `{port}`: {} edges lead into one input ({})",
-                sources.len(),
-                sources
-                    .iter()
-                    .map(|(n, p)| format!("`{n}.{p}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            MissingInput { node, port, ty } => {
-                write!(
-                    f,
-                    "node `{node}`: required input `{port}` ({ty}) is not connected"
-                )
-            }
-            UnknownParam {
-                node,
-                kind,
-                param,
-                available,
-            } => write!(
-                f,
-                "node `{node}` ({kind}) has no parameter `{param}` (its parameters are: {})",
-                list(available)
-            ),
-            BadParam {
-                node,
-                param,
-                message,
-            } => write!(f, "node `{node}`, parameter `{param}`: {message}"),
-            UnknownGroup { node, group } => write!(
-                f,
-                "node `{node}`: no group with id `{group}` (declare it in `groups`)"
-            ),
-            NodeDefinition { node, message } => write!(f, "node `{node}`: {message}"),
-            BadInput { input, reason } => write!(f, "input `{input}`: {reason}"),
-        }
-    }
+fn side(output: bool) -> &'static str {
+    if output { "output" } else { "input" }
+}
+
+fn joined(items: impl Iterator<Item = String>, separator: &str) -> String {
+    items.collect::<Vec<_>>().join(separator)
+}
+
+/// A value refused for a parameter: wrong type, out of range, or text that does not parse
+/// ([`crate::ParamSpec::convert`], [`crate::ParamSpec::check`], [`crate::RelativeValue::parse`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct ParamError(pub String);
+
+/// Why an edit of a graph document ([`crate::edit`], [`crate::inputs::set_in_document`]) was
+/// refused; the document is left as it was. Messages are one line.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EditError {
+    /// A node, group, port, kind or input the edit names does not exist.
+    #[error("{0}")]
+    NotFound(String),
+    /// A wire between ports of different types.
+    #[error("{0}")]
+    TypeMismatch(String),
+    /// A wire that would close a cycle.
+    #[error("{0}")]
+    Cycle(String),
+    /// A value refused for a parameter.
+    #[error("node `{node}`, parameter `{param}`: {source}")]
+    Param {
+        node: String,
+        param: String,
+        source: ParamError,
+    },
+    /// Anything else the document's rules refuse: an id taken or invalid, nested groups, text
+    /// that is not a graph when pasting, …
+    #[error("{0}")]
+    Refused(String),
 }
 
 impl fmt::Display for GraphError {
@@ -287,3 +239,15 @@ impl fmt::Display for GraphErrors {
 }
 
 impl std::error::Error for GraphErrors {}
+
+impl From<String> for ParamError {
+    fn from(message: String) -> Self {
+        ParamError(message)
+    }
+}
+
+impl From<&str> for ParamError {
+    fn from(message: &str) -> Self {
+        ParamError(message.to_owned())
+    }
+}

@@ -5,7 +5,7 @@ use crate::document::{
     EdgeDoc, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc, Source,
 };
 use crate::error::{ErrorKind, GraphError, GraphErrors};
-pub use crate::ids::check_node_id;
+use crate::ids::check_node_id;
 use crate::param::{ParamValue, Params};
 use crate::schema::{NodeSchema, SchemaLookup};
 use petgraph::Direction;
@@ -186,7 +186,7 @@ impl Graph {
                             ErrorKind::BadParam {
                                 node: node.id.clone(),
                                 param: name.clone(),
-                                message,
+                                message: message.to_string(),
                             },
                         )),
                     },
@@ -403,9 +403,12 @@ impl Graph {
     }
 
     /// The input named `name`, or an error that lists the graph's inputs.
-    pub fn input(&self, name: &str) -> Result<&crate::inputs::GraphInput, String> {
+    pub fn input(&self, name: &str) -> Result<&crate::inputs::GraphInput, crate::EditError> {
         self.inputs.iter().find(|i| i.name == name).ok_or_else(|| {
-            crate::inputs::unknown_input(self.inputs.iter().map(|i| i.name.as_str()), name)
+            crate::EditError::NotFound(crate::inputs::unknown_input(
+                self.inputs.iter().map(|i| i.name.as_str()),
+                name,
+            ))
         })
     }
 
@@ -466,7 +469,7 @@ impl Graph {
             GraphError::new(ErrorKind::BadParam {
                 node: node.into(),
                 param: param.into(),
-                message,
+                message: message.to_string(),
             })
         })?;
         instance.params.set(param, value);

@@ -1,7 +1,7 @@
 //! Validation helpers below the graph model: what a node id may be.
 
 /// Node ids are used on the command line as `node.param`, so they are plain identifiers.
-pub fn check_node_id(id: &str) -> Result<(), String> {
+pub(crate) fn check_node_id(id: &str) -> Result<(), String> {
     if id.is_empty() {
         return Err("ids must not be empty".into());
     }

@@ -7,7 +7,7 @@
 
 pub use crate::document::InputDoc;
 use crate::document::{GraphDocument, Source};
-use crate::error::{ErrorKind, GraphError};
+use crate::error::{EditError, ErrorKind, GraphError};
 pub use crate::input_kind::InputKind;
 use crate::param::ParamKind;
 use crate::schema::SchemaLookup;
@@ -147,19 +147,24 @@ fn check_binding(
 
 /// Sets every parameter bound to input `name` to `value` in the document (the editor's Data
 /// panel and [`crate::Graph`] users). Errors: no such input (the message lists the inputs).
-pub fn set_in_document(doc: &mut GraphDocument, name: &str, value: &str) -> Result<(), String> {
+pub fn set_in_document(doc: &mut GraphDocument, name: &str, value: &str) -> Result<(), EditError> {
     let input = doc
         .inputs
         .iter()
         .find(|i| i.name == name)
-        .ok_or_else(|| unknown_input(doc.inputs.iter().map(|i| i.name.as_str()), name))?
+        .ok_or_else(|| {
+            EditError::NotFound(unknown_input(
+                doc.inputs.iter().map(|i| i.name.as_str()),
+                name,
+            ))
+        })?
         .clone();
     for (node, param) in &input.to {
         let n = doc
             .nodes
             .iter_mut()
             .find(|n| &n.id == node)
-            .ok_or_else(|| format!("input `{name}`: no node `{node}`"))?;
+            .ok_or_else(|| EditError::NotFound(format!("input `{name}`: no node `{node}`")))?;
         n.params
             .insert(param.clone(), ron::Value::String(value.to_owned()));
     }

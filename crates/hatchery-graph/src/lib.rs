@@ -5,7 +5,7 @@
 //!   sorted, with the raw parameter values as written. It is stable on disk.
 //! - [`graph::Graph`] is the validated runtime graph (petgraph) the [`executor::Executor`] runs:
 //!   ports by index, typed parameters. Reordering a node's ports never breaks saved files.
-
+#![forbid(unsafe_code)]
 // Load errors carry the file, position and the full node/port context; they are rare and cold,
 // so their size is not worth boxing.
 #![allow(clippy::result_large_err)]
@@ -35,7 +35,7 @@ pub mod schema;
 pub use document::{
     EdgeDoc, EditorPos, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc,
 };
-pub use error::{ErrorKind, GraphError, GraphErrors};
+pub use error::{EditError, ErrorKind, GraphError, GraphErrors, ParamError};
 pub use executor::{ExecContext, ExecError, Executor, NodeInputs, NodeStats, Registry};
 pub use graph::{Graph, NodeInstance};
 pub use inputs::{GraphInput, InputDoc, InputKind};

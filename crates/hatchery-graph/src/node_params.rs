@@ -6,6 +6,7 @@
 //! A declarative macro rather than a derive: it needs no proc-macro crate (syn, quote) in the
 //! tree, and what it generates — a `specs()` list and a `read()` — is short enough to follow.
 
+use crate::ParamError;
 use crate::param::{ParamSpec, ParamValue, Params, RelativeValue};
 use crate::schema::intern;
 use std::path::PathBuf;
@@ -29,17 +30,19 @@ pub trait ParamField: Sized {
     ) -> Vec<ParamSpec>;
     /// The field's value in `params` (validated against the same spec by the loader).
     /// Errors only when `params` did not come from this spec (a bug): the message names it.
-    fn read(params: &Params, name: &'static str) -> Result<Self, String>;
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError>;
 }
 
 fn range_of(name: &str, range: Option<[f64; 2]>) -> [f64; 2] {
     range.unwrap_or_else(|| panic!("number parameter `{name}` is declared without a range"))
 }
 
-fn value<'a>(params: &'a Params, name: &str) -> Result<&'a ParamValue, String> {
-    params
-        .get(name)
-        .ok_or_else(|| format!("parameter `{name}` is missing from the node's values"))
+fn value<'a>(params: &'a Params, name: &str) -> Result<&'a ParamValue, ParamError> {
+    params.get(name).ok_or_else(|| {
+        ParamError(format!(
+            "parameter `{name}` is missing from the node's values"
+        ))
+    })
 }
 
 impl ParamField for f64 {
@@ -48,11 +51,13 @@ impl ParamField for f64 {
         let [min, max] = range_of(name, r);
         vec![ParamSpec::float(name, d, min, max, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Float(x) => Ok(*x),
             ParamValue::Int(i) => Ok(*i as f64),
-            other => Err(format!("parameter `{name}` is {other}, not a number")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not a number"
+            ))),
         }
     }
 }
@@ -62,7 +67,7 @@ impl ParamField for f32 {
     fn specs(name: &'static str, d: f64, r: Option<[f64; 2]>, doc: &'static str) -> Vec<ParamSpec> {
         f64::specs(name, d, r, doc)
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         f64::read(params, name).map(|x| x as f32)
     }
 }
@@ -73,10 +78,12 @@ impl ParamField for i64 {
         let [min, max] = range_of(name, r);
         vec![ParamSpec::int(name, d, min as i64, max as i64, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Int(i) => Ok(*i),
-            other => Err(format!("parameter `{name}` is {other}, not an integer")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not an integer"
+            ))),
         }
     }
 }
@@ -91,9 +98,10 @@ impl ParamField for u32 {
         );
         i64::specs(name, d, r, doc)
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         let i = i64::read(params, name)?;
-        u32::try_from(i).map_err(|_| format!("parameter `{name}` = {i} does not fit u32"))
+        u32::try_from(i)
+            .map_err(|_| ParamError(format!("parameter `{name}` = {i} does not fit u32")))
     }
 }
 
@@ -107,10 +115,12 @@ impl ParamField for bool {
     ) -> Vec<ParamSpec> {
         vec![ParamSpec::bool(name, d, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Bool(b) => Ok(*b),
-            other => Err(format!("parameter `{name}` is {other}, not true or false")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not true or false"
+            ))),
         }
     }
 }
@@ -126,10 +136,12 @@ impl ParamField for [f32; 4] {
     ) -> Vec<ParamSpec> {
         vec![ParamSpec::color(name, d, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Color(c) => Ok(c.map(|x| x as f32)),
-            other => Err(format!("parameter `{name}` is {other}, not a colour")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not a colour"
+            ))),
         }
     }
 }
@@ -144,10 +156,12 @@ impl ParamField for [f32; 3] {
     ) -> Vec<ParamSpec> {
         vec![ParamSpec::vec3(name, d, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Vec3(v) => Ok(v.map(|x| x as f32)),
-            other => Err(format!("parameter `{name}` is {other}, not a vector")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not a vector"
+            ))),
         }
     }
 }
@@ -163,10 +177,12 @@ impl ParamField for PathBuf {
     ) -> Vec<ParamSpec> {
         vec![ParamSpec::path(name, d, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Path(_) | ParamValue::Text(_) => Ok(params.path(name)),
-            other => Err(format!("parameter `{name}` is {other}, not a path")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not a path"
+            ))),
         }
     }
 }
@@ -196,7 +212,7 @@ impl ParamField for FilePath {
     ) -> Vec<ParamSpec> {
         vec![ParamSpec::path(name, d, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         Ok(FilePath {
             written: String::read(params, name)?,
             resolved: PathBuf::read(params, name)?,
@@ -214,10 +230,12 @@ impl ParamField for String {
     ) -> Vec<ParamSpec> {
         vec![ParamSpec::text(name, d, doc)]
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Text(s) | ParamValue::Path(s) => Ok(s.clone()),
-            other => Err(format!("parameter `{name}` is {other}, not text")),
+            other => Err(ParamError(format!(
+                "parameter `{name}` is {other}, not text"
+            ))),
         }
     }
 }
@@ -239,7 +257,7 @@ impl ParamField for DataValue {
             .map(ParamSpec::relative)
             .collect()
     }
-    fn read(params: &Params, name: &'static str) -> Result<Self, String> {
+    fn read(params: &Params, name: &'static str) -> Result<Self, ParamError> {
         match value(params, name)? {
             ParamValue::Relative(r, _) => Ok(DataValue::Relative(*r)),
             _ => f64::read(params, name).map(DataValue::Number),
@@ -347,8 +365,8 @@ macro_rules! node_params {
             ) -> Vec<$crate::ParamSpec> {
                 $name::specs()
             }
-            fn read(params: &$crate::Params, _: &'static str) -> Result<Self, String> {
-                $name::read(params).map_err(|e| e.message)
+            fn read(params: &$crate::Params, _: &'static str) -> Result<Self, $crate::ParamError> {
+                $name::read(params).map_err(|e| $crate::ParamError(e.message))
             }
         }
     };
@@ -399,13 +417,13 @@ macro_rules! param_choice {
             ) -> Vec<$crate::ParamSpec> {
                 vec![$crate::ParamSpec::choice(name, default.name(), Self::NAMES, doc)]
             }
-            fn read(params: &$crate::Params, name: &'static str) -> Result<Self, String> {
+            fn read(params: &$crate::Params, name: &'static str) -> Result<Self, $crate::ParamError> {
                 match params.get(name) {
                     Some($crate::ParamValue::Choice(c)) => Self::from_name(c).ok_or_else(|| {
-                        format!("parameter `{name}`: \"{c}\" is not one of {:?}", Self::NAMES)
+                        $crate::ParamError(format!("parameter `{name}`: \"{c}\" is not one of {:?}", Self::NAMES))
                     }),
-                    Some(other) => Err(format!("parameter `{name}` is {other}, not a choice")),
-                    None => Err(format!("parameter `{name}` is missing from the node's values")),
+                    Some(other) => Err($crate::ParamError(format!("parameter `{name}` is {other}, not a choice"))),
+                    None => Err($crate::ParamError(format!("parameter `{name}` is missing from the node's values"))),
                 }
             }
         }

@@ -5,6 +5,7 @@
 //! relative data values and their tests are one vocabulary; the typed declaration of a kind's
 //! parameters is node_params.rs.
 
+use crate::error::ParamError;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::hash::{Hash, Hasher};
@@ -220,7 +221,7 @@ impl ParamSpec {
     }
 
     /// Converts a raw value from a graph file, checking type and range.
-    pub fn convert(&self, raw: &ron::Value) -> Result<ParamValue, String> {
+    pub fn convert(&self, raw: &ron::Value) -> Result<ParamValue, ParamError> {
         let found = describe_raw(raw);
         let wrong = || format!("expected {}, found {found}", self.kind.describe());
         let value = match &self.kind {
@@ -237,7 +238,7 @@ impl ParamSpec {
             ParamKind::Int { .. } => ParamValue::Int(as_i64(raw).ok_or_else(wrong)?),
             ParamKind::Bool => match raw {
                 ron::Value::Bool(b) => ParamValue::Bool(*b),
-                _ => return Err(wrong()),
+                _ => return Err(wrong().into()),
             },
             ParamKind::Choice(_) => ParamValue::Choice(as_str(raw).ok_or_else(wrong)?.to_owned()),
             ParamKind::Path => ParamValue::Path(as_str(raw).ok_or_else(wrong)?.to_owned()),
@@ -258,44 +259,44 @@ impl ParamSpec {
     }
 
     /// Checks a typed value against this spec's kind and range.
-    pub fn check(&self, value: &ParamValue) -> Result<(), String> {
+    pub fn check(&self, value: &ParamValue) -> Result<(), ParamError> {
         match (&self.kind, value) {
             (ParamKind::Float { min, max }, ParamValue::Float(v)) => {
                 if !v.is_finite() || v < min || v > max {
-                    return Err(format!("value {v} is out of range [{min}, {max}]"));
+                    return Err(format!("value {v} is out of range [{min}, {max}]").into());
                 }
             }
             (ParamKind::Int { min, max }, ParamValue::Int(v)) => {
                 if v < min || v > max {
-                    return Err(format!("value {v} is out of range [{min}, {max}]"));
+                    return Err(format!("value {v} is out of range [{min}, {max}]").into());
                 }
             }
             (ParamKind::Choice(names), ParamValue::Choice(c)) => {
                 if !names.contains(&c.as_str()) {
-                    return Err(format!("\"{c}\" is not one of {}", quote_list(names)));
+                    return Err(format!("\"{c}\" is not one of {}", quote_list(names)).into());
                 }
             }
             (ParamKind::Color, ParamValue::Color(c)) => {
                 if c.iter().any(|x| !x.is_finite() || *x < 0.0 || *x > 1.0) {
-                    return Err(format!("colour {c:?} has a channel outside [0, 1]"));
+                    return Err(format!("colour {c:?} has a channel outside [0, 1]").into());
                 }
             }
             (ParamKind::Vec3, ParamValue::Vec3(v)) => {
                 if v.iter().any(|x| !x.is_finite()) {
-                    return Err(format!("vector {v:?} is not finite"));
+                    return Err(format!("vector {v:?} is not finite").into());
                 }
             }
             (ParamKind::Float { .. }, ParamValue::Relative(r, _)) if self.relative => r.check()?,
             (ParamKind::Bool, ParamValue::Bool(_))
             | (ParamKind::Path, ParamValue::Path(_))
             | (ParamKind::Text, ParamValue::Text(_)) => {}
-            (kind, v) => return Err(format!("expected {}, found {}", kind.describe(), v)),
+            (kind, v) => return Err(format!("expected {}, found {}", kind.describe(), v).into()),
         }
         Ok(())
     }
 
     /// Parses a value typed on the command line (`--set node.param=value`).
-    pub fn parse_cli(&self, text: &str) -> Result<ParamValue, String> {
+    pub fn parse_cli(&self, text: &str) -> Result<ParamValue, ParamError> {
         let text = text.trim();
         let value = match &self.kind {
             ParamKind::Path => ParamValue::Path(text.to_owned()),
@@ -315,7 +316,7 @@ impl ParamSpec {
                 let raw: ron::Value = ron::from_str(&wrapped).map_err(|_| unreadable())?;
                 // Bare words parse as RON unit values; report them as the text typed.
                 if matches!(raw, ron::Value::Unit | ron::Value::Map(_)) {
-                    return Err(unreadable());
+                    return Err(unreadable().into());
                 }
                 return self.convert(&raw);
             }
@@ -354,7 +355,7 @@ pub enum RelativeValue {
 
 impl RelativeValue {
     /// Parses `percentile(P)`, `range(F)` or `otsu` (case and spaces ignored).
-    pub fn parse(text: &str) -> Result<RelativeValue, String> {
+    pub fn parse(text: &str) -> Result<RelativeValue, ParamError> {
         let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
         let t = t.to_ascii_lowercase();
         if t == "otsu" {
@@ -380,7 +381,7 @@ impl RelativeValue {
         } else if let Some(f) = arg("range") {
             RelativeValue::Range(f?)
         } else {
-            return Err(format!("`{text}` is not percentile(P), range(F) or otsu"));
+            return Err(format!("`{text}` is not percentile(P), range(F) or otsu").into());
         };
         value.check()?;
         Ok(value)
@@ -388,13 +389,13 @@ impl RelativeValue {
 
     /// Percentiles lie in [0, 100]; range fractions are finite (outside [0, 1] is beyond the
     /// data's range, allowed).
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), ParamError> {
         match *self {
             RelativeValue::Percentile(p) if !(0.0..=100.0).contains(&p) => {
-                Err(format!("percentile {p} is outside [0, 100]"))
+                Err(format!("percentile {p} is outside [0, 100]").into())
             }
             RelativeValue::Range(f) if !f.is_finite() => {
-                Err(format!("range fraction {f} is not finite"))
+                Err(format!("range fraction {f} is not finite").into())
             }
             _ => Ok(()),
         }
@@ -631,6 +632,7 @@ mod relative_tests {
         assert!(
             RelativeValue::parse("percentile(101)")
                 .unwrap_err()
+                .to_string()
                 .contains("[0, 100]")
         );
         assert!(RelativeValue::parse("range(1/0)").is_err());
@@ -653,7 +655,8 @@ mod relative_tests {
         assert_eq!(iso.parse_cli("12.5"), Ok(ParamValue::Float(12.5)));
         let e = iso
             .convert(&ron::Value::String("percentile(x)".into()))
-            .unwrap_err();
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("not a number"), "{e}");
         let plain = ParamSpec::float("step", 0.5, 0.0, 8.0, "step");
         assert!(plain.convert(&raw).is_err());

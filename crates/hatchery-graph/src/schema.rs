@@ -170,16 +170,18 @@ pub struct NodeError {
 }
 
 impl NodeError {
-    pub fn new(message: impl Into<String>) -> Self {
+    /// A node error with `message` (any text or error, shown as it displays).
+    pub fn new(message: impl fmt::Display) -> Self {
         Self {
             port: None,
-            message: message.into(),
+            message: message.to_string(),
         }
     }
-    pub fn at_port(port: &str, message: impl Into<String>) -> Self {
+    /// A node error about port `port`.
+    pub fn at_port(port: &str, message: impl fmt::Display) -> Self {
         Self {
             port: Some(port.to_owned()),
-            message: message.into(),
+            message: message.to_string(),
         }
     }
 }

@@ -11,7 +11,7 @@ pub use crate::value::annotations::{Annotations, Placed};
 
 /// Parses "x y z: text; …" (or one row per line) into anchors; earlier rows get higher
 /// priority. Errors name the row.
-pub fn parse_anchor_list(text: &str) -> Result<Vec<Anchor>, String> {
+pub(crate) fn parse_anchor_list(text: &str) -> Result<Vec<Anchor>, String> {
     let rows: Vec<&str> = text
         .split([';', '\n'])
         .map(str::trim)

@@ -1,7 +1,7 @@
 //! The context nodes execute in: the GPU, the frame size, cached pipelines, GPU timing.
 
 use hatchery_gpu::{GpuContext, GpuError, GpuTimer};
-use hatchery_graph::ExecContext;
+use hatchery_graph::{ExecContext, NodeError};
 use std::any::Any;
 use std::collections::{BTreeMap, HashMap};
 use std::hash::{DefaultHasher, Hash, Hasher};
@@ -209,10 +209,11 @@ impl RenderContext {
     }
 
     /// An image file as an Rgba8Unorm texture, read once per path and modification time.
-    pub fn file_texture(&mut self, path: &Path) -> Result<wgpu::Texture, String> {
+    /// Errors: the file cannot be read or decoded, or is larger than the GPU allows.
+    pub fn file_texture(&mut self, path: &Path) -> Result<wgpu::Texture, NodeError> {
         let modified = std::fs::metadata(path)
             .and_then(|m| m.modified())
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            .map_err(|e| NodeError::new(format!("cannot read {}: {e}", path.display())))?;
         let key = format!("file_texture:{}:{modified:?}", path.display());
         let texture = self
             .cached(&key, |gpu| {
@@ -242,7 +243,7 @@ impl RenderContext {
                 );
                 Ok(texture)
             })
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| NodeError::new(e.to_string()))?;
         Ok((*texture).clone())
     }
 

@@ -3,7 +3,7 @@
 //! texture that egui can sample without a copy to the CPU; the small CPU-side values (volumes,
 //! transfer functions, style sets) are drawn by [`export::to_rgba8`] and uploaded.
 
-use crate::export;
+use crate::export::{self, ExportError};
 use crate::screen_pass;
 use crate::{Ctx, Value};
 
@@ -86,12 +86,12 @@ pub fn display_texture(
     ctx: &mut Ctx,
     value: &Value,
     bound: (u32, u32),
-) -> Result<wgpu::Texture, String> {
+) -> Result<wgpu::Texture, ExportError> {
     let no_picture = || {
-        format!(
+        ExportError::NoSuchForm(format!(
             "a {} value has no picture; preview a port that feeds a renderer",
             value.port_type()
-        )
+        ))
     };
     let size = fit(source_size(value).ok_or_else(no_picture)?, bound);
     let (texture, mode) = match value {
@@ -114,11 +114,15 @@ pub fn display_texture(
         &[texture],
         Some(bytemuck::bytes_of(&uniform)),
     )
-    .map_err(|e| e.to_string())
+    .map_err(ExportError::Gpu)
 }
 
 /// Small CPU-side values: drawn on the CPU, over the checkerboard, then uploaded.
-fn upload_picture(ctx: &mut Ctx, value: &Value, size: (u32, u32)) -> Result<wgpu::Texture, String> {
+fn upload_picture(
+    ctx: &mut Ctx,
+    value: &Value,
+    size: (u32, u32),
+) -> Result<wgpu::Texture, ExportError> {
     let picture = export::to_rgba8(value, &ctx.gpu)?;
     let picture = image::imageops::resize(
         &picture,
@@ -135,9 +139,7 @@ fn upload_picture(ctx: &mut Ctx, value: &Value, size: (u32, u32)) -> Result<wgpu
         }
         bytes.push(255);
     }
-    ctx.gpu
-        .check_2d_size("the picture", size.0, size.1)
-        .map_err(|e| e.to_string())?;
+    ctx.gpu.check_2d_size("the picture", size.0, size.1)?;
     Ok(ctx
         .gpu
         .texture_2d_init("display", size.0, size.1, DISPLAY_FORMAT, &bytes))

@@ -2,7 +2,7 @@
 //! (`.png`), used by `--dump`, by `SaveImage` and by tests.
 
 use crate::value::{TransferFunction, Value};
-use hatchery_gpu::{GpuContext, TextureData};
+use hatchery_gpu::{GpuContext, GpuError, TextureData};
 use std::io::Write;
 use std::path::Path;
 
@@ -13,14 +13,25 @@ pub struct Array {
     pub data: Vec<f32>,
 }
 
-fn read(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<TextureData, String> {
-    gpu.read_texture(texture).map_err(|e| e.to_string())
+/// Why a value could not be exported ([`to_array`], [`to_rgba8`]).
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// Reading the value back from the GPU failed.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// The value has no array (or no picture) of that form; the message names its port type.
+    #[error("{0}")]
+    NoSuchForm(String),
+}
+
+fn read(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<TextureData, GpuError> {
+    gpu.read_texture(texture)
 }
 
 /// The raw data of a value: Image H×W×4 (premultiplied RGBA), Mask H×W, GBuffer H×W×4
 /// (depth, nx, ny, nz), Volume D×H×W, Mesh N×6 (position, normal per vertex), Importance H×W×4
 /// (countersink depth E, importance sum, footprint flag, focus last-hit depth).
-pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
+pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, ExportError> {
     Ok(match value {
         Value::Image(image) => texture_array(read(gpu, &image.texture)?),
         Value::Importance(i) => texture_array(read(gpu, &i.buffer)?),
@@ -137,10 +148,10 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, String> {
             }
         }
         Value::Camera(_) | Value::Light(_) | Value::ObjectStyles(_) => {
-            return Err(format!(
+            return Err(ExportError::NoSuchForm(format!(
                 "a {} value holds no array to dump",
                 value.port_type()
-            ));
+            )));
         }
     })
 }
@@ -168,7 +179,8 @@ pub fn image_to_rgba8(t: &TextureData) -> image::RgbaImage {
 
 /// A picture of a value: images as they are, masks in grey, G-buffer normals as colours
 /// (n·0.5 + 0.5), the middle z-slice of a volume scaled to its value range.
-pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, String> {
+/// A viewable 8-bit picture of `value` (see the module doc); errors: [`ExportError`].
+pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, ExportError> {
     Ok(match value {
         Value::Image(image) => image_to_rgba8(&read(gpu, &image.texture)?),
         Value::Importance(i) => {
@@ -261,10 +273,10 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Str
         | Value::ObjectStyles(_)
         | Value::Annotations(_)
         | Value::Strokes(_) => {
-            return Err(format!(
+            return Err(ExportError::NoSuchForm(format!(
                 "a {} value has no picture; dump it to .npy instead",
                 value.port_type()
-            ));
+            )));
         }
     })
 }
@@ -306,35 +318,4 @@ pub fn write_png(picture: &image::RgbaImage, path: &Path) -> std::io::Result<()>
             .map_err(std::io::Error::other)?;
         out.flush()
     })
-}
-
-/// Reads back what [`write_npy`] wrote (shape and data); used by tests.
-pub fn read_npy(path: &Path) -> Result<Array, String> {
-    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
-    if bytes.len() < 10 || &bytes[..8] != b"\x93NUMPY\x01\x00" {
-        return Err("not a version 1.0 .npy file".into());
-    }
-    let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    let header = std::str::from_utf8(&bytes[10..10 + len]).map_err(|e| e.to_string())?;
-    if !header.contains("'descr': '<f4'") {
-        return Err("only little-endian f32 arrays are read".into());
-    }
-    let shape_text = header
-        .split("'shape': (")
-        .nth(1)
-        .and_then(|s| s.split(')').next())
-        .ok_or("no shape")?;
-    let shape: Vec<usize> = shape_text
-        .split(',')
-        .filter(|s| !s.trim().is_empty())
-        .map(|s| s.trim().parse().map_err(|_| "bad shape"))
-        .collect::<Result<_, _>>()?;
-    let data: Vec<f32> = bytes[10 + len..]
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-        .collect();
-    if data.len() != shape.iter().product::<usize>() {
-        return Err("data length does not match the shape".into());
-    }
-    Ok(Array { shape, data })
 }

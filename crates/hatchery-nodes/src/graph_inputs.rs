@@ -34,17 +34,30 @@ fn kind_of_name(path: &Path) -> Option<&'static str> {
     }
 }
 
+/// Why a file cannot be given to a graph input ([`check_input_file`]); one line naming the input.
+#[derive(Debug, thiserror::Error)]
+pub enum InputFileError {
+    /// The file does not exist or cannot be opened.
+    #[error("{0}")]
+    Unreadable(String),
+    /// The file's name says it is another kind of file than the input reads.
+    #[error("{0}")]
+    WrongKind(String),
+}
+
 /// Checks that `path` can be given to an input of `kind`: it exists and can be read, and its
 /// name says it is that kind of file (a folder is a DICOM series, for volumes and labels).
 /// Errors are one line naming the input: "input `volume`: brain.obj is a mesh file, not a
 /// volume (NIfTI .nii/.nii.gz, …)".
-pub fn check_input_file(input: &str, kind: InputKind, path: &Path) -> Result<(), String> {
+pub fn check_input_file(input: &str, kind: InputKind, path: &Path) -> Result<(), InputFileError> {
     let shown = path.display();
-    let metadata = std::fs::metadata(path)
-        .map_err(|e| format!("input `{input}`: cannot read {shown}: {e}"))?;
+    let metadata = std::fs::metadata(path).map_err(|e| {
+        InputFileError::Unreadable(format!("input `{input}`: cannot read {shown}: {e}"))
+    })?;
     if metadata.is_file() {
-        std::fs::File::open(path)
-            .map_err(|e| format!("input `{input}`: cannot read {shown}: {e}"))?;
+        std::fs::File::open(path).map_err(|e| {
+            InputFileError::Unreadable(format!("input `{input}`: cannot read {shown}: {e}"))
+        })?;
     }
     let (wanted, endings): (&str, Vec<&str>) = match kind {
         InputKind::Volume => ("volume", VOLUME_ENDINGS.to_vec()),
@@ -53,23 +66,23 @@ pub fn check_input_file(input: &str, kind: InputKind, path: &Path) -> Result<(),
         InputKind::Names => ("names table", NAMES_ENDINGS.to_vec()),
     };
     if metadata.is_dir() && kind != InputKind::Volume && kind != InputKind::Labels {
-        return Err(format!(
+        return Err(InputFileError::WrongKind(format!(
             "input `{input}`: {shown} is a folder, not a {kind} file ({})",
             endings.join(", ")
-        ));
+        )));
     }
     match kind_of_name(path) {
         Some(found) if found == wanted => Ok(()),
-        Some(found) => Err(format!(
+        Some(found) => Err(InputFileError::WrongKind(format!(
             "input `{input}` takes a {} file ({}), but {shown} is a {found} file",
             kind_word(kind),
             endings.join(", ")
-        )),
-        None => Err(format!(
+        ))),
+        None => Err(InputFileError::WrongKind(format!(
             "input `{input}` takes a {} file ({}); {shown} has none of these endings",
             kind_word(kind),
             endings.join(", ")
-        )),
+        ))),
     }
 }
 
@@ -93,17 +106,22 @@ mod tests {
         std::fs::write(&mesh, "v 0 0 0\n").unwrap();
         let table = dir.path().join("names.csv");
         std::fs::write(&table, "1,liver\n").unwrap();
-        let e = check_input_file("volume", InputKind::Volume, &mesh).unwrap_err();
+        let e = check_input_file("volume", InputKind::Volume, &mesh)
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with("input `volume` takes a volume file") && e.contains("is a mesh file"),
             "{e}"
         );
         assert!(check_input_file("mesh", InputKind::Mesh, &mesh).is_ok());
         assert!(check_input_file("names", InputKind::Names, &table).is_ok());
-        let e = check_input_file("labels", InputKind::Labels, &table).unwrap_err();
+        let e = check_input_file("labels", InputKind::Labels, &table)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("label map") && e.contains("names table"), "{e}");
-        let e =
-            check_input_file("volume", InputKind::Volume, &dir.path().join("no.nii")).unwrap_err();
+        let e = check_input_file("volume", InputKind::Volume, &dir.path().join("no.nii"))
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with("input `volume`: cannot read") && e.contains("no.nii"),
             "{e}"

@@ -63,7 +63,7 @@ pub(crate) fn given_names(objects: &BTreeMap<u16, String>) -> BTreeMap<u16, Stri
 
 /// Parses "lo..hi: id; …" (intervals [lo, hi) in data units; a bound may be relative to
 /// `volume`'s values, e.g. "otsu..percentile(99): 1").
-pub fn parse_intervals(
+pub(crate) fn parse_intervals(
     text: &str,
     volume: Option<&hatchery_data::VolumeData>,
 ) -> Result<Vec<(f32, f32, u16)>, String> {

@@ -1,6 +1,7 @@
 //! hatchery's node catalogue. One module per node kind (or per family of kinds); each declares
 //! its kinds, shader programs and uniform blocks in its `declare` ([`kinds`]), and
 //! [`declaring_modules!`] below lists it once. docs/contributing.md has a worked example.
+#![forbid(unsafe_code)]
 
 pub mod annotations;
 pub mod bindings;

@@ -6,8 +6,8 @@ use crate::value::{Compositing, ObjectStyle, RenderMode, TransferFunction};
 use crate::{Ctx, Value};
 use hatchery_data::transfer_function::{TransferFunction1D, TransferFunction1D as Tf};
 use hatchery_graph::{
-    Widget,
-    NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+    NodeError, NodeInputs, NodeSchema, ParamError, Params, PortSpec, PortType, Widget,
+    executor::Node,
 };
 use std::sync::Arc;
 
@@ -50,13 +50,14 @@ pub fn named_rows(
         .map_err(|e| NodeError::new(format!("`objects`: {e}")))
 }
 
-pub fn parse_rows(text: &str) -> Result<Vec<Row>, String> {
+/// Errors: [`ParamError`] naming the row that does not parse.
+pub fn parse_rows(text: &str) -> Result<Vec<Row>, ParamError> {
     let mut rows: Vec<Row> = Vec::new();
     for (n, part) in text.split(';').map(str::trim).enumerate() {
         if part.is_empty() {
             continue;
         }
-        let at = |m: String| format!("object row {} `{part}`: {m}", n + 1);
+        let at = |m: String| ParamError(format!("object row {} `{part}`: {m}", n + 1));
         let (id, rest) = part
             .split_once(':')
             .ok_or_else(|| at("expected `ID: mode compositing …`".into()))?;
@@ -251,7 +252,7 @@ impl Node<Value, Ctx> for ObjectStylesNode {
                     hatchery_data::transfer_function::PRESETS.join(", ")
                 )
             })?;
-            Tf::from_points(&points)
+            Tf::from_points(&points).map_err(|e| e.to_string())
         };
         let default = match color_tf("tf")? {
             Some(f) => f,
@@ -317,11 +318,11 @@ mod tests {
         assert_eq!(rows[1].importance, 0.2);
         assert_eq!(rows[2].iso, Some(80.0));
         assert!(!rows[2].enabled);
-        let e = parse_rows("1: tone over; 2: glow over").unwrap_err();
+        let e = parse_rows("1: tone over; 2: glow over").unwrap_err().to_string();
         assert!(e.contains("row 2") && e.contains("glow"), "{e}");
         assert!(
             parse_rows("1: tone over; 1: dvr over")
-                .unwrap_err()
+                .unwrap_err().to_string()
                 .contains("twice")
         );
         assert!(parse_rows("0: tone over").is_err());

@@ -1,11 +1,12 @@
 //! A graph with its executor and GPU context: what the command line, the editor and the tests run.
 
+use crate::export::ExportError;
 use crate::memory_inputs::InputData;
 use crate::{Ctx, Registry, RenderContext, Value, registry};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::GraphDocument;
 use hatchery_graph::executor::PassReport;
-use hatchery_graph::{ExecError, Executor, Graph, GraphErrors, ParamValue};
+use hatchery_graph::{ExecError, Executor, Graph, GraphErrors, ParamError, ParamValue};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -14,16 +15,45 @@ fn memory_key_prefix(name: &str) -> String {
     format!("{}{name}#", crate::memory_inputs::MEMORY_PREFIX)
 }
 
+/// What can go wrong in a [`Session`]; each kind a caller may act on is its own variant.
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
+    /// The graph cannot be read or is invalid.
     #[error(transparent)]
     Graph(#[from] GraphErrors),
+    /// The GPU cannot be opened, or reported an error during a pass.
     #[error(transparent)]
     Gpu(#[from] GpuError),
+    /// A node failed while running.
     #[error(transparent)]
     Exec(#[from] ExecError),
+    /// The caller named a node or port the graph does not have.
     #[error("{0}")]
-    Other(String),
+    NotFound(String),
+    /// A port that holds no value: its node has not run, or ran in a fused pass that did not
+    /// write it.
+    #[error("{0}")]
+    NoOutput(String),
+    /// A graph input that cannot take what was given (no such input, a file or data of another
+    /// kind, an unreadable file).
+    #[error("{0}")]
+    Input(String),
+    /// A value a parameter cannot take.
+    #[error("node `{node}`, parameter `{param}`: {source}")]
+    Param {
+        node: String,
+        param: String,
+        source: ParamError,
+    },
+    /// A value that cannot be read back or has no picture.
+    #[error("{port}: {source}")]
+    Export { port: String, source: ExportError },
+    /// A file that cannot be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        path: std::path::PathBuf,
+        source: std::io::Error,
+    },
 }
 
 pub struct Session {
@@ -84,11 +114,20 @@ impl Session {
             // What the pass cached may be garbage: the next pass starts afresh (and reports the
             // error again rather than serving those outputs).
             self.executor.clear();
-            return Err(SessionError::Other(format!(
-                "GPU error during the pass: {first}"
-            )));
+            return Err(SessionError::Gpu(GpuError::Validation {
+                what: "GPU error during the pass".into(),
+                message: first.clone(),
+            }));
         }
         Ok(report)
+    }
+
+    /// The declared input `name`, or [`SessionError::Input`] listing the graph's inputs.
+    fn input(&self, name: &str) -> Result<hatchery_graph::GraphInput, SessionError> {
+        self.graph
+            .input(name)
+            .cloned()
+            .map_err(|e| SessionError::Input(e.to_string()))
     }
 
     /// Gives graph input `name` (issue 25) the file `path`: checks that the input exists and
@@ -96,9 +135,9 @@ impl Session {
     /// it. A relative `path` is taken as it is (callers resolve it against their own folder).
     /// Errors are one line naming the input.
     pub fn set_input(&mut self, name: &str, path: &Path) -> Result<(), SessionError> {
-        let input = self.graph.input(name).map_err(SessionError::Other)?.clone();
+        let input = self.input(name)?;
         crate::graph_inputs::check_input_file(name, input.kind, path)
-            .map_err(SessionError::Other)?;
+            .map_err(|e| SessionError::Input(e.to_string()))?;
         let text = path.to_string_lossy();
         for (node, param) in &input.to {
             self.set_param_text(node, param, &text)?;
@@ -112,9 +151,9 @@ impl Session {
     /// bound to it names the data by a new key (see [`crate::memory_inputs`]), so what reads it
     /// runs again. Errors, one line naming the input: no such input, data of another kind.
     pub fn set_input_data(&mut self, name: &str, data: InputData) -> Result<(), SessionError> {
-        let input = self.graph.input(name).map_err(SessionError::Other)?.clone();
+        let input = self.input(name)?;
         if data.kind() != input.kind {
-            return Err(SessionError::Other(format!(
+            return Err(SessionError::Input(format!(
                 "input `{name}` takes a {}, not a {}",
                 input.kind,
                 data.kind()
@@ -204,10 +243,10 @@ impl Session {
         let instance = self
             .graph
             .node(node)
-            .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
+            .ok_or_else(|| SessionError::NotFound(format!("no node `{node}` in the graph")))?;
         let schema = instance.schema(&self.registry).expect("validated kind");
         let index = schema.output_index(port).ok_or_else(|| {
-            SessionError::Other(format!(
+            SessionError::NotFound(format!(
                 "node `{node}` ({}) has no output port `{port}` (its outputs are: {})",
                 instance.kind,
                 schema.output_names().join(", ")
@@ -215,7 +254,7 @@ impl Session {
         })?;
         self.executor.output(node, index).ok_or_else(|| {
             let fused = &self.executor.stats().get(node).map(|s| &s.fused_with);
-            SessionError::Other(match fused {
+            SessionError::NoOutput(match fused {
                 Some(pass) if !pass.is_empty() => format!(
                     "node `{node}` ran in a fused pass ({}) that did not write `{port}`: nothing \
                      outside the pass read it; run `{node}` as a target",
@@ -232,10 +271,16 @@ impl Session {
     /// value without a picture, an unwritable file.
     pub fn export_png(&mut self, node: &str, port: &str, path: &Path) -> Result<(), SessionError> {
         let value = self.evaluate(node, port)?;
-        let picture = crate::export::to_rgba8(&value, &self.ctx.gpu)
-            .map_err(|e| SessionError::Other(format!("{node}.{port}: {e}")))?;
-        crate::export::write_png(&picture, path)
-            .map_err(|e| SessionError::Other(format!("cannot write {}: {e}", path.display())))
+        let picture = crate::export::to_rgba8(&value, &self.ctx.gpu).map_err(|source| {
+            SessionError::Export {
+                port: format!("{node}.{port}"),
+                source,
+            }
+        })?;
+        crate::export::write_png(&picture, path).map_err(|source| SessionError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 
     /// The node and port a picture of the graph shows: `node`'s `port` (its first output when
@@ -245,19 +290,24 @@ impl Session {
         &self,
         node: Option<&str>,
         port: Option<&str>,
-    ) -> Result<(String, String), String> {
+    ) -> Result<(String, String), SessionError> {
         let graph = &self.graph;
         if let Some(node) = node {
             let instance = graph
                 .node(node)
-                .ok_or_else(|| format!("no node `{node}` in the graph"))?;
+                .ok_or_else(|| SessionError::NotFound(format!("no node `{node}` in the graph")))?;
             let schema = instance.schema(&self.registry).expect("validated kind");
             let port = match port {
                 Some(p) => p.to_owned(),
                 None => schema
                     .outputs
                     .first()
-                    .ok_or_else(|| format!("node `{node}` ({}) has no outputs", instance.kind))?
+                    .ok_or_else(|| {
+                        SessionError::NotFound(format!(
+                            "node `{node}` ({}) has no outputs",
+                            instance.kind
+                        ))
+                    })?
                     .name
                     .to_owned(),
             };
@@ -271,24 +321,24 @@ impl Session {
         let saver = match savers.as_slice() {
             [one] => *one,
             [] => {
-                return Err(
+                return Err(SessionError::NotFound(
                     "the graph has no SaveImage node: name what to render, e.g. \
                      render(node=\"composite\")"
                         .into(),
-                );
+                ));
             }
             many => {
-                return Err(format!(
+                return Err(SessionError::NotFound(format!(
                     "the graph has {} SaveImage nodes ({}): name one with render(node=...)",
                     many.len(),
                     many.join(", ")
-                ));
+                )));
             }
         };
         let sources = graph.input_sources(saver);
-        let (source, index) = sources
-            .get(&0)
-            .ok_or_else(|| format!("SaveImage `{saver}` has nothing connected"))?;
+        let (source, index) = sources.get(&0).ok_or_else(|| {
+            SessionError::NotFound(format!("SaveImage `{saver}` has nothing connected"))
+        })?;
         let schema = graph
             .node(source)
             .and_then(|n| n.schema(&self.registry))
@@ -304,16 +354,18 @@ impl Session {
         node: Option<&str>,
         port: Option<&str>,
     ) -> Result<image::RgbaImage, SessionError> {
-        let (node, port) = self.picture_port(node, port).map_err(SessionError::Other)?;
+        let (node, port) = self.picture_port(node, port)?;
         let value = self.evaluate(&node, &port)?;
-        crate::export::to_rgba8(&value, &self.ctx.gpu)
-            .map_err(|e| SessionError::Other(format!("{node}.{port}: {e}")))
+        crate::export::to_rgba8(&value, &self.ctx.gpu).map_err(|source| SessionError::Export {
+            port: format!("{node}.{port}"),
+            source,
+        })
     }
 
     /// Runs just what `node.port` needs and returns its value.
     pub fn evaluate(&mut self, node: &str, port: &str) -> Result<Value, SessionError> {
         if self.graph.node(node).is_none() {
-            return Err(SessionError::Other(format!(
+            return Err(SessionError::NotFound(format!(
                 "no node `{node}` in the graph"
             )));
         }
@@ -333,16 +385,19 @@ pub fn parse_param(
 ) -> Result<ParamValue, SessionError> {
     let instance = graph
         .node(node)
-        .ok_or_else(|| SessionError::Other(format!("no node `{node}` in the graph")))?;
+        .ok_or_else(|| SessionError::NotFound(format!("no node `{node}` in the graph")))?;
     let schema = instance.schema(registry).expect("validated kind");
     let spec = schema.param(param).ok_or_else(|| {
         let names: Vec<_> = schema.params.iter().map(|p| p.name).collect();
-        SessionError::Other(format!(
+        SessionError::NotFound(format!(
             "node `{node}` ({}) has no parameter `{param}` (its parameters are: {})",
             instance.kind,
             names.join(", ")
         ))
     })?;
-    spec.parse_cli(text)
-        .map_err(|m| SessionError::Other(format!("node `{node}`, parameter `{param}`: {m}")))
+    spec.parse_cli(text).map_err(|source| SessionError::Param {
+        node: node.to_owned(),
+        param: param.to_owned(),
+        source,
+    })
 }

@@ -82,7 +82,7 @@ pub fn curvature(own: Part) -> Parts {
 /// override-derived branches only partly (TwoLevelRaycast's four-object frame: 1209 → 814 ms at
 /// 512², issue 32), so the ray casters specialise their source instead. Errors name a constant
 /// the program does not declare, or a type other than bool, i32, u32 and f32.
-pub fn specialise(source: &str, constants: &[(&str, f64)]) -> Result<String, String> {
+pub(crate) fn specialise(source: &str, constants: &[(&str, f64)]) -> Result<String, String> {
     let mut out = source.to_owned();
     for &(name, value) in constants {
         let start = format!("override {name}:");

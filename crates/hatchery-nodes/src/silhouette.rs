@@ -105,7 +105,7 @@ impl Fusable for SilhouetteNode {
                     "pip \"texture\" needs parameter `pip_texture` (a PNG file)",
                 ));
             }
-            ctx.file_texture(&p.pip_texture).map_err(NodeError::new)?
+            ctx.file_texture(&p.pip_texture)?
         } else {
             ctx.blank_texture()
         };

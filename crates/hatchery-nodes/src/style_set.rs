@@ -4,7 +4,7 @@ use crate::value::StyleSet;
 use crate::{Ctx, Value};
 use hatchery_data::lit_sphere::{self, LitSphere};
 use hatchery_graph::{
-    Widget,
+    ParamError, Widget,
     NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
 };
 use std::sync::Arc;
@@ -105,8 +105,9 @@ fn resolve(p: &Params, path: &str) -> std::path::PathBuf {
 /// Default tint of a procedural style written without a colour.
 pub const DEFAULT_TINT: [f32; 3] = [0.85, 0.85, 0.85];
 
-/// A procedural entry "name[:r,g,b]" as its name and tint.
-pub fn parse_procedural(entry: &str) -> Result<(String, [f32; 3]), String> {
+/// A procedural entry "name[:r,g,b]" as its name and tint (each channel in [0, 1]).
+/// Errors: a colour that is not three numbers in [0, 1], as a [`ParamError`] naming the entry.
+pub fn parse_procedural(entry: &str) -> Result<(String, [f32; 3]), ParamError> {
     let Some((name, rgb)) = entry.split_once(':') else {
         return Ok((entry.trim().to_owned(), DEFAULT_TINT));
     };
@@ -114,11 +115,11 @@ pub fn parse_procedural(entry: &str) -> Result<(String, [f32; 3]), String> {
         .split(',')
         .map(|v| v.trim().parse::<f32>())
         .collect::<Result<_, _>>()
-        .map_err(|_| format!("style `{entry}`: colour must be r,g,b numbers"))?;
+        .map_err(|_| ParamError(format!("style `{entry}`: colour must be r,g,b numbers")))?;
     if values.len() != 3 || values.iter().any(|v| !(0.0..=1.0).contains(v)) {
-        return Err(format!(
+        return Err(ParamError(format!(
             "style `{entry}`: colour must be three numbers in [0, 1]"
-        ));
+        )));
     }
     Ok((name.trim().to_owned(), [values[0], values[1], values[2]]))
 }

@@ -84,18 +84,18 @@ impl Node<Value, Ctx> for StyleTransferFunctionNode {
             .map(str::trim)
             .filter(|r| !r.is_empty())
         {
-            let bad = |m: String| NodeError::new(format!("parameter `label_nodes`, `{row}`: {m}"));
+            let bad = |m: &dyn std::fmt::Display| NodeError::new(format!("parameter `label_nodes`, `{row}`: {m}"));
             let (label, nodes) = row
                 .split_once('=')
-                .ok_or_else(|| bad("expected LABEL = nodes".into()))?;
+                .ok_or_else(|| bad(&"expected LABEL = nodes"))?;
             let label: i64 = label
                 .trim()
                 .parse()
-                .map_err(|_| bad(format!("`{}` is not a label number", label.trim())))?;
-            let nodes = StyleTransferFunction::parse(nodes).map_err(bad)?;
+                .map_err(|_| bad(&format!("`{}` is not a label number", label.trim())))?;
+            let nodes = StyleTransferFunction::parse(nodes).map_err(|e| bad(&e))?;
             per_label.push((
                 label,
-                StyleTransferFunction::from_nodes(&nodes, styles.maps.len()).map_err(bad)?,
+                StyleTransferFunction::from_nodes(&nodes, styles.maps.len()).map_err(|e| bad(&e))?,
             ));
         }
         Ok(vec![Value::TransferFunction(Arc::new(

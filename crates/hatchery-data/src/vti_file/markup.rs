@@ -118,7 +118,7 @@ pub(super) struct ArrayInfo<'a> {
 }
 
 impl ArrayInfo<'_> {
-    pub fn scalar(&self) -> Result<Scalar, String> {
+    pub(super) fn scalar(&self) -> Result<Scalar, String> {
         let Some(type_name) = &self.type_name else {
             return Err("has no type attribute".into());
         };
@@ -127,7 +127,7 @@ impl ArrayInfo<'_> {
         })
     }
 
-    pub fn components(&self) -> Result<u64, String> {
+    pub(super) fn components(&self) -> Result<u64, String> {
         match &self.components {
             None => Ok(1),
             Some(text) => text
@@ -141,7 +141,7 @@ impl ArrayInfo<'_> {
         self.scalar().is_ok() && self.components() == Ok(1)
     }
 
-    pub fn format(&self) -> Result<Format, String> {
+    pub(super) fn format(&self) -> Result<Format, String> {
         match self.format.as_deref() {
             Some("ascii") => Ok(Format::Ascii),
             Some("binary") => Ok(Format::Binary),

@@ -7,6 +7,7 @@
 use crate::document::{
     EdgeDoc, EditorPos, FORMAT_VERSION, FrameDoc, GraphDocument, GroupDoc, NodeDoc,
 };
+use crate::error::EditError;
 use crate::ids::check_node_id;
 use crate::organise::{FRAME_COLORS, id_taken};
 use crate::param::ParamValue;
@@ -40,21 +41,22 @@ pub fn fresh_id(doc: &GraphDocument, base: &str, taken: &BTreeSet<String>) -> St
         .expect("unbounded")
 }
 
-fn node<'a>(doc: &'a GraphDocument, id: &str) -> Result<&'a NodeDoc, String> {
+fn node<'a>(doc: &'a GraphDocument, id: &str) -> Result<&'a NodeDoc, EditError> {
     doc.nodes
         .iter()
         .find(|n| n.id == id)
-        .ok_or_else(|| format!("no node `{id}` in the graph"))
+        .ok_or_else(|| EditError::NotFound(format!("no node `{id}` in the graph")))
 }
 
 fn schema_of<'a>(
     doc: &GraphDocument,
     schemas: &'a dyn SchemaLookup,
     id: &str,
-) -> Result<SchemaRef<'a>, String> {
+) -> Result<SchemaRef<'a>, EditError> {
     let n = node(doc, id)?;
-    node_schema(schemas, doc, n)
-        .ok_or_else(|| format!("node `{id}` has the unknown kind `{}`", n.kind))
+    node_schema(schemas, doc, n).ok_or_else(|| {
+        EditError::NotFound(format!("node `{id}` has the unknown kind `{}`", n.kind))
+    })
 }
 
 /// Adds a node of `kind` with default parameters at `position`; returns its new id.
@@ -63,10 +65,10 @@ pub fn add_node(
     schemas: &dyn SchemaLookup,
     kind: &str,
     position: EditorPos,
-) -> Result<String, String> {
+) -> Result<String, EditError> {
     let schema = schemas
         .schema(kind)
-        .ok_or_else(|| format!("unknown node kind `{kind}`"))?;
+        .ok_or_else(|| EditError::NotFound(format!("unknown node kind `{kind}`")))?;
     let id = fresh_id(doc, &snake_case(schema.kind), &BTreeSet::new());
     doc.nodes.push(NodeDoc {
         id: id.clone(),
@@ -99,19 +101,22 @@ pub fn remove_node(doc: &mut GraphDocument, id: &str) -> Option<NodeDoc> {
 }
 
 /// Renames a node, updating the edges that name it.
-pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), String> {
+pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), EditError> {
     if old == new {
         return node(doc, old).map(|_| ());
     }
-    check_node_id(new).map_err(|r| format!("`{new}` is not a valid id: {r}"))?;
+    check_node_id(new)
+        .map_err(|r| EditError::Refused(format!("`{new}` is not a valid id: {r}")))?;
     if id_taken(doc, new) {
-        return Err(format!("a node or group `{new}` already exists"));
+        return Err(EditError::Refused(format!(
+            "a node or group `{new}` already exists"
+        )));
     }
     let index = doc
         .nodes
         .iter()
         .position(|n| n.id == old)
-        .ok_or_else(|| format!("no node `{old}` in the graph"))?;
+        .ok_or_else(|| EditError::NotFound(format!("no node `{old}` in the graph")))?;
     doc.nodes[index].id = new.to_owned();
     for e in &mut doc.edges {
         for end in [&mut e.from.0, &mut e.to.0] {
@@ -130,16 +135,19 @@ pub fn set_param(
     node_id: &str,
     name: &str,
     value: ParamValue,
-) -> Result<(), String> {
+) -> Result<(), EditError> {
     let schema = schema_of(doc, schemas, node_id)?;
     let spec = schema.param(name).ok_or_else(|| {
-        format!(
+        EditError::NotFound(format!(
             "node `{node_id}` ({}) has no parameter `{name}`",
             schema.kind
-        )
+        ))
     })?;
-    spec.check(&value)
-        .map_err(|m| format!("node `{node_id}`, parameter `{name}`: {m}"))?;
+    spec.check(&value).map_err(|source| EditError::Param {
+        node: node_id.to_owned(),
+        param: name.to_owned(),
+        source,
+    })?;
     let n = doc
         .nodes
         .iter_mut()
@@ -167,7 +175,7 @@ pub fn port_type(
     node_id: &str,
     port: &str,
     output: bool,
-) -> Result<PortType, String> {
+) -> Result<PortType, EditError> {
     let schema = schema_of(doc, schemas, node_id)?;
     let (ports, side) = if output {
         (&schema.outputs, "output")
@@ -179,11 +187,11 @@ pub fn port_type(
         .find(|p| p.name == port)
         .map(|p| p.ty)
         .ok_or_else(|| {
-            format!(
+            EditError::NotFound(format!(
                 "node `{node_id}` ({}) has no {side} port `{port}` (its {side}s are: {})",
                 schema.kind,
                 ports.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")
-            )
+            ))
         })
 }
 
@@ -194,16 +202,16 @@ fn end_type(
     schemas: &dyn SchemaLookup,
     (node, port): (&str, &str),
     output: bool,
-) -> Result<Option<PortType>, String> {
+) -> Result<Option<PortType>, EditError> {
     if !reroute::is_reroute(doc, node) {
         return port_type(doc, schemas, node, port, output).map(Some);
     }
     let expected = if output { reroute::OUT } else { reroute::IN };
     if port != expected {
         let side = if output { "output" } else { "input" };
-        return Err(format!(
+        return Err(EditError::NotFound(format!(
             "node `{node}` (Reroute) has no {side} port `{port}` (its {side}s are: {expected})"
-        ));
+        )));
     }
     Ok(if output {
         reroute::reroute_type(doc, schemas, node)
@@ -239,22 +247,22 @@ pub fn connect(
     schemas: &dyn SchemaLookup,
     from: (&str, &str),
     to: (&str, &str),
-) -> Result<Option<EdgeDoc>, String> {
+) -> Result<Option<EdgeDoc>, EditError> {
     let out_ty = end_type(doc, schemas, from, true)?;
     let in_ty = end_type(doc, schemas, to, false)?;
     if let (Some(out_ty), Some(in_ty)) = (out_ty, in_ty)
         && out_ty != in_ty
     {
-        return Err(format!(
+        return Err(EditError::TypeMismatch(format!(
             "type mismatch: `{}.{}` gives {out_ty} but `{}.{}` takes {in_ty}",
             from.0, from.1, to.0, to.1
-        ));
+        )));
     }
     if from.0 == to.0 || reaches(doc, to.0, from.0) {
-        return Err(format!(
+        return Err(EditError::Cycle(format!(
             "connecting `{}.{}` to `{}.{}` would create a cycle",
             from.0, from.1, to.0, to.1
-        ));
+        )));
     }
     let edge = EdgeDoc {
         from: (from.0.to_owned(), from.1.to_owned()),
@@ -341,8 +349,9 @@ pub fn paste_nodes(
     doc: &mut GraphDocument,
     text: &str,
     offset: EditorPos,
-) -> Result<Vec<String>, String> {
-    let (sub, _) = GraphDocument::parse(text, None).map_err(|e| format!("cannot paste: {e}"))?;
+) -> Result<Vec<String>, EditError> {
+    let (sub, _) = GraphDocument::parse(text, None)
+        .map_err(|e| EditError::Refused(format!("cannot paste: {e}")))?;
     let mut renamed = BTreeMap::new();
     let mut taken = BTreeSet::new();
     let mut nodes = Vec::new();
@@ -373,7 +382,11 @@ pub fn paste_nodes(
                 e.to.0 = t.clone();
                 edges.push(e);
             }
-            _ => return Err("cannot paste: an edge names a node that is not pasted".into()),
+            _ => {
+                return Err(EditError::Refused(
+                    "cannot paste: an edge names a node that is not pasted".into(),
+                ));
+            }
         }
     }
     let ids = nodes.iter().map(|n| n.id.clone()).collect();
@@ -384,18 +397,22 @@ pub fn paste_nodes(
 
 /// Groups nodes `ids` (all on the top level) into a new group placed at their top-left; returns
 /// the group's id (`group_N`).
-pub fn group_nodes(doc: &mut GraphDocument, ids: &[String]) -> Result<String, String> {
+pub fn group_nodes(doc: &mut GraphDocument, ids: &[String]) -> Result<String, EditError> {
     if ids.is_empty() {
-        return Err("select the nodes to group first".into());
+        return Err(EditError::Refused("select the nodes to group first".into()));
     }
     for id in ids {
         if doc.group(id).is_some() {
-            return Err(format!("`{id}` is a group: groups do not nest"));
+            return Err(EditError::Refused(format!(
+                "`{id}` is a group: groups do not nest"
+            )));
         }
         match doc.node(id) {
-            None => return Err(format!("no node `{id}` in the graph")),
+            None => return Err(EditError::NotFound(format!("no node `{id}` in the graph"))),
             Some(n) if n.group.is_some() => {
-                return Err(format!("`{id}` is already in a group: groups do not nest"));
+                return Err(EditError::Refused(format!(
+                    "`{id}` is already in a group: groups do not nest"
+                )));
             }
             Some(_) => {}
         }
@@ -422,12 +439,12 @@ pub fn group_nodes(doc: &mut GraphDocument, ids: &[String]) -> Result<String, St
 }
 
 /// Dissolves group `group`: its members (returned) and frames go back to the top level.
-pub fn ungroup(doc: &mut GraphDocument, group: &str) -> Result<Vec<String>, String> {
+pub fn ungroup(doc: &mut GraphDocument, group: &str) -> Result<Vec<String>, EditError> {
     let index = doc
         .groups
         .iter()
         .position(|g| g.id == group)
-        .ok_or_else(|| format!("no group `{group}` in the graph"))?;
+        .ok_or_else(|| EditError::NotFound(format!("no group `{group}` in the graph")))?;
     doc.groups.remove(index);
     let mut freed = Vec::new();
     for n in doc.nodes.iter_mut() {
@@ -445,7 +462,7 @@ pub fn ungroup(doc: &mut GraphDocument, group: &str) -> Result<Vec<String>, Stri
 }
 
 /// Deletes group `group` with its members, their edges and its frames.
-pub fn remove_group(doc: &mut GraphDocument, group: &str) -> Result<(), String> {
+pub fn remove_group(doc: &mut GraphDocument, group: &str) -> Result<(), EditError> {
     for id in ungroup(doc, group)? {
         remove_node(doc, &id);
     }

@@ -88,7 +88,7 @@ pub struct Reflection {
 
 /// Reads `source` (the text of `path`) with naga. `base` is the kind's schema (its `shader`
 /// parameter comes first in every instance). Errors are `path:line:col: message`.
-pub fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflection, String> {
+pub(crate) fn reflect(path: &Path, source: &str, base: &NodeSchema) -> Result<Reflection, String> {
     // Editors on Windows start files with a byte-order mark; WGSL does not allow one.
     let source = source.strip_prefix('\u{feff}').unwrap_or(source);
     let shown = path.display().to_string();

@@ -2,7 +2,7 @@
 //! polylines on first use (SaveSvg, tests).
 
 use glam::Vec2;
-use hatchery_gpu::GpuContext;
+use hatchery_gpu::{GpuContext, GpuError};
 use std::sync::OnceLock;
 
 /// One traced stroke, pixels (top-left origin, y down).
@@ -36,15 +36,24 @@ pub struct Strokes {
 
 impl Strokes {
     /// The strokes as polylines of at least three points (read back from the GPU once).
-    pub fn lines(&self, gpu: &GpuContext) -> Result<&[StrokeLine], String> {
+    /// Errors: [`GpuError::Readback`] when the buffers cannot be read back.
+    pub fn lines(&self, gpu: &GpuContext) -> Result<&[StrokeLine], GpuError> {
         self.lines
             .get_or_init(|| self.read_back(gpu))
             .as_deref()
-            .map_err(Clone::clone)
+            .map_err(|message| GpuError::Readback {
+                what: "the strokes".into(),
+                message: message.clone(),
+            })
     }
 
     fn read_back(&self, gpu: &GpuContext) -> Result<Vec<StrokeLine>, String> {
-        let read = |buffer: &wgpu::Buffer, bytes: u64| gpu.read_buffer(buffer, bytes);
+        let read = |buffer: &wgpu::Buffer, bytes: u64| {
+            gpu.read_buffer(buffer, bytes).map_err(|e| match e {
+                GpuError::Readback { message, .. } => message,
+                e => e.to_string(),
+            })
+        };
         let counter = read(&self.counter, 4)?;
         let count = counter
             .get(..4)
