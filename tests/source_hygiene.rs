@@ -6,7 +6,7 @@
 //! over lines or a `use` inside a macro is read as the compiler reads it. Test code (`#[cfg(test)]`
 //! items, `tests/`) is left out of the API check and counts only for dev-dependencies.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use syn::visit::Visit;
@@ -215,21 +215,11 @@ fn idents(files: &[PathBuf], skip_tests: bool) -> BTreeSet<String> {
     v.found
 }
 
-/// The same check as cargo-machete, on `cargo metadata --no-deps` (no network): a normal
-/// dependency is used by the package's non-test code (src/, build.rs), a dev-dependency by its
-/// tests, examples or benches (or its test modules). A dependency only needed for a feature it
-/// turns on is listed in `[package.metadata.cargo-machete] ignored` with a comment saying why,
-/// as for cargo-machete.
-#[test]
-fn every_declared_dependency_is_used() {
+/// `cargo metadata --format-version 1` with `args`, parsed.
+fn cargo_metadata(args: &[&str]) -> serde_json::Value {
     let out = std::process::Command::new(env!("CARGO"))
-        .args([
-            "metadata",
-            "--format-version",
-            "1",
-            "--no-deps",
-            "--offline",
-        ])
+        .args(["metadata", "--format-version", "1"])
+        .args(args)
         .current_dir(ROOT)
         .output()
         .unwrap();
@@ -238,7 +228,17 @@ fn every_declared_dependency_is_used() {
         "cargo metadata: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let meta: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// The same check as cargo-machete, on `cargo metadata --no-deps` (no network): a normal
+/// dependency is used by the package's non-test code (src/, build.rs), a dev-dependency by its
+/// tests, examples or benches (or its test modules). A dependency only needed for a feature it
+/// turns on is listed in `[package.metadata.cargo-machete] ignored` with a comment saying why,
+/// as for cargo-machete.
+#[test]
+fn every_declared_dependency_is_used() {
+    let meta = cargo_metadata(&["--no-deps", "--offline"]);
     let mut unused = Vec::new();
     let mut checked = 0;
     for package in meta["packages"].as_array().unwrap() {
@@ -334,4 +334,109 @@ impl<'ast> Visit<'ast> for UnsafeCode {
         self.0 |= i.unsafety.is_some();
         syn::visit::visit_item_impl(self, i);
     }
+}
+
+/// Whether an SPDX licence expression (`/` read as `OR`, as old crates write it) can be met by
+/// MIT or Apache-2.0 style terms alone, which ask only for the licence text to travel along.
+fn permissive_alone(expr: &str) -> bool {
+    const PERMISSIVE: [&str; 6] = ["MIT", "MIT-0", "Apache-2.0", "Unlicense", "0BSD", "CC0-1.0"];
+    let spaced = expr
+        .replace('/', " OR ")
+        .replace('(', " ( ")
+        .replace(')', " ) ");
+    let tokens: Vec<&str> = spaced.split_whitespace().collect();
+    // Recursive descent: or := and ("OR" and)*; and := atom ("AND" atom)*;
+    // atom := "(" or ")" | id ["WITH" exception].
+    fn or(t: &[&str], i: &mut usize) -> bool {
+        let mut v = and(t, i);
+        while t.get(*i) == Some(&"OR") {
+            *i += 1;
+            v |= and(t, i);
+        }
+        v
+    }
+    fn and(t: &[&str], i: &mut usize) -> bool {
+        let mut v = atom(t, i);
+        while t.get(*i) == Some(&"AND") {
+            *i += 1;
+            v &= atom(t, i);
+        }
+        v
+    }
+    fn atom(t: &[&str], i: &mut usize) -> bool {
+        let tok = t.get(*i).copied().unwrap_or("");
+        *i += 1;
+        if tok == "(" {
+            let v = or(t, i);
+            *i += 1; // ")"
+            return v;
+        }
+        if t.get(*i) == Some(&"WITH") {
+            *i += 2; // an exception only widens what the licence allows
+        }
+        PERMISSIVE.contains(&tok)
+    }
+    or(&tokens, &mut 0)
+}
+
+#[test]
+fn licence_expressions_are_read_as_spdx() {
+    assert!(permissive_alone("MIT OR Apache-2.0"));
+    assert!(permissive_alone("MIT/Apache-2.0"));
+    assert!(permissive_alone("Apache-2.0 OR GPL-2.0-only"));
+    assert!(permissive_alone(
+        "Apache-2.0 WITH LLVM-exception OR Apache-2.0 OR MIT"
+    ));
+    assert!(!permissive_alone("(MIT OR Apache-2.0) AND IJG"));
+    assert!(!permissive_alone("BSD-3-Clause"));
+    assert!(!permissive_alone("MPL-2.0"));
+}
+
+/// Every crate in the build whose terms ask for more than MIT or Apache-2.0 (an acknowledgement,
+/// a copyright notice, a font licence, MPL source) is named in NOTICE, so a binary release
+/// credits it: the IJG clause of jpeg-encoder first of all (issue 35).
+#[test]
+fn notice_credits_every_dependency_with_further_terms() {
+    let host = std::process::Command::new("rustc")
+        .arg("-vV")
+        .output()
+        .expect("rustc -vV");
+    let host = String::from_utf8_lossy(&host.stdout)
+        .lines()
+        .find_map(|l| l.strip_prefix("host: ").map(str::to_string))
+        .expect("rustc -vV names the host");
+    let meta = cargo_metadata(&["--filter-platform", &host]);
+    let in_build: BTreeSet<&str> = meta["resolve"]["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|n| n["id"].as_str())
+        .collect();
+    let notice = std::fs::read_to_string(Path::new(ROOT).join("NOTICE")).expect("NOTICE");
+    let named: BTreeSet<&str> = notice
+        .split(|c: char| c.is_whitespace() || ",;:.()\"".contains(c))
+        .collect();
+    assert!(
+        notice.contains("This software is based in part on the work of the Independent JPEG Group"),
+        "NOTICE lacks the IJG acknowledgement"
+    );
+    let mut missing = Vec::new();
+    let mut checked = 0;
+    for p in meta["packages"].as_array().unwrap() {
+        if !in_build.contains(p["id"].as_str().unwrap()) || p["source"].is_null() {
+            continue; // not built for this host, or one of ours
+        }
+        checked += 1;
+        let name = p["name"].as_str().unwrap();
+        let licence = p["license"].as_str().unwrap_or("(none declared)");
+        if !permissive_alone(licence) && !named.contains(name) {
+            missing.push(format!("{name} {}: {licence}", p["version"]));
+        }
+    }
+    assert!(checked > 100, "only {checked} packages read");
+    assert!(
+        missing.is_empty(),
+        "dependencies whose licences ask for more than MIT/Apache-2.0, not named in NOTICE:\n{}",
+        missing.join("\n")
+    );
 }

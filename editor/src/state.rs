@@ -14,6 +14,11 @@ use std::time::{Duration, Instant};
 /// How long the editor waits between two autosaves of a dirty document.
 pub const AUTOSAVE_INTERVAL: Duration = Duration::from_secs(2);
 
+/// How many steps undo goes back: the oldest is dropped past it, so that a long session (a
+/// parameter nudged thousands of times) does not hold every version of the graph in memory.
+/// A graph document is a few kB to ~100 kB, so this is at most tens of MB.
+pub const UNDO_LIMIT: usize = 500;
+
 pub struct EditorState {
     pub registry: Registry,
     doc: GraphDocument,
@@ -267,7 +272,8 @@ impl EditorState {
             Ok(value) => {
                 let continues = group.is_some() && self.open_group.as_deref() == group;
                 if !continues {
-                    self.undo.push(std::mem::replace(&mut self.doc, next));
+                    let prev = std::mem::replace(&mut self.doc, next);
+                    self.push_undo(prev);
                 } else {
                     self.doc = next;
                 }
@@ -283,6 +289,14 @@ impl EditorState {
                 Err(message)
             }
         }
+    }
+
+    /// Pushes an undo step, dropping the oldest past [`UNDO_LIMIT`].
+    fn push_undo(&mut self, doc: GraphDocument) {
+        if self.undo.len() >= UNDO_LIMIT {
+            self.undo.remove(0);
+        }
+        self.undo.push(doc);
     }
 
     /// Ends the edit a drag was grouping: the next change is a new undo step.
@@ -305,7 +319,8 @@ impl EditorState {
             return false;
         };
         self.status = format!("Redid {}", crate::history_text::describe(&self.doc, &next));
-        self.undo.push(std::mem::replace(&mut self.doc, next));
+        let prev = std::mem::replace(&mut self.doc, next);
+        self.push_undo(prev);
         self.after_history_step();
         true
     }

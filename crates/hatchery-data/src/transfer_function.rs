@@ -287,8 +287,8 @@ pub(crate) fn parse_entry(
 fn parse_number(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(x) if x.is_finite() => Ok(x),
-        Ok(x) => Err(format!("{x} is not finite").into()),
-        Err(_) => Err(format!("\"{s}\" is not a number").into()),
+        Ok(x) => Err(format!("{x} is not finite")),
+        Err(_) => Err(format!("\"{s}\" is not a number")),
     }
 }
 

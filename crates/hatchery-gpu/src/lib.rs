@@ -3,11 +3,13 @@
 #![forbid(unsafe_code)]
 
 mod context;
+mod error;
 mod readback;
 mod timing;
 mod volume_limits;
 
-pub use context::{GpuContext, GpuError, NO_DATA_TEXEL};
+pub use context::{GpuContext, NO_DATA_TEXEL};
+pub use error::GpuError;
 pub use readback::TextureData;
 pub use timing::GpuTimer;
 pub use volume_limits::{MIN_BRICK, VolumeLimits};

@@ -1,7 +1,8 @@
 //! Reading textures and buffers back to the CPU (for tests, `--dump`, saving images and vector
 //! output), and bind groups from binding lists.
 
-use crate::context::{GpuContext, GpuError};
+use crate::context::GpuContext;
+use crate::error::GpuError;
 
 /// Texels of a 2-D texture as f32, row-major from the top row, `channels` per texel.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,9 +1,9 @@
 //! How large a volume texture may be before a volume is bricked, and how large the brick pool
 //! may grow (issue 30). Read from the environment when a context opens; tests set them per
-//! context ([`crate::GpuContext::set_volume_limits`]) so that one process can render a volume
+//! context (`GpuContext::set_volume_limits`) so that one process can render a volume
 //! both ways.
 
-use crate::GpuError;
+use crate::error::GpuError;
 
 /// The limits the volume upload works under.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -30,10 +30,22 @@ pub fn write_atomically(
         .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
     // Hidden and named after the target, so that a folder listing during a write says whose it
     // is; removed when dropped unless persisted.
-    let mut tmp = tempfile::Builder::new()
-        .prefix(&format!(".{name}."))
-        .suffix(".part")
-        .tempfile_in(dir)?;
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".part");
+    let old_permissions = std::fs::metadata(path).ok().map(|m| m.permissions());
+    #[cfg(unix)]
+    {
+        // A temporary file is made 0600, which would leave every figure unreadable to the
+        // group: a new file gets what `File::create` gives (0666 less the umask).
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(dir)?;
+    // A file written over keeps its permissions.
+    if let Some(permissions) = old_permissions {
+        tmp.as_file().set_permissions(permissions)?;
+    }
     write(tmp.as_file_mut())?;
     tmp.as_file_mut().flush()?;
     tmp.as_file().sync_all()?;
@@ -84,6 +96,27 @@ mod tests {
         write_bytes_atomically(&path, b"new contents").unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"new contents");
         assert_eq!(entries(dir.path()), ["figure.png"]);
+    }
+
+    /// A new file gets the permissions `File::create` gives (not a temporary file's 0600); a
+    /// file written over keeps its own.
+    #[cfg(unix)]
+    #[test]
+    fn permissions_are_those_of_a_plain_write() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        let plain = dir.path().join("plain.png");
+        File::create(&plain).unwrap();
+        let new = dir.path().join("new.png");
+        write_bytes_atomically(&new, b"new").unwrap();
+        assert_eq!(mode(&new), mode(&plain));
+        let old = dir.path().join("old.png");
+        std::fs::write(&old, b"old").unwrap();
+        std::fs::set_permissions(&old, std::fs::Permissions::from_mode(0o640)).unwrap();
+        write_bytes_atomically(&old, b"replaced").unwrap();
+        assert_eq!(mode(&old), 0o640);
+        assert_eq!(std::fs::read(&old).unwrap(), b"replaced");
     }
 
     #[test]

@@ -355,6 +355,13 @@ pub enum RelativeValue {
 
 impl RelativeValue {
     /// Parses `percentile(P)`, `range(F)` or `otsu` (case and spaces ignored).
+    ///
+    /// ```
+    /// use hatchery_graph::RelativeValue;
+    /// assert_eq!(RelativeValue::parse("Percentile( 95 )"), Ok(RelativeValue::Percentile(95.0)));
+    /// assert_eq!(RelativeValue::parse("otsu"), Ok(RelativeValue::Otsu));
+    /// assert!(RelativeValue::parse("median").is_err());
+    /// ```
     pub fn parse(text: &str) -> Result<RelativeValue, ParamError> {
         let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
         let t = t.to_ascii_lowercase();

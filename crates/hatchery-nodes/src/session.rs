@@ -56,6 +56,27 @@ pub enum SessionError {
     },
 }
 
+/// A graph opened for rendering: its node registry, the validated graph, the executor that
+/// caches outputs between runs and the GPU context. What the CLI, the editor, the Python
+/// package and library users run (see also `examples/session.rs`).
+///
+/// ```
+/// use hatchery_nodes::{Session, SessionError, export};
+///
+/// // A procedural torus (no data files), rendered at 64×48 pixels.
+/// let graph = concat!(env!("CARGO_MANIFEST_DIR"), "/../../graphs/shaded_surface.ron");
+/// let mut session = Session::open(graph.as_ref(), 64, 48)?;
+/// session.set_param_text("camera", "azimuth", "60")?;
+/// // A value the parameter cannot take is refused, naming it.
+/// let refused = session.set_param_text("camera", "azimuth", "sixty").unwrap_err();
+/// assert!(refused.to_string().contains("azimuth"), "{refused}");
+/// // Runs what `shaded.image` needs and reads it back: [height, width, RGBA].
+/// let image = session.evaluate("shaded", "image")?;
+/// let array = export::to_array(&image, &session.ctx.gpu).unwrap();
+/// assert_eq!(array.shape, [48, 64, 4]);
+/// assert!(array.data.iter().any(|&v| v < 0.9), "the torus is drawn");
+/// # Ok::<(), SessionError>(())
+/// ```
 pub struct Session {
     pub registry: Registry,
     pub graph: Graph,

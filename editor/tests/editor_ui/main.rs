@@ -198,6 +198,39 @@ fn a_parameter_drag_is_one_undo_step() {
     assert_eq!(iso(s), ron::Value::Number(ron::Number::new(0.4)));
 }
 
+/// The undo history is bounded: past UNDO_LIMIT steps the oldest go, the newest all undo.
+#[test]
+fn undo_keeps_the_last_undo_limit_steps() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let s = &mut app.state;
+    let limit = hatchery_editor::state::UNDO_LIMIT;
+    let extra = 20;
+    let mut versions = vec![s.doc().clone()];
+    for step in 0..limit + extra {
+        let iso = -0.5 + step as f64 / (limit + extra) as f64;
+        s.set_param("surface", "iso", ParamValue::Float(iso), false)
+            .unwrap();
+        versions.push(s.doc().clone());
+    }
+    let mut undone = 0;
+    while s.undo() {
+        undone += 1;
+        assert_eq!(s.doc(), &versions[versions.len() - 1 - undone]);
+    }
+    assert_eq!(undone, limit);
+    // The oldest kept version, not the file as opened (that step was dropped).
+    assert_eq!(s.doc(), &versions[extra]);
+    assert_ne!(s.doc(), &versions[0]);
+    // Redo goes all the way forward again.
+    let mut redone = 0;
+    while s.redo() {
+        redone += 1;
+    }
+    assert_eq!(redone, limit);
+    assert_eq!(s.doc(), versions.last().unwrap());
+}
+
 #[test]
 fn a_graph_with_an_error_opens_and_shows_it_on_the_node() {
     let dir = tempfile::tempdir().unwrap();
