@@ -50,9 +50,19 @@ fn surface_point(position: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(h4.xyz / h4.w, 1.0);
 }
 
-// The symmetrised Hessian of the volume at world point p (central differences of the gradient
-// at ±h along the world axes).
+// The Hessian of the volume at world point p: the B-spline's own second derivatives
+// (ray_bspline, Hadwiger §1.3) where the reconstruction is the B-spline; else, and next to "no
+// data", central differences of the gradient at ±h along the world axes, symmetrised.
 fn hessian_at(p: vec3<f32>) -> mat3x3<f32> {
+    if reconstruction() == RECONSTRUCTION_BSPLINE {
+        let d = bspline_derivatives((ray.to_voxel * vec4<f32>(p, 1.0)).xyz);
+        if !d.missing {
+            // q = A p + b with A^T = grad_to_world's linear part G: H_world = G H_voxel G^T.
+            let g = mat3x3<f32>(ray.grad_to_world[0].xyz, ray.grad_to_world[1].xyz,
+                                ray.grad_to_world[2].xyz);
+            return g * d.hessian * transpose(g);
+        }
+    }
     let h = curvature_params.step;
     var columns: array<vec3<f32>, 3>;
     for (var axis = 0; axis < 3; axis++) {

@@ -1,6 +1,7 @@
 // Shared by the ray casters (Raycast, TwoLevelRaycast): the uniform block, the volume and its
 // tables, sampling in voxel space, gradients, and the primary ray of a pixel. The programs are
-// assembled from parts (see hatchery_nodes::shaders): ray_common, ray_classify, ray_shade,
+// assembled from parts (see hatchery_nodes::shaders): ray_common, ray_bspline (the tricubic
+// B-spline filter), ray_classify, ray_shade,
 // ray_skip, then the caster's own compositing loop. The sampling rule is shared with the CPU
 // reference in tests/common/raycast_reference.rs.
 
@@ -124,6 +125,15 @@ const LIGHTING_SIZE: f32 = 64.0;
 override RAY_ORTHOGRAPHIC: i32 = -1;
 override RAY_FAST_EXPONENT: i32 = -1;
 override RAY_BRICKED: i32 = -1;
+// The reconstruction filter of values and gradients (a RECONSTRUCTION_* constant,
+// hatchery_nodes::reconstruction); always specialised, 0 by default.
+override RAY_RECONSTRUCTION: i32 = 0;
+const RECONSTRUCTION_TRILINEAR: i32 = 0;
+const RECONSTRUCTION_BSPLINE: i32 = 1;
+
+fn reconstruction() -> i32 {
+    return RAY_RECONSTRUCTION;
+}
 
 // Whether the grid textures are bricked (ray.bricked, unless RAY_BRICKED says).
 fn bricked() -> bool {
@@ -175,9 +185,22 @@ fn fast_exponent() -> bool {
 // NO_DATA_TEXEL = -1000 there; NaN is not used because shader compilers may assume no NaN).
 const NO_DATA: f32 = -1.0e30;
 
-// Data value at continuous voxel coordinates q (clamped to the grid, trilinear), or NO_DATA.
+// The volume's normalised texel at continuous voxel coordinates q (clamped to the grid), by
+// the reconstruction filter (RAY_RECONSTRUCTION); below −0.5 where it leans on "no data".
+fn texel_at(q: vec3<f32>) -> f32 {
+    if reconstruction() == RECONSTRUCTION_BSPLINE {
+        return bspline_texel(q);
+    }
+    return trilinear_texel(q);
+}
+
+fn trilinear_texel(q: vec3<f32>) -> f32 {
+    return textureSampleLevel(volume, linear_clamp, grid_uv(q), 0.0).r;
+}
+
+// Data value at continuous voxel coordinates q (clamped to the grid), or NO_DATA.
 fn value_at(q: vec3<f32>) -> f32 {
-    let normalised = textureSampleLevel(volume, linear_clamp, grid_uv(q), 0.0).r;
+    let normalised = texel_at(q);
     if normalised < -0.5 {
         return NO_DATA;
     }
@@ -189,9 +212,22 @@ fn no_data(v: f32) -> bool {
     return v <= NO_DATA;
 }
 
-// World-space gradient by central differences in voxel space (one-sided at the border and next
-// to "no data", 0 with no data on both sides), mapped to world units through the transform.
+// World-space gradient at voxel-space q by the reconstruction filter: central differences of
+// trilinear samples, or the B-spline's own derivative (Hadwiger §1.3); mapped to world units
+// through the transform.
 fn gradient_at(q: vec3<f32>) -> vec3<f32> {
+    if reconstruction() == RECONSTRUCTION_BSPLINE {
+        let g = bspline_gradient(q);
+        if g.w == 0.0 {
+            return (ray.grad_to_world * vec4<f32>(g.xyz, 0.0)).xyz;
+        }
+    }
+    return central_gradient(q);
+}
+
+// Central differences in voxel space (one-sided at the border and next to "no data", 0 with no
+// data on both sides), mapped to world units.
+fn central_gradient(q: vec3<f32>) -> vec3<f32> {
     let top = ray.dims - 1.0;
     let p = clamp(q, vec3<f32>(0.0), top);
     var g = vec3<f32>(0.0);
@@ -200,17 +236,26 @@ fn gradient_at(q: vec3<f32>) -> vec3<f32> {
         var hi = p;
         lo[axis] = max(p[axis] - 1.0, 0.0);
         hi[axis] = min(p[axis] + 1.0, top[axis]);
-        let a = value_at(lo);
-        let b = value_at(hi);
+        let a = trilinear_value(lo);
+        let b = trilinear_value(hi);
         if !no_data(a) && !no_data(b) {
             g[axis] = (b - a) / (hi[axis] - lo[axis]);
         } else if !no_data(a) && p[axis] > lo[axis] {
-            g[axis] = (value_at(p) - a) / (p[axis] - lo[axis]);
+            g[axis] = (trilinear_value(p) - a) / (p[axis] - lo[axis]);
         } else if !no_data(b) && hi[axis] > p[axis] {
-            g[axis] = (b - value_at(p)) / (hi[axis] - p[axis]);
+            g[axis] = (b - trilinear_value(p)) / (hi[axis] - p[axis]);
         }
     }
     return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
+}
+
+// value_at with the trilinear filter whatever the reconstruction.
+fn trilinear_value(q: vec3<f32>) -> f32 {
+    let normalised = trilinear_texel(q);
+    if normalised < -0.5 {
+        return NO_DATA;
+    }
+    return ray.texel_values.x + normalised * (ray.texel_values.y - ray.texel_values.x);
 }
 
 fn hash(p: vec2<f32>) -> f32 {

@@ -22,7 +22,7 @@ fn cast_mip(r: PrimaryRay, start: f32, h: f32) -> RayResult {
     var best_t = -1.0;
     for (var k = 0u; k < count; k++) {
         let t = start + f32(k) * h;
-        let texel = textureSampleLevel(volume, linear_clamp, grid_uv(r.q0 + r.dq * t), 0.0).r;
+        let texel = texel_at(r.q0 + r.dq * t);
         if texel > best {
             best = texel;
             best_t = t;

@@ -54,6 +54,14 @@ fn every_preset_loads_validates_and_renders() {
 /// 49,152 pixels).
 #[test]
 fn shared_data_presets_render_as_before_the_world_space_change() {
+    const SAMPLERS: [&str; 6] = [
+        "Raycast",
+        "IsoSurfaceRaycast",
+        "TwoLevelRaycast",
+        "SelectionRender",
+        "Curvature",
+        "CurvatureContours",
+    ];
     let dir = common::repo_root().join("tests/fixtures/before_world_space");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -86,6 +94,19 @@ fn shared_data_presets_render_as_before_the_world_space_change() {
             .collect();
         for id in k_buffers {
             session.set_param_text(&id, "method", "peel").unwrap();
+        }
+        // Likewise a preset on the B-spline (issue 36) is compared with the trilinear filter
+        // the references were drawn with; tests/reconstruction.rs checks the B-spline.
+        let samplers: Vec<String> = session
+            .graph
+            .nodes()
+            .filter(|n| SAMPLERS.contains(&n.kind.as_str()))
+            .map(|n| n.id.clone())
+            .collect();
+        for id in samplers {
+            session
+                .set_param_text(&id, "reconstruction", "trilinear")
+                .unwrap();
         }
         let nearest_label_rows = session.graph.nodes().any(|n| {
             n.kind == "StyleTransferFunction" && !n.params.text("label_nodes").trim().is_empty()

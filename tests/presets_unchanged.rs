@@ -10,7 +10,8 @@
 //! Re-blessed on purpose: `selection_frog` (issue 32: samples beyond the box of voxel centres are
 //! outside the volume, 3/255 at its border). `hidden_layers_brain` takes its layers from
 //! DepthLayers since issue 32: unchanged here at 160×120; the few silhouette pixels that flip at
-//! larger sizes are bounded in tests/depth_layers.rs.
+//! larger sizes are bounded in tests/depth_layers.rs. `tf1d_phong_brain` and `style_tf_brain`
+//! (issue 36: the tricubic B-spline reconstruction, checked in tests/reconstruction.rs).
 
 mod common;
 

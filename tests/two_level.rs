@@ -495,7 +495,12 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
         ),
     ];
     let volume_value = Value::Volume(Arc::new(Volume::new(volume.clone())));
-    for (name, mode, compositing, ray_mode, shading) in cases {
+    // Both reconstructions (issue 36): the filters are shared, so the pictures still agree.
+    let runs = cases
+        .iter()
+        .flat_map(|c| ["trilinear", "bspline"].map(|r| (*c, r)));
+    for ((name, mode, compositing, ray_mode, shading), reconstruction) in runs {
+        let name = &format!("{name} ({reconstruction})");
         let styles = vec![
             ObjectStyle {
                 mode,
@@ -524,6 +529,7 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
                 ("step", ParamValue::Float(STEP as f64)),
                 ("jitter", ParamValue::Bool(false)),
                 ("early_termination", ParamValue::Float(0.99)),
+                ("reconstruction", ParamValue::Choice(reconstruction.into())),
             ],
         );
         let two_level = export::to_array(&out[0], &session.ctx.gpu).unwrap();
@@ -547,6 +553,7 @@ fn one_object_alone_renders_like_raycast_with_its_transfer_function_and_mode() {
                 ("step", ParamValue::Float(STEP as f64)),
                 ("jitter", ParamValue::Bool(false)),
                 ("early_termination", ParamValue::Float(0.99)),
+                ("reconstruction", ParamValue::Choice(reconstruction.into())),
             ],
         );
         let raycast = export::to_array(&out[0], &session.ctx.gpu).unwrap();

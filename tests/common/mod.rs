@@ -3,6 +3,7 @@
 
 #![allow(dead_code)]
 
+pub mod bspline_reference;
 pub mod images;
 pub mod importance_reference;
 pub mod npy;

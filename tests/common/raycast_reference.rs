@@ -147,9 +147,28 @@ pub fn world_step(volume: &VolumeData, p: &RayParams) -> f32 {
     p.step_voxels * min_spacing
 }
 
+/// How values and gradients are reconstructed between voxels (the nodes' `reconstruction`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Filter {
+    /// Trilinear values, central differences of trilinear values for gradients.
+    Trilinear,
+    /// The tricubic B-spline's values and gradients ([`super::bspline_reference`]).
+    Bspline,
+}
+
 /// Premultiplied RGBA per pixel, row 0 at the top.
 pub fn render(volume: &VolumeData, tf: &TransferFunction1D, p: &RayParams) -> Vec<[f32; 4]> {
-    let caster = Caster::new(volume, p);
+    render_with(volume, tf, p, Filter::Trilinear)
+}
+
+/// [`render`] with the given reconstruction filter.
+pub fn render_with(
+    volume: &VolumeData,
+    tf: &TransferFunction1D,
+    p: &RayParams,
+    filter: Filter,
+) -> Vec<[f32; 4]> {
+    let caster = Caster::new(volume, p, filter);
     per_pixel(p.width, p.height, |x, y| caster.pixel(tf, x, y))
 }
 
@@ -157,7 +176,17 @@ pub fn render(volume: &VolumeData, tf: &TransferFunction1D, p: &RayParams) -> Ve
 /// [`Mode::Iso`] finds it; 1 if none) and the view-space unit normal `−g / |g|` there (towards
 /// lower values; zero if no hit or `|g| < 1e-12`). `p.mode` and `p.shading` are ignored.
 pub fn gbuffer_iso(volume: &VolumeData, p: &RayParams, iso: f32) -> Vec<(f32, Vec3)> {
-    let caster = Caster::new(volume, p);
+    gbuffer_iso_with(volume, p, iso, Filter::Trilinear)
+}
+
+/// [`gbuffer_iso`] with the given reconstruction filter.
+pub fn gbuffer_iso_with(
+    volume: &VolumeData,
+    p: &RayParams,
+    iso: f32,
+    filter: Filter,
+) -> Vec<(f32, Vec3)> {
+    let caster = Caster::new(volume, p, filter);
     per_pixel(p.width, p.height, |x, y| {
         let Some(ray) = caster.ray(x, y) else {
             return (1.0, Vec3::ZERO);
@@ -221,6 +250,7 @@ impl Ray {
 struct Caster<'a> {
     volume: &'a VolumeData,
     p: &'a RayParams,
+    filter: Filter,
     h: f32,
     /// Gradient magnitude normaliser (0 for a constant volume).
     gmax: f32,
@@ -232,7 +262,7 @@ struct Caster<'a> {
 }
 
 impl<'a> Caster<'a> {
-    fn new(volume: &'a VolumeData, p: &'a RayParams) -> Self {
+    fn new(volume: &'a VolumeData, p: &'a RayParams, filter: Filter) -> Self {
         let h = world_step(volume, p);
         assert!(
             h > 0.0 && h.is_finite(),
@@ -246,6 +276,7 @@ impl<'a> Caster<'a> {
         Self {
             volume,
             p,
+            filter,
             h,
             gmax: if needs_gmax {
                 max_gradient_magnitude(volume)
@@ -286,11 +317,17 @@ impl<'a> Caster<'a> {
     }
 
     fn value(&self, pos: Vec3) -> f32 {
-        self.volume.sample_trilinear(self.voxel(pos))
+        match self.filter {
+            Filter::Trilinear => self.volume.sample_trilinear(self.voxel(pos)),
+            Filter::Bspline => super::bspline_reference::value(self.volume, self.voxel(pos)),
+        }
     }
 
     fn gradient(&self, pos: Vec3) -> Vec3 {
-        self.volume.gradient(self.voxel(pos))
+        match self.filter {
+            Filter::Trilinear => self.volume.gradient(self.voxel(pos)),
+            Filter::Bspline => super::bspline_reference::gradient(self.volume, self.voxel(pos)),
+        }
     }
 
     fn gradient_norm(&self, g: Vec3) -> f32 {

@@ -15,7 +15,7 @@ pub const VISIBILITY_BINS: usize = 1024;
 /// value itself is visible (see [`visibility_prefix`]).
 pub const VISIBILITY_ENTRIES: usize = VISIBILITY_BINS + 1;
 
-/// `[min, max]` of the values a trilinear sample can take inside each brick.
+/// `[min, max]` of the values a sample can take inside each brick.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BrickRanges {
     /// Bricks along x, y, z: `ceil(dims / BRICK)`.
@@ -42,16 +42,26 @@ pub fn brick_dims(volume: &VolumeData) -> [u32; 3] {
 /// `[f32::MAX, f32::MIN]` (min > max).
 pub fn brick_ranges(volume: &VolumeData, pad: f32) -> BrickRanges {
     let dims = brick_dims(volume);
-    let ranges = brick_range_layers(volume, pad, 0..dims[2]);
+    let ranges = brick_range_layers(volume, pad, 0..dims[2], 0);
     BrickRanges { dims, ranges }
 }
 
-/// [`brick_ranges`] of the brick layers `layers` (brick z indices) only, x fastest — so a big
-/// volume's table can be built and uploaded a slab at a time.
+/// [`brick_ranges`] for a filter that reaches `reach` voxels further than the trilinear one on
+/// every side: a tricubic B-spline sample at `q` (reach 1) mixes voxels `floor(q) − 1 ..=
+/// floor(q) + 2` with non-negative weights that sum to 1, so it stays inside their range.
+pub fn brick_ranges_reaching(volume: &VolumeData, pad: f32, reach: u32) -> BrickRanges {
+    let dims = brick_dims(volume);
+    let ranges = brick_range_layers(volume, pad, 0..dims[2], reach);
+    BrickRanges { dims, ranges }
+}
+
+/// [`brick_ranges_reaching`] of the brick layers `layers` (brick z indices) only, x fastest — so
+/// a big volume's table can be built and uploaded a slab at a time.
 pub fn brick_range_layers(
     volume: &VolumeData,
     pad: f32,
     layers: std::ops::Range<u32>,
+    reach: u32,
 ) -> Vec<[f32; 2]> {
     let [nx, ny, nz] = volume.dims;
     let minimum = volume.value_range[0];
@@ -69,7 +79,7 @@ pub fn brick_range_layers(
             ];
             let span = |axis: usize, n: u32| {
                 let first = b[axis] * BRICK;
-                first..=((first + BRICK).min(n - 1))
+                first.saturating_sub(reach)..=((first + BRICK + reach).min(n - 1))
             };
             let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
             for z in span(2, nz) {

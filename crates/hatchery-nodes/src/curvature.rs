@@ -3,6 +3,7 @@
 //! see shaders/curvature.wgsl for the rule and the output's channels).
 
 use crate::raycast::{Kernel, RayBindings, RayOptions, RayUniforms, TableInfo, linear_clamp_sampler};
+pub use crate::reconstruction::Reconstruction;
 use crate::screen_pass;
 use crate::value::Image;
 use crate::{Ctx, Value};
@@ -35,6 +36,10 @@ hatchery_graph::node_params! {
     pub struct CurvatureParams {
         /// finite-difference step of the Hessian, voxels (of the smallest spacing)
         pub step: f32 = 1.0, range(0.25, 8.0);
+        /// reconstruction: trilinear with the Hessian by central differences of the gradient at
+        /// ±`step`, or the tricubic B-spline's own gradient and second derivatives (Hadwiger
+        /// §1.3; `step` unused)
+        pub reconstruction: Reconstruction = Reconstruction::Trilinear;
     }
 }
 
@@ -48,7 +53,8 @@ impl Node<Value, Ctx> for CurvatureNode {
             doc: "Principal curvatures of the iso-surface in a G-buffer (Hadwiger's deferred \
                   iso-surface shading, the tutorial's §1): at each pixel's surface point the \
                   volume's gradient g and Hessian H (central differences of the gradient at \
-                  ±`step` voxels along the world axes), the shape operator −P H P / |g| in the \
+                  ±`step` voxels along the world axes, or the tricubic B-spline's own second \
+                  derivatives with reconstruction bspline), the shape operator −P H P / |g| in the \
                   tangent plane, its eigenvalues κ1 ≥ κ2 (world units⁻¹, positive where the \
                   surface bulges towards lower values) and the first principal direction. \
                   Output image channels (32-bit float data): (κ1, κ2, θ1, θ2) with θ1, θ2 the \
@@ -80,6 +86,7 @@ impl Node<Value, Ctx> for CurvatureNode {
         inputs: &NodeInputs<Value>,
         p: &Params,
     ) -> Result<Vec<Value>, NodeError> {
+        let params = CurvatureParams::read(p)?;
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let output = surface_pass(
@@ -88,32 +95,49 @@ impl Node<Value, Ctx> for CurvatureNode {
             CURVATURE_FORMAT,
             &gbuffer,
             &volume,
-            CurvatureParams::read(p)?.step,
+            HessianFilter::of(params.step, params.reconstruction),
             None,
         )?;
         Ok(vec![Value::Image(Arc::new(Image { texture: output }))])
     }
 }
 
+/// How a curvature pass reconstructs the Hessian: central differences of the gradient at
+/// ±`step_voxels` (voxels of the smallest spacing), or the B-spline's own second derivatives
+/// (Hadwiger §1.3; the step is then unused but next to "no data").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HessianFilter {
+    pub step_voxels: f32,
+    pub reconstruction: Reconstruction,
+}
+
+impl HessianFilter {
+    pub fn of(step_voxels: f32, reconstruction: Reconstruction) -> HessianFilter {
+        HessianFilter { step_voxels, reconstruction }
+    }
+}
+
 /// Runs a fragment program of the curvature family (shaders/curvature_common.wgsl prepended)
 /// over the G-buffer's frame: in group 0 the ray uniforms of `gbuffer`'s camera over `volume`,
 /// the volume and its sampler ([`RayBindings`]); in group 1 the G-buffer depth and the
-/// finite-difference step `step_voxels` × the smallest spacing ([`CurvatureBindings`]) and, if
-/// given, `extra` as the program's own uniform after them ([`CURVATURE_OWN_FIRST`]).
+/// finite-difference step of `hessian` × the smallest spacing ([`CurvatureBindings`]), the
+/// program specialised for its reconstruction and, if given, `extra` as the program's own
+/// uniform after them ([`CURVATURE_OWN_FIRST`]).
 pub fn surface_pass(
     ctx: &mut Ctx,
     program: &'static str,
     format: wgpu::TextureFormat,
     gbuffer: &crate::value::GBuffer,
     volume: &crate::value::Volume,
-    step_voxels: f32,
+    hessian: HessianFilter,
     extra: Option<&[u8]>,
 ) -> Result<wgpu::Texture, NodeError> {
+    let HessianFilter { step_voxels, reconstruction } = hessian;
     let camera = &gbuffer.camera;
     let err = |e: GpuError| NodeError::new(e.to_string());
     let pipeline = ctx
-        .cached(&format!("{program}.pipeline"), |gpu| {
-            screen_pass::pipeline(gpu, program, format)
+        .cached(&format!("{program}.pipeline.{}", reconstruction.code()), |gpu| {
+            screen_pass::pipeline_specialised(gpu, program, format, &[reconstruction.constant()])
         })
         .map_err(err)?;
     let sampler = linear_clamp_sampler(ctx).map_err(err)?;

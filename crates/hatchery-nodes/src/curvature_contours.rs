@@ -2,7 +2,7 @@
 //! along the view direction (Kindlmann et al. 2003 §5, the tutorial's §1; see
 //! shaders/curvature_contours.wgsl for the test).
 
-use crate::curvature::surface_pass;
+use crate::curvature::{HessianFilter, Reconstruction, surface_pass};
 use crate::screen_pass::MASK_FORMAT;
 use crate::value::Mask;
 use crate::{Ctx, Value};
@@ -28,6 +28,8 @@ hatchery_graph::node_params! {
         pub thickness: f32 = 2.0, range(0.25, 32.0);
         /// finite-difference step of the Hessian, voxels (as Curvature's)
         pub step: f32 = 1.0, range(0.25, 8.0);
+        /// reconstruction of the gradient and Hessian (as Curvature's)
+        pub reconstruction: Reconstruction = Reconstruction::Trilinear;
     }
 }
 
@@ -87,7 +89,7 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
             MASK_FORMAT,
             &gbuffer,
             &volume,
-            params.step,
+            HessianFilter::of(params.step, params.reconstruction),
             Some(bytemuck::bytes_of(&uniforms)),
         )?;
         Ok(vec![Value::Mask(Arc::new(Mask { texture: mask }))])

@@ -268,6 +268,10 @@ hatchery_graph::node_params! {
         pub shading: Shading = Shading::PhongContour;
         /// sample distance in voxels (of the smallest spacing)
         pub step: f32 = 0.5, range(0.05, 8.0);
+        /// reconstruction of the data between voxels: trilinear, or the tricubic B-spline's
+        /// values and gradients (Hadwiger §1.3)
+        pub reconstruction: crate::reconstruction::Reconstruction =
+            crate::reconstruction::Reconstruction::Trilinear;
         /// jitter the first sample per pixel
         pub jitter: bool = true;
         /// stop a ray at this opacity (1 = never)
@@ -404,12 +408,17 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             ..TableInfo::plain()
         };
         let err = |e: GpuError| NodeError::new(e.to_string());
-        // Bricked or not as a pipeline constant (RAY_BRICKED, shaders/ray_common.wgsl).
+        // Bricked or not and the reconstruction as pipeline constants (shaders/ray_common.wgsl).
         let bricked = volume.texture(&ctx.gpu).map_err(err)?.layout.is_some();
+        let reconstruction = params.reconstruction;
         let pipelines = ctx
-            .cached(&format!("selection_render.pipelines.{bricked}"), |gpu| {
-                RayPipelines::specialised(gpu, "selection_render", &[("RAY_BRICKED", bricked.into())])
-            })
+            .cached(
+                &format!("selection_render.pipelines.{bricked}.{}", reconstruction.code()),
+                |gpu| {
+                    let constants = [("RAY_BRICKED", bricked.into()), reconstruction.constant()];
+                    RayPipelines::specialised(gpu, "selection_render", &constants)
+                },
+            )
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
         let gpu = &ctx.gpu;
@@ -457,7 +466,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
                 }],
             )),
         );
-        let bricks = volume.bricks(gpu).map_err(err)?;
+        let bricks = volume.bricks(gpu, params.reconstruction).map_err(err)?;
         let tf_rows: Vec<f32> = [&background, &ghost, &selected]
             .iter()
             .flat_map(|f| f.lut.iter().flatten().copied())

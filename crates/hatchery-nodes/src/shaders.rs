@@ -26,6 +26,7 @@ pub(crate) use part;
 pub const MESH_COMMON: &str = shader_file!("mesh_common.wgsl");
 pub const FULLSCREEN: &str = shader_file!("fullscreen.wgsl");
 pub const RAY_COMMON: &str = shader_file!("ray_common.wgsl");
+pub const RAY_BSPLINE: &str = shader_file!("ray_bspline.wgsl");
 pub const RAY_CLASSIFY: &str = shader_file!("ray_classify.wgsl");
 pub const RAY_SHADE: &str = shader_file!("ray_shade.wgsl");
 pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
@@ -52,6 +53,7 @@ pub fn ray(own: Part) -> Parts {
     vec![
         ("fullscreen.wgsl", FULLSCREEN),
         ("ray_common.wgsl", RAY_COMMON),
+        ("ray_bspline.wgsl", RAY_BSPLINE),
         ("ray_classify.wgsl", RAY_CLASSIFY),
         ("ray_shade.wgsl", RAY_SHADE),
         ("ray_skip.wgsl", RAY_SKIP),
@@ -71,6 +73,7 @@ pub fn curvature(own: Part) -> Parts {
     vec![
         ("fullscreen.wgsl", FULLSCREEN),
         ("ray_common.wgsl", RAY_COMMON),
+        ("ray_bspline.wgsl", RAY_BSPLINE),
         ("curvature_common.wgsl", CURVATURE_COMMON),
         own,
     ]

@@ -157,6 +157,10 @@ hatchery_graph::node_params! {
         pub normals: Normals = Normals::Data;
         /// sample distance in voxels (of the smallest spacing)
         pub step: f32 = 0.5, range(0.05, 8.0);
+        /// reconstruction of the data between voxels: trilinear, or the tricubic B-spline's
+        /// values and gradients (Hadwiger §1.3)
+        pub reconstruction: crate::reconstruction::Reconstruction =
+            crate::reconstruction::Reconstruction::Trilinear;
         pub phong: PhongParams = Group;
         /// jitter the first sample per pixel
         pub jitter: bool = true;
@@ -307,6 +311,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let method = importance.as_ref().map_or(0, |i| i.method.code());
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
+            params.reconstruction.constant(),
             ("TL_GLOBAL", f64::from(params.global.code())),
             ("TL_METHOD", f64::from(method)),
             ("TL_FILTER", f64::from(u8::from(filtered))),

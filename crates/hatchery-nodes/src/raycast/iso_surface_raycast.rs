@@ -1,7 +1,7 @@
 //! `IsoSurfaceRaycast`: the first hit of an iso value along each ray as a G-buffer (declared
 //! with `Raycast` in mod.rs: the same program).
 
-use super::{Kernel, KernelChoice, RayMode, RayOptions, RayShading, cast};
+use super::{Kernel, KernelChoice, RayMode, RayOptions, RayShading, Reconstruction, cast};
 use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_graph::{DataValue, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node};
@@ -15,6 +15,9 @@ hatchery_graph::node_params! {
         pub iso: DataValue = 0.0, range(-1e12, 1e12);
         /// sample distance in voxels
         pub step: f32 = 0.25, range(0.05, 8.0);
+        /// reconstruction between voxels: trilinear, or the tricubic B-spline's values and
+        /// normals (a smooth surface where trilinear shows the voxel lattice)
+        pub reconstruction: Reconstruction = Reconstruction::Trilinear;
     }
 }
 
@@ -73,6 +76,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             rho: 1.0,
             embed: false,
             fast_exponent: false,
+            reconstruction: params.reconstruction,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])

@@ -370,9 +370,12 @@ pub fn cast(
     } else {
         0
     };
+    let reconstruction = o.reconstruction.code();
     let pipelines = ctx
         .cached(
-            &format!("raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}"),
+            &format!(
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}"
+            ),
             |gpu| {
                 let constants = [
                     ("RAY_MODE", mode as f64),
@@ -380,6 +383,7 @@ pub fn cast(
                     ("RAY_ORTHOGRAPHIC", orthographic as f64),
                     ("RAY_FAST_EXPONENT", fast as f64),
                     ("RAY_BRICKED", bricked as f64),
+                    o.reconstruction.constant(),
                 ];
                 RayPipelines::specialised(gpu, "raycast", &constants)
             },

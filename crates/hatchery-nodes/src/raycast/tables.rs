@@ -270,7 +270,10 @@ impl RayTables {
             index: view(index_texture.as_ref(), &st.blank_index),
             labels: labels_view,
             label_rows: view(label_rows.as_ref(), &st.blank_label_rows),
-            bricks: volume.bricks(gpu).map_err(err)?.create_view(&Default::default()),
+            bricks: volume
+                .bricks(gpu, o.reconstruction)
+                .map_err(err)?
+                .create_view(&Default::default()),
             visibility: visibility.create_view(&Default::default()),
             info,
         })

@@ -26,6 +26,8 @@ pub struct Volume {
     max_gradient: OnceLock<f32>,
     /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
     bricks: OnceLock<wgpu::Texture>,
+    /// The same for tricubic B-spline samples (they reach one voxel further).
+    bricks_bspline: OnceLock<wgpu::Texture>,
     frame_points: OnceLock<Vec<glam::Vec3>>,
     /// The next coarser level of detail, made when a brick pool cannot hold this one (and the
     /// same by majority, for a volume of label ids).
@@ -47,6 +49,7 @@ impl Volume {
             texture: OnceLock::new(),
             max_gradient: OnceLock::new(),
             bricks: OnceLock::new(),
+            bricks_bspline: OnceLock::new(),
             frame_points: OnceLock::new(),
             coarser: OnceLock::new(),
             coarser_labels: OnceLock::new(),
@@ -90,12 +93,21 @@ impl Volume {
     pub fn bricked(&self) -> Option<&crate::brick_pool::BrickLayout> {
         self.texture.get().and_then(|t| t.layout.as_ref())
     }
-    /// The `[min, max]` value of each brick of voxels (see `hatchery_data::bricks`), computed and
-    /// uploaded once. Ranges are widened by 1/1000 of the value range: the volume texture stores
-    /// values in half precision. Errors: the table (1/8 of the grid per axis) beyond the
-    /// adapter's 3-D texture limit — a grid over 8 × that limit along an axis.
-    pub fn bricks(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
-        if let Some(t) = self.bricks.get() {
+    /// The `[min, max]` value samples of `reconstruction` can take in each brick of voxels (see
+    /// `hatchery_data::bricks`; the B-spline reaches one voxel further), computed and uploaded
+    /// once. Ranges are widened by 1/1000 of the value range: the volume texture stores values
+    /// in half precision. Errors: the table (1/8 of the grid per axis) beyond the adapter's 3-D
+    /// texture limit — a grid over 8 × that limit along an axis.
+    pub fn bricks(
+        &self,
+        gpu: &GpuContext,
+        reconstruction: crate::reconstruction::Reconstruction,
+    ) -> Result<&wgpu::Texture, GpuError> {
+        let (cell, reach) = match reconstruction {
+            crate::reconstruction::Reconstruction::Trilinear => (&self.bricks, 0),
+            crate::reconstruction::Reconstruction::Bspline => (&self.bricks_bspline, 1),
+        };
+        if let Some(t) = cell.get() {
             return Ok(t);
         }
         use hatchery_data::bricks::{brick_dims, brick_range_layers};
@@ -108,11 +120,11 @@ impl Volume {
             brick_dims(&self.data),
             wgpu::TextureFormat::Rg32Float,
             |z0, z1, out| {
-                let ranges = brick_range_layers(&self.data, pad, z0..z1);
+                let ranges = brick_range_layers(&self.data, pad, z0..z1, reach);
                 out.extend_from_slice(bytemuck::cast_slice(&ranges));
             },
         )?;
-        Ok(self.bricks.get_or_init(|| t))
+        Ok(cell.get_or_init(|| t))
     }
     /// The largest gradient magnitude (world units), computed once: normalises |g| to [0, 1].
     pub fn max_gradient(&self) -> f32 {
