@@ -78,6 +78,40 @@ fn ray_mode() -> u32 {
     return select(ray.mode, u32(RAY_MODE), RAY_MODE >= 0);
 }
 
+// Pre-integrated transfer function (Engel et al. 2001; hatchery_data::preintegration): 1 when
+// tf_table holds the segment table in rows 1 … LUT_SIZE (row 1 + front position, column back
+// position). Specialised by the Raycast node.
+override RAY_PREINTEGRATED: i32 = 0;
+
+fn preintegrated() -> bool {
+    return RAY_PREINTEGRATED == 1;
+}
+
+// Position of data value v in the transfer function's table, [0, LUT_SIZE − 1].
+fn table_position(v: f32) -> f32 {
+    let span = ray.tf_domain.y - ray.tf_domain.x;
+    var u = 0.0;
+    if span > 0.0 {
+        u = clamp((v - ray.tf_domain.x) / span, 0.0, 1.0);
+    }
+    return u * (LUT_SIZE - 1.0);
+}
+
+// The segment whose value runs from `front` to `back`: premultiplied colour and opacity, for
+// the step, bilinear between the table's entries.
+fn preintegrated_lookup(front: f32, back: f32) -> vec4<f32> {
+    let x = table_position(back);
+    let y = table_position(front);
+    let k = min(floor(vec2<f32>(x, y)), vec2<f32>(LUT_SIZE - 2.0));
+    let f = vec2<f32>(x, y) - k;
+    let c = vec2<i32>(i32(k.x), 1 + i32(k.y));
+    let a = textureLoad(tf_table, c, 0);
+    let b = textureLoad(tf_table, c + vec2<i32>(1, 0), 0);
+    let d = textureLoad(tf_table, c + vec2<i32>(0, 1), 0);
+    let e = textureLoad(tf_table, c + vec2<i32>(1, 1), 0);
+    return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
+}
+
 fn cast_ray(position: vec2<f32>) -> RayResult {
     var out: RayResult;
     out.color = vec4<f32>(0.0);
@@ -124,6 +158,8 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
     var previous_t = 0.0;
     var previous_normal = vec3<f32>(0.0);
     var hit_t = -1.0;
+    // Pre-integration: the value at the previous sample (NO_DATA: none; the segment restarts).
+    var segment_front = NO_DATA;
     let count = min(u32(max(floor((t_out - start) / h), -1.0) + 1.0), 65536u);
 
     let skipping = ray.skip_empty != 0u;
@@ -146,7 +182,12 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             // An empty range (min > max) holds only "no data".
             var skip = range.x > range.y;
             if !skip && mode == RAY_MODE_DVR {
-                skip = range_is_invisible(range);
+                var seen = range;
+                if preintegrated() && !no_data(segment_front) {
+                    // The segment into the brick runs from the previous sample's value.
+                    seen = vec2<f32>(min(seen.x, segment_front), max(seen.y, segment_front));
+                }
+                skip = range_is_invisible(seen);
             } else if !skip && mode == RAY_MODE_MIP {
                 skip = range.y <= best;
             } else if !skip {
@@ -163,6 +204,10 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
                     previous_value = value_at(q0 + dq * t_before);
                     previous_t = t_before;
                 }
+                if preintegrated() {
+                    // The next segment starts at the sample before it, as without skipping.
+                    segment_front = value_at(q0 + dq * (start + (next - 1.0) * h));
+                }
                 k = u32(next) - 1u;
                 // κv restarts after a gap, as after any transparent sample.
                 previous_normal = vec3<f32>(0.0);
@@ -174,6 +219,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             // Transparent; the next iso crossing starts afresh, κv restarts after the gap.
             previous_value = NO_DATA;
             previous_normal = vec3<f32>(0.0);
+            segment_front = NO_DATA;
             continue;
         }
 
@@ -206,6 +252,13 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         var classified = entry.a;
         if shading == SHADING_STYLE {
             classified = entry.y;
+        }
+        var segment = vec4<f32>(0.0);
+        if preintegrated() {
+            // The segment from the previous sample to this one (this one alone at the start).
+            segment = preintegrated_lookup(select(segment_front, v, no_data(segment_front)), v);
+            segment_front = v;
+            classified = segment.a;
         }
         if classified <= 0.0 {
             // κv restarts after a gap (no normal to compare with).
@@ -251,6 +304,11 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
         // (TF opacities are per voxel).
         a = 1.0 - pow(1.0 - clamp(a * ray.rho, 0.0, 1.0), step_voxels);
+        if preintegrated() {
+            // The segment's opacity (ρ and the step are in the table) and its mean colour.
+            a = segment.a;
+            c = clamp(segment.rgb / max(segment.a, 1e-6) * phong, vec3<f32>(0.0), vec3<f32>(1.0));
+        }
         if shading == SHADING_CONTEXT {
             // Context-preserving opacity, eq. 5 (applied to the corrected opacity).
             a = context_preserving(a, phong, g_norm, p, p0, alpha);

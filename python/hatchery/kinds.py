@@ -1139,6 +1139,10 @@ class Raycast:
         reconstruction (one of 'trilinear', 'bspline'; default 'trilinear'): reconstruction
             between voxels: trilinear (fast), or the tricubic B-spline's values and gradients
             (no voxel lattice on sharp boundaries; about 4× the fetches)
+        preintegrated (bool; default False): DVR: a pre-integrated transfer function (Engel et
+            al. 2001) — each sample composites the whole segment from the previous one, so sharp
+            opacity ramps between samples are not missed (a 1-D colour transfer function,
+            shading none or phong)
         rho (float in [0, 1]; default 1.0): global alpha ρ (Yuan & Chen §5): every sample's
             opacity × ρ (DVR), so embedded strokes show through
         stroke_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour of embedded strokes
@@ -1174,6 +1178,7 @@ class Raycast:
     mip_bias: float = 0.0
     jitter: bool = True
     reconstruction: Literal['trilinear', 'bspline'] = 'trilinear'
+    preintegrated: bool = False
     rho: float = 1.0
     stroke_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     early_termination: float = 0.99

@@ -172,6 +172,20 @@ pub fn render_with(
     per_pixel(p.width, p.height, |x, y| caster.pixel(tf, x, y))
 }
 
+/// [`render`] (DVR, shading none or Phong) with a pre-integrated transfer function: each sample
+/// composites the segment from the previous sample's value to its own, integrated by
+/// `hatchery_data::preintegration::segment` at the exact (not tabulated) positions; the first
+/// sample of a ray is a constant segment.
+pub fn render_preintegrated(
+    volume: &VolumeData,
+    tf: &TransferFunction1D,
+    p: &RayParams,
+) -> Vec<[f32; 4]> {
+    let mut caster = Caster::new(volume, p, Filter::Trilinear);
+    caster.preintegrated = true;
+    per_pixel(p.width, p.height, |x, y| caster.pixel(tf, x, y))
+}
+
 /// Per pixel: the window depth `(view_proj · P).z / w` of the first crossing `P` of `iso` (as
 /// [`Mode::Iso`] finds it; 1 if none) and the view-space unit normal `−g / |g|` there (towards
 /// lower values; zero if no hit or `|g| < 1e-12`). `p.mode` and `p.shading` are ignored.
@@ -251,6 +265,7 @@ struct Caster<'a> {
     volume: &'a VolumeData,
     p: &'a RayParams,
     filter: Filter,
+    preintegrated: bool,
     h: f32,
     /// Gradient magnitude normaliser (0 for a constant volume).
     gmax: f32,
@@ -277,6 +292,7 @@ impl<'a> Caster<'a> {
             volume,
             p,
             filter,
+            preintegrated: false,
             h,
             gmax: if needs_gmax {
                 max_gradient_magnitude(volume)
@@ -480,12 +496,33 @@ impl<'a> Caster<'a> {
     fn dvr(&self, tf: &TransferFunction1D, ray: &Ray) -> [f32; 4] {
         let mut acc_c = Vec3::ZERO;
         let mut acc_a = 0.0f32;
+        let mut front: Option<f32> = None;
         for t in self.samples(ray) {
             let pos = ray.at(t);
             let v = self.value(pos);
             let [r, g, b, a] = tf.lookup(v);
             let mut c = Vec3::new(r, g, b);
             let mut alpha = 1.0 - (1.0 - a).powf(self.p.step_voxels);
+            if self.preintegrated {
+                let position = |v: f32| {
+                    let u = ((v - tf.domain[0]) / (tf.domain[1] - tf.domain[0])).clamp(0.0, 1.0);
+                    u * (hatchery_data::transfer_function::LUT_SIZE - 1) as f32
+                };
+                let [r, g, b, a] = hatchery_data::preintegration::segment(
+                    tf,
+                    position(front.unwrap_or(v)),
+                    position(v),
+                    self.p.step_voxels,
+                    1.0,
+                );
+                front = Some(v);
+                alpha = a;
+                c = if a > 0.0 {
+                    Vec3::new(r, g, b) / a
+                } else {
+                    Vec3::ZERO
+                };
+            }
             match &self.p.shading {
                 Shading::None => {}
                 Shading::Phong {

@@ -77,6 +77,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             embed: false,
             fast_exponent: false,
             reconstruction: params.reconstruction,
+            preintegrated: false,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])

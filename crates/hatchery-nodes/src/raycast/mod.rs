@@ -22,7 +22,7 @@ pub use tables::check_same_grid;
 pub use uniforms::{Grid, RayMode, RayShading, RayUniforms, TableInfo};
 
 use crate::camera::Camera;
-use crate::value::Image;
+use crate::value::{Image, TransferFunction};
 use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_graph::{
@@ -59,6 +59,9 @@ pub struct RayOptions<'a> {
     pub fast_exponent: bool,
     /// How values and gradients are reconstructed between voxels (Hadwiger §1.3).
     pub reconstruction: Reconstruction,
+    /// DVR with a pre-integrated transfer function (Engel et al. 2001): each sample composites
+    /// the segment from the previous sample (`hatchery_data::preintegration`).
+    pub preintegrated: bool,
 }
 
 impl RayOptions<'static> {
@@ -94,6 +97,7 @@ impl RayOptions<'static> {
             embed: false,
             fast_exponent: false,
             reconstruction: Reconstruction::Trilinear,
+            preintegrated: false,
         }
     }
 }
@@ -198,6 +202,10 @@ hatchery_graph::node_params! {
         /// reconstruction between voxels: trilinear (fast), or the tricubic B-spline's values
         /// and gradients (no voxel lattice on sharp boundaries; about 4× the fetches)
         pub reconstruction: Reconstruction = Reconstruction::Trilinear;
+        /// DVR: a pre-integrated transfer function (Engel et al. 2001) — each sample composites
+        /// the whole segment from the previous one, so sharp opacity ramps between samples are
+        /// not missed (a 1-D colour transfer function, shading none or phong)
+        pub preintegrated: bool = false;
         /// global alpha ρ (Yuan & Chen §5): every sample's opacity × ρ (DVR), so embedded strokes
         /// show through
         pub rho: f32 = 1.0, range(0.0, 1.0);
@@ -307,11 +315,22 @@ impl Node<Value, Ctx> for RaycastNode {
             embed: false,
             fast_exponent: params.fast_exponent,
             reconstruction: params.reconstruction,
+            preintegrated: params.preintegrated,
         };
         let labels = inputs
             .get("labels")
             .map(|l| l.volume("labels").cloned())
             .transpose()?;
+        if options.preintegrated {
+            let plain_tf = matches!(tf.as_ref(), TransferFunction::Color(_));
+            let shading = matches!(options.shading, RayShading::None | RayShading::Phong);
+            if options.mode != RayMode::Dvr || !plain_tf || !shading || labels.is_some() {
+                return Err(NodeError::new(
+                    "parameter `preintegrated`: pre-integration needs mode dvr, a 1-D colour \
+                     transfer function, no label volume and shading none or phong",
+                ));
+            }
+        }
         let strokes = match (inputs.get("strokes"), inputs.get("strokes_depth")) {
             (Some(m), Some(g)) => Some(Strokes {
                 mask: m.mask("strokes")?.clone(),

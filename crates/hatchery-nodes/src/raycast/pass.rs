@@ -371,10 +371,11 @@ pub fn cast(
         0
     };
     let reconstruction = o.reconstruction.code();
+    let preintegrated = u8::from(o.preintegrated);
     let pipelines = ctx
         .cached(
             &format!(
-                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}"
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}"
             ),
             |gpu| {
                 let constants = [
@@ -384,6 +385,7 @@ pub fn cast(
                     ("RAY_FAST_EXPONENT", fast as f64),
                     ("RAY_BRICKED", bricked as f64),
                     o.reconstruction.constant(),
+                    ("RAY_PREINTEGRATED", f64::from(preintegrated)),
                 ];
                 RayPipelines::specialised(gpu, "raycast", &constants)
             },

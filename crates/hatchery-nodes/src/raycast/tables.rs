@@ -8,7 +8,7 @@ use super::bindings::RayBindings;
 use super::pass::Statics;
 use super::uniforms::TableInfo;
 use crate::value::{TransferFunction, Volume};
-use hatchery_data::{bricks, lighting};
+use hatchery_data::{bricks, lighting, preintegration};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::NodeError;
 
@@ -138,13 +138,20 @@ impl RayTables {
         let table = match tf {
             Some(TransferFunction::Color(f)) => {
                 info.domain = f.domain;
-                let flat: Vec<f32> = f.lut.iter().flatten().copied().collect();
-                Some(floats_texture(
-                    gpu,
+                let mut flat: Vec<f32> = f.lut.iter().flatten().copied().collect();
+                if o.preintegrated {
+                    // Rows 1 … LUT_SIZE: the pre-integrated table, row 1 + front position,
+                    // column back position (shaders/raycast.wgsl, preintegrated_lookup).
+                    let table = preintegration::preintegrated_table(f, o.step_voxels, o.rho);
+                    flat.extend(table.iter().flatten());
+                }
+                let width = f.lut.len() as u32;
+                Some(gpu.texture_2d_init(
                     "tf",
-                    f.lut.len() as u32,
+                    width,
+                    (flat.len() / 4) as u32 / width,
                     wgpu::TextureFormat::Rgba32Float,
-                    &flat,
+                    bytemuck::cast_slice(&flat),
                 ))
             }
             Some(TransferFunction::Style {
