@@ -8,7 +8,9 @@
 // pairs of one sign, and a pair's weighted sum is one linear fetch between its two voxels, at
 // the fraction given by the pair's weight ratio, scaled by the pair's total weight. Each fetch
 // goes through grid_uv, so bricked grids (their one-voxel apron) and the border read as the
-// whole texture does. Where a fetch leans on "no data" the trilinear filter is used instead.
+// whole texture does. Where a fetch leans on "no data" the trilinear filter is used instead —
+// a guard only: a "no data" voxel of small weight passes it, so the nodes draw a volume with
+// "no data" trilinear (Reconstruction::on).
 // Curvature passes, which need the Hessian once per pixel rather than per sample, sum the
 // 4×4×4 voxels directly (bspline_derivatives).
 

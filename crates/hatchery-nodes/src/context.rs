@@ -18,6 +18,9 @@ pub struct RenderContext {
     current_node: Option<String>,
     /// Pipelines and other static GPU objects, built once per kind (not per execution).
     statics: HashMap<String, Arc<dyn Any + Send + Sync>>,
+    /// Data a node derived from its parameters and keeps for its next run, one value per
+    /// (node, slot), with the hash of what it was derived from (see [`Self::keep`]).
+    kept: HashMap<String, (u64, Arc<dyn Any + Send + Sync>)>,
     /// The last execution's warning of each node that gave one (a constant volume, an iso value
     /// with no surface): shown on stderr and on the node in the editor.
     warnings: BTreeMap<String, String>,
@@ -43,6 +46,7 @@ impl RenderContext {
             timer: None,
             current_node: None,
             statics: HashMap::new(),
+            kept: HashMap::new(),
             warnings: BTreeMap::new(),
             resolved: BTreeMap::new(),
             memory: HashMap::new(),
@@ -113,6 +117,31 @@ impl RenderContext {
         self.width = width;
         self.height = height;
         Ok(())
+    }
+
+    /// A value the executing node derives from its parameters (a pre-integration table), kept
+    /// for its next run: `build` runs only when `key` — a hash of what the value depends on —
+    /// differs from the kept one's, which is then dropped, so a slot holds one value however
+    /// often the parameters change (unlike [`Self::cached`], which keeps every key).
+    pub fn keep<T: Any + Send + Sync>(
+        &mut self,
+        slot: &str,
+        key: u64,
+        build: impl FnOnce() -> T,
+    ) -> Arc<T> {
+        let slot = format!(
+            "{}.{slot}",
+            self.current_node.as_deref().unwrap_or_default()
+        );
+        if let Some((kept_key, value)) = self.kept.get(&slot)
+            && *kept_key == key
+            && let Ok(value) = value.clone().downcast::<T>()
+        {
+            return value;
+        }
+        let value = Arc::new(build());
+        self.kept.insert(slot, (key, value.clone()));
+        value
     }
 
     /// A warning about the executing node's result: one line on stderr (through `tracing`),

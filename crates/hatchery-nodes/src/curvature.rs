@@ -89,13 +89,14 @@ impl Node<Value, Ctx> for CurvatureNode {
         let params = CurvatureParams::read(p)?;
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let volume = inputs.require("volume")?.volume("volume")?.clone();
+        let hessian = HessianFilter::of(params.step, params.reconstruction.on(ctx, &volume.data));
         let output = surface_pass(
             ctx,
             "curvature",
             CURVATURE_FORMAT,
             &gbuffer,
             &volume,
-            HessianFilter::of(params.step, params.reconstruction),
+            hessian,
             None,
         )?;
         Ok(vec![Value::Image(Arc::new(Image { texture: output }))])

@@ -83,13 +83,14 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
             pad1: 0.0,
             pad2: 0.0,
         };
+        let hessian = HessianFilter::of(params.step, params.reconstruction.on(ctx, &volume.data));
         let mask = surface_pass(
             ctx,
             "curvature_contours",
             MASK_FORMAT,
             &gbuffer,
             &volume,
-            HessianFilter::of(params.step, params.reconstruction),
+            hessian,
             Some(bytemuck::bytes_of(&uniforms)),
         )?;
         Ok(vec![Value::Mask(Arc::new(Mask { texture: mask }))])

@@ -24,6 +24,21 @@ impl Reconstruction {
     pub fn constant(self) -> (&'static str, f64) {
         ("RAY_RECONSTRUCTION", f64::from(self.code()))
     }
+
+    /// The filter a node uses on `volume`. The B-spline of a sample reads 64 voxels, and a
+    /// "no data" (NaN) voxel among them that carries little weight cannot be told from data
+    /// by the filtered fetches (it would pull the value down instead of falling back), so a
+    /// volume with "no data" voxels is drawn trilinear, with a warning.
+    pub fn on(self, ctx: &mut crate::Ctx, volume: &hatchery_data::VolumeData) -> Reconstruction {
+        if self == Reconstruction::Bspline && volume.has_no_data() {
+            ctx.warn(
+                "reconstruction bspline: the volume has \"no data\" (NaN) voxels, which the \
+                 B-spline cannot leave out; drawn with the trilinear filter",
+            );
+            return Reconstruction::Trilinear;
+        }
+        self
+    }
 }
 
 #[cfg(test)]

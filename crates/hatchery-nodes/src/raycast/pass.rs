@@ -278,9 +278,23 @@ pub fn cast(
         None => None,
     };
     let st = ctx.cached("raycast.statics", statics).map_err(err)?;
+    // The pre-integration table: rebuilt only when the function, step or ρ change.
+    let preintegrated = match tf {
+        Some(TransferFunction::Color(f)) if o.preintegrated => {
+            use std::hash::{Hash, Hasher};
+            let mut h = std::hash::DefaultHasher::new();
+            f.lut.iter().flatten().for_each(|x| x.to_bits().hash(&mut h));
+            (o.step_voxels.to_bits(), o.rho.to_bits()).hash(&mut h);
+            Some(ctx.keep("preintegration", h.finish(), || {
+                hatchery_data::preintegration::preintegrated_table(f, o.step_voxels, o.rho)
+            }))
+        }
+        _ => None,
+    };
     let gpu = &ctx.gpu;
     let volume_texture = volume.texture(gpu).map_err(err)?;
-    let tables = RayTables::new(gpu, &st, volume, tf, labels, o)?;
+    let table = preintegrated.as_ref().map(|t| t.as_slice());
+    let tables = RayTables::new(gpu, &st, volume, tf, labels, o, table)?;
     // Lighting TFs, context-preserving and style shading normalise |∇f| (eq. 5, 8, 2).
     let max_gradient = if tables.info.shading.code() >= RayShading::Lighting.code() {
         volume.max_gradient()

@@ -8,7 +8,7 @@ use super::bindings::RayBindings;
 use super::pass::Statics;
 use super::uniforms::TableInfo;
 use crate::value::{TransferFunction, Volume};
-use hatchery_data::{bricks, lighting, preintegration};
+use hatchery_data::{bricks, lighting};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::NodeError;
 
@@ -110,7 +110,9 @@ pub struct RayTables {
 
 impl RayTables {
     /// Builds the tables for `tf` (none: the iso-surface ray caster) and an optional label
-    /// volume. Errors: a style TF with per-label rows but no label volume, a label volume on
+    /// volume; `preintegrated`, the pre-integration table of `tf` where `o.preintegrated`
+    /// (`hatchery_data::preintegration::preintegrated_table`), goes into the TF texture's rows
+    /// 1 … LUT_SIZE. Errors: a style TF with per-label rows but no label volume, a label volume on
     /// another grid or elsewhere in the world, an unknown lighting model.
     pub fn new(
         gpu: &GpuContext,
@@ -119,6 +121,7 @@ impl RayTables {
         tf: Option<&TransferFunction>,
         labels: Option<&Volume>,
         o: &RayOptions,
+        preintegrated: Option<&[[f32; 4]]>,
     ) -> Result<Self, NodeError> {
         let err = |e: GpuError| NodeError::new(e.to_string());
         let data = &volume.data;
@@ -139,10 +142,9 @@ impl RayTables {
             Some(TransferFunction::Color(f)) => {
                 info.domain = f.domain;
                 let mut flat: Vec<f32> = f.lut.iter().flatten().copied().collect();
-                if o.preintegrated {
+                if let Some(table) = preintegrated {
                     // Rows 1 … LUT_SIZE: the pre-integrated table, row 1 + front position,
                     // column back position (shaders/raycast.wgsl, preintegrated_lookup).
-                    let table = preintegration::preintegrated_table(f, o.step_voxels, o.rho);
                     flat.extend(table.iter().flatten());
                 }
                 let width = f.lut.len() as u32;
