@@ -108,4 +108,17 @@ run importance_frog \
     graphs/importance_frog_mimp.ron benches/graphs/frog_dense.ron \
     --scenario orbit:camera --size "$sq"
 
+# 7. Reconstruction (issue 36): the tricubic B-spline vs trilinear on the MRI (shaded DVR, a
+# style transfer function, iso-surface + curvature), and the pre-integrated transfer function
+# against post-classification at the same step.
+run reconstruction \
+    graphs/tf1d_phong_brain.ron graphs/tf1d_phong_brain.ron \
+    graphs/style_tf_brain.ron graphs/style_tf_brain.ron \
+    graphs/curvature_brain.ron graphs/curvature_brain.ron graphs/tf1d_phong_brain.ron \
+    --set 1:ray.reconstruction=trilinear --set 2:ray.reconstruction=bspline \
+    --set 3:ray.reconstruction=trilinear --set 4:ray.reconstruction=bspline \
+    --set 6:surface.reconstruction=bspline --set 6:curvature.reconstruction=bspline \
+    --set 7:ray.reconstruction=trilinear --set 7:ray.preintegrated=true \
+    --scenario orbit:camera --size "$xga"
+
 echo "results in $out/"
