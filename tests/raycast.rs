@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::raycast_reference::{self as reference, Mode, Shading, params_for};
+use common::raycast_reference::{self as reference, Mode, RayParams, Shading};
 use glam::Vec3;
 use hatchery_data::lit_sphere::LitSphere;
 use hatchery_data::style::StyleTransferFunction;
@@ -60,6 +60,21 @@ fn camera(
         w,
         h,
     )
+}
+
+fn params_for(cam: &Camera, step: f32, mode: Mode, shading: Shading, light: Vec3) -> RayParams {
+    RayParams {
+        view_proj: cam.view_proj(),
+        view: cam.view,
+        width: cam.width,
+        height: cam.height,
+        orthographic: cam.orthographic,
+        step_voxels: step,
+        mode,
+        shading,
+        light_dir_view: light,
+        early_termination: 0.99,
+    }
 }
 
 fn node_params(

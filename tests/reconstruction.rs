@@ -238,8 +238,18 @@ fn raycast_with_the_bspline_matches_its_cpu_reference() {
                 ("reconstruction", ParamValue::Choice("bspline".into())),
             ],
         );
-        let light = Vec3::new(0.3, 0.5, 1.0).normalize();
-        let params = reference::params_for(&cam, step as f32, mode, shading, light);
+        let params = RayParams {
+            view_proj: cam.view_proj(),
+            view: cam.view,
+            width: cam.width,
+            height: cam.height,
+            orthographic: cam.orthographic,
+            step_voxels: step as f32,
+            mode,
+            shading,
+            light_dir_view: Vec3::new(0.3, 0.5, 1.0).normalize(),
+            early_termination: 0.99,
+        };
         let cpu = reference::render_with(&data, &colour, &params, Filter::Bspline);
         let trilinear = reference::render_with(&data, &colour, &params, Filter::Trilinear);
         let (ours, other) = (rms(&gpu, &cpu), rms(&gpu, &trilinear));
@@ -560,8 +570,18 @@ fn graded_ball() -> VolumeData {
 }
 
 fn dvr(shading: &Shading, cam: &Camera, step: f32) -> RayParams {
-    let light = Vec3::new(0.3, 0.5, 1.0).normalize();
-    reference::params_for(cam, step, Mode::Dvr, shading.clone(), light)
+    RayParams {
+        view_proj: cam.view_proj(),
+        view: cam.view,
+        width: cam.width,
+        height: cam.height,
+        orthographic: cam.orthographic,
+        step_voxels: step,
+        mode: Mode::Dvr,
+        shading: shading.clone(),
+        light_dir_view: Vec3::new(0.3, 0.5, 1.0).normalize(),
+        early_termination: 0.99,
+    }
 }
 
 /// `preintegrated: true` (Engel et al. 2001) renders what the CPU reference of pre-integration

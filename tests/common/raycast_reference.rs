@@ -99,28 +99,6 @@ pub struct RayParams {
     pub early_termination: f32,
 }
 
-/// The parameters of a ray cast through `cam` (early termination at 0.99).
-pub fn params_for(
-    cam: &hatchery_nodes::camera::Camera,
-    step_voxels: f32,
-    mode: Mode,
-    shading: Shading,
-    light_dir_view: Vec3,
-) -> RayParams {
-    RayParams {
-        view_proj: cam.view_proj(),
-        view: cam.view,
-        width: cam.width,
-        height: cam.height,
-        orthographic: cam.orthographic,
-        step_voxels,
-        mode,
-        shading,
-        light_dir_view,
-        early_termination: 0.99,
-    }
-}
-
 /// `P0` (on the near plane) and the unit direction of the ray through pixel `(x, y)`.
 pub fn pixel_ray(p: &RayParams, x: u32, y: u32) -> (Vec3, Vec3) {
     let inverse = p.view_proj.inverse();

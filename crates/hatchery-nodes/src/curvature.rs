@@ -89,7 +89,7 @@ impl Node<Value, Ctx> for CurvatureNode {
         let params = CurvatureParams::read(p)?;
         let gbuffer = inputs.require("gbuffer")?.gbuffer("gbuffer")?.clone();
         let volume = inputs.require("volume")?.volume("volume")?.clone();
-        let hessian = HessianFilter::of(params.step, params.reconstruction.on(ctx, &volume));
+        let hessian = HessianFilter::of(params.step, params.reconstruction.on(ctx, &volume.data));
         let output = surface_pass(
             ctx,
             "curvature",

@@ -83,7 +83,7 @@ impl Node<Value, Ctx> for CurvatureContoursNode {
             pad1: 0.0,
             pad2: 0.0,
         };
-        let hessian = HessianFilter::of(params.step, params.reconstruction.on(ctx, &volume));
+        let hessian = HessianFilter::of(params.step, params.reconstruction.on(ctx, &volume.data));
         let mask = surface_pass(
             ctx,
             "curvature_contours",

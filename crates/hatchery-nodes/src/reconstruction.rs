@@ -29,7 +29,7 @@ impl Reconstruction {
     /// "no data" (NaN) voxel among them that carries little weight cannot be told from data
     /// by the filtered fetches (it would pull the value down instead of falling back), so a
     /// volume with "no data" voxels is drawn trilinear, with a warning.
-    pub fn on(self, ctx: &mut crate::Ctx, volume: &crate::value::Volume) -> Reconstruction {
+    pub fn on(self, ctx: &mut crate::Ctx, volume: &hatchery_data::VolumeData) -> Reconstruction {
         if self == Reconstruction::Bspline && volume.has_no_data() {
             ctx.warn(
                 "reconstruction bspline: the volume has \"no data\" (NaN) voxels, which the \

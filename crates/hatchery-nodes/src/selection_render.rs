@@ -410,7 +410,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         let err = |e: GpuError| NodeError::new(e.to_string());
         // Bricked or not and the reconstruction as pipeline constants (shaders/ray_common.wgsl).
         let bricked = volume.texture(&ctx.gpu).map_err(err)?.layout.is_some();
-        let reconstruction = params.reconstruction.on(ctx, volume);
+        let reconstruction = params.reconstruction.on(ctx, &volume.data);
         let pipelines = ctx
             .cached(
                 &format!("selection_render.pipelines.{bricked}.{}", reconstruction.code()),

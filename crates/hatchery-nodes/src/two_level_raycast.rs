@@ -311,7 +311,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let method = importance.as_ref().map_or(0, |i| i.method.code());
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
-            params.reconstruction.on(ctx, volume).constant(),
+            params.reconstruction.on(ctx, &volume.data).constant(),
             ("TL_GLOBAL", f64::from(params.global.code())),
             ("TL_METHOD", f64::from(method)),
             ("TL_FILTER", f64::from(u8::from(filtered))),

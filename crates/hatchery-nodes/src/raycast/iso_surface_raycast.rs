@@ -76,7 +76,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             rho: 1.0,
             embed: false,
             fast_exponent: false,
-            reconstruction: params.reconstruction.on(ctx, &volume),
+            reconstruction: params.reconstruction.on(ctx, &volume.data),
             preintegrated: false,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;

@@ -314,7 +314,7 @@ impl Node<Value, Ctx> for RaycastNode {
             rho: params.rho,
             embed: false,
             fast_exponent: params.fast_exponent,
-            reconstruction: params.reconstruction.on(ctx, &volume),
+            reconstruction: params.reconstruction.on(ctx, &volume.data),
             preintegrated: params.preintegrated,
         };
         let labels = inputs

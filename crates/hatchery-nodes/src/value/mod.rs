@@ -24,8 +24,6 @@ pub struct Volume {
     pub data: Arc<VolumeData>,
     texture: OnceLock<VolumeTexture>,
     max_gradient: OnceLock<f32>,
-    /// Whether some voxels are "no data", found once (a scan of every voxel).
-    no_data: OnceLock<bool>,
     /// Value range of each brick (empty-space skipping), as an Rg32Float 3-D texture.
     bricks: OnceLock<wgpu::Texture>,
     /// The same for tricubic B-spline samples (they reach one voxel further).
@@ -50,7 +48,6 @@ impl Volume {
             data,
             texture: OnceLock::new(),
             max_gradient: OnceLock::new(),
-            no_data: OnceLock::new(),
             bricks: OnceLock::new(),
             bricks_bspline: OnceLock::new(),
             frame_points: OnceLock::new(),
@@ -134,12 +131,6 @@ impl Volume {
         *self
             .max_gradient
             .get_or_init(|| hatchery_data::gradient::max_gradient_magnitude(&self.data))
-    }
-
-    /// Whether some voxels are "no data" (`VolumeData::has_no_data`), computed once: the ray
-    /// casters ask on every run.
-    pub fn has_no_data(&self) -> bool {
-        *self.no_data.get_or_init(|| self.data.has_no_data())
     }
 }
 
