@@ -94,6 +94,19 @@ pub struct EditorApp {
     pub(crate) frame_all_again: bool,
     /// The canvas's graph → screen transform of the last frame.
     pub canvas_transform: egui::emath::TSTransform,
+    /// A kept view to show on the next frame (another graph or level is shown).
+    pub(crate) restore_view: Option<egui::emath::TSTransform>,
+    /// The views of graphs and groups, the panel widths (see [`crate::settings`]).
+    pub settings: crate::settings::Settings,
+    /// Where the settings are written when the window closes (none: not kept, as in tests
+    /// that do not ask for it).
+    pub settings_file: Option<PathBuf>,
+    pub(crate) canvas_views: crate::settings::CanvasViews,
+    /// The panels' outer rectangles last frame by egui id (`inspector`, `viewport`).
+    pub panel_rects: BTreeMap<&'static str, egui::Rect>,
+    /// Nodes drawn as boxes (zoomed out, see [`crate::panels::canvas_zoom`]) last frame: the
+    /// screen height of their id's text, pixels (0: the box is too small for legible text).
+    pub lod_text_px: BTreeMap<String, f32>,
     /// An action that would discard unsaved changes, waiting for the user's answer.
     pending: Option<Pending>,
     /// The user agreed to close the window with unsaved changes.
@@ -169,7 +182,39 @@ impl EditorApp {
             file_watch: None,
             frame_all_again: false,
             canvas_transform: egui::emath::TSTransform::IDENTITY,
+            restore_view: None,
+            settings: Default::default(),
+            settings_file: None,
+            canvas_views: Default::default(),
+            panel_rects: BTreeMap::new(),
+            lod_text_px: BTreeMap::new(),
         }
+    }
+
+    /// Keeps views and panel widths in `path` (read now, written when the window closes).
+    pub fn with_settings_file(mut self, path: PathBuf) -> Self {
+        self.settings = crate::settings::Settings::load(&path);
+        self.settings_file = Some(path);
+        self
+    }
+
+    /// Writes the settings file (if there is one) with the view shown and the panel widths.
+    pub fn save_settings(&mut self) {
+        self.canvas_views
+            .remember(&mut self.settings, self.canvas_transform);
+        for (id, r) in &self.panel_rects {
+            self.settings.panels.insert((*id).to_owned(), r.width());
+        }
+        if let Some(path) = &self.settings_file
+            && let Err(e) = self.settings.save(path)
+        {
+            self.state.status = format!("could not keep the settings in {}: {e}", path.display());
+        }
+    }
+
+    /// The width a panel had when the settings were written, else `default`.
+    pub(crate) fn panel_width(&self, id: &str, default: f32) -> f32 {
+        self.settings.panels.get(id).copied().unwrap_or(default)
     }
 
     /// An editor inside eframe: previews render on the window's wgpu device when that is a good
@@ -293,8 +338,12 @@ impl EditorApp {
     /// Closing the window with unsaved changes asks first (the autosave covers crashes only).
     pub(crate) fn guard_close(&mut self, ui: &Ui) {
         if self.quitting {
+            self.save_settings();
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
             return;
+        }
+        if ui.input(|i| i.viewport().close_requested()) {
+            self.save_settings();
         }
         if ui.input(|i| i.viewport().close_requested()) && self.state.is_dirty() {
             ui.ctx()

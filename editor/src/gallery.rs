@@ -64,11 +64,7 @@ pub fn list(dir: &Path, cache: &Path) -> Vec<PresetInfo> {
 
 /// Where thumbnails are cached by default.
 pub fn cache_dir() -> PathBuf {
-    let base = std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(std::env::temp_dir);
-    base.join("hatchery").join("thumbnails")
+    crate::settings::xdg_dir("XDG_CACHE_HOME", ".cache").join("thumbnails")
 }
 
 /// Renders a preset's first SaveImage picture small (what the menu shows of it).

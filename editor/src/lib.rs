@@ -29,6 +29,7 @@ pub mod preview;
 pub mod relative_value;
 pub mod render_worker;
 pub mod selection;
+pub mod settings;
 pub mod shell;
 pub mod state;
 pub mod style_picker;

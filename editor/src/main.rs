@@ -34,7 +34,8 @@ fn main() -> anyhow::Result<()> {
         "hatchery editor",
         options,
         Box::new(move |cc| {
-            let mut app = EditorApp::with_creation_context(EditorState::new(), cc);
+            let mut app = EditorApp::with_creation_context(EditorState::new(), cc)
+                .with_settings_file(hatchery_editor::settings::Settings::default_path());
             if let Some(path) = &path {
                 app.open(path);
             }

@@ -33,22 +33,26 @@ impl EditorApp {
             // The Inspector keeps its width when a node with a wide editor (the object table)
             // is selected: wide content scrolls sideways instead of pushing the picture and the
             // canvas over.
-            egui::Panel::right("inspector")
-                .default_size(320.0)
+            // Panel widths are kept between runs (see crate::settings).
+            let inspector = egui::Panel::right("inspector")
+                .default_size(self.panel_width("inspector", 320.0))
                 .show(ui, |ui| {
                     egui::ScrollArea::both()
                         .auto_shrink([false, false])
                         .show(ui, |ui| Inspector.show(self, ui));
                 });
+            self.panel_rects
+                .insert("inspector", inspector.response.rect);
             if placement == Placement::Maximised {
                 egui::CentralPanel::default().show(ui, |ui| Viewport.show(self, ui));
             } else {
                 // The picture beside the canvas, in a panel the user can widen.
                 let wide = (ui.max_rect().width() * 0.4).max(240.0);
-                egui::Panel::right("viewport")
+                let picture = egui::Panel::right("viewport")
                     .resizable(true)
-                    .default_size(wide)
+                    .default_size(self.panel_width("viewport", wide))
                     .show(ui, |ui| Viewport.show(self, ui));
+                self.panel_rects.insert("viewport", picture.response.rect);
                 egui::CentralPanel::default().show(ui, |ui| Canvas.show(self, ui));
             }
         }
@@ -111,5 +115,9 @@ impl EditorApp {
 impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut Ui, _frame: &mut eframe::Frame) {
         EditorApp::ui(self, ui);
+    }
+
+    fn on_exit(&mut self) {
+        self.save_settings();
     }
 }

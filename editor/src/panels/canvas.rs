@@ -8,13 +8,17 @@ use crate::app::{EditorApp, Refusal, pos};
 use crate::preview::Shown;
 use crate::render_worker::Port;
 use crate::selection::SelectionChange;
+use crate::settings::ViewChange;
 use egui::{Color32, Id, Modifiers, Pos2, Ui};
 use egui_snarl::Snarl;
 use egui_snarl::ui::SnarlWidget;
 use std::collections::BTreeMap;
 
-/// How long a refusal tooltip stays up, seconds.
-const REFUSAL_SECONDS: f64 = 4.0;
+/// How long a refusal tooltip stays up at most, seconds (the next click takes it down sooner).
+const REFUSAL_SECONDS: f64 = 8.0;
+
+/// The widest a refusal tooltip gets (points): a long reason wraps.
+const REFUSAL_WIDTH: f32 = 320.0;
 
 const SNARL_ID: &str = "hatchery-snarl";
 
@@ -25,9 +29,25 @@ impl Panel for Canvas {
     fn show(&mut self, app: &mut EditorApp, ui: &mut Ui) {
         if crate::groups::level_bar(&app.state, ui) {
             app.state.exit_group();
-            app.frame_all = true;
         }
-        let widget = SnarlWidget::new().id(Id::new(SNARL_ID));
+        // Another graph or level: the view it had (left a group, reopened a file), else all of it.
+        match app.canvas_views.update(
+            &mut app.settings,
+            app.state.path(),
+            app.state.level(),
+            app.canvas_transform,
+        ) {
+            Some(ViewChange::Restore(view)) => {
+                app.restore_view = Some(view);
+                app.frame_all = false;
+                app.frame_all_again = false;
+            }
+            Some(ViewChange::FrameAll) => app.frame_all = true,
+            None => {}
+        }
+        let widget = SnarlWidget::new()
+            .id(Id::new(SNARL_ID))
+            .style(super::canvas_zoom::snarl_style());
         let failed = app.preview.failed_node.clone();
         let frame_into =
             std::mem::take(&mut app.frame_all).then(|| ui.available_rect_before_wrap());
@@ -82,7 +102,10 @@ impl Panel for Canvas {
             failed,
             frame_request: &mut frame_request,
             wheel_zoom,
+            restore: app.restore_view.take(),
+            lod_text: &mut app.lod_text_px,
         };
+        viewer.lod_text.clear();
 
         // Dragging a node's title moves the node instead of selecting its text.
         ui.style_mut().interaction.selectable_labels = false;
@@ -129,7 +152,7 @@ impl Panel for Canvas {
                 until: now + REFUSAL_SECONDS,
             });
         }
-        refusal_tooltip(app, ui);
+        refusal_tooltip(app, ui, canvas_rect);
         let clipboard = app.clipboard.clone();
         for (name, r) in
             crate::add_menu::show(ui.ctx(), &mut app.add_menu, &mut app.state, &clipboard)
@@ -216,22 +239,54 @@ pub(crate) fn rebuild_snarl(app: &mut EditorApp) {
     app.synced_revision = Some(app.state.revision());
 }
 
-/// The reason of a refused wire, next to where it was dropped, for a few seconds.
-fn refusal_tooltip(app: &mut EditorApp, ui: &Ui) {
+/// The reason of a refused wire, next to where it was dropped and inside the canvas, until the
+/// next click (at most [`REFUSAL_SECONDS`]).
+fn refusal_tooltip(app: &mut EditorApp, ui: &Ui, canvas: egui::Rect) {
     let Some(refusal) = &app.refusal else {
         return;
     };
     let now = ui.input(|i| i.time);
-    if now > refusal.until {
+    // The drop that refused the wire is a release: a press is the next click.
+    let clicked = ui.input(|i| i.pointer.any_pressed());
+    if now > refusal.until || clicked {
         app.refusal = None;
         return;
     }
+    // Right of and below the drop point, or left of / above it where the canvas ends.
+    let room = canvas.max - refusal.at;
+    let pivot = egui::Align2([
+        if room.x < REFUSAL_WIDTH + 24.0 {
+            egui::Align::Max
+        } else {
+            egui::Align::Min
+        },
+        if room.y < 80.0 {
+            egui::Align::Max
+        } else {
+            egui::Align::Min
+        },
+    ]);
+    let offset = egui::vec2(
+        if pivot.x() == egui::Align::Max {
+            -12.0
+        } else {
+            12.0
+        },
+        if pivot.y() == egui::Align::Max {
+            -12.0
+        } else {
+            12.0
+        },
+    );
     egui::Area::new(Id::new("wire-refusal"))
         .order(egui::Order::Tooltip)
-        .fixed_pos(refusal.at + egui::vec2(12.0, 12.0))
+        .pivot(pivot)
+        .fixed_pos(refusal.at + offset)
+        .constrain_to(canvas)
         .interactable(false)
         .show(ui.ctx(), |ui| {
             egui::Frame::popup(ui.style()).show(ui, |ui| {
+                ui.set_max_width(REFUSAL_WIDTH.min(canvas.width() - 24.0));
                 ui.colored_label(Color32::LIGHT_RED, format!("⛔ {}", refusal.reason));
             });
         });

@@ -1,5 +1,6 @@
 //! The snarl viewer of the canvas: node titles, pins, bodies, footers and menus, wires made and
-//! removed, and the canvas transform (wheel zoom, *Frame all*).
+//! removed, and the canvas transform (wheel zoom, *Frame all*, a kept view; the zoom itself and
+//! the boxes drawn when zoomed out are in [`super::canvas_zoom`]).
 
 use crate::app::port_color;
 use crate::render_worker::{NodeTime, Port};
@@ -10,11 +11,6 @@ use egui_snarl::ui::{AnyPins, PinInfo, SnarlPin, SnarlViewer};
 use egui_snarl::{InPin, NodeId, OutPin, Snarl};
 use hatchery_graph::PortType;
 use std::collections::{BTreeMap, BTreeSet};
-
-/// Node titles are drawn at egui's body size (13 points at zoom 1).
-const TITLE_FONT_PX: f32 = 13.0;
-/// The smallest title height *Frame all* zooms out to.
-pub const LEGIBLE_TITLE_PX: f32 = 11.0;
 
 /// The widest an error or warning line makes a node's body (points at zoom 1); the body sits
 /// between the input and output pins.
@@ -49,6 +45,10 @@ pub(crate) struct Viewer<'a> {
     /// The mouse wheel over the canvas this frame (points, pointer): it zooms about the
     /// pointer instead of scrolling (Shift+wheel still scrolls).
     pub(crate) wheel_zoom: Option<(f32, Pos2)>,
+    /// A kept view to show (another graph or level is shown).
+    pub(crate) restore: Option<egui::emath::TSTransform>,
+    /// Nodes drawn as boxes: the screen size of their id's text.
+    pub(crate) lod_text: &'a mut BTreeMap<String, f32>,
 }
 
 impl Viewer<'_> {
@@ -151,6 +151,12 @@ impl SnarlViewer<String> for Viewer<'_> {
     ) -> impl SnarlPin + 'static {
         let node = snarl.get_node(pin.id.node).cloned().unwrap_or_default();
         let port = self.ports(&node, true).get(pin.id.output).cloned();
+        // Room for the pin right of the label. egui-snarl 0.12 reserves it on the wrong side of
+        // this right-to-left row (right of the row's start), so the pin covered the label's end
+        // ("ligh", "piston_surface.me"), and each row starts that much further right than the
+        // one above: row k starts k pins right of the pin column.
+        let pin_size = ui.spacing().interact_size.y * 0.6;
+        ui.add_space(pin_size * (pin.id.output + 1) as f32);
         match &port {
             // Thumbnails are for a node's own outputs (not a group's or a reroute's).
             Some(p) if p.node == node && p.ty.is_some() && !self.is_reroute(&node) => {
@@ -410,14 +416,10 @@ impl SnarlViewer<String> for Viewer<'_> {
         // frame's transform) and scale about the point under the pointer instead, so the graph
         // stays where it is under the mouse (a few notches used to scroll it off-screen).
         if let Some((scroll, at)) = self.wheel_zoom.take() {
-            let before = self.transform;
-            let factor = (scroll * 0.002).exp();
-            let scaling = (before.scaling * factor).clamp(0.2, 2.0);
-            let factor = scaling / before.scaling;
-            *to_global = egui::emath::TSTransform::from_translation(at.to_vec2())
-                * egui::emath::TSTransform::from_scaling(factor)
-                * egui::emath::TSTransform::from_translation(-at.to_vec2())
-                * before;
+            *to_global = super::canvas_zoom::wheel_zoom(self.transform, scroll, at);
+        }
+        if let Some(view) = self.restore.take() {
+            *to_global = view;
         }
         self.transform = *to_global;
         let Some(rect) = self.frame_into.take() else {
@@ -437,21 +439,8 @@ impl SnarlViewer<String> for Viewer<'_> {
         if !bounds.is_positive() {
             return;
         }
-        let bounds = bounds.expand(30.0);
-        let fit = (rect.width() / bounds.width()).min(rect.height() / bounds.height());
-        // Never so small that titles fall below LEGIBLE_TITLE_PX: scroll instead.
-        let legible = LEGIBLE_TITLE_PX / TITLE_FONT_PX;
-        let scaling = fit.clamp(legible, 1.0);
-        let translation = if scaling <= fit {
-            rect.center().to_vec2() - bounds.center().to_vec2() * scaling
-        } else {
-            // Too big to fit legibly: show its top-left part (where the sources are).
-            rect.min.to_vec2() - bounds.min.to_vec2() * scaling
-        };
-        *to_global = egui::emath::TSTransform {
-            scaling,
-            translation,
-        };
+        // All of it, however small (zoomed out, nodes are drawn as boxes with legible ids).
+        *to_global = super::canvas_zoom::frame_all(rect, bounds);
         self.transform = *to_global;
     }
 
@@ -500,11 +489,43 @@ impl SnarlViewer<String> for Viewer<'_> {
         &mut self,
         node: NodeId,
         rect: egui::Rect,
-        _ui: &mut Ui,
+        ui: &mut Ui,
         snarl: &mut Snarl<String>,
     ) {
-        if let Some(id) = snarl.get_node(node) {
-            self.selecting.node_drawn(id, rect);
+        let Some(id) = snarl.get_node(node).cloned() else {
+            return;
+        };
+        self.selecting.node_drawn(&id, rect);
+        let scaling = self.transform.scaling;
+        if super::canvas_zoom::boxes(scaling) {
+            // Coloured as its first output (a sink: its first input); outlined as selected or
+            // failed.
+            let ports = self.ports(&id, true);
+            let ports = if ports.is_empty() {
+                self.ports(&id, false)
+            } else {
+                ports
+            };
+            let color = ports
+                .iter()
+                .find_map(|p| p.ty)
+                .map_or(Color32::GRAY, port_color);
+            let mut stroke = egui::Stroke::new(1.0 / scaling, Color32::from_gray(90));
+            if self.error(&id).is_some() {
+                stroke = egui::Stroke::new(2.0 / scaling, Color32::LIGHT_RED);
+            }
+            if self.state.selection.contains(&id) {
+                stroke = crate::selection::selected_stroke();
+                if self.state.inspected() == Some(id.as_str()) {
+                    stroke.color = crate::selection::active_color();
+                }
+                stroke.width /= scaling;
+            }
+            let name = self.title(&id);
+            let px = super::canvas_zoom::paint_box(ui, rect, &id, color, stroke, scaling);
+            self.lod_text.insert(id.clone(), px.unwrap_or(0.0));
+            ui.interact(rect, ui.id().with(("lod", &id)), egui::Sense::hover())
+                .on_hover_text(name);
         }
     }
 

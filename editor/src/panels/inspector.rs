@@ -26,7 +26,6 @@ impl Panel for Inspector {
             return;
         };
         if crate::groups::inspector(&mut app.state, ui, &id) {
-            app.frame_all |= app.state.level().is_some();
             return;
         }
         if app.state.selection.len() > 1 {

@@ -174,11 +174,8 @@ pub(crate) fn shortcuts(app: &mut EditorApp, ui: &mut Ui) {
     if !typing && ui.input_mut(|i| i.consume_key(Modifiers::NONE, Key::F)) {
         app.frame_all = true;
     }
-    let level = app.state.level().map(str::to_owned);
+    // Entering or leaving a group shows the view it had (see crate::settings::CanvasViews).
     crate::groups::shortcuts(&mut app.state, ui, typing);
-    if app.state.level() != level.as_deref() {
-        app.frame_all = true;
-    }
     if !typing && ui.input_mut(|i| i.consume_key(Modifiers::COMMAND, Key::J)) {
         app.frame_selection();
     }

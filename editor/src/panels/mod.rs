@@ -2,7 +2,8 @@
 //!
 //! - [`menu`]: the menu bar and the status line ([`menu::MenuBar`], [`menu::StatusLine`]), and
 //!   the keyboard shortcuts;
-//! - [`canvas`]: the node canvas ([`canvas::Canvas`]; its snarl viewer in [`canvas_viewer`]);
+//! - [`canvas`]: the node canvas ([`canvas::Canvas`]; its snarl viewer in [`canvas_viewer`], its
+//!   zoom, *Frame all* and zoomed-out drawing in [`canvas_zoom`]);
 //! - [`inspector`]: the Inspector ([`inspector::Inspector`]; the kind-specific editors in
 //!   [`inspector_sections`]);
 //! - [`viewport`]: the picture and the camera it drives ([`viewport::Viewport`]).
@@ -13,6 +14,7 @@
 
 pub mod canvas;
 pub mod canvas_viewer;
+pub mod canvas_zoom;
 pub mod inspector;
 pub mod inspector_sections;
 pub mod menu;

@@ -163,7 +163,7 @@ fn a_dropped_wire_opens_the_palette_and_the_added_node_takes_the_wire() {
     h.run();
     let t = h.state().canvas_transform;
     let volume = port_label(&h, "shells", "volume"); // an output
-    let from = t * egui::pos2(volume.right() + 8.0, volume.center().y);
+    let from = t * egui::pos2(volume.right() + 14.0, volume.center().y);
     let to = empty_canvas_point(&h);
     drag_steps(&mut h, from, to, egui::PointerButton::Primary);
     h.run_steps(3);

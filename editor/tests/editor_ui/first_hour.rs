@@ -123,7 +123,13 @@ fn an_angle_parameter_drags_finely() {
     );
 }
 
-fn wheel(h: &mut Harness<EditorApp>, at: egui::Pos2, notches: f32, modifiers: Modifiers) {
+/// Mouse-wheel notches at `at` (negative: towards the user, zooming out).
+pub(super) fn wheel(
+    h: &mut Harness<EditorApp>,
+    at: egui::Pos2,
+    notches: f32,
+    modifiers: Modifiers,
+) {
     h.event(egui::Event::PointerMoved(at));
     h.event_modifiers(
         egui::Event::MouseWheel {
@@ -308,4 +314,43 @@ fn an_error_on_a_new_node_does_not_stretch_it() {
         width <= plain + 10.0,
         "the node is {width} points wide with the message ({error}), {plain} without"
     );
+}
+
+#[test]
+fn a_refused_wire_says_why_inside_the_canvas_until_the_next_click() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/shaded_surface.ron", dir.path());
+    let mut h = harness(app);
+    h.run();
+    // camera's output dropped on `save`'s image input, the node nearest the canvas's right edge.
+    let t = h.state().canvas_transform;
+    let camera_out = super::port_label(&h, "camera", "camera");
+    let image_in = super::port_label(&h, "save", "image");
+    let from = t * egui::pos2(camera_out.right() + 14.0, camera_out.center().y);
+    let to = t * egui::pos2(image_in.left() - 12.0, image_in.center().y);
+    drag(&mut h, from, to);
+    let canvas = h.state().canvas_rect;
+    let popup = |h: &Harness<EditorApp>| h.query_by_label_contains("⛔").map(|n| n.rect());
+    let r = popup(&h).expect("the reason is shown");
+    assert!(
+        canvas.right() - to.x < 320.0,
+        "dropped {} points from the canvas's edge",
+        canvas.right() - to.x
+    );
+    assert!(
+        canvas.contains_rect(r),
+        "{r:?} is not inside the canvas {canvas:?}"
+    );
+    // Still up after three seconds of reading (the harness steps a quarter second) ...
+    h.run_steps(12);
+    assert!(popup(&h).is_some(), "gone after three seconds");
+    // ... and gone with the next click.
+    let empty = super::selection::empty_canvas_point(&h);
+    super::selection::click_mod(&mut h, empty, Modifiers::NONE);
+    assert!(popup(&h).is_none(), "still up after a click");
+    // Without a click it goes after a while.
+    drag(&mut h, from, to);
+    assert!(popup(&h).is_some());
+    h.run_steps(40);
+    assert!(popup(&h).is_none(), "still up after ten seconds");
 }

@@ -1,5 +1,6 @@
-//! A legible canvas: *Frame all* never zooms titles below 11 px, *Arrange* (clicked in the View
-//! menu) lays a graph out without overlaps as one undo step, and every preset is arranged.
+//! A legible canvas: *Frame all* shows the whole graph with its nodes named in text at least
+//! 11 px high (zoomed out, as boxes with their ids), *Arrange* (clicked in the View menu) lays a
+//! graph out without overlaps as one undo step, and every preset is arranged.
 
 use super::*;
 
@@ -55,25 +56,74 @@ fn big_harness(app: EditorApp) -> Harness<'static, EditorApp> {
         .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app)
 }
 
+/// Screen height of the text naming node `id`: its id in a box when zoomed out, else its title.
+fn name_height(h: &Harness<EditorApp>, id: &str, kind: &str) -> f32 {
+    match h.state().lod_text_px.get(id) {
+        Some(&px) => px,
+        None => title_height(h, id, kind),
+    }
+}
+
+/// `F` in a window of `size`, after zooming in on a corner: every node of the preset is on the
+/// canvas, named in text at least 11 px high.
+fn frame_all_shows_everything(rel: &str, dir: &Path, size: [f32; 2]) -> f32 {
+    let (app, _) = open_copy(rel, dir);
+    let mut h = Harness::builder()
+        .with_size(size)
+        .build_ui_state(|ui, app: &mut EditorApp| app.ui(ui), app);
+    h.run();
+    let corner = h.state().canvas_rect.left_top() + egui::vec2(20.0, 20.0);
+    for _ in 0..6 {
+        super::first_hour::wheel(&mut h, corner, 3.0, Modifiers::NONE);
+    }
+    h.key_press(Key::F);
+    h.run();
+    let canvas = h.state().canvas_rect;
+    let doc = h.state().state.doc().clone();
+    for (id, _) in hatchery_editor::groups::shown_nodes(&doc, None) {
+        let r = h
+            .state()
+            .node_screen_rect(&id)
+            .unwrap_or_else(|| panic!("{rel}: {id} is not drawn"));
+        assert!(
+            canvas.contains_rect(r),
+            "{rel} in {size:?}: {id} at {r:?} is not inside the canvas {canvas:?}"
+        );
+        let kind = doc.node(&id).map_or("Group", |n| n.kind.as_str());
+        let px = name_height(&h, &id, kind);
+        // 0: a box too small for legible text has none (its name shows on hover).
+        assert!(
+            px >= 11.0 || px == 0.0,
+            "{rel}: {id} is named in text {px:.1} px high"
+        );
+    }
+    // A box without text names its node on hover.
+    let bare = h.state().lod_text_px.iter().find(|(_, px)| **px == 0.0);
+    if let Some((id, _)) = bare.map(|(id, px)| (id.clone(), *px)) {
+        let kind = doc.node(&id).map_or("Group", |n| n.kind.as_str());
+        let name = format!("{id} ({kind})");
+        let before = h.get_all_by_label(&name).count();
+        let at = h.state().node_screen_rect(&id).unwrap().center();
+        h.event(egui::Event::PointerMoved(at));
+        h.run_steps(40);
+        assert_eq!(
+            h.get_all_by_label(&name).count(),
+            before + 1,
+            "{rel}: hovering {id} shows its name"
+        );
+    }
+    h.state().canvas_transform.scaling
+}
+
 #[test]
-fn frame_all_keeps_titles_legible_and_presets_do_not_overlap() {
+fn frame_all_shows_the_whole_graph_legibly_and_presets_do_not_overlap() {
     let dir = tempfile::tempdir().unwrap();
     for preset in presets() {
         let rel = format!("graphs/{}", preset.file_name().unwrap().to_string_lossy());
-        // In the editor's usual window: titles at least 11 px after framing.
-        let (app, _) = open_copy(&rel, dir.path());
-        let mut h = harness(app);
-        h.run();
-        h.key_press(Key::F);
-        h.run();
-        let doc = h.state().state.doc().clone();
-        for n in &doc.nodes {
-            if h.state().node_screen_rect(&n.id).is_none() {
-                continue; // scrolled out of view: titles of drawn nodes are what is checked
-            }
-            let px = title_height(&h, &n.id, &n.kind);
-            assert!(px >= 11.0, "{rel}: title of {} is {px:.1} px high", n.id);
-        }
+        // In the tests' usual window, then in the editor's default window (1400 x 900, where the
+        // big presets are drawn as boxes).
+        frame_all_shows_everything(&rel, dir.path(), [2200.0, 1000.0]);
+        frame_all_shows_everything(&rel, dir.path(), [1400.0, 900.0]);
         // Every node of every preset apart from every other.
         let (app, _) = open_copy(&rel, dir.path());
         let mut h = big_harness(app);
@@ -81,6 +131,12 @@ fn frame_all_keeps_titles_legible_and_presets_do_not_overlap() {
         let found = overlaps(&h);
         assert!(found.is_empty(), "{rel}: {found:?}");
     }
+    // The biggest preset is zoomed out far enough to be drawn as boxes, and all of it shows.
+    let scaling = frame_all_shows_everything("graphs/default.ron", dir.path(), [1400.0, 900.0]);
+    assert!(
+        hatchery_editor::panels::canvas_zoom::boxes(scaling),
+        "default.ron framed at zoom {scaling}"
+    );
 }
 
 #[test]
@@ -140,4 +196,63 @@ fn arrange_every_preset() {
         h.state_mut().state.save().unwrap();
         eprintln!("arranged {}", preset.display());
     }
+}
+
+/// Output labels on node `id` (screen rects), the rightmost label of each output's text.
+fn output_labels(h: &Harness<EditorApp>, id: &str) -> Vec<(String, egui::Rect)> {
+    let t = h.state().canvas_transform;
+    let node = h.state().node_screen_rect(id).unwrap();
+    let state = &h.state().state;
+    let ports = hatchery_editor::groups::view_ports(state.doc(), &state.registry, id, true);
+    ports
+        .iter()
+        .map(|p| {
+            let text = hatchery_editor::groups::port_label(id, p);
+            let r = h
+                .get_all_by_label(&text)
+                .map(|n| egui::Rect::from_min_max(t * n.rect().min, t * n.rect().max))
+                .filter(|r| node.contains(r.center()))
+                .max_by(|a, b| a.right().total_cmp(&b.right()))
+                .unwrap_or_else(|| panic!("no output label {text} on {id}"));
+            (text, r)
+        })
+        .collect()
+}
+
+#[test]
+fn output_labels_end_before_their_pins_on_nodes_and_groups() {
+    let dir = tempfile::tempdir().unwrap();
+    let (app, _) = open_copy("graphs/default.ron", dir.path());
+    let mut h = big_harness(app);
+    h.run();
+    // A group exposing `piston_surface.mesh`, made by clicks and Ctrl+G.
+    super::select_by_click(&mut h, "pistons");
+    let at = super::selection::title_pos(&h, "piston_surface");
+    super::selection::click_mod(&mut h, at, Modifiers::SHIFT);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::G);
+    h.run();
+    h.run();
+    let scaling = h.state().canvas_transform.scaling;
+    assert!(
+        !hatchery_editor::panels::canvas_zoom::boxes(scaling),
+        "zoom {scaling}"
+    );
+    let doc = h.state().state.doc().clone();
+    let mut checked = 0;
+    for (id, _) in hatchery_editor::groups::shown_nodes(&doc, None) {
+        let node = h.state().node_screen_rect(&id).unwrap();
+        // The pin: 10.8 points (egui-snarl's, 0.6 of the interact height) inside the frame's
+        // 6-point margin, at the canvas's zoom.
+        let pin_left = node.right() - (6.0 + 10.8) * scaling;
+        for (text, r) in output_labels(&h, &id) {
+            assert!(
+                r.right() <= pin_left + 1.0,
+                "{id}: `{text}` ends at {}, under its pin (from {pin_left})",
+                r.right()
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 20, "{checked} labels");
+    h.get_by_label("piston_surface.mesh");
 }

@@ -21,6 +21,7 @@ mod objects;
 mod organise;
 mod picture;
 mod selection;
+mod views;
 use selection::select_by_click;
 
 fn repo(path: &str) -> PathBuf {
@@ -702,7 +703,7 @@ fn dragging_a_wire_between_incompatible_pins_is_refused_with_a_message() {
     // Pin labels in graph space; the pins sit just outside them.
     let volume_out = port_label(&h, "shells", "volume");
     let camera_in = port_label(&h, "shaded", "camera");
-    let from = t * egui::pos2(volume_out.right() + 8.0, volume_out.center().y);
+    let from = t * egui::pos2(volume_out.right() + 14.0, volume_out.center().y);
     let to = t * egui::pos2(camera_in.left() - 12.0, camera_in.center().y);
     let before = h.state().state.doc().clone();
     drag(&mut h, from, to);
@@ -743,7 +744,7 @@ fn dragging_a_wire_between_compatible_pins_connects_them() {
     let t = h.state().canvas_transform;
     let out = port_label(&h, "shells", "volume");
     let input = port_label(&h, &added, "volume");
-    let from = t * egui::pos2(out.right() + 8.0, out.center().y);
+    let from = t * egui::pos2(out.right() + 14.0, out.center().y);
     let to = t * egui::pos2(input.left() - 12.0, input.center().y);
     drag(&mut h, from, to);
     let edge = hatchery_graph::EdgeDoc {

@@ -27,9 +27,9 @@ fn on_screen(h: &Harness<EditorApp>, r: egui::Rect) -> egui::Rect {
     egui::Rect::from_min_max(t * r.min, t * r.max)
 }
 
-/// Where an output pin sits: just right of its label (screen).
+/// Where an output pin sits: right of its label, past the room left for it (screen).
 fn out_pin(label: egui::Rect) -> egui::Pos2 {
-    egui::pos2(label.right() + 8.0 * 1.0, label.center().y)
+    egui::pos2(label.right() + 14.0, label.center().y)
 }
 
 /// Where an input pin sits: just left of its label (screen).
