@@ -18,8 +18,10 @@ struct Silhouette {
     pip_amount: f32,
     pip_scale: f32,
     pip_seed: f32,
+    // Distance of the unperturbed taps, whole pixels (1: the paper's neighbours; a render at
+    // k times the designed size reads them k pixels away, so its lines are k times as wide).
+    tap_distance: f32,
     // Padding to 16 bytes.
-    pad0: f32,
     pad1: f32,
     pad2: f32,
 };
@@ -152,8 +154,9 @@ fn silhouette(
     return vec4<f32>(response, 0.0, 0.0, 1.0);
 }
 
-// Without perturbation every tap is one pixel away: texels, not bilinear quads, at coordinates
-// clamped once per pixel (the same values as the general path).
+// Without perturbation every tap is `tap_distance` whole pixels away: texels, not bilinear
+// quads, at coordinates clamped once per pixel (at distance 1 the same values as the general
+// path).
 fn silhouette_unperturbed(
     p: vec2<i32>,
     u: Silhouette,
@@ -163,8 +166,9 @@ fn silhouette_unperturbed(
     use_normals: bool,
 ) -> vec4<f32> {
     let size = vec2<i32>(textureDimensions(layer_depth));
-    let lo = max(p - vec2<i32>(1), vec2<i32>(0));
-    let hi = min(p + vec2<i32>(1), size - vec2<i32>(1));
+    let k = vec2<i32>(i32(u.tap_distance));
+    let lo = max(p - k, vec2<i32>(0));
+    let hi = min(p + k, size - vec2<i32>(1));
     var response = 0.0;
     if use_depth && silhouette_depth_edge(
         textureLoad(layer_depth, lo, 0),

@@ -5,9 +5,11 @@ use hatchery_nodes::Registry;
 use std::fmt::Write;
 
 fn range(p: &ParamSpec) -> String {
+    // Lengths in pixels of the designed figure scale with `render --scale` (docs/figures.md).
+    let px = if p.pixels { " px, scaled" } else { "" };
     match &p.kind {
-        ParamKind::Float { min, max } => format!("{min} … {max}"),
-        ParamKind::Int { min, max } => format!("{min} … {max}"),
+        ParamKind::Float { min, max } => format!("{min} … {max}{px}"),
+        ParamKind::Int { min, max } => format!("{min} … {max}{px}"),
         ParamKind::Choice(names) => names.join(", "),
         _ => String::new(),
     }

@@ -134,6 +134,11 @@ pub(crate) struct FrameArgs {
     /// Frame size in pixels.
     #[arg(long, default_value = "1024x768", value_parser = parse_size)]
     size: (u32, u32),
+    /// Render the figure designed at --size at SCALE times its resolution: the frame is SCALE ×
+    /// --size and every length in pixels (hatching cells, line widths, label sizes) is scaled
+    /// alike, so e.g. `--scale 2` is the same figure for print.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_scale)]
+    scale: f64,
     /// Override a parameter: `node.param=value` (paths relative to the current folder).
     #[arg(long, value_name = "NODE.PARAM=VALUE")]
     set: Vec<String>,
@@ -141,6 +146,15 @@ pub(crate) struct FrameArgs {
     /// relative to the current folder).
     #[arg(long, value_name = "NAME=PATH")]
     input: Vec<String>,
+}
+
+fn parse_scale(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(s) if s.is_finite() && (1.0 / 64.0..=64.0).contains(&s) => Ok(s),
+        _ => Err(format!(
+            "`{text}` is not a scale between 1/64 and 64 (e.g. 2)"
+        )),
+    }
 }
 
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
@@ -286,6 +300,7 @@ fn run(cli: Cli) -> Result<()> {
                     graph,
                     &FrameArgs {
                         size: size[0],
+                        scale: 1.0,
                         set: Vec::new(),
                         input: Vec::new(),
                     },
@@ -373,8 +388,18 @@ fn run(cli: Cli) -> Result<()> {
 
 /// Opens a session and applies `--set` overrides.
 pub(crate) fn open(graph: &Path, frame: &FrameArgs) -> Result<Session> {
-    let (width, height) = frame.size;
+    let scaled = |side: u32| (side as f64 * frame.scale).round() as u32;
+    let (width, height) = (scaled(frame.size.0), scaled(frame.size.1));
+    if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
+        bail!(
+            "--size {}x{} at --scale {} is {width}x{height}: 1 to 16384 pixels per side",
+            frame.size.0,
+            frame.size.1,
+            frame.scale
+        );
+    }
     let mut session = Session::open(graph, width, height)?;
+    session.ctx.set_pixel_scale(frame.scale);
     for assignment in &frame.input {
         let (name, path) = assignment
             .split_once('=')

@@ -154,6 +154,7 @@ fn labelled(shown: bool, opacity: f32) -> (Value, Rect, [Vec2; 2]) {
         width: W,
         height: H,
         font_size: FONT,
+        padding: hatchery_nodes::annotation_layout::LABEL_PADDING,
     };
     let annotations = Annotations {
         anchors: vec![Anchor {

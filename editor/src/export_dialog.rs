@@ -24,6 +24,11 @@ pub struct ExportDialog {
     pub width: u32,
     pub height: u32,
     pub path: String,
+    /// Scale hatching cells, line widths and labels with the export size, so the file is the
+    /// figure seen on screen at the export's resolution (`hatchery render --scale`).
+    pub as_on_screen: bool,
+    /// The size of the picture on screen when the dialog opened (pixels).
+    pub screen: Option<[u32; 2]>,
     running: Option<Receiver<Result<PathBuf, String>>>,
     /// The last export's outcome, for the dialog and the status line.
     pub last: Option<Result<PathBuf, String>>,
@@ -37,6 +42,8 @@ impl Default for ExportDialog {
             width: 1024,
             height: 768,
             path: String::new(),
+            as_on_screen: true,
+            screen: None,
             running: None,
             last: None,
         }
@@ -44,6 +51,16 @@ impl Default for ExportDialog {
 }
 
 impl ExportDialog {
+    /// Rendered pixels per pixel of the figure on screen: the export's height over the
+    /// screen picture's (the camera's field of view is vertical), 1 when lengths stay in output
+    /// pixels or the screen size is unknown.
+    pub fn pixel_scale(&self) -> f64 {
+        match self.screen {
+            Some([_, h]) if self.as_on_screen && h > 0 => self.height as f64 / h as f64,
+            _ => 1.0,
+        }
+    }
+
     /// Whether an export is being rendered.
     pub fn is_busy(&self) -> bool {
         self.running.is_some()
@@ -72,12 +89,14 @@ impl ExportDialog {
             _ => path,
         };
         let size = (self.width, self.height);
+        let scale = self.pixel_scale();
         let (send, receive) = channel();
         std::thread::spawn(move || {
             let result = (|| {
                 let registry = hatchery_nodes::registry();
                 let mut session = Session::with_graph(registry, graph, size.0, size.1)
                     .map_err(|e| e.to_string())?;
+                session.ctx.set_pixel_scale(scale);
                 session
                     .export_png(&node, &port, &path)
                     .map_err(|e| e.to_string())?;
@@ -154,6 +173,21 @@ impl ExportDialog {
                     ui.end_row();
                     ui.label("height");
                     ui.add(egui::DragValue::new(&mut self.height).range(1..=16384));
+                    ui.end_row();
+                    ui.label("lengths");
+                    ui.vertical(|ui| {
+                        let shown = self
+                            .screen
+                            .map_or("size unknown".to_owned(), |[w, h]| format!("{w}×{h}"));
+                        ui.checkbox(&mut self.as_on_screen, format!("as on screen ({shown})"))
+                            .on_hover_text(
+                                "hatching cells, line widths and labels scale with the export \
+                                 size, so the file is the figure on screen at a higher \
+                                 resolution; off: they keep their sizes in output pixels \
+                                 (finer at a larger size)",
+                            );
+                        ui.label(format!("× {:.2}", self.pixel_scale()));
+                    });
                     ui.end_row();
                     ui.label("file");
                     ui.add(

@@ -27,6 +27,7 @@ pub mod param_widget;
 pub mod picture;
 pub mod preview;
 pub mod relative_value;
+pub mod render_progress;
 pub mod render_worker;
 pub mod selection;
 pub mod settings;

@@ -219,6 +219,15 @@ impl Preview {
         }
     }
 
+    /// While a render is on its way: how long it has been running and its current pass
+    /// (the node running, the steps planned and done).
+    pub fn progress(&self) -> Option<(Duration, hatchery_nodes::progress::PassProgress)> {
+        if !self.is_busy() {
+            return None;
+        }
+        self.worker.as_ref()?.progress()
+    }
+
     fn ensure_worker(&mut self, ctx: &egui::Context) -> Result<(), String> {
         if self.worker.is_some() {
             return Ok(());

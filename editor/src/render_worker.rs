@@ -9,9 +9,11 @@
 
 use hatchery_gpu::{GpuContext, wgpu};
 use hatchery_graph::Graph;
+use hatchery_nodes::progress::{PassProgress, Progress};
 use hatchery_nodes::value::TransferFunction;
 use hatchery_nodes::{Session, SessionError, Value, display, registry};
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::time::{Duration, Instant};
 
@@ -97,12 +99,19 @@ impl Rendered {
     }
 }
 
+/// A render running this long is cancelled by a newer request (at its next node) instead of
+/// finishing a picture nobody wants: long CPU-driver renders of volumes. Shorter ones finish,
+/// so a slider drag over a fast graph keeps showing frames.
+pub const CANCEL_AFTER: Duration = Duration::from_secs(1);
+
 /// The worker thread's handle. Dropping it ends the thread after its current frame.
 pub struct RenderWorker {
     requests: Sender<Request>,
     answers: Receiver<Rendered>,
     /// Whether pictures come back as textures on the window's device.
     pub shared_device: bool,
+    /// What the render thread is doing (and its cancel flag).
+    progress: Arc<Progress>,
 }
 
 impl RenderWorker {
@@ -113,6 +122,10 @@ impl RenderWorker {
         let (requests, inbox) = channel::<Request>();
         let (outbox, answers) = channel::<Rendered>();
         let shared_device = gpu.is_some();
+        // The picture's progress caption is redrawn when a node starts or ends.
+        let notify = repaint.clone();
+        let progress = Arc::new(Progress::notifying(move || notify.request_repaint()));
+        let watched = progress.clone();
         std::thread::Builder::new()
             .name("hatchery-render".into())
             .spawn(move || {
@@ -120,6 +133,7 @@ impl RenderWorker {
                     gpu,
                     session: None,
                     copy_back: !shared_device,
+                    progress: watched,
                 };
                 // A request to render after a streamed volume's coarse first frame.
                 let mut next: Option<Request> = None;
@@ -140,7 +154,13 @@ impl RenderWorker {
                         }
                     }
                     let again = request.clone();
-                    if outbox.send(worker.render_caught(request)).is_err() {
+                    let answer = worker.render_caught(request);
+                    if worker.progress.is_cancelled() {
+                        // A newer request superseded it (and is in the inbox): no answer;
+                        // the nodes that ran stay cached for the newer one.
+                        continue;
+                    }
+                    if outbox.send(answer).is_err() {
                         return;
                     }
                     repaint.request_repaint();
@@ -160,6 +180,9 @@ impl RenderWorker {
                         Err(TryRecvError::Empty) => {}
                     }
                     let refined = worker.refine(again, &coarse);
+                    if worker.progress.is_cancelled() {
+                        continue;
+                    }
                     if outbox.send(refined).is_err() {
                         return;
                     }
@@ -170,11 +193,27 @@ impl RenderWorker {
             requests,
             answers,
             shared_device,
+            progress,
         })
     }
 
-    /// Queues a request (the worker drops it if a newer one arrives first).
+    /// What the render thread is doing now: `None` when idle, else how long the request has
+    /// been rendering and its current pass.
+    pub fn progress(&self) -> Option<(Duration, PassProgress)> {
+        let busy = self.progress.busy_for()?;
+        Some((busy, self.progress.snapshot()))
+    }
+
+    /// Queues a request (the worker drops it if a newer one arrives first). A render running
+    /// for [`CANCEL_AFTER`] or longer stops at its next node.
     pub fn send(&self, request: Request) -> Result<(), String> {
+        if self
+            .progress
+            .busy_for()
+            .is_some_and(|busy| busy >= CANCEL_AFTER)
+        {
+            self.progress.cancel();
+        }
         self.requests
             .send(request)
             .map_err(|_| "the render thread has stopped".to_owned())
@@ -201,6 +240,8 @@ struct Worker {
     session: Option<Session>,
     /// Read pictures back as pixels (the worker's device is not the window's).
     copy_back: bool,
+    /// Shared with the session's context and the [`RenderWorker`].
+    progress: Arc<Progress>,
 }
 
 impl Worker {
@@ -208,8 +249,10 @@ impl Worker {
     /// afresh) instead of ending the previews.
     fn render_caught(&mut self, request: Request) -> Rendered {
         let id = request.id;
+        self.progress.begin_request();
         let rendered =
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| self.render(request)));
+        self.progress.end_request();
         rendered.unwrap_or_else(|panic| {
             self.session = None;
             let what = panic
@@ -265,6 +308,7 @@ impl Worker {
                 // passes keep every member's output, so an edit re-runs only what follows it.
                 session.ctx.set_coarse_first(true);
                 session.executor.set_keep_fused(true);
+                session.ctx.set_progress(self.progress.clone());
                 self.session = Some(session);
             }
         }

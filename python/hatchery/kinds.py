@@ -1499,6 +1499,9 @@ class Silhouette:
             gradient magnitude
         normal_threshold (float in [-4, 4]; default 3.98): threshold on the summed neighbour
             normal dot products
+        tap_distance (float in [1, 16]; default 1.0): distance of the depth and normal taps from
+            the pixel (rounded to whole pixels; 1: the paper's neighbours): lines are about
+            twice this wide
         use_depth (bool; default True): detect depth discontinuities (eq. 3)
         use_normals (bool; default True): detect normal discontinuities (eq. 4–5)
         pip (one of 'none', 'constant', 'texture', 'noise', 'dots'; default 'none'):
@@ -1516,6 +1519,7 @@ class Silhouette:
     category = 'Illustration'
     depth_threshold: float = 0.001
     normal_threshold: float = 3.98
+    tap_distance: float = 1.0
     use_depth: bool = True
     use_normals: bool = True
     pip: Literal['none', 'constant', 'texture', 'noise', 'dots'] = 'none'

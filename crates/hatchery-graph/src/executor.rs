@@ -31,6 +31,17 @@ impl fmt::Display for ExecError {
 
 impl std::error::Error for ExecError {}
 
+/// The message of a pass the context cancelled ([`ExecContext::cancelled`]).
+pub const CANCELLED: &str = "cancelled: a newer request superseded this render";
+
+impl ExecError {
+    /// Whether the pass stopped because the context asked it to (nothing failed; the nodes
+    /// that ran are cached and the next pass goes on from them).
+    pub fn is_cancelled(&self) -> bool {
+        self.message == CANCELLED
+    }
+}
+
 /// What the executor measured for one node.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct NodeStats {
@@ -101,6 +112,16 @@ impl<V: Clone> Executor<V> {
         ctx: &mut C,
         targets: &[&str],
     ) -> Result<PassReport, ExecError> {
+        // A render at k times the designed size: its nodes read lengths in pixels times k (the
+        // cache keys hash the scaled values, so a change of scale re-runs what it changes).
+        let scale = ctx.pixel_scale();
+        let scaled;
+        let graph = if scale == 1.0 {
+            graph
+        } else {
+            scaled = graph.with_pixel_scale(registry, scale);
+            &scaled
+        };
         let (wanted, roots) = self.needed_nodes(graph, registry, targets)?;
         // Forget nodes that left the graph.
         self.cache.retain(|id, _| graph.node(id).is_some());
@@ -127,8 +148,30 @@ impl<V: Clone> Executor<V> {
             ),
             _ => order.iter().map(|&id| Unit::Single(id)).collect(),
         };
+        // The steps that will execute (a cached node costs nothing), for progress reports.
+        let planned: Vec<&str> = units
+            .iter()
+            .filter_map(|unit| match unit {
+                Unit::Single(id) => dirty.contains(id).then_some(*id),
+                Unit::Group(members) => members.last().map(|(id, _)| *id),
+            })
+            .collect();
+        ctx.begin_pass(&planned);
         let mut report = PassReport::default();
         for unit in units {
+            // Between steps: a cancelled pass keeps what it computed so far.
+            if ctx.cancelled() {
+                let id = match &unit {
+                    Unit::Single(id) => *id,
+                    Unit::Group(members) => members[0].0,
+                };
+                return Err(ExecError {
+                    node: id.to_owned(),
+                    kind: graph.node(id).map(|n| n.kind.clone()).unwrap_or_default(),
+                    port: None,
+                    message: CANCELLED.into(),
+                });
+            }
             match unit {
                 Unit::Single(id) => {
                     self.run_single(graph, registry, ctx, id, forced.contains(id), &mut report)?

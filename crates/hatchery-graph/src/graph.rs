@@ -477,6 +477,31 @@ impl Graph {
         Ok(())
     }
 
+    /// This graph with every parameter marked [`crate::ParamSpec::pixels`] multiplied by
+    /// `scale` (integers rounded, at least 1 where they were): what the nodes of a render at
+    /// `scale` times the designed size read. Relative values are left as they are.
+    pub fn with_pixel_scale(&self, schemas: &dyn SchemaLookup, scale: f64) -> Graph {
+        let mut scaled = self.clone();
+        for instance in scaled.graph.node_weights_mut() {
+            let own = instance.own_schema.clone();
+            let Some(schema) = own.as_deref().or_else(|| schemas.schema(&instance.kind)) else {
+                continue;
+            };
+            for spec in schema.params.iter().filter(|p| p.pixels) {
+                let value = match instance.params.get(spec.name) {
+                    Some(ParamValue::Float(v)) => ParamValue::Float(v * scale),
+                    Some(&ParamValue::Int(v)) => {
+                        let s = (v as f64 * scale).round() as i64;
+                        ParamValue::Int(if v >= 1 { s.max(1) } else { s })
+                    }
+                    _ => continue,
+                };
+                instance.params.set(spec.name, value);
+            }
+        }
+        scaled
+    }
+
     /// Node ids in an order where every node comes after its inputs.
     pub fn topological_order(&self) -> Vec<&str> {
         // Validation refused cycles, so toposort succeeds.

@@ -294,7 +294,8 @@ pub fn doc_text(lines: &[&str]) -> &'static str {
 /// ```
 ///
 /// Each field: doc comment (the parameter's one-line doc), name, [`ParamField`] type, default,
-/// then `range(min, max)` for numbers, optionally `reads(InputKind::…)` for a path a graph
+/// then `range(min, max)` for numbers, `unit(pixels)` for a length in pixels of the designed
+/// figure (scaled with the render, [`crate::ParamSpec::pixels`]), optionally `reads(InputKind::…)` for a path a graph
 /// input may bind and `widget(Widget::…)` for the editor widget it needs. Generates `specs()` (for the kind's schema, in declaration order) and
 /// `read(&Params) -> Result<Self, NodeError>`. A field whose type is another such struct, with
 /// default [`Group`], puts that struct's parameters in its place.
@@ -307,6 +308,7 @@ macro_rules! node_params {
                 $(#[doc = $doc:expr])*
                 $fvis:vis $field:ident : $ty:ty = $default:expr
                     $(, range($min:expr, $max:expr))?
+                    $(, unit($unit:ident))?
                     $(, reads($reads:expr))?
                     $(, widget($widget:expr))?
                 ;
@@ -335,6 +337,7 @@ macro_rules! node_params {
                     specs.extend(
                         field
                             .into_iter()
+                            $(.map(|s| s.$unit()))?
                             $(.map(|s| s.reads($reads)))?
                             $(.map(|s| s.widget($widget)))?,
                     );

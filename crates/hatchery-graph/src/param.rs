@@ -87,6 +87,10 @@ pub struct ParamSpec {
     pub relative: bool,
     /// The editor widget for a parameter that is more than a number or a line of text.
     pub widget: Option<Widget>,
+    /// A length in pixels of the figure as designed (a hatching cell, a line width, a font
+    /// size): multiplied by the render's pixel scale ([`crate::ExecContext::pixel_scale`]), so a
+    /// render at k times the size is the designed figure at k times the resolution.
+    pub pixels: bool,
 }
 
 /// An editor widget a parameter asks for (the editor's inspector picks it by this, not by the
@@ -115,6 +119,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn int(name: &'static str, default: i64, min: i64, max: i64, doc: &'static str) -> Self {
@@ -126,6 +131,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn bool(name: &'static str, default: bool, doc: &'static str) -> Self {
@@ -137,6 +143,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn choice(
@@ -154,6 +161,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn color(name: &'static str, default: [f64; 4], doc: &'static str) -> Self {
@@ -165,6 +173,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn vec3(name: &'static str, default: [f64; 3], doc: &'static str) -> Self {
@@ -176,6 +185,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn path(name: &'static str, default: &'static str, doc: &'static str) -> Self {
@@ -187,6 +197,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
     pub fn text(name: &'static str, default: &'static str, doc: &'static str) -> Self {
@@ -198,6 +209,7 @@ impl ParamSpec {
             reads: None,
             relative: false,
             widget: None,
+            pixels: false,
         }
     }
 
@@ -210,6 +222,17 @@ impl ParamSpec {
     /// Asks the editor for `widget` to edit this parameter.
     pub fn widget(mut self, widget: Widget) -> Self {
         self.widget = Some(widget);
+        self
+    }
+
+    /// Marks a float or integer as a length in pixels of the designed figure (see
+    /// [`ParamSpec::pixels`](#structfield.pixels)).
+    pub fn pixels(mut self) -> Self {
+        debug_assert!(matches!(
+            self.kind,
+            ParamKind::Float { .. } | ParamKind::Int { .. }
+        ));
+        self.pixels = true;
         self
     }
 

@@ -38,6 +38,19 @@ pub trait ExecContext {
     fn frame_key(&self) -> u64 {
         0
     }
+    /// How many rendered pixels one pixel of the designed figure is: parameters marked
+    /// [`crate::ParamSpec::pixels`] are multiplied by it before a node reads them.
+    fn pixel_scale(&self) -> f64 {
+        1.0
+    }
+    /// Called at the start of a pass with the steps that will execute, in order (a fused
+    /// pass by its last member, the node its time is reported under).
+    fn begin_pass(&mut self, _planned: &[&str]) {}
+    /// Asked between steps: `true` stops the pass with an error for which
+    /// [`crate::ExecError::is_cancelled`] holds; what ran stays cached.
+    fn cancelled(&self) -> bool {
+        false
+    }
     fn begin_node(&mut self, _node: &str) {}
     fn end_node(&mut self, _node: &str) {}
     /// Called at the end of a pass: GPU time per node, where the device could measure it.

@@ -16,13 +16,13 @@ use hatchery_graph::{
 };
 use std::sync::{Arc, Mutex};
 
-/// Space between a label's text and its box, pixels (each side).
+/// Space between a label's text and its box, pixels of the designed figure (each side).
 pub const LABEL_PADDING: f32 = 2.0;
 
-/// A label's box for `text` at `font_size` pixels: the text's extent plus the padding.
-pub fn label_size(text: &str, font_size: f32) -> Vec2 {
+/// A label's box for `text` at `font_size` pixels: the text's extent plus `padding` each side.
+pub fn label_size(text: &str, font_size: f32, padding: f32) -> Vec2 {
     let [w, h] = label_font::measure(text, font_size);
-    Vec2::new(w, h) + 2.0 * LABEL_PADDING
+    Vec2::new(w, h) + 2.0 * padding
 }
 
 /// View depth (world units in front of the eye) of window depth `z` at pixel centre `pixel`.
@@ -89,9 +89,9 @@ hatchery_graph::node_params! {
     /// Parameters of `AnnotationLayout`.
     pub struct AnnotationLayoutParams {
         /// label text size, pixels
-        pub font_size: f32 = 13.0, range(6.0, 96.0);
+        pub font_size: f32 = 13.0, range(6.0, 96.0), unit(pixels);
         /// distance of the labels from the hull, pixels
-        pub margin: f32 = 10.0, range(0.0, 200.0);
+        pub margin: f32 = 10.0, range(0.0, 200.0), unit(pixels);
         /// iterations of the swap/shift loop before labels are left out
         pub max_iterations: u32 = 300, range(1, 10000);
         /// with a gbuffer: an anchor this far (world units) behind the surface still counts as
@@ -208,15 +208,22 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
             }
         };
         let font_size = params.font_size;
+        // The layout's own lengths in pixels scale with the render as its parameters do.
+        let scale = ctx.pixel_scale() as f32;
+        let padding = LABEL_PADDING * scale;
         let sizes: Vec<Vec2> = annotations
             .anchors
             .iter()
-            .map(|a| label_size(&a.text, font_size))
+            .map(|a| label_size(&a.text, font_size, padding))
             .collect();
+        let defaults = LayoutParams::default();
         let layout_params = LayoutParams {
             margin: params.margin,
             max_iterations: params.max_iterations.clamp(1, 10000),
-            ..LayoutParams::default()
+            label_gap: defaults.label_gap * scale,
+            delta: defaults.delta * scale,
+            coherence_pull: defaults.coherence_pull * scale,
+            ..defaults
         };
         // The previous layout of this node, for temporal coherence.
         let key = format!(
@@ -269,6 +276,7 @@ impl Node<Value, Ctx> for AnnotationLayoutNode {
             width: camera.width,
             height: camera.height,
             font_size,
+            padding,
         }));
         Ok(vec![Value::Annotations(Arc::new(out))])
     }

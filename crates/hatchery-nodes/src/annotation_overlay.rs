@@ -3,7 +3,6 @@
 use crate::overlay::Canvas;
 use crate::overlay::MAX_HALO;
 use crate::overlay::pixels;
-use crate::annotation_layout::LABEL_PADDING;
 use crate::annotations::Annotations;
 use crate::label_font;
 use crate::{Ctx, Value};
@@ -21,13 +20,13 @@ hatchery_graph::node_params! {
         /// colour of the halo around the text (alpha 0: none)
         pub halo_color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
         /// halo width around the glyphs, pixels
-        pub halo_width: f32 = 2.0, range(0.0, MAX_HALO as f64);
+        pub halo_width: f32 = 2.0, range(0.0, MAX_HALO as f64), unit(pixels);
         /// leader line and anchor dot colour (alpha times the label's opacity)
         pub leader_color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
         /// leader line width, pixels
-        pub leader_width: f32 = 1.0, range(0.0, 16.0);
+        pub leader_width: f32 = 1.0, range(0.0, 16.0), unit(pixels);
         /// radius of the dot at the anchor, pixels (0: none)
-        pub dot_radius: f32 = 2.5, range(0.0, 32.0);
+        pub dot_radius: f32 = 2.5, range(0.0, 32.0), unit(pixels);
     }
 }
 
@@ -121,7 +120,7 @@ impl Node<Value, Ctx> for AnnotationOverlayNode {
                     ),
                 )
             })?;
-            let origin = label.rect.min + Vec2::new(LABEL_PADDING, LABEL_PADDING + ascent);
+            let origin = label.rect.min + Vec2::new(placed.padding, placed.padding + ascent);
             canvas.text(
                 &anchor.text,
                 placed.font_size,

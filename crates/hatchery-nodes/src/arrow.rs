@@ -11,7 +11,7 @@ hatchery_graph::node_params! {
         /// arrow colour
         pub color: [f32; 4] = [0.8, 0.1, 0.1, 1.0];
         /// shaft width, pixels
-        pub width: f32 = 2.0, range(0.1, 32.0);
+        pub width: f32 = 2.0, range(0.1, 32.0), unit(pixels);
         /// greatest distance from the chord per pixel of depth difference
         pub curvature: f32 = 0.5, range(0.0, 4.0);
     }

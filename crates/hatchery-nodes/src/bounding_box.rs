@@ -18,7 +18,7 @@ hatchery_graph::node_params! {
         /// edge colour
         pub color: [f32; 4] = [0.1, 0.4, 0.9, 1.0];
         /// edge width, pixels
-        pub width: f32 = 1.0, range(0.1, 32.0);
+        pub width: f32 = 1.0, range(0.1, 32.0), unit(pixels);
     }
 }
 

@@ -13,6 +13,8 @@ pub struct RenderContext {
     pub gpu: GpuContext,
     width: u32,
     height: u32,
+    /// Rendered pixels per pixel of the designed figure (see [`Self::set_pixel_scale`]).
+    pixel_scale: f64,
     timer: Option<GpuTimer>,
     /// The node executing now (its submissions are timed under its id).
     current_node: Option<String>,
@@ -35,6 +37,8 @@ pub struct RenderContext {
     /// yet, noting the nodes that did (an interactive view's coarse first frame).
     coarse_first: bool,
     coarse_nodes: Vec<String>,
+    /// Where passes report what they do and learn that they are no longer wanted.
+    progress: Option<Arc<crate::progress::Progress>>,
 }
 
 impl RenderContext {
@@ -43,6 +47,7 @@ impl RenderContext {
         Ok(Self {
             width,
             height,
+            pixel_scale: 1.0,
             timer: None,
             current_node: None,
             statics: HashMap::new(),
@@ -52,6 +57,7 @@ impl RenderContext {
             memory: HashMap::new(),
             coarse_first: false,
             coarse_nodes: Vec::new(),
+            progress: None,
             image_kernel: crate::kernel::Kernel::choose(
                 std::env::var("HATCHERY_IMAGE_KERNEL")
                     .ok()
@@ -117,6 +123,26 @@ impl RenderContext {
         self.width = width;
         self.height = height;
         Ok(())
+    }
+
+    /// Reports each pass's steps to `progress` and stops a pass between steps once it is
+    /// cancelled there (the editor's render thread: a newer edit supersedes a long render).
+    /// Each node's GPU work is then waited for before the next starts.
+    pub fn set_progress(&mut self, progress: Arc<crate::progress::Progress>) {
+        self.progress = Some(progress);
+    }
+
+    /// Renders the figure as designed at `scale` times its resolution: every parameter that
+    /// is a length in pixels (hatching cells, line widths, label sizes; `unit(pixels)` in its
+    /// declaration) is multiplied by `scale` (> 0; 1 = as written). The frame size is set
+    /// separately ([`Self::set_size`]): `hatchery render --scale 2` doubles both.
+    pub fn set_pixel_scale(&mut self, scale: f64) {
+        debug_assert!(scale.is_finite() && scale > 0.0);
+        self.pixel_scale = scale;
+    }
+
+    pub fn pixel_scale(&self) -> f64 {
+        self.pixel_scale
     }
 
     /// A value the executing node derives from its parameters (a pre-integration table), kept
@@ -301,12 +327,34 @@ impl ExecContext for RenderContext {
         (self.width, self.height).hash(&mut h);
         h.finish()
     }
+    fn pixel_scale(&self) -> f64 {
+        self.pixel_scale
+    }
+    fn begin_pass(&mut self, planned: &[&str]) {
+        if let Some(progress) = &self.progress {
+            progress.begin_pass(planned);
+        }
+    }
+    fn cancelled(&self) -> bool {
+        self.progress.as_ref().is_some_and(|p| p.is_cancelled())
+    }
     fn begin_node(&mut self, node: &str) {
+        if let Some(progress) = &self.progress {
+            progress.begin_node(node);
+        }
         self.current_node = Some(node.to_owned());
         self.warnings.remove(node);
         self.resolved.remove(node);
     }
-    fn end_node(&mut self, _node: &str) {
+    fn end_node(&mut self, node: &str) {
+        if let Some(progress) = &self.progress {
+            // Submitted GPU work runs after `execute` returns: wait for it, so the node shown
+            // running is the one the GPU works on and a cancel takes effect after it (the
+            // editor only; it costs the overlap of recording the next node with this one's
+            // GPU work).
+            self.gpu.wait_idle();
+            progress.end_node(node);
+        }
         self.current_node = None;
     }
     fn finish_pass(&mut self) -> Vec<(String, Duration)> {

@@ -25,7 +25,7 @@ hatchery_graph::node_params! {
     /// The parameters of `CurvatureContours`.
     pub struct CurvatureContoursParams {
         /// contour width, pixels
-        pub thickness: f32 = 2.0, range(0.25, 32.0);
+        pub thickness: f32 = 2.0, range(0.25, 32.0), unit(pixels);
         /// finite-difference step of the Hessian, voxels (as Curvature's)
         pub step: f32 = 1.0, range(0.25, 8.0);
         /// reconstruction of the gradient and Hessian (as Curvature's)

@@ -33,9 +33,9 @@ hatchery_graph::node_params! {
     /// Parameters of `CurvatureFlow`.
     pub struct CurvatureFlowParams {
         /// streamline length, pixels
-        pub length: f32 = 20.0, range(2.0, 200.0);
+        pub length: f32 = 20.0, range(2.0, 200.0), unit(pixels);
         /// integration step, pixels
-        pub step: f32 = 1.0, range(0.25, 4.0);
+        pub step: f32 = 1.0, range(0.25, 4.0), unit(pixels);
         /// the principal direction of the larger or of the smaller |κ|
         pub direction: Direction = Direction::MaxCurvature;
         /// noise cell size on the surface, world units (about a pixel's footprint)

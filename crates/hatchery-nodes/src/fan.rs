@@ -11,7 +11,7 @@ hatchery_graph::node_params! {
         /// outline and line colour
         pub color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
         /// line width, pixels
-        pub width: f32 = 1.5, range(0.1, 32.0);
+        pub width: f32 = 1.5, range(0.1, 32.0), unit(pixels);
         /// colour between the rectangles (alpha 0: no fill)
         pub fill: [f32; 4] = [0.3, 0.3, 0.3, 0.15];
     }

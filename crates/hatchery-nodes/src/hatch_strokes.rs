@@ -125,13 +125,13 @@ hatchery_graph::node_params! {
         /// chance that a seed at full darkness draws a stroke
         pub density: f32 = 0.05, range(0.0, 1.0);
         /// stroke length, pixels (at most 256 RK4 steps)
-        pub length: f32 = 24.0, range(2.0, 256.0);
+        pub length: f32 = 24.0, range(2.0, 256.0), unit(pixels);
         /// stroke width in the middle, pixels
-        pub width: f32 = 1.2, range(0.25, 8.0);
+        pub width: f32 = 1.2, range(0.25, 8.0), unit(pixels);
         /// fraction of the length over which each end thins to nothing
         pub taper: f32 = 0.3, range(0.0, 0.5);
         /// RK4 step, pixels
-        pub step: f32 = 1.0, range(0.25, 4.0);
+        pub step: f32 = 1.0, range(0.25, 4.0), unit(pixels);
         /// the principal direction of the larger or of the smaller |κ|
         pub direction: Direction = Direction::MaxCurvature;
         /// darkness above which a second stroke crosses the first (1 = never)

@@ -94,7 +94,7 @@ hatchery_graph::node_params! {
         pub slope: f32 = 1.0, range(0.05, 20.0);
         /// image-space AImC: dilate and average the footprints over this radius (pixels) for smooth
         /// transitions between levels of sparseness
-        pub transition: f32 = 0.0, range(0.0, 64.0);
+        pub transition: f32 = 0.0, range(0.0, 64.0), unit(pixels);
         /// sample distance along the rays in voxels (of the smallest spacing)
         pub step: f32 = 0.5, range(0.05, 8.0);
         /// object membership, as TwoLevelRaycast's

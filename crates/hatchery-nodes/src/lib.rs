@@ -17,6 +17,7 @@ pub mod label_font;
 pub mod label_sources;
 pub mod memory_inputs;
 pub mod mesh_pass;
+pub mod progress;
 pub mod reconstruction;
 pub mod relative;
 pub mod screen_pass;

@@ -25,7 +25,7 @@ hatchery_graph::node_params! {
         /// smallest |κ| of a line, world units⁻¹
         pub threshold: f32 = 1.0, range(0.0, 1.0e6);
         /// line width, pixels (up to 3)
-        pub thickness: f32 = 1.5, range(0.5, 3.0);
+        pub thickness: f32 = 1.5, range(0.5, 3.0), unit(pixels);
     }
 }
 

@@ -3,7 +3,6 @@
 //! Ramer–Douglas–Peucker, hatchery_annotation::trace_mask), leader lines and labels as text,
 //! each group an Inkscape layer.
 
-use crate::annotation_layout::LABEL_PADDING;
 use crate::{Ctx, Value, export, label_font};
 use glam::Vec2;
 use hatchery_annotation::{
@@ -43,17 +42,17 @@ hatchery_graph::node_params! {
         /// stroked outlines (one path per contour)
         pub lines_as: LinesAs = LinesAs::Shapes;
         /// Douglas–Peucker tolerance of the traced lines, pixels
-        pub simplify: f32 = 0.5, range(0.0, 10.0);
+        pub simplify: f32 = 0.5, range(0.0, 10.0), unit(pixels);
         /// label text colour
         pub text_color: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
         /// label halo colour
         pub halo_color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
         /// label halo width, pixels (0: none)
-        pub halo_width: f32 = 2.0, range(0.0, 20.0);
+        pub halo_width: f32 = 2.0, range(0.0, 20.0), unit(pixels);
         /// leader line colour
         pub leader_color: [f32; 4] = [0.2, 0.2, 0.2, 1.0];
         /// leader line width, pixels
-        pub leader_width: f32 = 1.0, range(0.1, 20.0);
+        pub leader_width: f32 = 1.0, range(0.1, 20.0), unit(pixels);
         /// with `selection`: the arrow ghost → selection
         pub arrow: bool = true;
         /// with `selection`: the fan between their rectangles
@@ -63,7 +62,7 @@ hatchery_graph::node_params! {
         /// colour of the arrow, fan and boxes
         pub convention_color: [f32; 4] = [0.8, 0.1, 0.1, 1.0];
         /// line width of the arrow, fan and boxes, pixels
-        pub convention_width: f32 = 2.0, range(0.1, 32.0);
+        pub convention_width: f32 = 2.0, range(0.1, 32.0), unit(pixels);
         /// the arrow's bend per pixel of depth difference (as Arrow's)
         pub curvature: f32 = 0.5, range(0.0, 4.0);
         /// colour of the hatching `strokes`
@@ -75,7 +74,7 @@ hatchery_graph::node_params! {
         /// shows what the PNG does
         pub shown1: bool = true;
         /// stroke width of those lines, pixels
-        pub width1: f32 = 1.5, range(0.1, 50.0);
+        pub width1: f32 = 1.5, range(0.1, 50.0), unit(pixels);
         /// stroke colour of the lines traced from this input
         pub color2: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
         /// these lines visible over the picture; off: in the hidden 'Covered lines' layer, for lines
@@ -83,7 +82,7 @@ hatchery_graph::node_params! {
         /// shows what the PNG does
         pub shown2: bool = true;
         /// stroke width of those lines, pixels
-        pub width2: f32 = 1.5, range(0.1, 50.0);
+        pub width2: f32 = 1.5, range(0.1, 50.0), unit(pixels);
         /// stroke colour of the lines traced from this input
         pub color3: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
         /// these lines visible over the picture; off: in the hidden 'Covered lines' layer, for lines
@@ -91,7 +90,7 @@ hatchery_graph::node_params! {
         /// shows what the PNG does
         pub shown3: bool = true;
         /// stroke width of those lines, pixels
-        pub width3: f32 = 1.5, range(0.1, 50.0);
+        pub width3: f32 = 1.5, range(0.1, 50.0), unit(pixels);
     }
 }
 
@@ -270,7 +269,7 @@ impl Node<Value, Ctx> for SaveSvgNode {
                         ..leader
                     },
                 );
-                let at = label.rect.min + Vec2::new(LABEL_PADDING, LABEL_PADDING + ascent);
+                let at = label.rect.min + Vec2::new(placed.padding, placed.padding + ascent);
                 doc.text(&a.anchors[label.anchor].text, at, &style);
             }
         }

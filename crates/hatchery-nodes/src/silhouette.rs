@@ -21,7 +21,8 @@ crate::uniform_block! {
         pub pip_scale: f32,
         /// PIP: seed of the `noise` pattern.
         pub pip_seed: f32,
-        pub pad0: f32,
+        /// Distance of the unperturbed taps, whole pixels (1: the paper's neighbours).
+        pub tap_distance: f32,
         pub pad1: f32,
         pub pad2: f32,
     }
@@ -46,6 +47,9 @@ hatchery_graph::node_params! {
         pub depth_threshold: f32 = 0.001, range(0.0, 100.0);
         /// threshold on the summed neighbour normal dot products
         pub normal_threshold: f32 = 3.98, range(-4.0, 4.0);
+        /// distance of the depth and normal taps from the pixel (rounded to whole pixels; 1: the
+        /// paper's neighbours): lines are about twice this wide
+        pub tap_distance: f32 = 1.0, range(1.0, 16.0), unit(pixels);
         /// detect depth discontinuities (eq. 3)
         pub use_depth: bool = true;
         /// detect normal discontinuities (eq. 4–5)
@@ -53,9 +57,9 @@ hatchery_graph::node_params! {
         /// perturbation P(x, y) of the sampling positions
         pub pip: PipMode = PipMode::None;
         /// P's scale in pixels (the constant for `constant`)
-        pub pip_amount: f32 = 1.0, range(0.0, 16.0);
+        pub pip_amount: f32 = 1.0, range(0.0, 16.0), unit(pixels);
         /// pattern size in pixels for `noise` and `dots`
-        pub pip_scale: f32 = 8.0, range(1.0, 256.0);
+        pub pip_scale: f32 = 8.0, range(1.0, 256.0), unit(pixels);
         /// seed of the `noise` pattern
         pub pip_seed: i64 = 0, range(0, 1_000_000);
         /// grey-scale PNG tiled over the frame for `texture`
@@ -115,6 +119,7 @@ impl Fusable for SilhouetteNode {
             pip_amount: p.pip_amount,
             pip_scale: p.pip_scale,
             pip_seed: p.pip_seed as f32,
+            tap_distance: p.tap_distance.round().max(1.0),
             ..Default::default()
         };
         // The mode and switches as constants (shaders/silhouette.wgsl says why).

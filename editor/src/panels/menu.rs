@@ -29,6 +29,7 @@ impl Panel for MenuBar {
                 }
                 if ui.button("Export image…").clicked() {
                     app.export.open = true;
+                    app.export.screen = app.preview.viewport.as_ref().map(|v| v.size());
                     if app.export.port.is_none() {
                         app.export.port = app.preview.chosen.clone().or_else(|| {
                             let doc = app.state.doc();

@@ -103,15 +103,7 @@ impl Panel for Viewport {
         // label beside the checkbox went unnoticed during 8–18 s CPU renders).
         app.picture_stale = app.preview.is_busy();
         if app.picture_stale {
-            let painter = ui.painter_at(response.rect);
-            painter.rect_filled(response.rect, 0.0, Color32::from_black_alpha(120));
-            painter.text(
-                response.rect.center(),
-                egui::Align2::CENTER_CENTER,
-                "rendering…",
-                egui::FontId::proportional(22.0),
-                Color32::WHITE,
-            );
+            crate::render_progress::draw(ui, response.rect, app.preview.progress());
         }
         // Alt: the picture's own zoom and pan; otherwise the camera.
         if ui.input(|i| i.modifiers.alt) {

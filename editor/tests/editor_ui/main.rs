@@ -20,6 +20,7 @@ mod layout;
 mod objects;
 mod organise;
 mod picture;
+mod progress;
 mod selection;
 mod views;
 use selection::select_by_click;

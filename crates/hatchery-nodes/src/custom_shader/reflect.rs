@@ -19,7 +19,7 @@
 //! parameters, every refusal with its message) in one place, so what a custom shader may declare
 //! is read in one file.
 
-use hatchery_graph::{NodeSchema, ParamKind, ParamSpec, ParamValue, PortSpec, PortType, intern};
+use hatchery_graph::{NodeSchema, ParamSpec, PortSpec, PortType, intern};
 use naga::{AddressSpace, ImageClass, ScalarKind, TypeInner, VectorSize};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
@@ -602,15 +602,7 @@ fn param_spec(name: &str, ty: MemberType, comment: &str) -> Result<ParamSpec, St
                 "`range` applies to numbers, not to vectors and colours".into(),
             ));
         }
-        MemberType::Vec3 => ParamSpec {
-            name,
-            kind: ParamKind::Vec3,
-            default: ParamValue::Vec3([0.0; 3]),
-            doc,
-            reads: None,
-            relative: false,
-            widget: None,
-        },
+        MemberType::Vec3 => ParamSpec::vec3(name, [0.0; 3], doc),
         MemberType::Vec4 => ParamSpec::color(name, [0.0, 0.0, 0.0, 1.0], doc),
     };
     let Some(raw) = default else {

@@ -28,6 +28,8 @@ pub struct Placed {
     pub height: u32,
     /// Label text size, pixels.
     pub font_size: f32,
+    /// Space between a label's text and its box, pixels (each side).
+    pub padding: f32,
 }
 
 impl Annotations {

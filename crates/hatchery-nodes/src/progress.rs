@@ -1,0 +1,108 @@
+//! What a render pass is doing, shared with the thread that asked for it: the steps planned,
+//! the one running and since when (the editor draws it over the picture), and a cancel flag a
+//! newer request sets (the executor stops between steps; what ran stays cached).
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// A pass's progress, as last reported.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PassProgress {
+    /// The steps that execute in this pass, in order (a fused pass by its last member).
+    pub planned: Vec<String>,
+    /// How many of them have finished.
+    pub done: usize,
+    /// The step running now and when it started.
+    pub current: Option<(String, Instant)>,
+}
+
+/// Shared between a [`crate::RenderContext`] ([`crate::RenderContext::set_progress`]) and
+/// whoever watches or cancels its passes.
+#[derive(Default)]
+pub struct Progress {
+    /// Called when a step starts or ends (the editor asks for a repaint).
+    notify: Option<Box<dyn Fn() + Send + Sync>>,
+    pass: Mutex<PassProgress>,
+    cancel: AtomicBool,
+    /// When the request being rendered (one or more passes) started; `None` when idle.
+    request: Mutex<Option<Instant>>,
+}
+
+impl Progress {
+    /// A progress that calls `notify` whenever a step starts or ends.
+    pub fn notifying(notify: impl Fn() + Send + Sync + 'static) -> Self {
+        Progress {
+            notify: Some(Box::new(notify)),
+            ..Progress::default()
+        }
+    }
+
+    fn changed(&self) {
+        if let Some(notify) = &self.notify {
+            notify();
+        }
+    }
+
+    /// The latest report.
+    pub fn snapshot(&self) -> PassProgress {
+        self.pass.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// A request starts rendering: passes run again (a cancel was for an older request).
+    pub fn begin_request(&self) {
+        self.cancel.store(false, Ordering::Relaxed);
+        *self.request.lock().unwrap_or_else(|e| e.into_inner()) = Some(Instant::now());
+    }
+
+    /// The request is done (rendered, failed or cancelled).
+    pub fn end_request(&self) {
+        *self.request.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        *self.pass.lock().unwrap_or_else(|e| e.into_inner()) = PassProgress::default();
+    }
+
+    /// How long the request being rendered has been running; `None` when idle.
+    pub fn busy_for(&self) -> Option<Duration> {
+        self.request
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .map(|t| t.elapsed())
+    }
+
+    /// Asks the running pass to stop at its next step (and every pass after, until the next
+    /// [`Self::begin_request`]).
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    pub fn is_cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+
+    pub(crate) fn begin_pass(&self, planned: &[&str]) {
+        *self.pass.lock().unwrap_or_else(|e| e.into_inner()) = PassProgress {
+            planned: planned.iter().map(|s| (*s).to_owned()).collect(),
+            done: 0,
+            current: None,
+        };
+    }
+
+    pub(crate) fn begin_node(&self, node: &str) {
+        let mut pass = self.pass.lock().unwrap_or_else(|e| e.into_inner());
+        if pass.planned.iter().any(|p| p == node) {
+            pass.current = Some((node.to_owned(), Instant::now()));
+            drop(pass);
+            self.changed();
+        }
+    }
+
+    pub(crate) fn end_node(&self, node: &str) {
+        let mut pass = self.pass.lock().unwrap_or_else(|e| e.into_inner());
+        if pass.current.as_ref().is_some_and(|(n, _)| n == node) {
+            pass.current = None;
+            pass.done += 1;
+            drop(pass);
+            self.changed();
+        }
+    }
+}
