@@ -75,7 +75,8 @@ pub fn paint_box(
     let background = ui.visuals().window_fill;
     let fill = background.lerp_to_gamma(color, 0.6);
     painter.rect(rect, 4.0 / scaling, fill, stroke, egui::StrokeKind::Inside);
-    let inner = rect.shrink(3.0 / scaling);
+    // A little room at the sides; none above and below (a one-port node is a line high).
+    let inner = rect.shrink2(egui::vec2(3.0 / scaling, 0.0));
     let [r, g, b, _] = fill.to_array();
     let luma = 0.299 * r as f32 + 0.587 * g as f32 + 0.114 * b as f32;
     let ink = if luma > 140.0 {
