@@ -511,7 +511,8 @@ class DepthTestMask:
         mask (Mask): the test result, 0 or 1
 
     Parameters:
-        compare (one of 'a<=b', 'a<b', 'a>=b', 'a>b'; default 'a<=b'): the comparison
+        compare (one of 'a<=b', 'a<b', 'a>=b', 'a>b'; default 'a<=b'): the mask is 1 where layer
+            a is in front of b (a<b, a<=b: smaller depth is nearer) or behind it (a>b, a>=b)
 
     """
 
@@ -581,7 +582,8 @@ class Fill:
         image (Image): the filled frame
 
     Parameters:
-        color (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): the colour
+        color (RGBA in [0, 1]; default (1.0, 1.0, 1.0, 1.0)): the colour that fills the whole
+            frame (alpha = opacity)
 
     """
 
@@ -619,7 +621,8 @@ class Halftone:
 
     Parameters:
         theta (float in [-360, 360]; default 20.0): rotation of the pattern, degrees
-        cell (float in [1, 256]; default 4.0): cell size n in pixels
+        cell (float in [1, 256]; default 4.0): spacing of the hatching lines: the pattern's cell
+            size n in pixels
         c_cross (float in [0, 1]; default 0.9): intensity below which cross-hatching appears
 
     """
@@ -715,8 +718,9 @@ class ImportanceCompositing:
             highest importance)
         countersink (one of 'conical', 'cylindrical'; default 'conical'): conical (eq. 1) or
             cylindrical (the footprint swept along the rays)
-        slope (float in [0.05, 20]; default 1.0): s_c of eq. 1: depth per unit of image-space
-            distance (both in world units)
+        slope (float in [0.05, 20]; default 1.0): the cut-away's slope: how much deeper it gets
+            per unit of distance from the focus on screen, a cone around the focus (s_c of eq.
+            1; both in world units)
         transition (float in [0, 64]; default 0.0): image-space AImC: dilate and average the
             footprints over this radius (pixels) for smooth transitions between levels of
             sparseness
@@ -1120,19 +1124,26 @@ class Raycast:
             shading (style TFs always use their styles)
         lighting_model (one of 'phong', 'phong_contour', 'cartoon', 'metal'; default
             'phong_contour'): lighting transfer function for `lighting`
-        ambient (float in [0, 1]; default 0.15): c_a of eq. 3
-        diffuse (float in [0, 4]; default 0.85): c_d of eq. 3
-        specular (float in [0, 4]; default 0.4): c_s of eq. 3
-        exponent (float in [1, 512]; default 32.0): c_e of eq. 3
-        kappa_t (float in [0, 1000]; default 0.0): κt of eq. 5: how deep to look inside (0 =
-            plain DVR)
-        kappa_s (float in [0, 100]; default 0.5): κs of eq. 5: sharpness of the cut
+        ambient (float in [0, 1]; default 0.15): ambient light: brightness of every shaded
+            sample, lit or not (c_a of eq. 3)
+        diffuse (float in [0, 4]; default 0.85): diffuse light: brightness where the surface
+            faces the light (c_d of eq. 3)
+        specular (float in [0, 4]; default 0.4): specular light: strength of the highlight (c_s
+            of eq. 3)
+        exponent (float in [1, 512]; default 32.0): shininess: higher makes the highlight
+            smaller and sharper (c_e of eq. 3)
+        kappa_t (float in [0, 1000]; default 0.0): how deep to look inside: more shows more of
+            the interior through weakly lit, flat regions (κt of eq. 5; 0 = plain DVR)
+        kappa_s (float in [0, 100]; default 0.5): how sharply the view into the interior starts
+            (κs of eq. 5)
         fast_exponent (bool; default False): context_preserving: Schlick's rational
             approximation of eq. 5's two exponentiations (the paper's §6, eq. 6–7) instead of
             pow
-        contours (bool; default True): style contours (§3.3)
+        contours (bool; default True): draw dark contour lines where the surface turns away from
+            the viewer (§3.3)
         thickness (float in [0, 1000]; default 2.0): contour thickness T, world units
-        transparency (bool; default True): illustrative transparency (eq. 2) for styles
+        transparency (bool; default True): see-through styles: a style's opacity falls where it
+            faces the viewer, so inner structures show (eq. 2)
         mip_bias (float in [-4, 8]; default 0.0): bias of the style mip level
         jitter (bool; default True): jitter the first sample per pixel (hides wood-grain
             artefacts)
@@ -1342,8 +1353,10 @@ class SecondaryGeometry:
         gbuffer (GBuffer): depth and normal of S
 
     Parameters:
-        alpha (float in [0, 1]; default 0.7): attenuation behind one layer (α)
-        beta (float in [0, 1]; default 0.21): attenuation behind two layers (β < α)
+        alpha (float in [0, 1]; default 0.7): how much of the secondary geometry shows behind
+            one surface layer (α)
+        beta (float in [0, 1]; default 0.21): how much shows behind two surface layers, less
+            than behind one (β < α)
         two_sided (bool; default True): light back faces with the flipped normal
 
     """
@@ -1410,8 +1423,9 @@ class SelectionRender:
             units
         rotate ((x, y, z); default (0.0, 0.0, 0.0)): rotation about the selection's centre, XYZ
             Euler degrees (world axes; view axes when decoupled)
-        placement (one of 'integrated', 'pinned', 'decoupled'; default 'integrated'):
-            integrated, pinned or decoupled (§6.3)
+        placement (one of 'integrated', 'pinned', 'decoupled'; default 'integrated'): where the
+            selection is drawn: in place in the volume (integrated), moved with its ghost left
+            behind (pinned), or in a view of its own (decoupled) (§6.3)
         pin_x (float in [0, 1]; default 0.75): pinned/decoupled: the centre's screen position,
             fraction of the width from the left
         pin_y (float in [0, 1]; default 0.3): pinned/decoupled: fraction of the height from the
@@ -1420,7 +1434,8 @@ class SelectionRender:
             the background is cut in front of
         ghosting (float in [0, 1]; default 0.7): 0: no ghosting … 1: full cutaway
         shading (one of 'phong_contour', 'phong', 'cartoon', 'metal', 'none'; default
-            'phong_contour'): lighting transfer function (eq. 8) or none
+            'phong_contour'): how the selection is lit: a lighting transfer function that
+            darkens it where it faces away from the light (eq. 8), or none
         step (float in [0.05, 8]; default 0.5): sample distance in voxels (of the smallest
             spacing)
         reconstruction (one of 'trilinear', 'bspline'; default 'trilinear'): reconstruction of
@@ -1502,8 +1517,10 @@ class Silhouette:
         tap_distance (float in [1, 16]; default 1.0): distance of the depth and normal taps from
             the pixel (rounded to whole pixels; 1: the paper's neighbours): lines are about
             twice this wide
-        use_depth (bool; default True): detect depth discontinuities (eq. 3)
-        use_normals (bool; default True): detect normal discontinuities (eq. 4–5)
+        use_depth (bool; default True): draw lines where the depth jumps: outlines against the
+            background and other parts (eq. 3)
+        use_normals (bool; default True): draw lines where the surface bends sharply: creases
+            and edges (eq. 4–5)
         pip (one of 'none', 'constant', 'texture', 'noise', 'dots'; default 'none'):
             perturbation P(x, y) of the sampling positions
         pip_amount (float in [0, 16]; default 1.0): P's scale in pixels (the constant for
@@ -1642,10 +1659,14 @@ class TwoLevelRaycast:
         reconstruction (one of 'trilinear', 'bspline'; default 'trilinear'): reconstruction of
             the data between voxels: trilinear, or the tricubic B-spline's values and gradients
             (Hadwiger §1.3)
-        ambient (float in [0, 1]; default 0.15): c_a of eq. 3
-        diffuse (float in [0, 4]; default 0.85): c_d of eq. 3
-        specular (float in [0, 4]; default 0.4): c_s of eq. 3
-        exponent (float in [1, 512]; default 32.0): c_e of eq. 3
+        ambient (float in [0, 1]; default 0.15): ambient light: brightness of every shaded
+            sample, lit or not (c_a of eq. 3)
+        diffuse (float in [0, 4]; default 0.85): diffuse light: brightness where the surface
+            faces the light (c_d of eq. 3)
+        specular (float in [0, 4]; default 0.4): specular light: strength of the highlight (c_s
+            of eq. 3)
+        exponent (float in [1, 512]; default 32.0): shininess: higher makes the highlight
+            smaller and sharper (c_e of eq. 3)
         jitter (bool; default True): jitter the first sample per pixel
         early_termination (float in [0.5, 1]; default 0.99): stop a ray at this opacity with
             global over (1 = never)

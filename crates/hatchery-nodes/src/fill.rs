@@ -16,7 +16,7 @@ crate::uniform_block! {
 hatchery_graph::node_params! {
     /// The parameters of `Fill`.
     pub struct FillParams {
-        /// the colour
+        /// the colour that fills the whole frame (alpha = opacity)
         pub color: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
     }
 }

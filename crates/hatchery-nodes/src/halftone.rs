@@ -25,7 +25,7 @@ hatchery_graph::node_params! {
     pub struct HalftoneParams {
         /// rotation of the pattern, degrees
         pub theta: f32 = 20.0, range(-360.0, 360.0);
-        /// cell size n in pixels
+        /// spacing of the hatching lines: the pattern's cell size n in pixels
         pub cell: f32 = 4.0, range(1.0, 256.0), unit(pixels);
         /// intensity below which cross-hatching appears
         pub c_cross: f32 = 0.9, range(0.0, 1.0);

@@ -26,9 +26,9 @@ crate::uniform_block! {
 hatchery_graph::node_params! {
     /// The parameters of `SecondaryGeometry`.
     pub struct SecondaryGeometryParams {
-        /// attenuation behind one layer (α)
+        /// how much of the secondary geometry shows behind one surface layer (α)
         pub alpha: f32 = 0.7, range(0.0, 1.0);
-        /// attenuation behind two layers (β < α)
+        /// how much shows behind two surface layers, less than behind one (β < α)
         pub beta: f32 = 0.21, range(0.0, 1.0);
         /// light back faces with the flipped normal
         pub two_sided: bool = true;

@@ -254,7 +254,8 @@ hatchery_graph::node_params! {
         /// rotation about the selection's centre, XYZ Euler degrees (world axes; view axes when
         /// decoupled)
         pub rotate: [f32; 3] = [0.0, 0.0, 0.0];
-        /// integrated, pinned or decoupled (§6.3)
+        /// where the selection is drawn: in place in the volume (integrated), moved with its 
+        /// ghost left behind (pinned), or in a view of its own (decoupled) (§6.3)
         pub placement: Placement = Placement::Integrated;
         /// pinned/decoupled: the centre's screen position, fraction of the width from the left
         pub pin_x: f32 = 0.75, range(0.0, 1.0);
@@ -264,7 +265,8 @@ hatchery_graph::node_params! {
         pub cutaway: Cutaway = Cutaway::Ghost;
         /// 0: no ghosting … 1: full cutaway
         pub ghosting: f32 = 0.7, range(0.0, 1.0);
-        /// lighting transfer function (eq. 8) or none
+        /// how the selection is lit: a lighting transfer function that darkens it where it 
+        /// faces away from the light (eq. 8), or none
         pub shading: Shading = Shading::PhongContour;
         /// sample distance in voxels (of the smallest spacing)
         pub step: f32 = 0.5, range(0.05, 8.0);

@@ -117,13 +117,13 @@ pub fn linear_clamp_sampler(ctx: &mut Ctx) -> Result<Arc<wgpu::Sampler>, hatcher
 hatchery_graph::node_params! {
     /// The Blinn–Phong parameters of eq. 3 (c_a, c_d, c_s, c_e), shared by the ray casters.
     pub struct PhongParams {
-        /// c_a of eq. 3
+        /// ambient light: brightness of every shaded sample, lit or not (c_a of eq. 3)
         pub ambient: f32 = 0.15, range(0.0, 1.0);
-        /// c_d of eq. 3
+        /// diffuse light: brightness where the surface faces the light (c_d of eq. 3)
         pub diffuse: f32 = 0.85, range(0.0, 4.0);
-        /// c_s of eq. 3
+        /// specular light: strength of the highlight (c_s of eq. 3)
         pub specular: f32 = 0.4, range(0.0, 4.0);
-        /// c_e of eq. 3
+        /// shininess: higher makes the highlight smaller and sharper (c_e of eq. 3)
         pub exponent: f32 = 32.0, range(1.0, 512.0);
     }
 }
@@ -182,18 +182,20 @@ hatchery_graph::node_params! {
         /// lighting transfer function for `lighting`
         pub lighting_model: LightingModel = LightingModel::PhongContour;
         pub phong: PhongParams = Group;
-        /// κt of eq. 5: how deep to look inside (0 = plain DVR)
+        /// how deep to look inside: more shows more of the interior through weakly lit, flat 
+        /// regions (κt of eq. 5; 0 = plain DVR)
         pub kappa_t: f32 = 0.0, range(0.0, 1000.0);
-        /// κs of eq. 5: sharpness of the cut
+        /// how sharply the view into the interior starts (κs of eq. 5)
         pub kappa_s: f32 = 0.5, range(0.0, 100.0);
         /// context_preserving: Schlick's rational approximation of eq. 5's two exponentiations (the
         /// paper's §6, eq. 6–7) instead of pow
         pub fast_exponent: bool = false;
-        /// style contours (§3.3)
+        /// draw dark contour lines where the surface turns away from the viewer (§3.3)
         pub contours: bool = true;
         /// contour thickness T, world units
         pub thickness: f32 = 2.0, range(0.0, 1000.0);
-        /// illustrative transparency (eq. 2) for styles
+        /// see-through styles: a style's opacity falls where it faces the viewer, so inner 
+        /// structures show (eq. 2)
         pub transparency: bool = true;
         /// bias of the style mip level
         pub mip_bias: f32 = 0.0, range(-4.0, 8.0);
