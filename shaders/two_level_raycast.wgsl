@@ -350,7 +350,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
                     t_hit = previous_t + h * (iso - previous_value) / (v - previous_value);
                 }
                 let p = r.p0 + r.dir * t_hit;
-                var n = view_normal(shading_gradient(r.q0 + r.dq * t_hit, current));
+                var n = view_normal(surface_gradient(r.q0 + r.dq * t_hit, current));
                 if on_cut {
                     n = cut.xyz;
                 }

@@ -155,6 +155,11 @@ hatchery_graph::node_params! {
         /// shading normals from the data's gradient, or from each object's filtered mask (for label
         /// maps without intensities)
         pub normals: Normals = Normals::Data;
+        /// with normals `objects`: the normals of iso-surfaces averaged over ±this many voxels
+        /// (the 3-D Sobel operator of the object's mask at this spacing), so a label map
+        /// segmented slice by slice does not show every slice as a terrace; 0: central
+        /// differences of neighbouring voxels
+        pub surface_smoothing: f32 = 0.0, range(0.0, 4.0);
         /// sample distance in voxels (of the smallest spacing)
         pub step: f32 = 0.5, range(0.05, 8.0);
         /// reconstruction of the data between voxels: trilinear, or the tricubic B-spline's
@@ -374,7 +379,11 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             sparse_local,
             // A cut shades the context down to 1.5 voxels behind it.
             cut_band: 1.5 * min_spacing,
-            pad0: 0.0,
+            surface_smoothing: if object_normals {
+                params.surface_smoothing
+            } else {
+                0.0
+            },
         };
         let ray_buffer = gpu.buffer_init(
             "two-level ray",

@@ -25,7 +25,8 @@ crate::uniform_block! {
         pub sparse_mode: u32,
         pub sparse_local: u32,
         pub cut_band: f32,
-        pub pad0: f32,
+        /// Spacing (voxels) of the smoothed mask gradient at iso-surfaces; 0 for none.
+        pub surface_smoothing: f32,
     }
 }
 
