@@ -155,13 +155,17 @@ fn rms_inside(a: &[(f32, f32)], b: &[(f32, f32)]) -> f32 {
     (sum / n as f32).sqrt()
 }
 
-#[test]
-fn smoothed_normals_remove_the_terraces_of_a_slice_by_slice_segmentation() {
-    let mut session = common::session_from_text(
+fn session() -> Session {
+    common::session_from_text(
         r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
         SIZE,
         SIZE,
-    );
+    )
+}
+
+#[test]
+fn smoothed_normals_remove_the_terraces_of_a_slice_by_slice_segmentation() {
+    let mut session = session();
     // The reference: the ball shaded with the exact normals (a smooth field's gradient).
     let exact = ball([0.5; 3], |_| 0.0, true);
     let reference = render(&mut session, &exact, "data", 0.0);
@@ -188,11 +192,7 @@ fn smoothed_normals_remove_the_terraces_of_a_slice_by_slice_segmentation() {
 
 #[test]
 fn smoothing_applies_only_to_normals_from_the_masks() {
-    let mut session = common::session_from_text(
-        r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
-        SIZE,
-        SIZE,
-    );
+    let mut session = session();
     let coarse = ball([1.0, 1.0, 1.5], slice_jitter, false);
     assert_eq!(
         render(&mut session, &coarse, "data", 0.0),
