@@ -268,6 +268,33 @@ fn the_committed_node_catalogue_is_current() {
     }
 }
 
+/// The help the Inspector shows on hover is each parameter's doc line (issue 24: help written
+/// as formulas only, "c_a of eq. 3", told an illustrator nothing): every parameter of every kind
+/// says in at least two words of its own what it does, beside any symbol or equation.
+#[test]
+fn every_parameter_says_in_words_what_it_does() {
+    const NOT_WORDS: [&str; 6] = ["the", "and", "for", "with", "eq", "of"];
+    let registry = hatchery_nodes::registry();
+    let mut bare = Vec::new();
+    for schema in registry.schemas() {
+        for param in &schema.params {
+            let words = param
+                .doc
+                .split(|c: char| !c.is_ascii_alphabetic())
+                .filter(|w| w.len() >= 3 && !NOT_WORDS.contains(&w.to_ascii_lowercase().as_str()))
+                .count();
+            if words < 2 {
+                bare.push(format!("{}.{}: {:?}", schema.kind, param.name, param.doc));
+            }
+        }
+    }
+    assert!(
+        bare.is_empty(),
+        "parameters without words:\n{}",
+        bare.join("\n")
+    );
+}
+
 /// Groups, reroutes and frames organise the editor only: the CLI renders a graph that uses all
 /// three (tests/fixtures/organised_shaded_surface.ron: graphs/shaded_surface.ron with its volume
 /// nodes grouped, the mesh wire through a reroute, and a frame) exactly as the plain preset.

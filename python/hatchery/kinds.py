@@ -201,7 +201,8 @@ class Arrow:
         image (Image): the picture with the drawing
 
     Parameters:
-        color (RGBA in [0, 1]; default (0.8, 0.1, 0.1, 1.0)): arrow colour
+        color (RGBA in [0, 1]; default (0.8, 0.1, 0.1, 1.0)): colour of the arrow's shaft and
+            head
         width (float in [0.1, 32]; default 2.0): shaft width, pixels
         curvature (float in [0, 4]; default 0.5): greatest distance from the chord per pixel of
             depth difference
@@ -231,7 +232,7 @@ class BoundingBox:
 
     Parameters:
         which (one of 'ghost', 'selection', 'both'; default 'selection'): whose box to draw
-        color (RGBA in [0, 1]; default (0.1, 0.4, 0.9, 1.0)): edge colour
+        color (RGBA in [0, 1]; default (0.1, 0.4, 0.9, 1.0)): colour of the box's edges
         width (float in [0.1, 32]; default 1.0): edge width, pixels
 
     """
@@ -269,8 +270,8 @@ class Camera:
         target ((x, y, z); default (0.0, 0.0, 0.0)): point looked at, world units
         fov (float in [1, 170]; default 40.0): field of view across the frame's shorter side
             (the height of a wide frame), degrees
-        projection (one of 'perspective', 'orthographic'; default 'perspective'): projection
-            type
+        projection (one of 'perspective', 'orthographic'; default 'perspective'): perspective,
+            or orthographic (parallel rays: sizes do not shrink with depth)
         up (one of 'y', 'z'; default 'y'): world axis that points up on screen
         near (float in [1e-05, 1e+06]; default 0.05): near clipping distance
         far (float in [0.0001, 1e+07]; default 100.0): far clipping distance
@@ -417,12 +418,14 @@ class CurvatureFlow:
 
     Parameters:
         length (float in [2, 200]; default 20.0): streamline length, pixels
-        step (float in [0.25, 4]; default 1.0): integration step, pixels
+        step (float in [0.25, 4]; default 1.0): integration step along a streamline, pixels
+            (smaller follows curved fields more closely)
         direction (one of 'max_curvature', 'min_curvature'; default 'max_curvature'): the
             principal direction of the larger or of the smaller |κ|
         grain (float in [1e-06, 1e+06]; default 1.0): noise cell size on the surface, world
             units (about a pixel's footprint)
-        contrast (float in [0, 4]; default 1.0): streak contrast
+        contrast (float in [0, 4]; default 1.0): how strongly the streaks stand out from the
+            surface around them
         mean (float in [0, 1]; default 0.5): average output (e.g. 0.8 to multiply a colour image
             by the streaks)
 
@@ -664,7 +667,8 @@ class HatchStrokes:
         width (float in [0.25, 8]; default 1.2): stroke width in the middle, pixels
         taper (float in [0, 0.5]; default 0.3): fraction of the length over which each end thins
             to nothing
-        step (float in [0.25, 4]; default 1.0): RK4 step, pixels
+        step (float in [0.25, 4]; default 1.0): integration step along a stroke (RK4), pixels
+            (smaller follows curved fields more closely)
         direction (one of 'max_curvature', 'min_curvature'; default 'max_curvature'): the
             principal direction of the larger or of the smaller |κ|
         cross_hatching (float in [0, 1]; default 0.6): darkness above which a second stroke
@@ -924,7 +928,7 @@ class MaskCombine:
 
     Parameters:
         operation (one of 'and', 'or', 'min', 'add', 'subtract', 'a_not_b'; default 'and'): how
-            to combine
+            the two masks combine per pixel (and, or, min, add, subtract, a_not_b)
 
     """
 
@@ -1115,7 +1119,9 @@ class Raycast:
         gbuffer (GBuffer): depth and normal where opacity first reaches `hit_opacity`
 
     Parameters:
-        mode (one of 'dvr', 'mip', 'iso'; default 'dvr'): compositing
+        mode (one of 'dvr', 'mip', 'iso'; default 'dvr'): how the samples along a ray make the
+            pixel: dvr (composited front to back), mip (the largest value) or iso (the first
+            surface at the iso value)
         iso (float in [-1e+12, 1e+12], or data-relative text; default 0.5): iso value for mode
             iso (data units, or "percentile(P)", "range(F)", "otsu")
         step (float in [0.05, 8]; default 0.5): sample distance in voxels (of the smallest

@@ -8,7 +8,7 @@ use hatchery_graph::{NodeError, NodeInputs, NodeSchema, Params, executor::Node};
 hatchery_graph::node_params! {
     /// Parameters of `Arrow`.
     pub struct ArrowParams {
-        /// arrow colour
+        /// colour of the arrow's shaft and head
         pub color: [f32; 4] = [0.8, 0.1, 0.1, 1.0];
         /// shaft width, pixels
         pub width: f32 = 2.0, range(0.1, 32.0), unit(pixels);

@@ -15,7 +15,7 @@ hatchery_graph::node_params! {
     pub struct BoundingBoxParams {
         /// whose box to draw
         pub which: Which = Which::Selection;
-        /// edge colour
+        /// colour of the box's edges
         pub color: [f32; 4] = [0.1, 0.4, 0.9, 1.0];
         /// edge width, pixels
         pub width: f32 = 1.0, range(0.1, 32.0), unit(pixels);

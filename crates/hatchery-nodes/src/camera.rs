@@ -38,7 +38,7 @@ hatchery_graph::node_params! {
         pub target: [f32; 3] = [0.0, 0.0, 0.0];
         /// field of view across the frame's shorter side (the height of a wide frame), degrees
         pub fov: f32 = 40.0, range(1.0, 170.0);
-        /// projection type
+        /// perspective, or orthographic (parallel rays: sizes do not shrink with depth)
         pub projection: Projection = Projection::Perspective;
         /// world axis that points up on screen
         pub up: Up = Up::Y;

@@ -34,13 +34,13 @@ hatchery_graph::node_params! {
     pub struct CurvatureFlowParams {
         /// streamline length, pixels
         pub length: f32 = 20.0, range(2.0, 200.0), unit(pixels);
-        /// integration step, pixels
+        /// integration step along a streamline, pixels (smaller follows curved fields more closely)
         pub step: f32 = 1.0, range(0.25, 4.0), unit(pixels);
         /// the principal direction of the larger or of the smaller |κ|
         pub direction: Direction = Direction::MaxCurvature;
         /// noise cell size on the surface, world units (about a pixel's footprint)
         pub grain: f32 = 1.0, range(1e-6, 1e6);
-        /// streak contrast
+        /// how strongly the streaks stand out from the surface around them
         pub contrast: f32 = 1.0, range(0.0, 4.0);
         /// average output (e.g. 0.8 to multiply a colour image by the streaks)
         pub mean: f32 = 0.5, range(0.0, 1.0);

@@ -130,7 +130,7 @@ hatchery_graph::node_params! {
         pub width: f32 = 1.2, range(0.25, 8.0), unit(pixels);
         /// fraction of the length over which each end thins to nothing
         pub taper: f32 = 0.3, range(0.0, 0.5);
-        /// RK4 step, pixels
+        /// integration step along a stroke (RK4), pixels (smaller follows curved fields more closely)
         pub step: f32 = 1.0, range(0.25, 4.0), unit(pixels);
         /// the principal direction of the larger or of the smaller |κ|
         pub direction: Direction = Direction::MaxCurvature;

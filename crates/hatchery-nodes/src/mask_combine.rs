@@ -21,7 +21,7 @@ hatchery_graph::param_choice! {
 hatchery_graph::node_params! {
     /// The parameters of `MaskCombine`.
     pub struct MaskCombineParams {
-        /// how to combine
+        /// how the two masks combine per pixel (and, or, min, add, subtract, a_not_b)
         pub operation: Operation = Operation::And;
     }
 }

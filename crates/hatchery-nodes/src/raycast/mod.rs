@@ -171,7 +171,8 @@ hatchery_graph::param_choice! {
 hatchery_graph::node_params! {
     /// Parameters of `Raycast`.
     pub struct RaycastParams {
-        /// compositing
+        /// how the samples along a ray make the pixel: dvr (composited front to back), mip (the
+        /// largest value) or iso (the first surface at the iso value)
         pub mode: Mode = Mode::Dvr;
         /// iso value for mode iso (data units, or "percentile(P)", "range(F)", "otsu")
         pub iso: DataValue = 0.5, range(-1e12, 1e12);
