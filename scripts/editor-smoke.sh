@@ -45,17 +45,26 @@ xvfb_pid=$!
 export DISPLAY=":$display"
 for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
 
-HATCHERY_EDITOR_LAYOUT="$layout" "$bin" "$work/graph.ron" >"$work/editor.log" 2>&1 &
+# Its own settings folder: views and panel widths saved by earlier runs must not move things.
+HATCHERY_EDITOR_LAYOUT="$layout" XDG_CONFIG_HOME="$work/config" "$bin" "$work/graph.ron" \
+    >"$work/editor.log" 2>&1 &
 editor_pid=$!
 
-# Waits until the layout file has a line starting with $1; prints its centre / right part.
+# Waits until the layout file has a line starting with $1 that stays the same for half a second
+# (the canvas frames the graph again once every node has been drawn, so a node's first place
+# may not be its last); prints its centre / right part.
 wait_for() {
-    local name=$1 what=$2
+    local name=$1 what=$2 previous=""
     for _ in $(seq 600); do
         kill -0 "$editor_pid" 2>/dev/null || fail "the editor exited"
         if [ -f "$layout" ]; then
             local line
             line=$(grep "^$name " "$layout" || true)
+            if [ -n "$line" ] && [ "$line" != "$previous" ]; then
+                previous=$line
+                sleep 0.5
+                continue
+            fi
             if [ -n "$line" ]; then
                 # shellcheck disable=SC2086
                 set -- $line

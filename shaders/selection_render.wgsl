@@ -36,7 +36,9 @@ struct Selection {
     shaded: u32,
     // 1 to skip bricks the background transfer function hides (ray_skip).
     skip_empty: u32,
-    pad1: f32,
+    // Spacing (voxels) of the smoothed selection-mask gradient that shades the selection and
+    // its ghost; 0: the data's gradient (see `smooth_selection_gradient`).
+    surface_smoothing: f32,
     pad2: f32,
     // The voxel-space box beyond which f_S is 0: the selected voxels' box widened by one voxel
     // (a trilinear sample reaches one voxel), on the volume's grid and on the source's.
@@ -67,6 +69,21 @@ fn selected(q: vec3<f32>) -> f32 {
         return 0.0;
     }
     return textureSampleLevel(selection_mask, linear_clamp, grid_uv(q), 0.0).r;
+}
+
+// Voxel-space gradient of the selection mask f_S averaged over ±h voxels: the 3-D Sobel
+// operator at spacing h (as two-level's smooth_object_gradient). A label map given as the data
+// (the frog) has a gradient that steps at every slice and between neighbouring ids; the mask's,
+// smoothed, shades the selected object as the smooth surface it stands for. 27 fetches.
+fn smooth_selection_gradient(q: vec3<f32>, h: f32) -> vec3<f32> {
+    var g = vec3<f32>(0.0);
+    for (var i = 0; i < 27; i++) {
+        let o = vec3<i32>(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1);
+        let w = vec3<f32>(2.0 - abs(vec3<f32>(o)));
+        let m = selected(q + h * vec3<f32>(o));
+        g += m * vec3<f32>(o) * vec3<f32>(w.y * w.z, w.x * w.z, w.x * w.y);
+    }
+    return g / (16.0 * 2.0 * h);
 }
 
 // f_V at voxel-space q, NO_DATA outside the box.
@@ -227,12 +244,27 @@ fn cast_selection(position: vec2<f32>) -> RayResult {
         let hv = normalize(l + view_direction(p));
         if shaded {
             var grad = vec3<f32>(0.0);
+            // The direction from the smoothed mask where asked, the magnitude (eq. 8's
+            // enhancement) from the data as always.
+            var normal_grad = vec3<f32>(0.0);
+            let h = selection.surface_smoothing;
             if sel.mu >= max(ghost.mu, back.mu) {
                 grad = (selection.rotation * vec4<f32>(gradient_at(qs), 0.0)).xyz;
+                normal_grad = grad;
+                if h > 0.0 {
+                    let g = (ray.grad_to_world * vec4<f32>(smooth_selection_gradient(qs, h), 0.0)).xyz;
+                    // The mask rises into the selection: its gradient points inwards, as a
+                    // denser object's data gradient does.
+                    normal_grad = (selection.rotation * vec4<f32>(g, 0.0)).xyz;
+                }
             } else {
                 grad = gradient_at(q);
+                normal_grad = grad;
+                if h > 0.0 && ghost.mu >= back.mu {
+                    normal_grad = (ray.grad_to_world * vec4<f32>(smooth_selection_gradient(q, h), 0.0)).xyz;
+                }
             }
-            n = view_normal(grad);
+            n = view_normal(normal_grad);
             g_norm = clamp(length(grad) / max(ray.max_gradient, 1e-20), 0.0, 1.0);
             lt = lighting_lookup(dot(n, l), dot(n, hv));
         }

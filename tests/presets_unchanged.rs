@@ -12,8 +12,8 @@
 //! DepthLayers since issue 32: unchanged here at 160×120; the few silhouette pixels that flip at
 //! larger sizes are bounded in tests/depth_layers.rs. `tf1d_phong_brain` and `style_tf_brain`
 //! (issue 36: the tricubic B-spline reconstruction, checked in tests/reconstruction.rs).
-//! `two_level_frog` and `importance_frog_*` (issue 24: the liver's iso-surface normals smoothed
-//! over ±2 voxels, `surface_smoothing`, checked in tests/label_surfaces.rs).
+//! `two_level_frog`, `importance_frog_*` and `selection_frog` (issue 24: the liver's normals
+//! smoothed over ±2 voxels, `surface_smoothing`, checked in tests/label_surfaces.rs).
 
 mod common;
 

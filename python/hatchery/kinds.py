@@ -1447,6 +1447,10 @@ class SelectionRender:
         reconstruction (one of 'trilinear', 'bspline'; default 'trilinear'): reconstruction of
             the data between voxels: trilinear, or the tricubic B-spline's values and gradients
             (Hadwiger §1.3)
+        surface_smoothing (float in [0, 4]; default 0.0): shade the selection and its ghost with
+            the selection mask's gradient averaged over ±this many voxels (the 3-D Sobel
+            operator at this spacing) instead of the data's: for label maps given as the data,
+            whose gradient steps at every slice; 0: the data's
         jitter (bool; default True): jitter the first sample per pixel
         early_termination (float in [0.5, 1]; default 0.99): stop a ray at this opacity (1 =
             never)
@@ -1468,6 +1472,7 @@ class SelectionRender:
     shading: Literal['phong_contour', 'phong', 'cartoon', 'metal', 'none'] = 'phong_contour'
     step: float = 0.5
     reconstruction: Literal['trilinear', 'bspline'] = 'trilinear'
+    surface_smoothing: float = 0.0
     jitter: bool = True
     early_termination: float = 0.99
     kernel: Literal['auto', 'fragment', 'compute'] = 'auto'

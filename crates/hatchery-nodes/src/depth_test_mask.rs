@@ -19,7 +19,7 @@ hatchery_graph::param_choice! {
 hatchery_graph::node_params! {
     /// The parameters of `DepthTestMask`.
     pub struct DepthTestMaskParams {
-        /// the mask is 1 where layer a is in front of b (a<b, a<=b: smaller depth is nearer) or 
+        /// the mask is 1 where layer a is in front of b (a<b, a<=b: smaller depth is nearer) or
         /// behind it (a>b, a>=b)
         pub compare: Comparison = Comparison::LessEqual;
     }

@@ -90,7 +90,7 @@ hatchery_graph::node_params! {
         pub focus: u32 = 0, range(0, 65535);
         /// conical (eq. 1) or cylindrical (the footprint swept along the rays)
         pub countersink: Countersink = Countersink::Conical;
-        /// the cut-away's slope: how much deeper it gets per unit of distance from the focus on 
+        /// the cut-away's slope: how much deeper it gets per unit of distance from the focus on
         /// screen, a cone around the focus (s_c of eq. 1; both in world units)
         pub slope: f32 = 1.0, range(0.05, 20.0);
         /// image-space AImC: dilate and average the footprints over this radius (pixels) for smooth

@@ -30,7 +30,8 @@ crate::uniform_block! {
         pub cutaway: u32,
         pub shaded: u32,
         pub skip_empty: u32,
-        pub pad1: f32,
+        /// Spacing (voxels) of the smoothed mask gradient shading the selection; 0 for none.
+        pub surface_smoothing: f32,
         pub pad2: f32,
         /// The selected voxels' box widened by one voxel (voxel space): f_S is 0 outside it.
         pub mask_min: [f32; 3],
@@ -254,7 +255,7 @@ hatchery_graph::node_params! {
         /// rotation about the selection's centre, XYZ Euler degrees (world axes; view axes when
         /// decoupled)
         pub rotate: [f32; 3] = [0.0, 0.0, 0.0];
-        /// where the selection is drawn: in place in the volume (integrated), moved with its 
+        /// where the selection is drawn: in place in the volume (integrated), moved with its
         /// ghost left behind (pinned), or in a view of its own (decoupled) (§6.3)
         pub placement: Placement = Placement::Integrated;
         /// pinned/decoupled: the centre's screen position, fraction of the width from the left
@@ -265,7 +266,7 @@ hatchery_graph::node_params! {
         pub cutaway: Cutaway = Cutaway::Ghost;
         /// 0: no ghosting … 1: full cutaway
         pub ghosting: f32 = 0.7, range(0.0, 1.0);
-        /// how the selection is lit: a lighting transfer function that darkens it where it 
+        /// how the selection is lit: a lighting transfer function that darkens it where it
         /// faces away from the light (eq. 8), or none
         pub shading: Shading = Shading::PhongContour;
         /// sample distance in voxels (of the smallest spacing)
@@ -274,6 +275,10 @@ hatchery_graph::node_params! {
         /// values and gradients (Hadwiger §1.3)
         pub reconstruction: crate::reconstruction::Reconstruction =
             crate::reconstruction::Reconstruction::Trilinear;
+        /// shade the selection and its ghost with the selection mask's gradient averaged over
+        /// ±this many voxels (the 3-D Sobel operator at this spacing) instead of the data's: for
+        /// label maps given as the data, whose gradient steps at every slice; 0: the data's
+        pub surface_smoothing: f32 = 0.0, range(0.0, 4.0);
         /// jitter the first sample per pixel
         pub jitter: bool = true;
         /// stop a ray at this opacity (1 = never)
@@ -446,7 +451,7 @@ impl Node<Value, Ctx> for SelectionRenderNode {
             cutaway: params.cutaway.code(),
             shaded: shaded.into(),
             skip_empty: 1,
-            pad1: 0.0,
+            surface_smoothing: params.surface_smoothing,
             pad2: 0.0,
             // One voxel for the trilinear footprint, a little more for rounding.
             mask_min: (extent.voxels[0] - 1.01).to_array(),

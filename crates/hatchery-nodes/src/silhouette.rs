@@ -50,7 +50,7 @@ hatchery_graph::node_params! {
         /// distance of the depth and normal taps from the pixel (rounded to whole pixels; 1: the
         /// paper's neighbours): lines are about twice this wide
         pub tap_distance: f32 = 1.0, range(1.0, 16.0), unit(pixels);
-        /// draw lines where the depth jumps: outlines against the background and other parts 
+        /// draw lines where the depth jumps: outlines against the background and other parts
         /// (eq. 3)
         pub use_depth: bool = true;
         /// draw lines where the surface bends sharply: creases and edges (eq. 4–5)

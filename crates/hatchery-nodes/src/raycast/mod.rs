@@ -183,7 +183,7 @@ hatchery_graph::node_params! {
         /// lighting transfer function for `lighting`
         pub lighting_model: LightingModel = LightingModel::PhongContour;
         pub phong: PhongParams = Group;
-        /// how deep to look inside: more shows more of the interior through weakly lit, flat 
+        /// how deep to look inside: more shows more of the interior through weakly lit, flat
         /// regions (κt of eq. 5; 0 = plain DVR)
         pub kappa_t: f32 = 0.0, range(0.0, 1000.0);
         /// how sharply the view into the interior starts (κs of eq. 5)
@@ -195,7 +195,7 @@ hatchery_graph::node_params! {
         pub contours: bool = true;
         /// contour thickness T, world units
         pub thickness: f32 = 2.0, range(0.0, 1000.0);
-        /// see-through styles: a style's opacity falls where it faces the viewer, so inner 
+        /// see-through styles: a style's opacity falls where it faces the viewer, so inner
         /// structures show (eq. 2)
         pub transparency: bool = true;
         /// bias of the style mip level
