@@ -73,16 +73,10 @@ fn slice_jitter(z: u32) -> f32 {
     0.7 * ((z as f32 * 2.39).sin() * 0.6 + (z as f32 * 5.17).cos() * 0.4)
 }
 
-/// Luminance and coverage per pixel of TwoLevelRaycast drawing the ball as a shaded
-/// iso-surface (iso 50 of the data, normals from the mask), orthographic from the side.
-fn render(
-    session: &mut Session,
-    (volume, labels): &(VolumeData, LabelData),
-    normals: &str,
-    smoothing: f64,
-) -> Vec<(f32, f32)> {
+/// Orthographic from the side (+x), the ball filling most of the frame.
+fn side_camera() -> Camera {
     let fov = 2.0 * (HALF_WIDTH / 60.0).atan().to_degrees();
-    let camera = Camera::orbit(
+    Camera::orbit(
         Vec3::ZERO,
         90.0,
         0.0,
@@ -94,18 +88,44 @@ fn render(
         false,
         SIZE,
         SIZE,
-    );
-    let rgba = [0.8, 0.8, 0.8, 1.0];
-    let tf = TransferFunction1D::from_points(&[
+    )
+}
+
+/// Opaque (or `alpha`) light grey for every value.
+fn grey(alpha: f32) -> TransferFunction1D {
+    let rgba = [0.8, 0.8, 0.8, alpha];
+    TransferFunction1D::from_points(&[
         ControlPoint { value: 0.0, rgba },
         ControlPoint { value: 100.0, rgba },
     ])
-    .unwrap();
+    .unwrap()
+}
+
+/// Luminance and coverage of each pixel of a rendered picture (no GPU errors on the way).
+fn luminance(session: &mut Session, picture: &Value) -> Vec<(f32, f32)> {
+    let errors = session.ctx.gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:?}");
+    let a = export::to_array(picture, &session.ctx.gpu).unwrap();
+    a.data
+        .chunks_exact(4)
+        .map(|c| (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2], c[3]))
+        .collect()
+}
+
+/// Luminance and coverage per pixel of TwoLevelRaycast drawing the ball as a shaded
+/// iso-surface (iso 50 of the data, normals from the mask), orthographic from the side.
+fn render(
+    session: &mut Session,
+    (volume, labels): &(VolumeData, LabelData),
+    normals: &str,
+    smoothing: f64,
+) -> Vec<(f32, f32)> {
+    let camera = side_camera();
     let style = ObjectStyle {
         id: 1,
         name: "ball".into(),
         enabled: true,
-        tf,
+        tf: grey(1.0),
         mode: RenderMode::Iso,
         compositing: Compositing::Iso,
         iso: 50.0,
@@ -133,13 +153,7 @@ fn render(
             ("jitter", ParamValue::Bool(false)),
         ],
     );
-    let errors = session.ctx.gpu.take_uncaptured_errors();
-    assert!(errors.is_empty(), "GPU errors: {errors:?}");
-    let a = export::to_array(&out[0], &session.ctx.gpu).unwrap();
-    a.data
-        .chunks_exact(4)
-        .map(|c| (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2], c[3]))
-        .collect()
+    luminance(session, &out[0])
 }
 
 /// Luminance and coverage per pixel of SelectionRender drawing the ball as the selection (in
@@ -149,30 +163,8 @@ fn render_selection(
     (volume, labels): &(VolumeData, LabelData),
     smoothing: f64,
 ) -> Vec<(f32, f32)> {
-    let fov = 2.0 * (HALF_WIDTH / 60.0).atan().to_degrees();
-    let camera = Camera::orbit(
-        Vec3::ZERO,
-        90.0,
-        0.0,
-        60.0,
-        fov,
-        true,
-        0.05,
-        200.0,
-        false,
-        SIZE,
-        SIZE,
-    );
-    let tf = |alpha: f32| {
-        let rgba = [0.8, 0.8, 0.8, alpha];
-        Value::TransferFunction(Arc::new(TransferFunction::Color(
-            TransferFunction1D::from_points(&[
-                ControlPoint { value: 0.0, rgba },
-                ControlPoint { value: 100.0, rgba },
-            ])
-            .unwrap(),
-        )))
-    };
+    let camera = side_camera();
+    let tf = |alpha| Value::TransferFunction(Arc::new(TransferFunction::Color(grey(alpha))));
     let out = common::run_node(
         session,
         "SelectionRender",
@@ -197,13 +189,7 @@ fn render_selection(
             ("jitter", ParamValue::Bool(false)),
         ],
     );
-    let errors = session.ctx.gpu.take_uncaptured_errors();
-    assert!(errors.is_empty(), "GPU errors: {errors:?}");
-    let a = export::to_array(&out[0], &session.ctx.gpu).unwrap();
-    a.data
-        .chunks_exact(4)
-        .map(|c| (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2], c[3]))
-        .collect()
+    luminance(session, &out[0])
 }
 
 /// RMS luminance difference inside 80 % of the ball's projected radius, where both cover.
