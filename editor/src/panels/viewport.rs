@@ -103,7 +103,9 @@ impl Panel for Viewport {
         // label beside the checkbox went unnoticed during 8–18 s CPU renders).
         app.picture_stale = app.preview.is_busy();
         if app.picture_stale {
-            crate::render_progress::draw(ui, response.rect, app.preview.progress());
+            let times = &app.preview.times;
+            let last = |node: &str| times.get(node).map(|t| t.cpu);
+            crate::render_progress::draw(ui, response.rect, app.preview.progress(), last);
         }
         // Alt: the picture's own zoom and pan; otherwise the camera.
         if ui.input(|i| i.modifiers.alt) {

@@ -40,11 +40,12 @@ fn a_long_render_shows_its_node_and_a_newer_edit_cancels_it() {
         "the running step {node} is a node of the graph, planned in {:?}",
         seen.1.planned
     );
-    let (heading, detail) = render_progress::caption(Some(&seen));
+    // The first render: no earlier time of the node to estimate from.
+    let (heading, detail) = render_progress::caption(Some(&seen), |_| None);
     assert!(heading.starts_with("rendering…"), "{heading}");
     let detail = detail.expect("the running node is named");
     assert!(
-        detail.starts_with(&format!("{node} (")) && detail.contains(" of "),
+        detail.starts_with(&format!("{node} (step ")) && !detail.contains("about"),
         "{detail}"
     );
     // A newer edit: orbit the camera. The running render stops at its next node and sends no
@@ -67,5 +68,14 @@ fn a_long_render_shows_its_node_and_a_newer_edit_cancels_it() {
         h.state().preview.error.is_none(),
         "{:?}",
         h.state().preview.error
+    );
+    // Next time the node runs, its last time is the estimate shown.
+    let last = h.state().preview.times.get(&node).map(|t| t.cpu);
+    assert!(last.is_some(), "{node} has a time after the render");
+    let (_, detail) = render_progress::caption(Some(&seen), |n| last.filter(|_| n == node));
+    let detail = detail.unwrap();
+    assert!(
+        last.unwrap() < std::time::Duration::from_millis(100) || detail.contains(" of about "),
+        "{detail}"
     );
 }
