@@ -209,6 +209,19 @@ class Graph:
     def description(self) -> str:
         return self._g.description
 
+    @property
+    def pixel_scale(self) -> float:
+        """Rendered pixels per pixel of the designed figure (default 1): hatching cells, line
+        widths and label sizes are multiplied by it, as ``hatchery render --scale`` does. To
+        render the figure designed at (w, h) for print at 3× its resolution:
+        ``g.pixel_scale = 3; g.render(size=(3 * w, 3 * h))``. Raises RenderError for a value
+        that is not a positive number up to 64."""
+        return self._g.pixel_scale
+
+    @pixel_scale.setter
+    def pixel_scale(self, scale: float) -> None:
+        self._g.pixel_scale = float(scale)
+
     # -- nodes and parameters -----------------------------------------------------------------
 
     @property

@@ -44,6 +44,8 @@ struct Inner {
     last: Option<PassReport>,
     /// Seconds the last `render_rgba8` spent in Rust (the pass and the read-back).
     last_seconds: f64,
+    /// Lengths in pixels of the designed figure are multiplied by this (`render --scale`).
+    pixel_scale: f64,
 }
 
 impl Inner {
@@ -83,6 +85,7 @@ impl Inner {
         let State::Open(session) = &mut self.state else {
             unreachable!()
         };
+        session.ctx.set_pixel_scale(self.pixel_scale);
         if let Some((w, h)) = size
             && session.ctx.size() != (w, h)
         {
@@ -156,6 +159,7 @@ impl Graph {
                 path,
                 last: None,
                 last_seconds: 0.0,
+                pixel_scale: 1.0,
             }),
         }
     }
@@ -246,6 +250,26 @@ impl Graph {
     #[getter]
     fn path(&self, py: Python<'_>) -> Option<PathBuf> {
         self.lock(py).path.clone()
+    }
+
+    /// How many rendered pixels one pixel of the designed figure is: hatching cells, line
+    /// widths and label sizes (the parameters in pixels) are multiplied by it, as `hatchery
+    /// render --scale` does; render at the designed size times it. Raises RenderError for a
+    /// value that is not a positive number up to 64.
+    #[getter]
+    fn pixel_scale(&self, py: Python<'_>) -> f64 {
+        self.lock(py).pixel_scale
+    }
+
+    #[setter]
+    fn set_pixel_scale(&self, py: Python<'_>, scale: f64) -> PyResult<()> {
+        if !(scale.is_finite() && scale > 0.0 && scale <= 64.0) {
+            return Err(RenderError::new_err(format!(
+                "pixel_scale must be a positive number up to 64, got {scale}"
+            )));
+        }
+        self.lock(py).pixel_scale = scale;
+        Ok(())
     }
 
     /// The graph's one-line description.

@@ -4,6 +4,7 @@ import subprocess
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+import pytest
 
 import hatchery
 from conftest import assert_pictures_close, read_png
@@ -32,6 +33,25 @@ def test_render_equals_the_cli_and_set_changes_it_as_cli_set(repo, tmp_path, hat
     assert np.abs(changed.astype(int) - plain.astype(int)).max() > 50, "the change shows"
     assert_pictures_close(read_png(tmp_path / "set.png"), changed, tmp_path, what="set() vs --set")
     assert "camera" in g.last_ran
+
+
+def test_pixel_scale_is_the_cli_scale(repo, tmp_path, hatchery_bin):
+    graph = repo / "graphs" / "default.ron"
+    out = tmp_path / "scaled.png"
+    subprocess.run(
+        [hatchery_bin, "render", graph, "--size", "160x120", "--scale", "2", "-o", out],
+        check=True,
+        capture_output=True,
+    )
+    g = hatchery.Graph.load(graph)
+    plain = g.render(size=(320, 240))
+    g.pixel_scale = 2
+    assert g.pixel_scale == 2.0
+    scaled = g.render(size=(320, 240))
+    assert_pictures_close(read_png(out), scaled, tmp_path, what="pixel_scale 2 vs --scale 2")
+    assert np.abs(scaled.astype(int) - plain.astype(int)).max() > 128, "the hatching changed"
+    with pytest.raises(hatchery.RenderError, match="pixel_scale"):
+        g.pixel_scale = 0
 
 
 def test_picture_is_an_array_that_shows_as_png(repo):
