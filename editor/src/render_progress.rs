@@ -7,19 +7,17 @@ use hatchery_nodes::progress::PassProgress;
 use std::time::Duration;
 
 /// The lines drawn for `progress` (testable without a window): the heading, and what runs —
-/// with `last`, the running node's time in the previous render, as the estimate of how long it
-/// takes (the node runs again after an edit: a ray cast of seconds on a CPU driver).
-pub fn caption(
-    progress: Option<&(Duration, PassProgress)>,
-    last: impl Fn(&str) -> Option<Duration>,
-) -> (String, Option<String>) {
+/// with the running node's duration the last time it ran (GPU work included) as the estimate of
+/// how long it takes (the node runs again after an edit: a ray cast of seconds on a CPU driver).
+pub fn caption(progress: Option<&(Duration, PassProgress)>) -> (String, Option<String>) {
     let Some((busy, pass)) = progress else {
         return ("rendering…".into(), None);
     };
     let heading = format!("rendering… {:.1} s", busy.as_secs_f64());
     let detail = pass.current.as_ref().map(|(node, since)| {
         let step = pass.done + 1;
-        let estimate = last(node)
+        let estimate = pass
+            .estimate
             .filter(|t| *t >= Duration::from_millis(100))
             .map_or(String::new(), |t| {
                 format!(" of about {:.1} s", t.as_secs_f64())
@@ -35,15 +33,10 @@ pub fn caption(
 
 /// Dims `rect` and draws the caption and a bar of the steps done (the render thread asks for
 /// a repaint when a node starts or ends; no timer, which would repaint the UI all the time).
-pub fn draw(
-    ui: &egui::Ui,
-    rect: Rect,
-    progress: Option<(Duration, PassProgress)>,
-    last: impl Fn(&str) -> Option<Duration>,
-) {
+pub fn draw(ui: &egui::Ui, rect: Rect, progress: Option<(Duration, PassProgress)>) {
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 0.0, Color32::from_black_alpha(120));
-    let (heading, detail) = caption(progress.as_ref(), last);
+    let (heading, detail) = caption(progress.as_ref());
     painter.text(
         rect.center(),
         egui::Align2::CENTER_BOTTOM,

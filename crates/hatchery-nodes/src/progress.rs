@@ -2,6 +2,7 @@
 //! the one running and since when (the editor draws it over the picture), and a cancel flag a
 //! newer request sets (the executor stops between steps; what ran stays cached).
 
+use std::collections::HashMap;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -15,6 +16,8 @@ pub struct PassProgress {
     pub done: usize,
     /// The step running now and when it started.
     pub current: Option<(String, Instant)>,
+    /// How long the running step took the last time it ran, GPU work included.
+    pub estimate: Option<Duration>,
 }
 
 /// Shared between a [`crate::RenderContext`] ([`crate::RenderContext::set_progress`]) and
@@ -27,6 +30,8 @@ pub struct Progress {
     cancel: AtomicBool,
     /// When the request being rendered (one or more passes) started; `None` when idle.
     request: Mutex<Option<Instant>>,
+    /// Each step's last duration, from its start to its end (after its GPU work).
+    durations: Mutex<HashMap<String, Duration>>,
 }
 
 impl Progress {
@@ -84,6 +89,7 @@ impl Progress {
             planned: planned.iter().map(|s| (*s).to_owned()).collect(),
             done: 0,
             current: None,
+            estimate: None,
         };
     }
 
@@ -91,6 +97,12 @@ impl Progress {
         let mut pass = self.pass.lock().unwrap_or_else(|e| e.into_inner());
         if pass.planned.iter().any(|p| p == node) {
             pass.current = Some((node.to_owned(), Instant::now()));
+            pass.estimate = self
+                .durations
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get(node)
+                .copied();
             drop(pass);
             self.changed();
         }
@@ -98,11 +110,48 @@ impl Progress {
 
     pub(crate) fn end_node(&self, node: &str) {
         let mut pass = self.pass.lock().unwrap_or_else(|e| e.into_inner());
-        if pass.current.as_ref().is_some_and(|(n, _)| n == node) {
+        if let Some((_, since)) = pass.current.as_ref().filter(|(n, _)| n == node) {
+            self.durations
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .insert(node.to_owned(), since.elapsed());
             pass.current = None;
+            pass.estimate = None;
             pass.done += 1;
             drop(pass);
             self.changed();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_run_again_is_estimated_by_its_last_duration() {
+        let progress = Progress::default();
+        for run in 0..2 {
+            progress.begin_pass(&["load", "ray"]);
+            progress.begin_node("load");
+            progress.end_node("load");
+            progress.begin_node("ray");
+            let shown = progress.snapshot();
+            assert_eq!(shown.done, 1);
+            assert_eq!(shown.current.as_ref().map(|(n, _)| n.as_str()), Some("ray"));
+            match run {
+                0 => assert_eq!(shown.estimate, None, "never ran before"),
+                _ => assert!(
+                    shown
+                        .estimate
+                        .is_some_and(|e| e >= Duration::from_millis(20)),
+                    "{:?}",
+                    shown.estimate
+                ),
+            }
+            std::thread::sleep(Duration::from_millis(20));
+            progress.end_node("ray");
+            assert_eq!(progress.snapshot().done, 2);
         }
     }
 }

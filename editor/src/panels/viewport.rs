@@ -103,9 +103,7 @@ impl Panel for Viewport {
         // label beside the checkbox went unnoticed during 8–18 s CPU renders).
         app.picture_stale = app.preview.is_busy();
         if app.picture_stale {
-            let times = &app.preview.times;
-            let last = |node: &str| times.get(node).map(|t| t.cpu);
-            crate::render_progress::draw(ui, response.rect, app.preview.progress(), last);
+            crate::render_progress::draw(ui, response.rect, app.preview.progress());
         }
         // Alt: the picture's own zoom and pan; otherwise the camera.
         if ui.input(|i| i.modifiers.alt) {
