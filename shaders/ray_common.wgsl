@@ -370,3 +370,16 @@ fn store_result(id: vec2<u32>, r: RayResult) {
 fn outside_frame(id: vec2<u32>) -> bool {
     return f32(id.x) >= ray.frame.x || f32(id.y) >= ray.frame.y;
 }
+
+// Tap i (0 … 26) of the 3-D Sobel operator of the smoothed mask gradients (two-level's object
+// masks, SelectionRender's selection): its offset in {−1, 0, 1}³, and its weight in each
+// axis' derivative — the offset along that axis times 1-2-1 across it, over 16 · 2 (the
+// caller divides by the spacing h).
+fn sobel_offset(i: i32) -> vec3<f32> {
+    return vec3<f32>(f32(i % 3 - 1), f32((i / 3) % 3 - 1), f32(i / 9 - 1));
+}
+
+fn sobel_weights(o: vec3<f32>) -> vec3<f32> {
+    let w = 2.0 - abs(o);
+    return o * vec3<f32>(w.y * w.z, w.x * w.z, w.x * w.y) / 32.0;
+}

@@ -155,20 +155,12 @@ fn object_gradient(q: vec3<f32>, id: u32) -> vec3<f32> {
 // band of shading (the frog's 1.5 mm slices), this averages over them. 27 masks of 8 ids each:
 // drawn once per ray, at iso-surface hits.
 fn smooth_object_gradient(q: vec3<f32>, id: u32, h: f32) -> vec3<f32> {
-    var m: array<f32, 27>;
-    for (var i = 0; i < 27; i++) {
-        let o = vec3<f32>(f32(i % 3 - 1), f32((i / 3) % 3 - 1), f32(i / 9 - 1));
-        m[i] = object_mask(q + h * o, id);
-    }
     var g = vec3<f32>(0.0);
     for (var i = 0; i < 27; i++) {
-        let o = vec3<i32>(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1);
-        // Weight 1-2-1 across each axis: 2 at the middle, 1 off it.
-        let w = vec3<f32>(2.0 - abs(vec3<f32>(o)));
-        g += m[i] * vec3<f32>(o) * vec3<f32>(w.y * w.z, w.x * w.z, w.x * w.y);
+        let o = sobel_offset(i);
+        g += object_mask(q + h * o, id) * sobel_weights(o);
     }
-    g /= 16.0 * 2.0 * h;
-    return (ray.grad_to_world * vec4<f32>(g, 0.0)).xyz;
+    return (ray.grad_to_world * vec4<f32>(g / h, 0.0)).xyz;
 }
 
 // The gradient that shades object `id`'s iso-surface: smoothed over `surface_smoothing`

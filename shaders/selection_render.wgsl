@@ -78,12 +78,10 @@ fn selected(q: vec3<f32>) -> f32 {
 fn smooth_selection_gradient(q: vec3<f32>, h: f32) -> vec3<f32> {
     var g = vec3<f32>(0.0);
     for (var i = 0; i < 27; i++) {
-        let o = vec3<i32>(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1);
-        let w = vec3<f32>(2.0 - abs(vec3<f32>(o)));
-        let m = selected(q + h * vec3<f32>(o));
-        g += m * vec3<f32>(o) * vec3<f32>(w.y * w.z, w.x * w.z, w.x * w.y);
+        let o = sobel_offset(i);
+        g += selected(q + h * o) * sobel_weights(o);
     }
-    return g / (16.0 * 2.0 * h);
+    return g / h;
 }
 
 // f_V at voxel-space q, NO_DATA outside the box.
