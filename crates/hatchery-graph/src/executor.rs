@@ -80,8 +80,11 @@ pub struct Executor<V> {
     next_version: u64,
     pub(crate) stats: BTreeMap<String, NodeStats>,
     fusion: bool,
-    /// Fused passes write every member output something reads (see [`Self::set_keep_fused`]).
+    /// Fused passes keep the outputs an edit of their members needs (see [`Self::set_keep_fused`]).
     keep_fused: bool,
+    /// Nodes whose own parameters changed in an earlier pass of this session (with
+    /// `keep_fused`): the edits a fused pass prepares for.
+    edited: BTreeSet<String>,
 }
 
 impl<V> Default for Executor<V> {
@@ -92,6 +95,7 @@ impl<V> Default for Executor<V> {
             stats: BTreeMap::new(),
             fusion: true,
             keep_fused: false,
+            edited: BTreeSet::new(),
         }
     }
 }
@@ -126,6 +130,7 @@ impl<V: Clone> Executor<V> {
         // Forget nodes that left the graph.
         self.cache.retain(|id, _| graph.node(id).is_some());
         self.stats.retain(|id, _| graph.node(id).is_some());
+        self.edited.retain(|id| graph.node(id).is_some());
 
         let order: Vec<&str> = graph
             .topological_order()
@@ -133,10 +138,28 @@ impl<V: Clone> Executor<V> {
             .filter(|id| wanted.contains(id))
             .collect();
         let (dirty, forced) = self.predict(graph, registry, ctx, &order, &roots);
-        // Members that write every output something reads: all of them in an interactive
-        // session, else those re-run only because an earlier pass did not write their outputs
-        // (an edit downstream of them: once written, the next such edit leaves them cached).
-        let keep_all = if self.keep_fused { &dirty } else { &forced };
+        // Members that write every output something reads: those re-run only because an earlier
+        // pass did not write their outputs (an edit downstream of them: once written, the next
+        // such edit leaves them cached), and in an interactive session those that feed what a
+        // member edited before re-runs, so alternating edits (orbit, θ, orbit…) stay cached.
+        let mut keep_all = forced.clone();
+        if self.keep_fused {
+            for &id in &dirty {
+                let node = graph.node(id).expect("id from the graph");
+                let own_edit = self.cache.contains_key(id)
+                    && !forced.contains(id)
+                    && !Self::kind_of(registry, node).0.sink
+                    && graph
+                        .input_sources(id)
+                        .values()
+                        .all(|(s, _)| !dirty.contains(s) || forced.contains(s));
+                if own_edit {
+                    self.edited.insert(id.to_owned());
+                }
+            }
+            keep_all.extend(fusion::feeding_edits(graph, &order, &dirty, &self.edited));
+        }
+        let keep_all = &keep_all;
         let units = match (&registry.fuser, self.fusion) {
             (Some(fuser), true) => fusion::plan(
                 graph,
@@ -198,11 +221,13 @@ impl<V: Clone> Executor<V> {
         self.fusion
     }
 
-    /// With `on` (an interactive session: the editor), a fused pass writes every member output
-    /// that something reads, not only those read outside the pass, so an edit of one member
-    /// re-runs only it and what is downstream. Off by default: a one-shot render writes only
-    /// what it needs. Either way, a member re-run only because an earlier pass did not write
-    /// its outputs writes them all.
+    /// With `on` (an interactive session: the editor), the executor learns which nodes the user
+    /// edits (their own parameters changed) and a fused pass also writes the member outputs that
+    /// the part downstream of an edited node reads, so the next edit of that node re-runs only
+    /// it and what follows, even after an edit upstream of the whole pass (a camera orbit). A
+    /// pass with no edited member downstream writes only what it needs, as a one-shot render
+    /// does (off, the default). Either way, a member re-run only because an earlier pass did not
+    /// write its outputs writes them all.
     pub fn set_keep_fused(&mut self, on: bool) {
         self.keep_fused = on;
     }

@@ -208,6 +208,39 @@ pub(crate) fn plan<'g, V, C>(
     units
 }
 
+/// The `dirty` nodes that are not downstream of an `edited` node but feed one that is, or the
+/// edited node itself: what a later edit of those nodes reads from the cache.
+pub(crate) fn feeding_edits<'g>(
+    graph: &'g Graph,
+    order: &[&'g str],
+    dirty: &BTreeSet<&'g str>,
+    edited: &BTreeSet<String>,
+) -> BTreeSet<&'g str> {
+    // Per edited node, not their union: an orbit edits the camera, and all is downstream of it.
+    let mut feeding = BTreeSet::new();
+    for edit in edited {
+        let mut below: BTreeSet<&str> = BTreeSet::new();
+        for &id in order {
+            if id == edit
+                || graph
+                    .input_sources(id)
+                    .values()
+                    .any(|(s, _)| below.contains(s))
+            {
+                below.insert(id);
+            }
+        }
+        for &id in &below {
+            for (source, _) in graph.input_sources(id).into_values() {
+                if !below.contains(source) && dirty.contains(source) {
+                    feeding.insert(source);
+                }
+            }
+        }
+    }
+    feeding
+}
+
 struct Planner<'p, 'g> {
     graph: &'g Graph,
     schemas: &'p dyn SchemaLookup,

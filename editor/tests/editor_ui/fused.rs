@@ -1,6 +1,7 @@
 //! Fused image-space passes seen from the editor: node times name the pass a node ran in, and
-//! pinning an inner output of a pass shows it without running anything again (the editor's
-//! passes write every member output something reads: `Executor::set_keep_fused`).
+//! pinning an inner output of a pass shows it by re-running only what leads to it inside the
+//! pass (the editor's passes write the outputs an edited member needs, not every inner one:
+//! `Executor::set_keep_fused`).
 
 use super::*;
 use selection::{click_mod, node_rect};
@@ -16,7 +17,7 @@ fn output_label(h: &Harness<EditorApp>, id: &str, port: &str) -> egui::Pos2 {
 }
 
 #[test]
-fn node_times_name_the_fused_pass_and_a_pinned_inner_output_shows_without_a_rerun() {
+fn node_times_name_the_fused_pass_and_a_pinned_inner_output_shows_after_a_small_rerun() {
     let dir = tempfile::tempdir().unwrap();
     let (mut app, _) = open_copy("graphs/hidden_structures.ron", dir.path());
     app.preview_enabled = true;
@@ -67,8 +68,8 @@ fn node_times_name_the_fused_pass_and_a_pinned_inner_output_shows_without_a_reru
         "no '{label}' label"
     );
 
-    // The pass wrote its output (the editor keeps fused outputs): pinning it shows it, and
-    // neither it nor anything else runs again.
+    // The pass did not write its inner output (no member before it was edited): pinning it
+    // re-runs the members that lead to it, in a pass of their own, and nothing else.
     // Nodes take their new size a frame after their content changes: let them settle.
     h.run_steps(3);
     let at = output_label(&h, "with_secondary", "image");
@@ -84,12 +85,13 @@ fn node_times_name_the_fused_pass_and_a_pinned_inner_output_shows_without_a_reru
         "a thumbnail"
     );
     let times = h.state().preview.times.clone();
+    assert!(!times["with_secondary"].cached, "{times:?}");
     for node in [
-        "with_secondary",
         "front_lines",
         "front_hatching",
         "paper",
         "layer1",
+        "secondary_final",
     ] {
         assert!(times[node].cached, "{node} re-ran: {times:?}");
     }
