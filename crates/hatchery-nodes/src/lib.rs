@@ -83,6 +83,7 @@ declaring_modules! {
     ridge_valley,
     save_image,
     save_svg,
+    schlieren,
     secondary_geometry,
     select_image,
     selection_render,

@@ -68,6 +68,17 @@ pub fn ray_objects(own: Part) -> Parts {
     parts
 }
 
+/// A ray caster that samples on its own (no tables, shading or skipping): primary rays, the
+/// sampling and B-spline helpers, then `own` (Schlieren).
+pub fn ray_sampling(own: Part) -> Parts {
+    vec![
+        ("fullscreen.wgsl", FULLSCREEN),
+        ("ray_common.wgsl", RAY_COMMON),
+        ("ray_bspline.wgsl", RAY_BSPLINE),
+        own,
+    ]
+}
+
 /// A curvature pass: primary rays and the curvature helpers, then `own`.
 pub fn curvature(own: Part) -> Parts {
     vec![
