@@ -78,6 +78,59 @@ fn ray_mode() -> u32 {
     return select(ray.mode, u32(RAY_MODE), RAY_MODE >= 0);
 }
 
+// Svakhine, Jang, Ebert & Gaither 2005, Table 1 (docs/enhancement.md), DVR: the banding widget
+// maps the transfer function's opacity o_o (where it is not 0) to ((1 + sin(o_o·π·m)) / 2)^n
+// before shading; boundary enhancement multiplies the sample's opacity by |∇P|^n (|∇P| divided
+// by the volume's largest gradient magnitude, Ray.max_gradient) and silhouette enhancement by
+// (1 − |∇P̂·V|)^n, after shading and before ρ and the step correction. RAY_ENHANCE holds the
+// ENHANCE_* bits of those that are on; the Raycast node specialises it per pipeline, so with 0
+// (the default) none of this code is in the loop.
+const ENHANCE_BOUNDARY: u32 = 1u;
+const ENHANCE_SILHOUETTE: u32 = 2u;
+const ENHANCE_BANDING: u32 = 4u;
+override RAY_ENHANCE: u32 = 0u;
+
+struct Enhancement {
+    // The exponents n of boundary and silhouette enhancement, the banding period m and power n.
+    boundary: f32,
+    silhouette: f32,
+    banding_period: f32,
+    banding_power: f32,
+};
+@group(1) @binding(3) var<uniform> enhancement: Enhancement;
+
+fn enhanced(bit: u32) -> bool {
+    return (RAY_ENHANCE & bit) != 0u;
+}
+
+// x^n for x in [0, 1] and n > 0 (0 for x = 0, where pow is undefined).
+fn power(x: f32, n: f32) -> f32 {
+    if x <= 0.0 {
+        return 0.0;
+    }
+    return pow(min(x, 1.0), n);
+}
+
+// The banding widget: ((1 + sin(o·π·m)) / 2)^n.
+fn banding(o: f32) -> f32 {
+    let pi = 3.14159265358979;
+    return power(0.5 * (1.0 + sin(o * pi * enhancement.banding_period)), enhancement.banding_power);
+}
+
+// The factor of boundary and silhouette enhancement on a sample with normalised gradient magnitude
+// g_norm ∈ [0, 1], view-space unit normal n (0 where the gradient vanishes) and direction to the
+// viewer v.
+fn enhancement_factor(g_norm: f32, n: vec3<f32>, v: vec3<f32>) -> f32 {
+    var f = 1.0;
+    if enhanced(ENHANCE_BOUNDARY) {
+        f *= power(g_norm, enhancement.boundary);
+    }
+    if enhanced(ENHANCE_SILHOUETTE) {
+        f *= power(1.0 - abs(dot(n, v)), enhancement.silhouette);
+    }
+    return f;
+}
+
 // Pre-integrated transfer function (Engel et al. 2001; hatchery_data::preintegration): 1 when
 // tf_table holds the segment table in rows 1 … LUT_SIZE (row 1 + front position, column back
 // position). Specialised by the Raycast node.
@@ -247,7 +300,7 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         // Direct volume rendering. Classify first: samples the transfer function makes fully
         // transparent contribute nothing, so they skip the six gradient fetches.
         let row = table_row_at(q);
-        let entry = table_lookup_row(v, row.row, row.domain);
+        var entry = table_lookup_row(v, row.row, row.domain);
         // Colour TFs keep opacity in .a, style TFs α_u in .y.
         var classified = entry.a;
         if shading == SHADING_STYLE {
@@ -264,6 +317,14 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             // κv restarts after a gap (no normal to compare with).
             previous_normal = vec3<f32>(0.0);
             continue;
+        }
+        if enhanced(ENHANCE_BANDING) {
+            // The banding widget maps the classified opacity (α_u of a style TF).
+            if shading == SHADING_STYLE {
+                entry.y = banding(entry.y);
+            } else {
+                entry.a = banding(entry.a);
+            }
         }
         let g = gradient_at(q);
         let g_length = length(g);
@@ -300,6 +361,9 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             let lt = lighting_lookup(dot(n, l), dot(n, hv));
             c = clamp((lt.x + lt.y) * c + lt.z, vec3<f32>(0.0), vec3<f32>(1.0));
             a = min(1.0, a / max(1e-6, min(1.0, lt.w + (1.0 - g_norm))));
+        }
+        if enhanced(ENHANCE_BOUNDARY | ENHANCE_SILHOUETTE) {
+            a *= enhancement_factor(g_norm, n, v_dir);
         }
         // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
         // (TF opacities are per voxel).

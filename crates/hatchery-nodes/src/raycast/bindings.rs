@@ -21,11 +21,13 @@ crate::bind_group! {
 }
 
 crate::bind_group! {
-    /// Raycast's own group: the embedded strokes (shaders/raycast.wgsl).
+    /// Raycast's own group: the embedded strokes and the Table 1 enhancements
+    /// (shaders/raycast.wgsl).
     pub struct StrokeBindings in "raycast", group 1 from 0 {
         pub stroke_depth: TextureView,
         pub stroke_mask: TextureView,
         pub strokes: Buffer,
+        pub enhancement: Buffer,
     }
 }
 

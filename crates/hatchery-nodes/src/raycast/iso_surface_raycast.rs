@@ -4,7 +4,9 @@
 use super::{Kernel, KernelChoice, RayMode, RayOptions, RayShading, Reconstruction, cast};
 use crate::{Ctx, Value};
 use glam::Vec3;
-use hatchery_graph::{DataValue, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node};
+use hatchery_graph::{
+    DataValue, NodeError, NodeInputs, NodeSchema, Params, PortSpec, PortType, executor::Node,
+};
 use std::sync::Arc;
 
 hatchery_graph::node_params! {
@@ -78,6 +80,7 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             fast_exponent: false,
             reconstruction: params.reconstruction.on(ctx, &volume.data),
             preintegrated: false,
+            enhancement: super::Enhancement::OFF,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])

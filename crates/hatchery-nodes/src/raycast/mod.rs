@@ -4,6 +4,7 @@
 //! primary rays), ray_classify, ray_shade, ray_skip, and raycast.wgsl's compositing loop.
 
 mod bindings;
+mod enhancement;
 mod importance_pass;
 mod iso_surface_raycast;
 pub mod objects;
@@ -11,11 +12,12 @@ mod pass;
 mod tables;
 mod uniforms;
 
-pub use bindings::{RayBindings, RayOutputs, StrokeBindings};
-pub use importance_pass::{ImportanceBindings, ImportancePipelines, PassUniforms};
-pub(crate) use importance_pass::PingPong;
 pub use crate::kernel::{Kernel, KernelChoice};
 pub use crate::reconstruction::Reconstruction;
+pub use bindings::{RayBindings, RayOutputs, StrokeBindings};
+pub use enhancement::{EnhanceBit, Enhancement, EnhancementParams, EnhancementUniforms};
+pub(crate) use importance_pass::PingPong;
+pub use importance_pass::{ImportanceBindings, ImportancePipelines, PassUniforms};
 pub use iso_surface_raycast::{IsoSurfaceRaycastNode, IsoSurfaceRaycastParams};
 pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
 pub use tables::check_same_grid;
@@ -62,6 +64,8 @@ pub struct RayOptions<'a> {
     /// DVR with a pre-integrated transfer function (Engel et al. 2001): each sample composites
     /// the segment from the previous sample (`hatchery_data::preintegration`).
     pub preintegrated: bool,
+    /// Svakhine et al. 2005's Table 1 enhancements (Raycast, DVR; off for the other casters).
+    pub enhancement: Enhancement,
 }
 
 impl RayOptions<'static> {
@@ -98,6 +102,7 @@ impl RayOptions<'static> {
             fast_exponent: false,
             reconstruction: Reconstruction::Trilinear,
             preintegrated: false,
+            enhancement: Enhancement::OFF,
         }
     }
 }
@@ -209,6 +214,7 @@ hatchery_graph::node_params! {
         /// the whole segment from the previous one, so sharp opacity ramps between samples are
         /// not missed (a 1-D colour transfer function, shading none or phong)
         pub preintegrated: bool = false;
+        pub enhancement: EnhancementParams = Group;
         /// global alpha ρ (Yuan & Chen §5): every sample's opacity × ρ (DVR), so embedded strokes
         /// show through
         pub rho: f32 = 1.0, range(0.0, 1.0);
@@ -246,7 +252,10 @@ impl Node<Value, Ctx> for RaycastNode {
                   Gröller 2007: lit spheres, style contours eq. 1, illustrative transparency eq. 2). \
                   Strokes (a mask with the depth of its surface) are embedded as Yuan & Chen \
                   2005 §5 do: rays stop at a stroke and its colour lies under what is in front; \
-                  `rho` scales every sample's opacity (DVR).",
+                  `rho` scales every sample's opacity (DVR). Svakhine et al. 2005's Table 1 \
+                  enhancements of each sample's opacity (DVR): boundary enhancement |∇P|^n, \
+                  silhouette enhancement (1 − |∇P̂·V|)^n and the banding widget \
+                  ((1 + sin(o·π·m)) / 2)^n (docs/enhancement.md).",
             inputs: vec![
                 PortSpec::input("volume", PortType::Volume, "the scalar field"),
                 PortSpec::input("camera", PortType::Camera, "the view"),
@@ -319,6 +328,7 @@ impl Node<Value, Ctx> for RaycastNode {
             fast_exponent: params.fast_exponent,
             reconstruction: params.reconstruction.on(ctx, &volume.data),
             preintegrated: params.preintegrated,
+            enhancement: params.enhancement.enhancement(),
         };
         let labels = inputs
             .get("labels")
@@ -331,6 +341,13 @@ impl Node<Value, Ctx> for RaycastNode {
                 return Err(NodeError::new(
                     "parameter `preintegrated`: pre-integration needs mode dvr, a 1-D colour \
                      transfer function, no label volume and shading none or phong",
+                ));
+            }
+            if options.enhancement.any() {
+                return Err(NodeError::new(
+                    "parameters `boundary_enhancement`, `silhouette_enhancement`, `banding`: the \
+                     enhancements modulate each sample's own opacity, which a pre-integrated \
+                     segment does not have: turn `preintegrated` off or the enhancements to 0",
                 ));
             }
         }
@@ -380,12 +397,17 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
     iso_surface_raycast::declare(k);
     k.node(RaycastNode)
         .program("raycast", shaders::ray(shaders::part!("raycast.wgsl")))
-        .program("depth_from_texture", shaders::screen(shaders::part!("depth_from_texture.wgsl")))
+        .program(
+            "depth_from_texture",
+            shaders::screen(shaders::part!("depth_from_texture.wgsl")),
+        )
         .uniform(RayUniforms::layout())
         .bind_group(RayBindings::layout())
         .bind_group(StrokeBindings::layout())
         .bind_group(RayOutputs::layout())
         .uniform(StrokeUniforms::layout())
+        .uniform(EnhancementUniforms::layout())
+        .gpu_enum(EnhanceBit::wgsl())
         .gpu_enum(RayMode::wgsl())
         .gpu_enum(RayShading::wgsl());
 }

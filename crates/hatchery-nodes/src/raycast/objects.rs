@@ -148,7 +148,9 @@ pub(crate) fn brick_table(labels: &Labels, styles: &[ObjectStyle]) -> ([u32; 3],
             // The rows of the drawn objects the brick holds, as bits (exact in an f32 up to
             // slot 23; −1 when a later slot is among them).
             let rows = ids.iter().filter_map(|&id| row[id as usize]);
-            let mask = rows.clone().try_fold(0u32, |m, slot| (slot < 24).then(|| m | 1 << slot));
+            let mask = rows
+                .clone()
+                .try_fold(0u32, |m, slot| (slot < 24).then(|| m | 1 << slot));
             let mask = mask.map_or(-1.0, |m| m as f32);
             if rows.count() > 0 {
                 [0.0, 1.0, single, mask]

@@ -283,7 +283,10 @@ pub fn cast(
         Some(TransferFunction::Color(f)) if o.preintegrated => {
             use std::hash::{Hash, Hasher};
             let mut h = std::hash::DefaultHasher::new();
-            f.lut.iter().flatten().for_each(|x| x.to_bits().hash(&mut h));
+            f.lut
+                .iter()
+                .flatten()
+                .for_each(|x| x.to_bits().hash(&mut h));
             (o.step_voxels.to_bits(), o.rho.to_bits()).hash(&mut h);
             Some(ctx.keep("preintegration", h.finish(), || {
                 hatchery_data::preintegration::preintegrated_table(f, o.step_voxels, o.rho)
@@ -295,8 +298,18 @@ pub fn cast(
     let volume_texture = volume.texture(gpu).map_err(err)?;
     let table = preintegrated.as_ref().map(|t| t.as_slice());
     let tables = RayTables::new(gpu, &st, volume, tf, labels, o, table)?;
-    // Lighting TFs, context-preserving and style shading normalise |∇f| (eq. 5, 8, 2).
-    let max_gradient = if tables.info.shading.code() >= RayShading::Lighting.code() {
+    // Lighting TFs, context-preserving and style shading normalise |∇f| (eq. 5, 8, 2), and so
+    // does boundary enhancement (Svakhine et al. 2005, Table 1).
+    // The enhancements apply to DVR only: other modes get the pipeline without them.
+    let enhancement = if o.mode == super::RayMode::Dvr {
+        o.enhancement
+    } else {
+        super::Enhancement::OFF
+    };
+    let enhance = enhancement.bits();
+    let max_gradient = if tables.info.shading.code() >= RayShading::Lighting.code()
+        || enhance & super::EnhanceBit::Boundary.code() != 0
+    {
         volume.max_gradient()
     } else {
         1.0
@@ -356,6 +369,11 @@ pub fn cast(
         bytemuck::bytes_of(&stroke_uniforms),
         wgpu::BufferUsages::UNIFORM,
     );
+    let enhancement_buffer = gpu.buffer_init(
+        "enhancement",
+        bytemuck::bytes_of(&enhancement.uniforms()),
+        wgpu::BufferUsages::UNIFORM,
+    );
     let depth_only = wgpu::TextureViewDescriptor {
         aspect: wgpu::TextureAspect::DepthOnly,
         ..Default::default()
@@ -373,9 +391,10 @@ pub fn cast(
         stroke_depth: Some(&stroke_depth_view),
         stroke_mask: Some(&stroke_mask_view),
         strokes: Some(&strokes_buffer),
+        enhancement: Some(&enhancement_buffer),
     };
-    // One pipeline per mode, shading, projection, exponent and bricking (the pipeline constants of
-    // raycast.wgsl and ray_common.wgsl).
+    // One pipeline per mode, shading, projection, exponent, bricking and set of enhancements (the
+    // pipeline constants of raycast.wgsl and ray_common.wgsl).
     let (mode, shading, bricked) = (uniforms.mode, uniforms.shading, uniforms.bricked);
     // Schlick's exponent matters to context-preserving shading only: one pipeline otherwise.
     let orthographic = uniforms.orthographic;
@@ -389,7 +408,7 @@ pub fn cast(
     let pipelines = ctx
         .cached(
             &format!(
-                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}"
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}.{enhance}"
             ),
             |gpu| {
                 let constants = [
@@ -400,6 +419,7 @@ pub fn cast(
                     ("RAY_BRICKED", bricked as f64),
                     o.reconstruction.constant(),
                     ("RAY_PREINTEGRATED", f64::from(preintegrated)),
+                    ("RAY_ENHANCE", f64::from(enhance)),
                 ];
                 RayPipelines::specialised(gpu, "raycast", &constants)
             },

@@ -2,11 +2,11 @@
 //! TF, or the style TF's tft/ift rows per object, §4.1–4.2), the label → row table, the lighting
 //! transfer function (eq. 8) and the empty-space skipping tables (bricks, visible values).
 
-use super::uniforms::{RayMode, RayShading};
 use super::RayOptions;
 use super::bindings::RayBindings;
 use super::pass::Statics;
 use super::uniforms::TableInfo;
+use super::uniforms::{RayMode, RayShading};
 use crate::value::{TransferFunction, Volume};
 use hatchery_data::{bricks, lighting};
 use hatchery_gpu::{GpuContext, GpuError};

@@ -1,0 +1,127 @@
+//! Svakhine, Jang, Ebert & Gaither 2005, Table 1 ("Illustration and rendering techniques"):
+//! boundary enhancement, silhouette enhancement and the banding widget as options of `Raycast`
+//! (DVR). The equations are applied per sample in shaders/raycast.wgsl; docs/enhancement.md
+//! says what each does, in which order and how |∇P| is normalised.
+
+hatchery_graph::node_params! {
+    /// The Table 1 enhancements of Svakhine et al. 2005 (§3.2–3.3), shared by the ray casters
+    /// that offer them. All off by default (exponents 0, period 0): the pipeline then has no
+    /// enhancement code at all.
+    pub struct EnhancementParams {
+        /// boundary enhancement n (Svakhine et al. 2005 §3.2, Table 1: o_e = o_o · |∇P|^n):
+        /// samples on strong boundaries keep their opacity, flat regions fade; |∇P| is the
+        /// gradient magnitude divided by the volume's largest, so 1 on the sharpest boundary;
+        /// larger n keeps only sharper boundaries (0 = off; DVR)
+        pub boundary_enhancement: f32 = 0.0, range(0.0, 16.0);
+        /// silhouette enhancement n (Svakhine et al. 2005 §3.2, Table 1: o_e = o_o · (1 −
+        /// |∇P̂·V|)^n): samples whose boundary faces the viewer fade, those seen edge-on (the
+        /// outlines) keep their opacity; larger n gives thinner outlines (0 = off; DVR)
+        pub silhouette_enhancement: f32 = 0.0, range(0.0, 16.0);
+        /// banding widget period m (Svakhine et al. 2005 §3.3, Table 1: o_e = ((1 + sin(o_o·π·m))
+        /// / 2)^n): the transfer function's opacity is mapped through a sine, so the volume
+        /// shows as alternating opaque and clear contour shells; more m, more and thinner bands
+        /// (0 = off; DVR, where the transfer function is not transparent)
+        pub banding: f32 = 0.0, range(0.0, 64.0);
+        /// banding widget power n (Svakhine et al. 2005 §3.3, Table 1): above 1 makes the bands
+        /// thinner and sharper, below 1 softer and wider
+        pub banding_power: f32 = 1.0, range(0.05, 16.0);
+    }
+}
+
+crate::gpu_enum! {
+    /// The bits of raycast.wgsl's `RAY_ENHANCE` constant: which enhancements a pipeline applies.
+    pub enum EnhanceBit in "raycast" {
+        /// o_o · |∇P|^n.
+        Boundary = 1 as "ENHANCE_BOUNDARY",
+        /// o_o · (1 − |∇P̂·V|)^n.
+        Silhouette = 2 as "ENHANCE_SILHOUETTE",
+        /// ((1 + sin(o_o·π·m)) / 2)^n.
+        Banding = 4 as "ENHANCE_BANDING",
+    }
+}
+
+crate::uniform_block! {
+    /// `Enhancement` of shaders/raycast.wgsl: the exponents and the banding period.
+    pub struct EnhancementUniforms in "raycast" as "Enhancement" {
+        pub boundary: f32,
+        pub silhouette: f32,
+        pub banding_period: f32,
+        pub banding_power: f32,
+    }
+}
+
+/// The enhancements one ray-casting pass applies (see [`EnhancementParams`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Enhancement {
+    /// Boundary-enhancement exponent (0: off).
+    pub boundary: f32,
+    /// Silhouette-enhancement exponent (0: off).
+    pub silhouette: f32,
+    /// Banding period m (0: off) and power n.
+    pub banding_period: f32,
+    pub banding_power: f32,
+}
+
+impl Enhancement {
+    /// No enhancement.
+    pub const OFF: Self = Self {
+        boundary: 0.0,
+        silhouette: 0.0,
+        banding_period: 0.0,
+        banding_power: 1.0,
+    };
+
+    /// The bits of `RAY_ENHANCE` (0: none, the shader folds every enhancement away).
+    pub fn bits(&self) -> u32 {
+        let on = |x: f32, bit: EnhanceBit| if x > 0.0 { bit.code() } else { 0 };
+        on(self.boundary, EnhanceBit::Boundary)
+            | on(self.silhouette, EnhanceBit::Silhouette)
+            | on(self.banding_period, EnhanceBit::Banding)
+    }
+
+    /// Whether any enhancement is on.
+    pub fn any(&self) -> bool {
+        self.bits() != 0
+    }
+
+    /// The uniform block.
+    pub fn uniforms(&self) -> EnhancementUniforms {
+        EnhancementUniforms {
+            boundary: self.boundary,
+            silhouette: self.silhouette,
+            banding_period: self.banding_period,
+            banding_power: self.banding_power,
+        }
+    }
+}
+
+impl EnhancementParams {
+    /// The enhancements these parameters ask for.
+    pub fn enhancement(&self) -> Enhancement {
+        Enhancement {
+            boundary: self.boundary_enhancement,
+            silhouette: self.silhouette_enhancement,
+            banding_period: self.banding,
+            banding_power: self.banding_power,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Enhancement;
+
+    #[test]
+    fn off_has_no_bits_and_each_option_its_own() {
+        assert_eq!(Enhancement::OFF.bits(), 0);
+        let on = |f: fn(&mut Enhancement)| {
+            let mut e = Enhancement::OFF;
+            f(&mut e);
+            e.bits()
+        };
+        assert_eq!(on(|e| e.boundary = 2.0), 1);
+        assert_eq!(on(|e| e.silhouette = 0.5), 2);
+        assert_eq!(on(|e| e.banding_period = 8.0), 4);
+        assert_eq!(on(|e| e.banding_power = 3.0), 0);
+    }
+}
