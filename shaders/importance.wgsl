@@ -4,7 +4,8 @@
 //
 // Kernels, in order (one dispatch each, 8×8 pixels per workgroup unless noted):
 //   footprint   march the ray through the labels: the focus object's first and last hit (view
-//               depth) and a bit per object (table row) the ray meets.
+//               depth), a bit per object (table row) the ray meets, and for MImP the highest
+//               importance of the other objects met and the depth of its last sample.
 //   dilate      OR of the object bits over ±radius pixels along one axis (twice: x, then y):
 //               the dilated footprints of image-space AImC.
 //   weigh       Σ of the importance of the objects whose (dilated) footprint covers the pixel.
@@ -14,9 +15,11 @@
 //   jfa_step    every pixel, so d_i, the image-space distance to the footprint (eq. 1).
 //   reduce      one workgroup: e_max, the largest last-hit depth of the footprint, and its size.
 //   finish      the importance buffer: countersink depth E (eq. 1: e_max − d_i·s_c outside the
-//               footprint, the focus's first hit inside), the importance sum, the footprint
-//               flag; and the countersink's view-space normal (its two in-plane components
-//               from the distance field's gradient, the third from the slope s_c).
+//               footprint, the focus's first hit inside), the importance sum — for MImP
+//               instead the highest importance among the objects the ray meets behind E (its
+//               per-ray rule) — the footprint flag; and the countersink's view-space normal
+//               (its two in-plane components from the distance field's gradient, the third
+//               from the slope s_c).
 //   alpha_mean  one workgroup: the mean opacity of a picture over its non-empty pixels (VPImC's
 //               α_avg, eq. 3), for TwoLevelRaycast.
 // Prepended: ray_common, ray_skip, ray_objects.
@@ -34,7 +37,10 @@ struct ImportanceParams {
     focus: u32,
     // The bits of every drawn object's table row (slots 0..32).
     all_rows: u32,
-    pad1: f32,
+    // What the buffer's second channel holds: 0 the importance sum (AImC, VPImC), 1 the highest
+    // importance behind the countersink (MImP's per-ray rule), 2 zero (a cutaway: no object
+    // dropped for its importance).
+    second_channel: u32,
     // Importance of table row i (the drawn objects, in table order) at weights[i / 4][i % 4].
     weights: array<vec4<f32>, 8>,
 };
@@ -131,6 +137,10 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
     var first = -1.0;
     var last = -1.0;
     var bits = 0u;
+    // MImP: the highest importance of the other objects the ray meets and the depth of its last
+    // sample (exact for rays that miss the focus: those march every sample, see below).
+    var strongest = 0.0;
+    var strongest_last = -1.0e30;
     let focus = imp.focus;
     if r.hits {
         let h = ray.step_world;
@@ -152,6 +162,13 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
             let next = min(max(ceil((seen.until - r.t_in) / h), f32(k + 1u)), f32(count));
             if seen.object != 0u {
                 bits = bits | row_bit(seen.object);
+                if seen.object != focus && imp.second_channel == 1u {
+                    let weight = max(object_info(seen.object, 1u).z, 0.0);
+                    if weight >= strongest {
+                        strongest = weight;
+                        strongest_last = view_depth(r.p0 + r.dir * (r.t_in + (next - 1.0) * h));
+                    }
+                }
                 if seen.object == focus && first < 0.0 {
                     first = view_depth(r.p0 + r.dir * t);
                     last = view_depth(r.p0 + r.dir * (r.t_in + (next - 1.0) * h));
@@ -182,7 +199,7 @@ fn footprint(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    textureStore(footprint_out, vec2<i32>(id.xy), vec4<f32>(first, last, 0.0, 0.0));
+    textureStore(footprint_out, vec2<i32>(id.xy), vec4<f32>(first, last, strongest, strongest_last));
     textureStore(bits_out, vec2<i32>(id.xy), vec4<u32>(bits, 0u, 0u, 0u));
 }
 
@@ -317,6 +334,57 @@ fn reduce(@builtin(local_invocation_index) lane: u32) {
     }
 }
 
+// MImP (§IV.A): "for each ray the object with highest importance along the ray is determined";
+// the others are not drawn. The highest importance among the drawn objects the ray meets at view
+// depths ≥ e (behind the countersink, whose front part is cut away), for a ray outside the focus
+// footprint (inside it only the focus is drawn anyway), marched as the footprint is: bricks of
+// no drawn object or only of objects already met are taken at once, and the march ends when
+// the highest importance of any object but the focus (which the ray misses) is reached.
+fn strongest_behind(pixel: vec2<u32>, e: f32) -> f32 {
+    let r = primary_ray(vec2<f32>(pixel) + 0.5);
+    if !r.hits {
+        return 0.0;
+    }
+    let others = imp.all_rows & ~row_bit(imp.focus);
+    var top = 0.0;
+    for (var slot = 0u; slot < 32u; slot++) {
+        if (others & (1u << slot)) != 0u {
+            top = max(top, imp.weights[slot / 4u][slot % 4u]);
+        }
+    }
+    let h = ray.step_world;
+    let count = min(u32(max(floor((r.t_out - r.t_in) / h), -1.0) + 1.0), 65536u);
+    let z0 = view_depth(r.p0);
+    let dz = view_depth(r.p0 + r.dir) - z0;
+    var k = 0u;
+    if e > -1.0e29 && dz > 1e-12 {
+        // One sample before the cut; the depth test below decides exactly.
+        k = u32(clamp(floor(((e - z0) / dz - r.t_in) / h) - 1.0, 0.0, f32(count)));
+    }
+    var bits = 0u;
+    var strongest = 0.0;
+    for (; k < count; k++) {
+        let t = r.t_in + f32(k) * h;
+        let seen = seen_at(r.q0 + r.dq * t, r.dq, t, bits);
+        var next = min(max(ceil((seen.until - r.t_in) / h), f32(k + 1u)), f32(count));
+        if seen.object != 0u {
+            if z0 + dz * t >= e {
+                bits = bits | row_bit(seen.object);
+                strongest = max(strongest, max(object_info(seen.object, 1u).z, 0.0));
+                if strongest >= top {
+                    break;
+                }
+            } else {
+                // In front of the cut: sample by sample until behind it (a brick of one
+                // object may reach past it).
+                next = f32(k + 1u);
+            }
+        }
+        k = u32(next) - 1u;
+    }
+    return strongest;
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
     if !in_frame(id.xy) {
@@ -355,7 +423,20 @@ fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    textureStore(buffer_out, pixel, vec4<f32>(e, sum, inside, fp.y));
+    var second = sum;
+    if imp.second_channel == 1u && inside < 0.5 {
+        // The footprint march's answer holds where the strongest object's last sample is not
+        // cut away; else march again behind the cut (around the footprint only).
+        second = fp.z;
+        if fp.w > -1.0e29 && fp.w < e {
+            second = strongest_behind(id.xy, e);
+        }
+    } else if imp.second_channel == 1u {
+        second = 0.0;
+    } else if imp.second_channel == 2u {
+        second = 0.0;
+    }
+    textureStore(buffer_out, pixel, vec4<f32>(e, second, inside, fp.y));
     textureStore(cut_out, pixel, vec4<f32>(normal, d));
 }
 

@@ -9,13 +9,15 @@
 //
 // Importance-driven rendering (Viola et al.; the buffers come from ImportanceCompositing, see
 // shaders/importance.wgsl): a sample's object may be dropped (MImP: in the focus footprint
-// everything but the focus, around it the context in front of the countersink), get a level of
+// everything but the focus, around it the context in front of the countersink, and behind it
+// every object less important than the ray's most important one), get a level of
 // sparseness S_o = I_o / Σ I (AImC, eq. 2) applied as opacity, colour saturation, screen door
 // or a sparse rendering style, or belong to the occluding part, whose segment's accumulated
 // opacity is scaled by S_o / α_avg (VPImC, eq. 3). A segment is a run of samples of one object
 // *and* one level (dense or sparse/occluding), so a context object splits at the countersink.
 
-// (E, Σ I, 1 in the focus footprint, focus last hit) per pixel; E = countersink view depth.
+// (E, Σ I, 1 in the focus footprint, focus last hit) per pixel; E = countersink view depth. For
+// MImP the second channel is the highest importance behind E (0 for a cutaway).
 @group(1) @binding(4) var importance_buffer: texture_2d<f32>;
 // (countersink view-space normal, distance to the footprint in pixels) per pixel.
 @group(1) @binding(5) var importance_cut: texture_2d<f32>;
@@ -254,7 +256,12 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             let in_front = z < imp.x;
             let s_o = clamp(object_info(id, 1u).z / max(imp.y, 1e-6), 0.0, 1.0);
             if method == IMP_MIMP {
-                if (imp.z > 0.5 && id != focus) || (imp.z < 0.5 && in_front) {
+                // In the footprint only the focus; elsewhere nothing in front of the
+                // countersink, and behind it only the ray's most important object (imp.y, the
+                // per-ray rule; 0 for a cutaway, which keeps every object). The open segment's
+                // object passed this test when it opened.
+                let weaker = id != current && max(object_info(id, 1u).z, 0.0) < imp.y;
+                if (imp.z > 0.5 && id != focus) || (imp.z < 0.5 && (in_front || weaker)) {
                     id = 0u;
                 }
             } else if method == IMP_VPIMC {

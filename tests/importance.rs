@@ -135,6 +135,7 @@ fn style(o: &Object, importance: f32) -> ObjectStyle {
 fn method_name(m: Method) -> &'static str {
     match m {
         Method::Mimp => "mimp",
+        Method::Cutaway => "cutaway",
         Method::AimcImage => "aimc_image",
         Method::AimcObject => "aimc_object",
         Method::Vpimc => "vpimc",
@@ -387,6 +388,141 @@ fn conical_mimp_starts_rays_on_the_countersink_of_eq_1() {
     common::assert_images_close_where("conical MImP vs CPU", &gpu, &cpu, SIZE, 2.0 / 255.0, |i| {
         (buffer[i][0] - cpu_buffers.pixels[i][0]).abs() <= 1e-3
     });
+}
+
+/// Three context slabs stacked along the view axis, each covering part of the frame, and a small
+/// focus cube in a corner where no slab is: rays meet all three slabs, two of them, or one.
+fn stacked_slabs() -> Scene {
+    let (volume, labels) = grid(|x, y, z| {
+        let inside = |x0, x1, y0, y1, z0, z1| {
+            (x0..x1).contains(&x) && (y0..y1).contains(&y) && (z0..z1).contains(&z)
+        };
+        if inside(3, 10, 3, 10, 15, 25) {
+            4
+        } else if inside(14, 37, 14, 37, 28, 32) {
+            1 // front (nearest the eye on +z), everywhere
+        } else if inside(14, 26, 14, 37, 18, 22) {
+            2 // middle, half of x
+        } else if inside(14, 37, 14, 26, 6, 10) {
+            3 // back, half of y
+        } else {
+            0
+        }
+    });
+    let object = |id, rgba| Object {
+        id,
+        tf: flat(rgba),
+        local: Local::Over,
+    };
+    Scene {
+        volume,
+        labels,
+        objects: vec![
+            object(1, SHELL),
+            object(2, CORE),
+            object(3, INNER),
+            object(4, [0.9, 0.9, 0.1, 0.7]),
+        ],
+    }
+}
+
+/// Issue 31: MImP's per-ray rule (§IV.A, "for each ray the object with highest importance along
+/// the ray is determined … all the remaining objects along the ray are … fully transparent"),
+/// with three context objects along one ray; the cutaway keeps today's compositing.
+#[test]
+fn mimp_draws_only_the_most_important_object_along_each_ray() {
+    let mut session = session();
+    let cam = camera(&mut session);
+    let scene = stacked_slabs();
+    let importance = vec![(1, 0.2), (2, 0.6), (3, 0.4), (4, 1.0)];
+    let setup = Setup {
+        method: Method::Mimp,
+        focus: 4,
+        importance: importance.clone(),
+        slope: 0.0,
+    };
+    let (buffer, mimp) = render_gpu(&mut session, &cam, &scene, Some(&setup), &[]);
+    let (cpu_buffers, cpu) = cpu_reference(&scene, &setup, &cam);
+    // Which slabs each ray meets, from the importance sums (distinct for every combination).
+    let sums = reference::buffers(
+        &scene.volume,
+        &scene.labels,
+        &scene.objects,
+        &Setup {
+            method: Method::AimcImage,
+            ..Setup {
+                importance: importance.clone(),
+                ..setup
+            }
+        },
+        &ray_params(&cam),
+        pixel_world(&cam),
+    );
+    let region = |i: usize, sum: f32| (sums.pixels[i][1] - sum).abs() < 1e-4;
+    // (front, middle, back) → the middle (0.6); (front, back) → the back (0.4); (front, middle)
+    // → the middle; the front alone → the front (0.2).
+    let cases = [
+        (1.2, 0.6, 2u16),
+        (0.6, 0.4, 3),
+        (0.8, 0.6, 2),
+        (0.2, 0.2, 1),
+    ];
+    for (sum, strongest, id) in cases {
+        let pixels: Vec<usize> = (0..buffer.len()).filter(|&i| region(i, sum)).collect();
+        assert!(
+            pixels.len() > 40,
+            "{} pixels meet Σ I = {sum}",
+            pixels.len()
+        );
+        for &i in &pixels {
+            assert_eq!(
+                buffer[i][1], strongest,
+                "the ray's highest importance at pixel {i}"
+            );
+        }
+        // The picture there is that object's alone.
+        let alone = Scene {
+            objects: scene
+                .objects
+                .iter()
+                .filter(|o| o.id == id)
+                .cloned()
+                .collect(),
+            volume: scene.volume.clone(),
+            labels: scene.labels.clone(),
+        };
+        let (_, only) = render_gpu(&mut session, &cam, &alone, None, &[]);
+        common::assert_images_close_where(
+            &format!("rays meeting Σ I = {sum} vs object {id} alone"),
+            &mimp,
+            &only,
+            SIZE,
+            1.0 / 255.0,
+            |i| region(i, sum),
+        );
+    }
+    for (i, (g, c)) in buffer.iter().zip(&cpu_buffers.pixels).enumerate() {
+        assert_eq!(g[1], c[1], "highest importance at pixel {i}: GPU vs CPU");
+    }
+    common::assert_images_close("per-ray MImP vs CPU", &mimp, &cpu, SIZE, 1.0 / 255.0);
+
+    // The cutaway composites every slab a ray meets, as the plain rendering does outside the
+    // focus footprint.
+    let cutaway = Setup {
+        method: Method::Cutaway,
+        ..setup
+    };
+    let (buffer, cut) = render_gpu(&mut session, &cam, &scene, Some(&cutaway), &[]);
+    let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
+    common::assert_images_close_where("cutaway vs plain", &cut, &plain, SIZE, 1.0 / 255.0, |i| {
+        buffer[i][2] < 0.5
+    });
+    let (_, cpu) = cpu_reference(&scene, &cutaway, &cam);
+    common::assert_images_close("cutaway vs CPU", &cut, &cpu, SIZE, 1.0 / 255.0);
+    let differ = common::diff_images(&cut, &mimp, SIZE, |i| region(i, 1.2), 0.05)
+        .over
+        .len();
+    assert!(differ > 40, "the per-ray rule changed only {differ} pixels");
 }
 
 fn three_objects() -> Scene {

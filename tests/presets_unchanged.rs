@@ -14,6 +14,8 @@
 //! (issue 36: the tricubic B-spline reconstruction, checked in tests/reconstruction.rs).
 //! `two_level_frog`, `importance_frog_*` and `selection_frog` (issue 24: the liver's normals
 //! smoothed over ±2 voxels, `surface_smoothing`, checked in tests/label_surfaces.rs).
+//! `importance_frog_mimp` (issue 31: MImP's per-ray rule, the skeleton not drawn on rays that
+//! meet the more important lung, stomach or intestine behind it; tests/importance.rs).
 
 mod common;
 

@@ -10,8 +10,12 @@
 //!   indices) to the nearest footprint pixel and w_px the world size of a pixel (orthographic),
 //!   or that at depth e_max (perspective); inside, E = the focus's first hit. Cylindrical
 //!   (s_c = 0): nothing outside the footprint is cut.
+//! - MImP's per-ray rule (§IV.A): the buffer's second channel is, outside the footprint, the
+//!   highest importance among the drawn objects the ray meets at depths z ≥ E (in the footprint
+//!   and for a cutaway: 0).
 //! - Final synthesis, per sample of drawn object o at depth z:
-//!   MImP — in the footprint only the focus is drawn, outside samples with z < E are dropped;
+//!   MImP — in the footprint only the focus is drawn; outside, samples with z < E are dropped,
+//!   and so are those of objects less important than the ray's highest (the cutaway keeps them);
 //!   AImC image space — opacity × S_o (S_o = I_o / Σ I, eq. 2) for every sample;
 //!   AImC object space — the same, for non-focus samples with z < E only; outside the footprint
 //!   (in the countersink) the focus's importance is added to the sum;
@@ -30,6 +34,7 @@ use hatchery_data::segmentation::LabelData;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Method {
     Mimp,
+    Cutaway,
     AimcImage,
     AimcObject,
     Vpimc,
@@ -144,11 +149,65 @@ pub fn buffers(
         pixels.push([e, sum, 0.0, -1.0]);
         distance.push(if d.is_finite() { d } else { 0.0 });
     }
+    for (i, pixel) in pixels.iter_mut().enumerate() {
+        match setup.method {
+            // (In the footprint only the focus is drawn: 0 there.)
+            Method::Mimp if pixel[2] > 0.5 => pixel[1] = 0.0,
+            Method::Mimp => {
+                let (x, y) = (i as u32 % p.width, i as u32 / p.width);
+                let met = objects_behind(volume, labels, objects, p, x, y, pixel[0]);
+                pixel[1] = met
+                    .iter()
+                    .map(|&id| importance(id).max(0.0))
+                    .fold(0.0, f32::max);
+            }
+            Method::Cutaway => pixel[1] = 0.0,
+            _ => {}
+        }
+    }
     Buffers {
         pixels,
         distance,
         e_max,
     }
+}
+
+/// The drawn objects whose samples on the ray of pixel (x, y) lie at view depths ≥ `e`.
+fn objects_behind(
+    volume: &VolumeData,
+    labels: &LabelData,
+    objects: &[Object],
+    p: &RayParams,
+    x: u32,
+    y: u32,
+    e: f32,
+) -> Vec<u16> {
+    let h = world_step(volume, p);
+    let margin = box_margin(volume);
+    let last = Vec3::new(
+        (volume.dims[0] - 1) as f32,
+        (volume.dims[1] - 1) as f32,
+        (volume.dims[2] - 1) as f32,
+    );
+    let (origin, dir) = pixel_ray(p, x, y);
+    let q0 = volume.world_to_voxel(origin);
+    let dq = volume.world_to_voxel(origin + dir) - q0;
+    let mut met = Vec::new();
+    if let Some((t_in, t_out)) = intersect_box(-margin, last + margin, q0, dq) {
+        let count = ((t_out - t_in) / h).floor().max(-1.0) as i64 + 1;
+        for k in 0..count.max(0) {
+            let t = t_in + k as f32 * h;
+            let id = object_at(labels, q0 + dq * t, true);
+            if id != 0
+                && objects.iter().any(|o| o.id == id)
+                && view_depth(p, origin + dir * t) >= e
+                && !met.contains(&id)
+            {
+                met.push(id);
+            }
+        }
+    }
+    met
 }
 
 /// Importance-driven two-level rendering with global over, opacity as the level of
@@ -245,8 +304,10 @@ fn render_pass(
                     let in_front = z < e;
                     let s_o = (importance(id) / sum.max(1e-6)).clamp(0.0, 1.0);
                     match setup.method {
-                        Method::Mimp => {
-                            if (inside && id != setup.focus) || (!inside && in_front) {
+                        Method::Mimp | Method::Cutaway => {
+                            // (The second channel: for MImP the ray's highest importance.)
+                            let weaker = importance(id).max(0.0) < sum;
+                            if (inside && id != setup.focus) || (!inside && (in_front || weaker)) {
                                 id = 0;
                             }
                         }

@@ -33,7 +33,9 @@ crate::uniform_block! {
         pub focus: u32,
         /// The bits of every drawn object's table row (slots 0..32).
         pub all_rows: u32,
-        pub pad1: f32,
+        /// The buffer's second channel: 0 Σ I, 1 MImP's highest importance behind the
+        /// countersink, 2 zero (a cutaway).
+        pub second_channel: u32,
         pub weights: [[f32; 4]; 8],
     }
 }
@@ -62,9 +64,10 @@ fn focus_object(styles: &[ObjectStyle], requested: u32) -> Result<u16, NodeError
 }
 
 hatchery_graph::param_choice! {
-    /// Importance compositing: mimp, aimc_image, aimc_object, vpimc.
+    /// Importance compositing: mimp, cutaway, aimc_image, aimc_object, vpimc.
     pub enum Method {
         Mimp = "mimp",
+        Cutaway = "cutaway",
         AimcImage = "aimc_image",
         AimcObject = "aimc_object",
         Vpimc = "vpimc",
@@ -84,7 +87,10 @@ hatchery_graph::param_choice! {
 hatchery_graph::node_params! {
     /// Parameters of `ImportanceCompositing`.
     pub struct ImportanceCompositingParams {
-        /// importance compositing: mimp, aimc_image, aimc_object, vpimc
+        /// how importance decides what is drawn: mimp (per ray only its most important object,
+        /// the focus's countersink cut away), cutaway (only the countersink cut away, the other
+        /// objects drawn as usual), aimc_image, aimc_object (levels of sparseness I_o / Σ I) or
+        /// vpimc (the occluders' opacity kept constant)
         pub method: Method = Method::Mimp;
         /// the focus object's id (0: the drawn object of highest importance)
         pub focus: u32 = 0, range(0, 65535);
@@ -117,8 +123,10 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
                   the importance sum Σ I of the objects the ray meets, their footprints dilated \
                   and averaged over `transition` pixels (image-space AImC, eq. 2). Feed it to \
                   TwoLevelRaycast's `importance` input with the same camera. Methods: mimp \
-                  (maximum importance projection: only the focus in its footprint, the context \
-                  cut away in front of the countersink), aimc_image / aimc_object (average \
+                  (maximum importance projection, §IV.A: per ray only the most important object \
+                  it meets behind the countersink is drawn, so only the focus in its footprint, \
+                  and the context cut away in front of the countersink), cutaway (the same cut, \
+                  but every object behind it drawn as usual), aimc_image / aimc_object (average \
                   importance compositing: levels of sparseness S_o = I_o / Σ I for every sample, \
                   or for the context in front of the countersink only), vpimc (visibility \
                   preserving: the occluding context's opacity scaled by S_o / α_avg, eq. 3). \
@@ -160,7 +168,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let styles = inputs.require("styles")?.object_styles("styles")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let method = match params.method {
-            Method::Mimp => ImportanceMethod::Mimp,
+            Method::Mimp | Method::Cutaway => ImportanceMethod::Mimp,
             Method::AimcImage => ImportanceMethod::AimcImage,
             Method::AimcObject => ImportanceMethod::AimcObject,
             Method::Vpimc => ImportanceMethod::Vpimc,
@@ -227,7 +235,11 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
                 32.. => u32::MAX,
                 n => (1 << n) - 1,
             },
-            pad1: 0.0,
+            second_channel: match params.method {
+                Method::Mimp => 1,
+                Method::Cutaway => 2,
+                _ => 0,
+            },
             weights,
         };
         let uniform =
@@ -406,13 +418,29 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             ],
             (1, 1),
         );
+        // (MImP's per-ray rule marches the rays again behind the countersink.)
         pipelines.dispatch(
             gpu,
             &mut encoder,
             "finish",
             [
-                Vec::new(),
-                ImportanceBindings {
+                RayBindings {
+                    ray: Some(&ray_buffer),
+                    linear_clamp: Some(&sampler),
+                    bricks: Some(&bricks_v),
+                    page_table: Some(&pages_v),
+                    ..Default::default()
+                }
+                .entries(),
+                [
+                    ObjectBindings {
+                        object_ids: Some(&ids_v),
+                        objects: Some(&table_v),
+                        two_level: Some(&two_level_buffer),
+                        drawn_mask: Some(&drawn_v),
+                    }
+                    .entries(),
+                    ImportanceBindings {
                     imp: Some(&params_buffer),
                     sum_in: Some(&sums_v[sum_at]),
                     footprint_in: Some(&footprint_v),
@@ -422,6 +450,8 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
                     cut_out: Some(&cut_v),
                     ..Default::default()
                 }.entries(),
+                ]
+                .concat(),
             ],
             groups,
         );
