@@ -25,7 +25,9 @@
 
 #![allow(dead_code)]
 
-use super::raycast_reference::{RayParams, box_margin, intersect_box, pixel_ray, world_step};
+use super::raycast_reference::{
+    RayParams, box_margin, intersect_box, last_voxel, pixel_ray, world_step,
+};
 use super::two_level_reference::{Local, Object, object_at};
 use glam::{Vec3, Vec4};
 use hatchery_data::VolumeData;
@@ -72,11 +74,7 @@ pub fn buffers(
 ) -> Buffers {
     let h = world_step(volume, p);
     let margin = box_margin(volume);
-    let last = Vec3::new(
-        (volume.dims[0] - 1) as f32,
-        (volume.dims[1] - 1) as f32,
-        (volume.dims[2] - 1) as f32,
-    );
+    let last = last_voxel(volume);
     let importance = |id: u16| {
         setup
             .importance
@@ -184,11 +182,7 @@ fn objects_behind(
 ) -> Vec<u16> {
     let h = world_step(volume, p);
     let margin = box_margin(volume);
-    let last = Vec3::new(
-        (volume.dims[0] - 1) as f32,
-        (volume.dims[1] - 1) as f32,
-        (volume.dims[2] - 1) as f32,
-    );
+    let last = last_voxel(volume);
     let (origin, dir) = pixel_ray(p, x, y);
     let q0 = volume.world_to_voxel(origin);
     let dq = volume.world_to_voxel(origin + dir) - q0;
@@ -246,11 +240,7 @@ fn render_pass(
 ) -> Vec<[f32; 4]> {
     let h = world_step(volume, p);
     let margin = box_margin(volume);
-    let last = Vec3::new(
-        (volume.dims[0] - 1) as f32,
-        (volume.dims[1] - 1) as f32,
-        (volume.dims[2] - 1) as f32,
-    );
+    let last = last_voxel(volume);
     let importance = |id: u16| {
         setup
             .importance

@@ -709,7 +709,7 @@ pub fn box_margin(_volume: &VolumeData) -> Vec3 {
 }
 
 /// Voxel-space position of the last voxel centre.
-fn last_voxel(volume: &VolumeData) -> Vec3 {
+pub fn last_voxel(volume: &VolumeData) -> Vec3 {
     Vec3::new(
         (volume.dims[0] - 1) as f32,
         (volume.dims[1] - 1) as f32,
