@@ -49,6 +49,7 @@ Kind = Literal[
     'RidgeValley',
     'SaveImage',
     'SaveSvg',
+    'Schlieren',
     'SecondaryGeometry',
     'SelectImage',
     'SelectionRender',
@@ -1070,14 +1071,16 @@ class ProceduralVolume:
     """Analytic distance fields on a resolution³ grid over [-1, 1]³ (positive inside, iso 0 is the
         surface): three nested spherical shells (centre radii 0.8, 0.5, 0.2, half-thickness
         0.05), a sphere, a torus in the xy plane, an engine-like block (a box with two vertical
-        bores and a horizontal one) and the two pistons that sit in its bores.
+        bores and a horizontal one) and the two pistons that sit in its bores; and one density
+        field, not a distance: plume, the air around a hot plume rising along +y from a small
+        heated ball (1 in still air, lower where it is hot), a subject for Schlieren.
 
     Outputs:
         volume (Volume): the generated scalar field
 
     Parameters:
-        shape (one of 'shells', 'sphere', 'torus', 'engine_block', 'pistons'; default 'shells'):
-            which field to generate
+        shape (one of 'shells', 'sphere', 'torus', 'engine_block', 'pistons', 'plume'; default
+            'shells'): which field to generate
         resolution (int in [4, 512]; default 96): voxels along each axis
         radius (float in [0.01, 1]; default 0.7): sphere radius, or torus major radius
         minor_radius (float in [0.01, 1]; default 0.25): torus tube radius
@@ -1086,7 +1089,7 @@ class ProceduralVolume:
 
     kind = 'ProceduralVolume'
     category = 'Data'
-    shape: Literal['shells', 'sphere', 'torus', 'engine_block', 'pistons'] = 'shells'
+    shape: Literal['shells', 'sphere', 'torus', 'engine_block', 'pistons', 'plume'] = 'shells'
     resolution: int = 96
     radius: float = 0.7
     minor_radius: float = 0.25
@@ -1103,9 +1106,6 @@ class Raycast:
         spheres, style contours eq. 1, illustrative transparency eq. 2). Strokes (a mask with
         the depth of its surface) are embedded as Yuan & Chen 2005 §5 do: rays stop at a stroke
         and its colour lies under what is in front; `rho` scales every sample's opacity (DVR).
-        Svakhine et al. 2005's Table 1 enhancements of each sample's opacity (DVR): boundary
-        enhancement |∇P|^n, silhouette enhancement (1 − |∇P̂·V|)^n and the banding widget ((1 +
-        sin(o·π·m)) / 2)^n (docs/enhancement.md).
 
     Inputs:
         volume (Volume, required): the scalar field
@@ -1163,23 +1163,6 @@ class Raycast:
             al. 2001) — each sample composites the whole segment from the previous one, so sharp
             opacity ramps between samples are not missed (a 1-D colour transfer function,
             shading none or phong)
-        boundary_enhancement (float in [0, 16]; default 0.0): boundary enhancement n (Svakhine
-            et al. 2005 §3.2, Table 1: o_e = o_o · |∇P|^n): samples on strong boundaries keep
-            their opacity, flat regions fade; |∇P| is the gradient magnitude divided by the
-            volume's largest, so 1 on the sharpest boundary; larger n keeps only sharper
-            boundaries (0 = off; DVR)
-        silhouette_enhancement (float in [0, 16]; default 0.0): silhouette enhancement n
-            (Svakhine et al. 2005 §3.2, Table 1: o_e = o_o · (1 − |∇P̂·V|)^n): samples whose
-            boundary faces the viewer fade, those seen edge-on (the outlines) keep their
-            opacity; larger n gives thinner outlines (0 = off; DVR)
-        banding (float in [0, 64]; default 0.0): banding widget period m (Svakhine et al. 2005
-            §3.3, Table 1: o_e = ((1 + sin(o_o·π·m)) / 2)^n): the transfer function's opacity is
-            mapped through a sine, so the volume shows as alternating opaque and clear contour
-            shells; more m, more and thinner bands (0 = off; DVR, where the transfer function is
-            not transparent)
-        banding_power (float in [0.05, 16]; default 1.0): banding widget power n (Svakhine et
-            al. 2005 §3.3, Table 1): above 1 makes the bands thinner and sharper, below 1 softer
-            and wider
         rho (float in [0, 1]; default 1.0): global alpha ρ (Yuan & Chen §5): every sample's
             opacity × ρ (DVR), so embedded strokes show through
         stroke_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour of embedded strokes
@@ -1216,10 +1199,6 @@ class Raycast:
     jitter: bool = True
     reconstruction: Literal['trilinear', 'bspline'] = 'trilinear'
     preintegrated: bool = False
-    boundary_enhancement: float = 0.0
-    silhouette_enhancement: float = 0.0
-    banding: float = 0.0
-    banding_power: float = 1.0
     rho: float = 1.0
     stroke_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     early_termination: float = 0.99
@@ -1364,6 +1343,70 @@ class SaveSvg:
     color3: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     shown3: bool = True
     width3: float = 1.5
+
+class Schlieren:
+    """Simulated Schlieren photographs and shadowgraphs of a density volume (Svakhine, Ebert et al.
+        2005, §4, eq. 1–5). Each ray integrates over the volume the density gradient across the
+        ray along the picture's x and y axes, the light's deflection ε = (∫∂ρ/∂x dz, ∫∂ρ/∂y dz)
+        (eq. 1), and the Laplacian across the ray, L = ∫(∂²ρ/∂x² + ∂²ρ/∂y²) dz (eq. 2), by
+        central differences at ±`difference` voxels; ε is measured in value ranges of the
+        volume, L in value ranges per voxel. Intensity: s(1 + g ε·k)/2 with k the knife edge's
+        normal (eq. 3), s g|ε| (eq. 4), a colour wheel (hue the direction of ε, saturation
+        g|ε|), or s(1 + g L)/2 (eq. 5), clamped to [0, 1]; g is `gain`, s `brightness`.
+
+    Inputs:
+        volume (Volume, required): the density (refractive index) field
+        camera (Camera, required): the view (the light runs along its rays)
+
+    Outputs:
+        image (Image): the photograph (opaque)
+        deflection (Image): data, not colour: (ε_x, ε_y, L, 1) per pixel before the gain (x
+            right, y up)
+
+    Parameters:
+        mode (one of 'schlieren', 'schlieren_circular', 'schlieren_color', 'shadowgraph',
+            'shadowgraph_abs'; default 'schlieren'): what the picture shows (§4): schlieren is
+            the knife-edge photograph, grey plus or minus the deflection along the knife's
+            normal (eq. 3); schlieren_circular the deflection's length through a circular cutoff
+            (eq. 4); schlieren_color its direction as hue and length as saturation (colour
+            Schlieren); shadowgraph grey plus or minus the Laplacian across the rays (eq. 2, 5);
+            shadowgraph_abs its absolute value (Fig. 13e)
+        knife_angle (float in [-360, 360]; default 0.0): direction of the knife edge's normal k
+            in the picture, degrees counter-clockwise from the picture's right: 0 brightens
+            where the density grows to the right (a vertical knife edge), 90 where it grows
+            upwards (eq. 3, §4)
+        gain (float in [-10000, 10000]; default 1.0): sensitivity, the constant of eq. 1: how
+            strongly a deflection of one value range of the volume (one voxel for the
+            shadowgraph) shows (§4); negative turns the sign round (a real shadowgraph darkens
+            where eq. 5 brightens: gain below 0)
+        brightness (float in [0, 4]; default 1.0): the coefficient s of eq. 3–5 that scales the
+            whole picture: 1 gives a mid-grey background (§4)
+        threshold (float in [0, 1]; default 0.0): samples whose density gradient across the ray
+            is below this (per voxel, as a fraction of the value range) add nothing: removes
+            weak gradients (§4, Fig. 10b)
+        step (float in [0.05, 8]; default 0.5): distance between samples along the ray, voxels
+            (of the smallest spacing)
+        difference (float in [0.25, 8]; default 1.0): spacing of the central differences across
+            the ray, voxels (of the smallest spacing): larger smooths the derivatives
+        reconstruction (one of 'trilinear', 'bspline'; default 'trilinear'): reconstruction of
+            the data between voxels: trilinear, or the tricubic B-spline (smoother derivatives,
+            Hadwiger §1.3)
+        kernel (one of 'auto', 'fragment', 'compute'; default 'auto'): GPU path: fragment shader
+            or compute kernel (same picture)
+
+    """
+
+    kind = 'Schlieren'
+    category = 'Volume'
+    mode: Literal['schlieren', 'schlieren_circular', 'schlieren_color', 'shadowgraph', 'shadowgraph_abs'] = 'schlieren'
+    knife_angle: float = 0.0
+    gain: float = 1.0
+    brightness: float = 1.0
+    threshold: float = 0.0
+    step: float = 0.5
+    difference: float = 1.0
+    reconstruction: Literal['trilinear', 'bspline'] = 'trilinear'
+    kernel: Literal['auto', 'fragment', 'compute'] = 'auto'
 
 class SecondaryGeometry:
     """Renders secondary geometry S with its own depth test. Intensity I_S = max(n · lightDir, 0)

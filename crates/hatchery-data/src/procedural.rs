@@ -1,5 +1,6 @@
 //! Built-in volumes that are always available and deterministic: signed distance fields on a
-//! grid covering world [-1, 1]^3, positive inside, so iso 0 gives the exact shape.
+//! grid covering world [-1, 1]^3, positive inside, so iso 0 gives the exact shape; and one
+//! density field, [`plume`], a subject for Schlieren photographs.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -76,6 +77,50 @@ pub fn pistons(resolution: u32) -> Result<VolumeData, DataError> {
             radial.min(axial)
         };
         piston(BORE_X[0], 0.15).max(piston(BORE_X[1], 0.0))
+    })
+}
+
+/// Height (y) of the source of [`plume`].
+pub const PLUME_SOURCE_Y: f32 = -0.8;
+
+/// The density of air around a hot plume rising along +y from a small heated ball at
+/// (0, [`PLUME_SOURCE_Y`], 0), as a Schlieren photograph of a candle or a heater shows it
+/// (Svakhine et al. 2005 §4): 1 in the still air, lower in the ball and in the column above it.
+/// The column widens as it rises, its centre line sways more and more, its edge ripples in
+/// eddies around and along it, and its density deficit pulses in puffs and fades with height.
+/// Not a distance field: values lie in about [0.45, 1].
+pub fn plume(resolution: u32) -> Result<VolumeData, DataError> {
+    field(resolution, |p| {
+        let h = ((p.y - PLUME_SOURCE_Y) / (1.0 - PLUME_SOURCE_Y)).clamp(0.0, 1.0);
+        // The column starts at the ball, rises laminar, and turns turbulent from a third up.
+        let above = ((p.y - PLUME_SOURCE_Y) / 0.08).clamp(0.0, 1.0);
+        let t = ((h - 0.2) / 0.45).clamp(0.0, 1.0);
+        let t = t * t * (3.0 - 2.0 * t);
+        let sway = 0.12 * t;
+        let cx = sway * ((5.0 * p.y).sin() + 0.3 * (13.0 * p.y + 2.0).sin());
+        let cz = sway * (0.7 * (4.0 * p.y + 1.0).cos() + 0.3 * (11.0 * p.y).sin());
+        let (dx, dz) = (p.x - cx, p.z - cz);
+        let around = dz.atan2(dx);
+        // Eddies: the edge ripples around and along the column in several modes.
+        let modes = [
+            (2.0, 11.0, 0.18, 0.0),
+            (3.0, -17.0, 0.14, 1.0),
+            (5.0, 29.0, 0.1, 2.0),
+        ];
+        let eddies: f32 = modes
+            .iter()
+            .map(|(m, f, a, phase)| a * (m * around + f * p.y + phase).sin())
+            .sum::<f32>()
+            + 0.06 * (7.0 * around - 43.0 * p.y).sin();
+        // Puffs: the column bulges where the instability rolls it up.
+        let puffs = 1.0 + 0.3 * t * (19.0 * p.y).sin();
+        let width = (0.03 + 0.22 * h) * puffs * (1.0 + t * eddies);
+        let deficit = 0.3 / (1.0 + 2.0 * h) * (1.0 + 0.25 * t * (31.0 * p.y + 3.0 * around).sin());
+        let column = deficit * above * above * (3.0 - 2.0 * above);
+        // A flat-topped profile: the hot core mixes into still air over a thin layer.
+        let radial = ((dx * dx + dz * dz) / (width * width)).powi(2);
+        let ball = (p - Vec3::new(0.0, PLUME_SOURCE_Y, 0.0)).length_squared() / (0.05 * 0.05);
+        1.0 - column * (-0.5 * radial).exp() - 0.3 * (-0.5 * ball).exp()
     })
 }
 

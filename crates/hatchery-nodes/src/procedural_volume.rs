@@ -16,6 +16,7 @@ hatchery_graph::param_choice! {
         Torus = "torus",
         EngineBlock = "engine_block",
         Pistons = "pistons",
+        Plume = "plume",
     }
 }
 
@@ -43,7 +44,10 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
             doc: "Analytic distance fields on a resolution³ grid over [-1, 1]³ (positive inside, iso 0 \
                   is the surface): three nested spherical shells (centre radii 0.8, 0.5, 0.2, \
                   half-thickness 0.05), a sphere, a torus in the xy plane, an engine-like block (a box with \
-                  two vertical bores and a horizontal one) and the two pistons that sit in its bores.",
+                  two vertical bores and a horizontal one) and the two pistons that sit in its bores; and one \
+                  density field, not a distance: plume, the air around a hot plume rising along +y \
+                  from a small heated ball (1 in still air, lower where it is hot), a subject for \
+                  Schlieren.",
             inputs: vec![],
             outputs: vec![PortSpec::output(
                 "volume",
@@ -69,6 +73,7 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
             Shape::Torus => procedural::torus(res, params.radius, params.minor_radius),
             Shape::EngineBlock => procedural::engine_block(res),
             Shape::Pistons => procedural::pistons(res),
+            Shape::Plume => procedural::plume(res),
             Shape::Shells => procedural::shells(res),
         }
         .map_err(|e| NodeError::new(e.to_string()))?;

@@ -75,8 +75,9 @@ hatchery_graph::node_params! {
         /// vertical knife edge), 90 where it grows upwards (eq. 3, §4)
         pub knife_angle: f32 = 0.0, range(-360.0, 360.0);
         /// sensitivity, the constant of eq. 1: how strongly a deflection of one value range
-        /// of the volume (one voxel for the shadowgraph) shows (§4)
-        pub gain: f32 = 1.0, range(0.0, 10000.0);
+        /// of the volume (one voxel for the shadowgraph) shows (§4); negative turns the sign
+        /// round (a real shadowgraph darkens where eq. 5 brightens: gain below 0)
+        pub gain: f32 = 1.0, range(-10000.0, 10000.0);
         /// the coefficient s of eq. 3–5 that scales the whole picture: 1 gives a mid-grey
         /// background (§4)
         pub brightness: f32 = 1.0, range(0.0, 4.0);
