@@ -1106,6 +1106,9 @@ class Raycast:
         spheres, style contours eq. 1, illustrative transparency eq. 2). Strokes (a mask with
         the depth of its surface) are embedded as Yuan & Chen 2005 §5 do: rays stop at a stroke
         and its colour lies under what is in front; `rho` scales every sample's opacity (DVR).
+        Svakhine et al. 2005's Table 1 enhancements of each sample's opacity (DVR): boundary
+        enhancement |∇P|^n, silhouette enhancement (1 − |∇P̂·V|)^n and the banding widget ((1 +
+        sin(o·π·m)) / 2)^n (docs/enhancement.md).
 
     Inputs:
         volume (Volume, required): the scalar field
@@ -1163,6 +1166,23 @@ class Raycast:
             al. 2001) — each sample composites the whole segment from the previous one, so sharp
             opacity ramps between samples are not missed (a 1-D colour transfer function,
             shading none or phong)
+        boundary_enhancement (float in [0, 16]; default 0.0): boundary enhancement n (Svakhine
+            et al. 2005 §3.2, Table 1: o_e = o_o · |∇P|^n): samples on strong boundaries keep
+            their opacity, flat regions fade; |∇P| is the gradient magnitude divided by the
+            volume's largest, so 1 on the sharpest boundary; larger n keeps only sharper
+            boundaries (0 = off; DVR)
+        silhouette_enhancement (float in [0, 16]; default 0.0): silhouette enhancement n
+            (Svakhine et al. 2005 §3.2, Table 1: o_e = o_o · (1 − |∇P̂·V|)^n): samples whose
+            boundary faces the viewer fade, those seen edge-on (the outlines) keep their
+            opacity; larger n gives thinner outlines (0 = off; DVR)
+        banding (float in [0, 64]; default 0.0): banding widget period m (Svakhine et al. 2005
+            §3.3, Table 1: o_e = ((1 + sin(o_o·π·m)) / 2)^n): the transfer function's opacity is
+            mapped through a sine, so the volume shows as alternating opaque and clear contour
+            shells; more m, more and thinner bands (0 = off; DVR, where the transfer function is
+            not transparent)
+        banding_power (float in [0.05, 16]; default 1.0): banding widget power n (Svakhine et
+            al. 2005 §3.3, Table 1): above 1 makes the bands thinner and sharper, below 1 softer
+            and wider
         rho (float in [0, 1]; default 1.0): global alpha ρ (Yuan & Chen §5): every sample's
             opacity × ρ (DVR), so embedded strokes show through
         stroke_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour of embedded strokes
@@ -1199,6 +1219,10 @@ class Raycast:
     jitter: bool = True
     reconstruction: Literal['trilinear', 'bspline'] = 'trilinear'
     preintegrated: bool = False
+    boundary_enhancement: float = 0.0
+    silhouette_enhancement: float = 0.0
+    banding: float = 0.0
+    banding_power: float = 1.0
     rho: float = 1.0
     stroke_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     early_termination: float = 0.99
