@@ -8,6 +8,7 @@ pub mod brick_source;
 pub mod bricks;
 pub mod derived_levels;
 pub mod dicom_series;
+pub mod distance;
 pub mod error;
 pub mod geometry;
 pub mod gradient;

@@ -58,6 +58,7 @@ declaring_modules! {
     depth_test_mask,
     diffuse_intensity,
     display,
+    distance_to_object,
     fan,
     fill,
     gbuffer,
