@@ -59,6 +59,7 @@ declaring_modules! {
     diffuse_intensity,
     display,
     distance_to_object,
+    exploded_view,
     fan,
     fill,
     gbuffer,
