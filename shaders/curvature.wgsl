@@ -8,7 +8,8 @@
 // for a convex bump) and the first principal direction its κ1 eigenvector. Output: (κ1, κ2, θ1,
 // θ2), κ in world units⁻¹, θ1, θ2 the screen angles of the principal directions (radians in
 // [−π/2, π/2), x right, y down); (0, 0, −10, −10) where the G-buffer holds no surface.
-// Prepended: fullscreen, ray_common, curvature_common.
+// Prepended: fullscreen, ray_common, ray_bspline, curvature_shape (the shape operator),
+// curvature_common.
 
 @fragment
 fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
@@ -23,16 +24,13 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
         return vec4<f32>(0.0, 0.0, NONE, NONE);
     }
     let hessian = hessian_at(p);
-    let n = -g / g_length;
-    var helper = vec3<f32>(1.0, 0.0, 0.0);
-    if abs(n.x) > 0.9 {
-        helper = vec3<f32>(0.0, 1.0, 0.0);
-    }
-    let t1 = normalize(cross(n, helper));
-    let t2 = cross(n, t1);
-    let a = -dot(t1, hessian * t1) / g_length;
-    let b = -dot(t1, hessian * t2) / g_length;
-    let c = -dot(t2, hessian * t2) / g_length;
+    let s = shape_operator(g, g_length, hessian);
+    let n = s.n;
+    let t1 = s.t1;
+    let t2 = s.t2;
+    let a = s.a;
+    let b = s.b;
+    let c = s.c;
     let mean = 0.5 * (a + c);
     let spread = sqrt(0.25 * (a - c) * (a - c) + b * b);
     let k1 = mean + spread;

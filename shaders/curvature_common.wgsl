@@ -1,7 +1,7 @@
-// Shared by Curvature and CurvatureContours (prepended after fullscreen and ray_common): the
-// G-buffer depth, the finite-difference step, the volume's world gradient and Hessian at a
-// surface point (central differences of the gradient along the world axes at ±h, symmetrised),
-// and the screen angle of a world direction.
+// Shared by Curvature and CurvatureContours (prepended after fullscreen, ray_common, ray_bspline
+// and curvature_shape): the G-buffer depth, the finite-difference step, the volume's Hessian at a
+// surface point with that step (curvature_shape's world_hessian), and the screen angle of a
+// world direction.
 
 @group(1) @binding(0) var gbuffer_depth: texture_depth_2d;
 
@@ -35,9 +35,6 @@ struct CurvatureParams {
 };
 @group(1) @binding(1) var<uniform> curvature_params: CurvatureParams;
 
-fn world_gradient(p: vec3<f32>) -> vec3<f32> {
-    return gradient_at((ray.to_voxel * vec4<f32>(p, 1.0)).xyz);
-}
 
 // The surface point under the fragment (world), w = 0 where the G-buffer holds no surface.
 fn surface_point(position: vec4<f32>) -> vec4<f32> {
@@ -50,26 +47,8 @@ fn surface_point(position: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(h4.xyz / h4.w, 1.0);
 }
 
-// The Hessian of the volume at world point p: the B-spline's own second derivatives
-// (ray_bspline, Hadwiger §1.3) where the reconstruction is the B-spline; else, and next to "no
-// data", central differences of the gradient at ±h along the world axes, symmetrised.
+// The Hessian of the volume at world point p with this pass's finite-difference step (see
+// curvature_shape's world_hessian).
 fn hessian_at(p: vec3<f32>) -> mat3x3<f32> {
-    if reconstruction() == RECONSTRUCTION_BSPLINE {
-        let d = bspline_derivatives((ray.to_voxel * vec4<f32>(p, 1.0)).xyz);
-        if !d.missing {
-            // q = A p + b with A^T = grad_to_world's linear part G: H_world = G H_voxel G^T.
-            let g = mat3x3<f32>(ray.grad_to_world[0].xyz, ray.grad_to_world[1].xyz,
-                                ray.grad_to_world[2].xyz);
-            return g * d.hessian * transpose(g);
-        }
-    }
-    let h = curvature_params.step;
-    var columns: array<vec3<f32>, 3>;
-    for (var axis = 0; axis < 3; axis++) {
-        var e = vec3<f32>(0.0);
-        e[axis] = h;
-        columns[axis] = (world_gradient(p + e) - world_gradient(p - e)) / (2.0 * h);
-    }
-    let hessian = mat3x3<f32>(columns[0], columns[1], columns[2]);
-    return 0.5 * (hessian + transpose(hessian));
+    return world_hessian(p, curvature_params.step);
 }

@@ -43,6 +43,13 @@ struct TwoLevel {
     // Spacing (voxels) of the smoothed mask gradient at objects' iso-surfaces; 0: central
     // differences (see `surface_gradient`).
     surface_smoothing: f32,
+    // Volume thinning (two_level_raycast's `thinning_key`): 1 / the volume's largest gradient
+    // magnitude, the smallest spacing (world units: the Hessian's step and the unit of
+    // curvature), and the number of gradient-magnitude levels B.
+    thin_gradient: f32,
+    thin_step: f32,
+    thin_bands: f32,
+    pad0: f32,
 };
 @group(1) @binding(2) var<uniform> two_level: TwoLevel;
 

@@ -11,8 +11,8 @@
 // shaders/importance.wgsl): a sample's object may be dropped (MImP: in the focus footprint
 // everything but the focus, around it the context in front of the countersink, and behind it
 // every object less important than the ray's most important one), get a level of
-// sparseness S_o = I_o / Σ I (AImC, eq. 2) applied as opacity, colour saturation, screen door
-// or a sparse rendering style, or belong to the occluding part, whose segment's accumulated
+// sparseness S_o = I_o / Σ I (AImC, eq. 2) applied as opacity, colour saturation, screen door,
+// a sparse rendering style or volume thinning (§V.C), or belong to the occluding part, whose segment's accumulated
 // opacity is scaled by S_o / α_avg (VPImC, eq. 3). A segment is a run of samples of one object
 // *and* one level (dense or sparse/occluding), so a context object splits at the countersink.
 
@@ -33,6 +33,30 @@ const SPARSE_OPACITY: u32 = 0u;
 const SPARSE_SATURATION: u32 = 1u;
 const SPARSE_SCREEN_DOOR: u32 = 2u;
 const SPARSE_STYLE: u32 = 3u;
+const SPARSE_THINNING: u32 = 4u;
+
+// Volume thinning (Viola et al. §V.C: "Voxels of an object are sorted according to two sorting
+// keys. The first sorting key is gradient magnitude, the second sorting key is curvature
+// magnitude of the iso-surface through the voxel."): the key of the sample at voxel-space q,
+// world p, in [0, 1] — (L + κ̂) / B with L = min(⌊B · |∇f| / |∇f|max⌋, B − 1) the sample's level of
+// gradient magnitude (B levels, |∇f|max the volume's largest) and κ̂ = min(√(κ1² + κ2²) · w, 1)
+// its curvature magnitude in units of w, the smallest spacing (curvature_shape: the Hessian by
+// central differences of the gradient at ±w, or the B-spline's own). Sorting samples by this key
+// sorts them by level, then by curvature; a sample of level of sparseness S is kept where its key
+// exceeds 1 − S (0 where the gradient vanishes: dropped first).
+fn thinning_key(q: vec3<f32>, p: vec3<f32>) -> f32 {
+    let g = gradient_at(q);
+    let g_length = length(g);
+    if g_length < 1e-12 {
+        return 0.0;
+    }
+    let bands = max(two_level.thin_bands, 1.0);
+    let l = min(floor(bands * min(g_length * two_level.thin_gradient, 1.0)), bands - 1.0);
+    let w = two_level.thin_step;
+    let shape = shape_operator(g, g_length, world_hessian(p, w));
+    let kappa = min(curvature_magnitude(shape) * w, 1.0);
+    return (l + kappa) / bands;
+}
 
 // Screen-door threshold of voxel-space point q: a low-discrepancy value over the voxel lattice
 // (the R3 sequence), so a level of sparseness S keeps an even fraction S of the voxels.
@@ -83,6 +107,9 @@ override TL_GLOBAL: i32 = -1;
 override TL_METHOD: i32 = -1;
 override TL_MODES: i32 = -1;
 override TL_LOCALS: i32 = -1;
+// 1 where the level of sparseness is volume thinning (its key is compiled into the march only
+// then), 0 where it is not; −1 reads the uniform.
+override TL_THINNING: i32 = -1;
 
 fn global_mode_of() -> u32 {
     return select(two_level.global_mode, u32(TL_GLOBAL), TL_GLOBAL >= 0);
@@ -99,6 +126,11 @@ fn may_mode(m: u32) -> bool {
 
 fn may_local(c: u32) -> bool {
     return (TL_LOCALS & (1 << c)) != 0;
+}
+
+// Whether the level of sparseness is volume thinning.
+fn thinning(level: u32) -> bool {
+    return select(level == SPARSE_THINNING, TL_THINNING > 0, TL_THINNING >= 0);
 }
 
 // Cool-to-warm tone shading (Gooch et al. 1998; the tutorial's "tone shading").
@@ -339,6 +371,15 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         }
         if s < 1.0 && level == SPARSE_SCREEN_DOOR {
             if screen_door(q) >= s {
+                continue;
+            }
+            s = 1.0;
+        }
+        // Volume thinning keeps a context sample, unchanged, where its key exceeds 1 − s; the
+        // focus is never thinned (in image-space AImC it keeps opacity × s, as with a sparse
+        // style).
+        if s < 1.0 && thinning(level) && current != focus {
+            if thinning_key(q, r.p0 + r.dir * t) <= 1.0 - s {
                 continue;
             }
             s = 1.0;

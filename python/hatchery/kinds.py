@@ -701,12 +701,13 @@ class ImportanceCompositing:
         the footprint's deepest last hit) and the importance sum Σ I of the objects the ray
         meets, their footprints dilated and averaged over `transition` pixels (image-space AImC,
         eq. 2). Feed it to TwoLevelRaycast's `importance` input with the same camera. Methods:
-        mimp (maximum importance projection: only the focus in its footprint, the context cut
-        away in front of the countersink), aimc_image / aimc_object (average importance
-        compositing: levels of sparseness S_o = I_o / Σ I for every sample, or for the context
-        in front of the countersink only), vpimc (visibility preserving: the occluding context's
-        opacity scaled by S_o / α_avg, eq. 3). Importance comes from ObjectStyles'
-        `importance=`.
+        mimp (maximum importance projection, §IV.A: per ray only the most important object it
+        meets behind the countersink is drawn, so only the focus in its footprint, and the
+        context cut away in front of the countersink), cutaway (the same cut, but every object
+        behind it drawn as usual), aimc_image / aimc_object (average importance compositing:
+        levels of sparseness S_o = I_o / Σ I for every sample, or for the context in front of
+        the countersink only), vpimc (visibility preserving: the occluding context's opacity
+        scaled by S_o / α_avg, eq. 3). Importance comes from ObjectStyles' `importance=`.
 
     Inputs:
         labels (Labels, required): object ids on the volume's grid
@@ -717,8 +718,11 @@ class ImportanceCompositing:
         importance (Importance): footprint, countersink and importance sums of this view
 
     Parameters:
-        method (one of 'mimp', 'aimc_image', 'aimc_object', 'vpimc'; default 'mimp'): importance
-            compositing: mimp, aimc_image, aimc_object, vpimc
+        method (one of 'mimp', 'cutaway', 'aimc_image', 'aimc_object', 'vpimc'; default 'mimp'):
+            how importance decides what is drawn: mimp (per ray only its most important object,
+            the focus's countersink cut away), cutaway (only the countersink cut away, the other
+            objects drawn as usual), aimc_image, aimc_object (levels of sparseness I_o / Σ I) or
+            vpimc (the occluders' opacity kept constant)
         focus (int in [0, 65535]; default 0): the focus object's id (0: the drawn object of
             highest importance)
         countersink (one of 'conical', 'cylindrical'; default 'conical'): conical (eq. 1) or
@@ -738,7 +742,7 @@ class ImportanceCompositing:
 
     kind = 'ImportanceCompositing'
     category = 'Volume'
-    method: Literal['mimp', 'aimc_image', 'aimc_object', 'vpimc'] = 'mimp'
+    method: Literal['mimp', 'cutaway', 'aimc_image', 'aimc_object', 'vpimc'] = 'mimp'
     focus: int = 0
     countersink: Literal['conical', 'cylindrical'] = 'conical'
     slope: float = 1.0
@@ -1780,14 +1784,19 @@ class TwoLevelRaycast:
             — same picture, fewer samples
         kernel (one of 'auto', 'fragment', 'compute'; default 'auto'): GPU path: fragment shader
             or compute kernel (same picture)
-        sparseness (one of 'opacity', 'saturation', 'screen_door', 'style'; default 'opacity'):
-            with `importance` (AImC): how a level of sparseness S shows — opacity × S, opacity
-            and colour saturation × S, a screen door keeping S of the voxels, or a sparse
-            rendering style where S < 1
+        sparseness (one of 'opacity', 'saturation', 'screen_door', 'style', 'thinning'; default
+            'opacity'): with `importance` (AImC): how a level of sparseness S shows — opacity ×
+            S, opacity and colour saturation × S, a screen door keeping S of the voxels, a
+            sparse rendering style where S < 1, or volume thinning (a context sample kept only
+            where its strength key, gradient-magnitude level then curvature magnitude, exceeds 1
+            − S)
         sparse_mode (one of 'contours', 'dvr', 'shaded_dvr', 'tone', 'mip'; default 'contours'):
             the sparse style's rendering mode
         sparse_compositing (one of 'mip', 'over', 'sum'; default 'mip'): the sparse style's
             local compositing
+        thinning_levels (int in [1, 64]; default 4): volume thinning: levels B of the normalised
+            gradient magnitude, the first sorting key; within a level the curvature magnitude
+            orders the samples (1: curvature alone)
 
     """
 
@@ -1807,9 +1816,10 @@ class TwoLevelRaycast:
     early_termination: float = 0.99
     skip_empty: bool = True
     kernel: Literal['auto', 'fragment', 'compute'] = 'auto'
-    sparseness: Literal['opacity', 'saturation', 'screen_door', 'style'] = 'opacity'
+    sparseness: Literal['opacity', 'saturation', 'screen_door', 'style', 'thinning'] = 'opacity'
     sparse_mode: Literal['contours', 'dvr', 'shaded_dvr', 'tone', 'mip'] = 'contours'
     sparse_compositing: Literal['mip', 'over', 'sum'] = 'mip'
+    thinning_levels: int = 4
 
 class VolumeFile:
     """Reads a volume: NIfTI-1 or NIfTI-2 (.nii, .nii.gz, scl_slope/scl_inter applied), FreeSurfer

@@ -22,6 +22,12 @@
 //!   VPImC — non-focus samples with z < E in the footprint form their own segments ("occluding") whose
 //!   accumulated colour and opacity are scaled by S_o / α_avg (eq. 3), α_avg the mean opacity
 //!   of a first pass drawing only those segments, over its non-empty pixels.
+//! - Volume thinning (§V.C) as the level of sparseness ([`render_thinned`]): a non-focus sample
+//!   with s < 1 is kept, unchanged, where its key (L + κ̂) / B exceeds 1 − s, else dropped: L =
+//!   min(⌊B · |g| / g_max⌋, B − 1), g the trilinear central-difference gradient (world) and g_max
+//!   the volume's largest; κ̂ = min(w · √(a² + 2b² + c²), 1), (a, b; b, c) the shape operator
+//!   −t_i·H t_j / |g| in the tangent basis of n = −g/|g|, H the central differences of g at
+//!   ±w along the world axes (symmetrised), w the smallest spacing; key 0 where |g| < 1e-12.
 
 #![allow(dead_code)]
 
@@ -215,7 +221,7 @@ pub fn render(
     p: &RayParams,
 ) -> Vec<[f32; 4]> {
     let alpha_avg = if setup.method == Method::Vpimc {
-        let first = render_pass(volume, labels, objects, setup, buffers, p, true, 1.0);
+        let first = render_pass(volume, labels, objects, setup, buffers, p, true, 1.0, None);
         let (sum, n) = first
             .iter()
             .filter(|c| c[3] > 0.0)
@@ -224,7 +230,76 @@ pub fn render(
     } else {
         1.0
     };
-    render_pass(volume, labels, objects, setup, buffers, p, false, alpha_avg)
+    render_pass(
+        volume, labels, objects, setup, buffers, p, false, alpha_avg, None,
+    )
+}
+
+/// Volume thinning's parameters: the levels B of gradient magnitude, the volume's largest
+/// gradient magnitude and the smallest spacing w.
+pub struct Thinning {
+    pub levels: f32,
+    pub max_gradient: f32,
+    pub spacing: f32,
+}
+
+/// Volume thinning's key of the sample at world point `p` (see the module docs).
+pub fn thinning_key(volume: &VolumeData, th: &Thinning, p: Vec3) -> f32 {
+    let gradient = |p: Vec3| volume.gradient(volume.world_to_voxel(p));
+    let g = gradient(p);
+    let g_length = g.length();
+    if g_length < 1e-12 {
+        return 0.0;
+    }
+    let b = th.levels.max(1.0);
+    let level = (b * (g_length * (1.0 / th.max_gradient)).min(1.0))
+        .floor()
+        .min(b - 1.0);
+    let w = th.spacing;
+    let columns: Vec<Vec3> = (0..3)
+        .map(|axis| {
+            let e = Vec3::AXES[axis] * w;
+            (gradient(p + e) - gradient(p - e)) / (2.0 * w)
+        })
+        .collect();
+    let h = glam::Mat3::from_cols(columns[0], columns[1], columns[2]);
+    let h = 0.5 * (h + h.transpose());
+    let n = -g / g_length;
+    let helper = if n.x.abs() > 0.9 { Vec3::Y } else { Vec3::X };
+    let t1 = n.cross(helper).normalize();
+    let t2 = n.cross(t1);
+    let a = -t1.dot(h * t1) / g_length;
+    let bb = -t1.dot(h * t2) / g_length;
+    let c = -t2.dot(h * t2) / g_length;
+    let kappa = ((a * a + 2.0 * bb * bb + c * c).sqrt() * w).min(1.0);
+    (level + kappa) / b
+}
+
+/// [`render`] (not VPImC) with volume thinning as the level of sparseness.
+pub fn render_thinned(
+    volume: &VolumeData,
+    labels: &LabelData,
+    objects: &[Object],
+    setup: &Setup,
+    buffers: &Buffers,
+    p: &RayParams,
+    thinning: &Thinning,
+) -> Vec<[f32; 4]> {
+    assert!(
+        setup.method != Method::Vpimc,
+        "VPImC has no level of sparseness"
+    );
+    render_pass(
+        volume,
+        labels,
+        objects,
+        setup,
+        buffers,
+        p,
+        false,
+        1.0,
+        Some(thinning),
+    )
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -237,6 +312,7 @@ fn render_pass(
     p: &RayParams,
     first_pass: bool,
     alpha_avg: f32,
+    thinning: Option<&Thinning>,
 ) -> Vec<[f32; 4]> {
     let h = world_step(volume, p);
     let margin = box_margin(volume);
@@ -347,6 +423,15 @@ fn render_pass(
                     continue;
                 }
                 if flag == 1 {
+                    s = 1.0;
+                }
+                if let Some(th) = thinning
+                    && s < 1.0
+                    && id != setup.focus
+                {
+                    if thinning_key(volume, th, origin + dir * t) <= 1.0 - s {
+                        continue;
+                    }
                     s = 1.0;
                 }
                 let object = &objects[*o];

@@ -6,6 +6,7 @@
 pub mod bspline_reference;
 pub mod images;
 pub mod importance_reference;
+pub mod importance_scene;
 pub mod npy;
 pub mod raycast_reference;
 pub mod selection_reference;

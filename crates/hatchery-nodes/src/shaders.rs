@@ -31,6 +31,7 @@ pub const RAY_CLASSIFY: &str = shader_file!("ray_classify.wgsl");
 pub const RAY_SHADE: &str = shader_file!("ray_shade.wgsl");
 pub const RAY_SKIP: &str = shader_file!("ray_skip.wgsl");
 pub const RAY_OBJECTS: &str = shader_file!("ray_objects.wgsl");
+pub const CURVATURE_SHAPE: &str = shader_file!("curvature_shape.wgsl");
 pub const CURVATURE_COMMON: &str = shader_file!("curvature_common.wgsl");
 pub const CURVATURE_FIELD: &str = shader_file!("curvature_field.wgsl");
 
@@ -68,6 +69,15 @@ pub fn ray_objects(own: Part) -> Parts {
     parts
 }
 
+/// A ray caster of segmented volumes that also needs the iso-surfaces' shape operator
+/// (TwoLevelRaycast's volume thinning): [`ray_objects`]'s parts, curvature_shape, then `own`.
+pub fn ray_objects_shape(own: Part) -> Parts {
+    let mut parts = ray(("ray_objects.wgsl", RAY_OBJECTS));
+    parts.push(("curvature_shape.wgsl", CURVATURE_SHAPE));
+    parts.push(own);
+    parts
+}
+
 /// A ray caster that samples on its own (no tables, shading or skipping): primary rays, the
 /// sampling and B-spline helpers, then `own` (Schlieren).
 pub fn ray_sampling(own: Part) -> Parts {
@@ -85,6 +95,7 @@ pub fn curvature(own: Part) -> Parts {
         ("fullscreen.wgsl", FULLSCREEN),
         ("ray_common.wgsl", RAY_COMMON),
         ("ray_bspline.wgsl", RAY_BSPLINE),
+        ("curvature_shape.wgsl", CURVATURE_SHAPE),
         ("curvature_common.wgsl", CURVATURE_COMMON),
         own,
     ]

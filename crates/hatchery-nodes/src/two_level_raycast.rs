@@ -110,13 +110,15 @@ hatchery_graph::param_choice! {
 
 hatchery_graph::param_choice! {
     /// With `importance` (AImC): how a level of sparseness S shows — opacity × S, opacity and
-    /// colour saturation × S, a screen door keeping S of the voxels, or a sparse rendering style
-    /// where S < 1.
+    /// colour saturation × S, a screen door keeping S of the voxels, a sparse rendering style
+    /// where S < 1, or volume thinning (Viola et al. §V.C: only the context's strongest samples,
+    /// by gradient then curvature magnitude, kept).
     pub enum Sparseness {
         Opacity = "opacity",
         Saturation = "saturation",
         ScreenDoor = "screen_door",
         Style = "style",
+        Thinning = "thinning",
     }
 }
 
@@ -126,6 +128,7 @@ crate::wgsl_constants! {
         Saturation = "SPARSE_SATURATION",
         ScreenDoor = "SPARSE_SCREEN_DOOR",
         Style = "SPARSE_STYLE",
+        Thinning = "SPARSE_THINNING",
     }
 }
 
@@ -176,13 +179,17 @@ hatchery_graph::node_params! {
         /// GPU path: fragment shader or compute kernel (same picture)
         pub kernel: KernelChoice = KernelChoice::Auto;
         /// with `importance` (AImC): how a level of sparseness S shows — opacity × S, opacity and
-        /// colour saturation × S, a screen door keeping S of the voxels, or a sparse rendering
-        /// style where S < 1
+        /// colour saturation × S, a screen door keeping S of the voxels, a sparse rendering
+        /// style where S < 1, or volume thinning (a context sample kept only where its strength
+        /// key, gradient-magnitude level then curvature magnitude, exceeds 1 − S)
         pub sparseness: Sparseness = Sparseness::Opacity;
         /// the sparse style's rendering mode
         pub sparse_mode: SparseMode = SparseMode::Contours;
         /// the sparse style's local compositing
         pub sparse_compositing: SparseCompositing = SparseCompositing::Mip;
+        /// volume thinning: levels B of the normalised gradient magnitude, the first sorting
+        /// key; within a level the curvature magnitude orders the samples (1: curvature alone)
+        pub thinning_levels: u32 = 4, range(1, 64);
     }
 }
 
@@ -314,6 +321,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             locals |= 1 << sparse_local;
         }
         let method = importance.as_ref().map_or(0, |i| i.method.code());
+        let thinning = importance.is_some() && params.sparseness == Sparseness::Thinning;
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
             params.reconstruction.on(ctx, &volume.data).constant(),
@@ -323,6 +331,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ("TL_MASK_NORMALS", f64::from(u8::from(object_normals))),
             ("TL_MODES", f64::from(modes)),
             ("TL_LOCALS", f64::from(locals)),
+            ("TL_THINNING", f64::from(u8::from(thinning))),
         ];
         let key = constants.iter().map(|(_, v)| v.to_string()).collect::<Vec<_>>().join(".");
         let pipelines = ctx
@@ -384,6 +393,14 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             } else {
                 0.0
             },
+            thin_gradient: if thinning {
+                1.0 / volume.max_gradient().max(1e-20)
+            } else {
+                0.0
+            },
+            thin_step: min_spacing,
+            thin_bands: params.thinning_levels as f32,
+            pad0: 0.0,
         };
         let ray_buffer = gpu.buffer_init(
             "two-level ray",
@@ -544,7 +561,7 @@ fn alpha_mean(ctx: &mut Ctx, picture: &wgpu::Texture) -> Result<wgpu::Texture, G
 pub fn declare(k: &mut crate::kinds::Kinds) {
     use crate::shaders;
     k.node(TwoLevelRaycastNode)
-        .program("two_level_raycast", shaders::ray_objects(shaders::part!("two_level_raycast.wgsl")))
+        .program("two_level_raycast", shaders::ray_objects_shape(shaders::part!("two_level_raycast.wgsl")))
         .uniform(TwoLevelUniforms::layout())
         .bind_group(TwoLevelBindings::layout())
         .bind_group(ObjectBindings::layout())

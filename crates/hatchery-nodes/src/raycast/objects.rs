@@ -27,6 +27,13 @@ crate::uniform_block! {
         pub cut_band: f32,
         /// Spacing (voxels) of the smoothed mask gradient at iso-surfaces; 0 for none.
         pub surface_smoothing: f32,
+        /// Volume thinning (sparseness `thinning`): 1 / the volume's largest gradient
+        /// magnitude, the smallest spacing (world: the Hessian's step and the curvature unit),
+        /// and the number of gradient-magnitude levels B.
+        pub thin_gradient: f32,
+        pub thin_step: f32,
+        pub thin_bands: f32,
+        pub pad0: f32,
     }
 }
 
