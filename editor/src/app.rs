@@ -38,6 +38,8 @@ pub(crate) fn pos(p: Pos2) -> EditorPos {
 
 pub struct EditorApp {
     pub state: EditorState,
+    /// The paint tool's last dab in this drag (world position, radius), to space the next.
+    pub last_dab: Option<(glam::Vec3, f32)>,
     pub preview: Preview,
     /// Render the viewport (tests that only edit turn it off).
     pub preview_enabled: bool,
@@ -149,6 +151,7 @@ impl EditorApp {
                 .path()
                 .map_or(String::new(), |p| p.display().to_string()),
             state,
+            last_dab: None,
             preview: Preview::default(),
             preview_enabled: true,
             viewport_rect: egui::Rect::NOTHING,

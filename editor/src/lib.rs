@@ -22,6 +22,7 @@ pub mod groups;
 pub mod history_text;
 pub mod layout_dump;
 pub mod object_table;
+pub mod paint;
 pub mod panels;
 pub mod param_widget;
 pub mod picture;

@@ -57,6 +57,7 @@ struct Key {
     viewport: Option<Port>,
     pins: Vec<Port>,
     timing: bool,
+    depth: Vec<Port>,
 }
 
 #[derive(Default)]
@@ -99,6 +100,10 @@ pub struct Preview {
     pub last_render: Option<(Duration, String)>,
     /// How many answers have been shown (tests wait on this).
     pub answers: u64,
+    /// The viewport's paint tool is on: answers carry the depth of the picture's surfaces.
+    pub paint: bool,
+    /// The nearest surface of the last picture, while the paint tool is on.
+    pub depth: Option<crate::paint::DepthMap>,
 }
 
 /// The port feeding the first `SaveImage` node (by id order).
@@ -174,12 +179,18 @@ impl Preview {
         // Pins of removed nodes go away with them.
         self.pins
             .retain(|(n, _)| doc.nodes.iter().any(|m| &m.id == n));
+        let viewport = self.target(doc);
+        let depth = match (&viewport, self.paint) {
+            (Some(shown), true) => crate::paint::depth_sources(state, shown),
+            _ => Vec::new(),
+        };
         let key = Key {
             revision: state.revision(),
             size,
-            viewport: self.target(doc),
+            viewport,
             pins: self.pins.iter().cloned().collect(),
             timing: self.show_times,
+            depth,
         };
         if self.sent.as_ref() == Some(&key) {
             return;
@@ -206,6 +217,7 @@ impl Preview {
             thumbnails: key.pins,
             thumbnail_bound: THUMBNAIL_BOUND,
             timing: key.timing,
+            depth: key.depth,
         };
         match self.worker.as_ref().map(|w| w.send(request)) {
             Some(Ok(())) => self.awaiting = Some(self.next_id),
@@ -260,6 +272,7 @@ impl Preview {
         self.tf_domains.extend(answer.tf_domains);
         self.object_names.extend(answer.object_names);
         self.last_render = Some((answer.elapsed, answer.adapter));
+        self.depth = answer.depth;
         self.error = None;
         match answer.viewport {
             Some(Ok(picture)) => {

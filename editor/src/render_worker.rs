@@ -35,6 +35,9 @@ pub struct Request {
     pub thumbnail_bound: (u32, u32),
     /// Measure per-node GPU times (timestamp queries) as well as CPU times.
     pub timing: bool,
+    /// G-buffer outputs whose depth to read back (the viewport's paint tool picks surfaces
+    /// in it); empty when the tool is off.
+    pub depth: Vec<Port>,
 }
 
 /// A display picture: a texture on the window's device, or pixels from a separate device.
@@ -77,6 +80,8 @@ pub struct Rendered {
     pub adapter: String,
     /// Nodes that drew a streamed volume's preview level: a refined answer follows.
     pub refining: Vec<String>,
+    /// The nearest surface of the requested G-buffers (see [`Request::depth`]).
+    pub depth: Option<crate::paint::DepthMap>,
 }
 
 impl Rendered {
@@ -95,6 +100,7 @@ impl Rendered {
             elapsed: Duration::ZERO,
             adapter: String::new(),
             refining: Vec::new(),
+            depth: None,
         }
     }
 }
@@ -396,6 +402,7 @@ impl Worker {
             let shown = picture(port, request.thumbnail_bound, &mut answer);
             answer.thumbnails.push((port.clone(), shown));
         }
+        answer.depth = read_depths(session, &request.depth);
         // Times of every node the requested ports depend on (those that ran or were reused).
         let session = self.session.as_ref().expect("made above");
         for (node, stats) in session.executor.stats() {
@@ -444,4 +451,28 @@ impl Worker {
         answer.elapsed = started.elapsed();
         answer
     }
+}
+
+/// The nearest surface of the G-buffers at `ports` (already rendered with the picture), read
+/// back for the paint tool; `None` when there is none.
+fn read_depths(session: &mut Session, ports: &[Port]) -> Option<crate::paint::DepthMap> {
+    let mut maps = Vec::new();
+    for (node, name) in ports {
+        if session.run(&[node.as_str()]).is_err() {
+            continue;
+        }
+        let Ok(Value::GBuffer(g)) = session.output(node, name) else {
+            continue;
+        };
+        let Ok(data) = session.ctx.gpu.read_texture(&g.depth) else {
+            continue;
+        };
+        maps.push(crate::paint::DepthMap {
+            width: data.width,
+            height: data.height,
+            depth: data.data,
+            inv_view_proj: g.camera.view_proj().inverse(),
+        });
+    }
+    crate::paint::DepthMap::nearest(maps)
 }

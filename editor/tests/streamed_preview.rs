@@ -108,6 +108,7 @@ fn a_streamed_volume_shows_its_preview_first_then_refines_by_itself() {
             thumbnails: Vec::new(),
             thumbnail_bound: (64, 64),
             timing: false,
+            depth: Vec::new(),
         })
         .unwrap();
     let first = next_answer(&worker);

@@ -24,6 +24,7 @@ pub mod nifti_file;
 pub mod nifti_header;
 pub mod nrrd_file;
 pub mod ome_zarr;
+pub mod paint;
 pub mod preintegration;
 pub mod procedural;
 pub mod pyramid;

@@ -80,6 +80,7 @@ declaring_modules! {
     object_styles,
     over,
     overlay,
+    paint_labels,
     procedural_volume,
     raycast,
     ridge_valley,

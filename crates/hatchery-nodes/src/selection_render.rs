@@ -137,6 +137,18 @@ struct Extent {
     voxels: [Vec3; 2],
 }
 
+/// The extent of no voxel: a point at the grid's centre (the selection's box is empty there).
+fn empty_extent(labels: &Labels) -> Extent {
+    let l = &labels.data;
+    let middle = Vec3::from(l.dims.map(|d| (d.max(1) - 1) as f32 * 0.5));
+    let centre = l.geometry.voxel_to_world(middle);
+    Extent {
+        centre,
+        bounds: [centre, centre],
+        voxels: [middle, middle],
+    }
+}
+
 fn extent_of(labels: &Labels, ids: &[u16]) -> Option<Extent> {
     let l = &labels.data;
     let [nx, ny, _] = l.dims.map(|d| d as usize);
@@ -377,18 +389,24 @@ impl Node<Value, Ctx> for SelectionRenderNode {
         )
         .map_err(|e| NodeError::new(format!("parameter `objects`: {e}")))?;
         let ids = parse_ids(&text)?;
-        let extent = extent_of(labels, &ids).ok_or_else(|| {
-            NodeError::new(format!(
-                "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {})",
-                labels
-                    .data
-                    .objects
-                    .keys()
-                    .map(|id| id.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ))
-        })?;
+        // An empty selection (a painting not begun yet) draws the background alone.
+        let extent = match extent_of(labels, &ids) {
+            Some(extent) => extent,
+            None => {
+                ctx.warn(format!(
+                    "parameter `objects`: no voxel of the labels holds {ids:?} (ids present: {}): \
+                     nothing is selected, the background alone is drawn",
+                    labels
+                        .data
+                        .objects
+                        .keys()
+                        .map(|id| id.to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+                empty_extent(labels)
+            }
+        };
         let (centre, bounds) = (extent.centre, extent.bounds);
         let placement = params.placement;
         let transform = selection_transform(

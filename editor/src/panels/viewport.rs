@@ -40,6 +40,7 @@ impl Panel for Viewport {
                     Placement::FullWindow
                 };
             }
+            paint_toggle(app, ui);
             if app.picture.is_zoomed() {
                 ui.label(format!("picture {:.1}×", app.picture.zoom));
                 if ui.button("Fit").clicked() {
@@ -117,9 +118,65 @@ impl Panel for Viewport {
                         .zoom_at((scroll * 0.004).exp(), at, response.rect);
                 }
             }
+        } else if app.preview.paint {
+            paint_on_picture(app, ui, &response);
         } else {
             orbit_camera(app, ui, &response);
         }
+    }
+}
+
+/// The paint tool's switch, where the graph has a `PaintLabels` node to paint into.
+fn paint_toggle(app: &mut EditorApp, ui: &mut Ui) {
+    let Some(node) = crate::paint::painter(&app.state) else {
+        app.preview.paint = false;
+        return;
+    };
+    let on = app.preview.paint;
+    if ui
+        .selectable_label(on, "🖌 Paint")
+        .on_hover_text(format!(
+            "drag over the picture to paint into {node} where the pointer meets the first \
+             visible surface (Ctrl-drag erases); brush radius and id are {node}'s parameters. \
+             Off: dragging orbits the camera again"
+        ))
+        .clicked()
+    {
+        app.preview.paint = !on;
+    }
+}
+
+/// A drag with the paint tool on: a dab wherever the pointer meets a surface, spaced by half
+/// the brush radius; one drag is one undo step.
+fn paint_on_picture(app: &mut EditorApp, ui: &Ui, response: &egui::Response) {
+    if response.drag_stopped() {
+        app.state.end_group();
+        app.last_dab = None;
+    }
+    if !response.dragged_by(egui::PointerButton::Primary) {
+        return;
+    }
+    let (Some(at), Some(depth), Some(node)) = (
+        response.interact_pointer_pos(),
+        app.preview.depth.as_ref(),
+        crate::paint::painter(&app.state),
+    ) else {
+        return;
+    };
+    // The pointer in the frame's pixels, through the picture's own zoom and pan.
+    let uv = app.picture.uv_rect();
+    let rect = response.rect;
+    let u = uv.min.x + (at.x - rect.min.x) / rect.width() * uv.width();
+    let v = uv.min.y + (at.y - rect.min.y) / rect.height() * uv.height();
+    let Some(world) = depth.world_at(u * depth.width as f32, v * depth.height as f32) else {
+        return;
+    };
+    let erase = ui.input(|i| i.modifiers.command);
+    let spaced = app
+        .last_dab
+        .is_none_or(|(last, radius)| last.distance(world) >= 0.5 * radius);
+    if spaced && let Ok(radius) = crate::paint::add_dab(&mut app.state, &node, world, erase) {
+        app.last_dab = Some((world, radius));
     }
 }
 

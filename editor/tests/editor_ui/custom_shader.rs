@@ -28,7 +28,7 @@ const GRAPH: &str = r#"(
 
 /// The harness with the window's wgpu device shared with the render thread (as the editor runs
 /// on a GPU), so that a screenshot shows the viewport's picture.
-fn wgpu_harness(mut app: EditorApp) -> Harness<'static, EditorApp> {
+pub(super) fn wgpu_harness(mut app: EditorApp) -> Harness<'static, EditorApp> {
     let mut setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.device_descriptor = std::sync::Arc::new(hatchery_gpu::GpuContext::device_descriptor);
     Harness::builder()
@@ -60,7 +60,7 @@ fn viewport_colour(h: &mut Harness<EditorApp>) -> [f32; 3] {
 }
 
 /// Steps frames until `done` holds (the file poll and the render run on frames).
-fn step_until(h: &mut Harness<EditorApp>, what: &str, done: impl Fn(&Harness<EditorApp>) -> bool) {
+pub(super) fn step_until(h: &mut Harness<EditorApp>, what: &str, done: impl Fn(&Harness<EditorApp>) -> bool) {
     let start = std::time::Instant::now();
     while !done(h) {
         assert!(start.elapsed().as_secs() < 60, "waited 60 s for {what}");

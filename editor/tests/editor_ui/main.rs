@@ -19,6 +19,7 @@ mod fused;
 mod layout;
 mod objects;
 mod organise;
+mod paint;
 mod picture;
 mod progress;
 mod selection;
