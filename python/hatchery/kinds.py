@@ -24,6 +24,8 @@ Kind = Literal[
     'DepthPeel',
     'DepthTestMask',
     'DiffuseIntensity',
+    'DistanceToObject',
+    'ExplodedView',
     'Fan',
     'Fill',
     'GBuffer',
@@ -44,6 +46,7 @@ Kind = Literal[
     'MultiplyByMask',
     'ObjectStyles',
     'Over',
+    'PaintLabels',
     'ProceduralVolume',
     'Raycast',
     'RidgeValley',
@@ -55,6 +58,7 @@ Kind = Literal[
     'SelectionRender',
     'ShadedSurface',
     'Silhouette',
+    'Stipple',
     'StyleSet',
     'StyleTransferFunction',
     'TransferFunction1D',
@@ -546,6 +550,111 @@ class DiffuseIntensity:
     category = 'Illustration'
     empty: float = 1.0
     two_sided: bool = False
+
+class DistanceToObject:
+    """Distance to a risk structure (Preim/Tietjen, neck dissection planning §4.3): per voxel of
+        the label map, the Euclidean distance in world units (mm) from its centre to the nearest
+        voxel centre of `objects` — exact, with each axis's spacing and the grid's placement in
+        the world. Feed it to TwoLevelRaycast's `volume` with the same labels and give the
+        structures a transfer function over millimetres (e.g. red to 2 mm, yellow to 5 mm) to
+        colour them by their distance to the objects.
+
+    Inputs:
+        labels (Labels, required): the segmentation (object ids and names)
+
+    Outputs:
+        volume (Volume): distance in world units (mm) on the labels' grid
+
+    Parameters:
+        objects (text; default '1'): the objects distances are measured to: ids or names of the
+            labels, separated by commas (e.g. "liver" or "10, 14")
+        signed (bool; default False): negative inside the objects (minus the distance to the
+            nearest voxel outside them) instead of 0 there
+
+    """
+
+    kind = 'DistanceToObject'
+    category = 'Data'
+    objects: str = '1'
+    signed: bool = False
+
+class ExplodedView:
+    """Exploded views of a segmented volume (Viola et al., the Vis 2005 tutorial §3, volume
+        splitting): the `parts` — objects, halves of objects split by a plane through their
+        centre (logical splitting) or halves of the whole volume (geometrical splitting) — are
+        moved by their displacements; each sample is looked up in every part at its position
+        minus the part's displacement, the first part (in the written order) holding a drawn
+        object there owns it, and it is classified with that object's transfer function and
+        rendering mode from ObjectStyles and composited front to back. Objects no part names
+        stay in place. Guides: an arrow from each part's original centre to its moved one.
+
+    Inputs:
+        volume (Volume, required): the scalar field
+        labels (Labels, required): object ids on the volume's grid
+        styles (ObjectStyles, required): the object table (over or iso compositing)
+        camera (Camera, required): the view
+        light (Light, optional): the light (default: a headlight)
+
+    Outputs:
+        image (Image): premultiplied colour, with the guides where `guides` is on
+        gbuffer (GBuffer): depth and normal where opaque
+        annotations (Annotations): per part its original centre (anchor 2k) and moved centre (2k
+            + 1) with their boxes: anchors 0 and 1 are what Arrow and Fan draw
+
+    Parameters:
+        parts (text; default 'volume: split x 20'): the parts and how they move, `;`-separated:
+            `OBJECT: split AXIS DISTANCE` (its halves either side of the plane through its
+            centre normal to x, y or z, moved ±DISTANCE world units along it) or `OBJECT: move
+            DX DY DZ`; OBJECT a label id, an object's name or `volume` (the whole volume);
+            earlier parts own overlapping samples
+        guides (bool; default True): draw guides: an arrow from each moved part's original
+            centre (a dot) to its centre
+        guide_color (RGBA in [0, 1]; default (0.15, 0.15, 0.15, 0.9)): colour of the guides
+        guide_width (float in [0.1, 32]; default 1.5): width of the guides, pixels
+        boundary (one of 'filtered', 'point'; default 'filtered'): boundary filtering of the
+            object ids (as TwoLevelRaycast) or the nearest voxel's id
+        normals (one of 'data', 'objects'; default 'data'): shading normals from the data's
+            gradient or each object's own filtered mask (label maps without intensities)
+        surface_smoothing (float in [0, 4]; default 0.0): with normals = objects: smooth iso-
+            surfaces' mask gradient over ±this many voxels
+        step (float in [0.05, 8]; default 0.5): sample distance in voxels (of the smallest
+            spacing)
+        reconstruction (one of 'trilinear', 'bspline'; default 'trilinear'): reconstruction of
+            the data between voxels
+        ambient (float in [0, 1]; default 0.15): ambient light: brightness of every shaded
+            sample, lit or not (c_a of eq. 3)
+        diffuse (float in [0, 4]; default 0.85): diffuse light: brightness where the surface
+            faces the light (c_d of eq. 3)
+        specular (float in [0, 4]; default 0.4): specular light: strength of the highlight (c_s
+            of eq. 3)
+        exponent (float in [1, 512]; default 32.0): shininess: higher makes the highlight
+            smaller and sharper (c_e of eq. 3)
+        jitter (bool; default True): jitter the first sample per pixel
+        early_termination (float in [0.5, 1]; default 0.99): stop a ray at this opacity (1 =
+            never)
+        kernel (one of 'auto', 'fragment', 'compute'; default 'auto'): GPU path: fragment shader
+            or compute kernel (same picture)
+
+    """
+
+    kind = 'ExplodedView'
+    category = 'Volume'
+    parts: str = 'volume: split x 20'
+    guides: bool = True
+    guide_color: Tuple[float, float, float, float] = (0.15, 0.15, 0.15, 0.9)
+    guide_width: float = 1.5
+    boundary: Literal['filtered', 'point'] = 'filtered'
+    normals: Literal['data', 'objects'] = 'data'
+    surface_smoothing: float = 0.0
+    step: float = 0.5
+    reconstruction: Literal['trilinear', 'bspline'] = 'trilinear'
+    ambient: float = 0.15
+    diffuse: float = 0.85
+    specular: float = 0.4
+    exponent: float = 32.0
+    jitter: bool = True
+    early_termination: float = 0.99
+    kernel: Literal['auto', 'fragment', 'compute'] = 'auto'
 
 class Fan:
     """A fan between ghost (anchor 0) and selection (anchor 1), VolumeShop §6.3 "Fans": the screen-
@@ -1070,6 +1179,39 @@ class Over:
 
     kind = 'Over'
     category = 'Compositing'
+
+class PaintLabels:
+    """Volume painting (VolumeShop §6.1): object ids painted onto a volume's grid with a spherical
+        brush — every voxel whose centre lies within a dab's radius (world units) gets its id,
+        in the order of the dabs — on top of `labels` where connected, else on an empty map of
+        `volume`'s grid. In the editor, select the node and turn on the viewport's paint tool: a
+        drag paints where the pointer meets the first visible surface.
+
+    Inputs:
+        volume (Volume, optional): the grid to paint on when no labels are connected
+        labels (Labels, optional): a segmentation to paint over (its grid is used)
+
+    Outputs:
+        labels (Labels): object ids on the volume's grid, with names
+
+    Parameters:
+        strokes (text; default ''): the brush dabs, in order: "x y z r id; …" — a ball of radius
+            r (world units, mm) around (x, y, z) filled with object id (0 erases); the editor's
+            paint tool writes them
+        radius (float in [0.1, 500]; default 4.0): the radius (world units, mm) of the dabs the
+            editor's paint tool adds
+        id (int in [0, 65535]; default 1): the object id the editor's paint tool paints (0: the
+            tool erases)
+        name (text; default 'selection'): the name of painted objects the labels do not name yet
+
+    """
+
+    kind = 'PaintLabels'
+    category = 'Data'
+    strokes: str = ''
+    radius: float = 4.0
+    id: int = 1
+    name: str = 'selection'
 
 class ProceduralVolume:
     """Analytic distance fields on a resolution³ grid over [-1, 1]³ (positive inside, iso 0 is the
@@ -1650,6 +1792,46 @@ class Silhouette:
     pip_scale: float = 8.0
     pip_seed: int = 0
     pip_texture: str = ''
+
+class Stipple:
+    """Stippling of a surface (Preim & Tietjen, Viola et al. 2005 tutorial, §2.1, §6 and "Efficient
+        Texture-based Stippling"): round ink dots of `radius` pixels whose density gives the
+        tone, ink coverage = darkness 1 − intensity (up to 1 − exp(−π·radius²/spacing²)). The
+        dots are a solid texture in world space — one jittered point with a random threshold per
+        lattice cell, kept where its threshold is below the density and it lies within half a
+        cell of the surface — so they stay on the surface when the camera orbits; the lattice's
+        cell follows `spacing` pixels through power-of-two levels of detail, cross-faded.
+
+    Inputs:
+        intensity (Mask, required): shading intensity in [0, 1] (e.g. DiffuseIntensity); darker
+            = more dots
+        gbuffer (GBuffer, required): the surface: its depth places the dots in world space, its
+            normal orients them
+
+    Outputs:
+        mask (Mask): 1 = paper, 0 = ink (anti-aliased dot edges)
+
+    Parameters:
+        spacing (float in [1, 64]; default 3.0): distance in pixels between neighbouring dots
+            where the tone is darkest (the stipple lattice's cell on screen; Preim & Tietjen's
+            "adjustable level of sparseness")
+        radius (float in [0.3, 64]; default 1.2): radius of each dot in pixels, at most
+            `spacing` (above half of it the pass searches 125 lattice cells per level instead of
+            27)
+        foreshortening (bool; default True): thin the dots where the surface turns away from the
+            viewer (by n·v), so a tilted surface shows the tone its shading asks for rather than
+            more dots per pixel
+        seed (int in [0, 1e+06]; default 0): number that picks another random dot pattern (the
+            same seed gives the same dots)
+
+    """
+
+    kind = 'Stipple'
+    category = 'Illustration'
+    spacing: float = 3.0
+    radius: float = 1.2
+    foreshortening: bool = True
+    seed: int = 0
 
 class StyleSet:
     """A list of lit-sphere styles (sphere maps indexed by the eye-space normal, §3.1): `styles`

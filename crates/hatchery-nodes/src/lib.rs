@@ -92,6 +92,7 @@ declaring_modules! {
     selection_render,
     shaded_surface,
     silhouette,
+    stipple,
     style_set,
     style_transfer_function,
     transfer_function_1d,
