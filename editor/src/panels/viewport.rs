@@ -134,7 +134,7 @@ fn paint_toggle(app: &mut EditorApp, ui: &mut Ui) {
     };
     let on = app.preview.paint;
     if ui
-        .selectable_label(on, "🖌 Paint")
+        .selectable_label(on, "✏ Paint")
         .on_hover_text(format!(
             "drag over the picture to paint into {node} where the pointer meets the first \
              visible surface (Ctrl-drag erases); brush radius and id are {node}'s parameters. \

@@ -76,7 +76,7 @@ fn a_drag_with_the_paint_tool_paints_the_visible_surface_and_survives_reopening(
     let camera_raw_before = camera_raw(&h, "azimuth").map(|v| format!("{v:?}"));
 
     // The tool, by its button; the next render carries the picture's depth.
-    h.get_by_label("🖌 Paint").click();
+    h.get_by_label("✏ Paint").click();
     h.run();
     assert!(h.state().preview.paint, "the button turned the tool on");
     step_until(&mut h, "the depth of the picture", |h| {
