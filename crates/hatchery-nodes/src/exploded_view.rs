@@ -72,11 +72,13 @@ fn axis_of(word: &str) -> Option<Vec3> {
 /// Parses `parts` ("skeleton: split x 40; liver: move 0 30 0; volume: split z 20"): entries
 /// separated by `;`, each `OBJECT: split AXIS DISTANCE` (the halves on either side of the plane
 /// through the object's centre normal to world axis x, y or z, moved ±DISTANCE along it) or
-/// `OBJECT: move DX DY DZ` (world units). OBJECT is a label id, an object's name (case ignored)
-/// or `volume` (the whole volume: geometrical splitting). Errors name the entry.
+/// `OBJECT: move DX DY DZ` (world units, or with `%` percent of `size`, the largest side of the
+/// labelled objects' box). OBJECT is a label id, an object's name (case ignored) or `volume`
+/// (the whole volume: geometrical splitting). Errors name the entry.
 pub fn parse_parts(
     text: &str,
     objects: &std::collections::BTreeMap<u16, String>,
+    size: f32,
 ) -> Result<Vec<PartSpec>, String> {
     let mut parts = Vec::new();
     for entry in text.split(';').map(str::trim).filter(|e| !e.is_empty()) {
@@ -117,10 +119,16 @@ pub fn parse_parts(
         };
         let words: Vec<&str> = action.split_whitespace().collect();
         let number = |w: &str| {
-            w.parse::<f32>()
+            let (digits, scale) = match w.strip_suffix('%') {
+                Some(d) => (d, size / 100.0),
+                None => (w, 1.0),
+            };
+            digits
+                .parse::<f32>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(format!("`{w}` is not a number")))
+                .map(|v| v * scale)
+                .ok_or_else(|| bad(format!("`{w}` is not a number (or a percentage)")))
         };
         let spec = match words.as_slice() {
             ["split", axis, distance] => {
@@ -276,13 +284,30 @@ fn part_centres(labels: &LabelData, parts: &[Part], whole: &[Vec3]) -> Vec<Vec3>
         .collect()
 }
 
+/// The largest side of the world box around every labelled voxel (0 for none): what `%`
+/// displacements are percentages of.
+fn labelled_size(labels: &LabelData) -> f32 {
+    let Some((lo, hi)) = labels.object_voxel_bounds() else {
+        return 0.0;
+    };
+    let corners = hatchery_annotation::box_corners(
+        Vec3::from(lo.map(|v| v as f32)),
+        Vec3::from(hi.map(|v| v as f32)),
+    )
+    .map(|c| labels.geometry.voxel_to_world(c));
+    let min = corners.iter().copied().fold(Vec3::INFINITY, Vec3::min);
+    let max = corners.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max);
+    (max - min).max_element()
+}
+
 hatchery_graph::node_params! {
     /// Parameters of `ExplodedView`.
     pub struct ExplodedViewParams {
         /// the parts and how they move, `;`-separated: `OBJECT: split AXIS DISTANCE` (its
         /// halves either side of the plane through its centre normal to x, y or z, moved
-        /// ±DISTANCE world units along it) or `OBJECT: move DX DY DZ`; OBJECT a label id, an
-        /// object's name or `volume` (the whole volume); earlier parts own overlapping samples
+        /// ±DISTANCE along it) or `OBJECT: move DX DY DZ`; world units, or `%` of the labelled
+        /// objects' largest extent; OBJECT a label id, an object's name or `volume` (the whole
+        /// volume); earlier parts own overlapping samples
         pub parts: String = "volume: split x 20";
         /// draw guides: an arrow from each moved part's original centre (a dot) to its centre
         pub guides: bool = true;
@@ -409,7 +434,8 @@ impl Node<Value, Ctx> for ExplodedViewNode {
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         check_labels_grid(labels, volume)?;
         check_styles(&styles)?;
-        let specs = parse_parts(&params.parts, &labels.data.objects)
+        let size = labelled_size(&labels.data);
+        let specs = parse_parts(&params.parts, &labels.data.objects, size)
             .map_err(|e| NodeError::new(format!("parameter `parts`: {e}")))?;
         let parts = expand(&specs);
         if parts.len() > MAX_PARTS {
@@ -741,15 +767,16 @@ mod tests {
     #[test]
     fn the_grammar_reads_splits_moves_names_and_the_volume() {
         let specs = parse_parts(
-            "Skeleton: split x 40; 10: move 0 30 0; volume: split z -5",
+            "Skeleton: split x 40; 10: move 0 30% 0; volume: split z -5",
             &names(),
+            200.0,
         )
         .unwrap();
         assert_eq!(specs.len(), 3);
         assert_eq!((specs[0].id, specs[0].split), (13, Some((Vec3::X, 40.0))));
         assert_eq!(
             (specs[1].id, specs[1].displacement),
-            (10, Vec3::new(0.0, 30.0, 0.0))
+            (10, Vec3::new(0.0, 60.0, 0.0))
         );
         assert_eq!((specs[2].id, specs[2].split), (0, Some((Vec3::Z, -5.0))));
         let parts = expand(&specs);
@@ -771,7 +798,7 @@ mod tests {
             ("liver move 1 2 3", "part `liver move 1 2 3`"),
             ("liver: move 1 2 3; 10: split x 1", "named twice"),
         ] {
-            let e = parse_parts(text, &names()).unwrap_err();
+            let e = parse_parts(text, &names(), 1.0).unwrap_err();
             assert!(e.contains(needle), "{text}: {e}");
         }
     }
