@@ -48,17 +48,21 @@ fn slab(o: vec3<f32>, d: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(max(max(near.x, near.y), max(near.z, 0.0)), min(min(far.x, far.y), far.z));
 }
 
-// The drawn object at voxel-space q (boundary filtering or the nearest voxel, as
-// TwoLevelRaycast), 0 for none or outside the grid.
-fn drawn_object_at(q: vec3<f32>) -> u32 {
-    if any(q < ray.box_min) || any(q > ray.box_max) {
-        return 0u;
-    }
+// Whether voxel-space q lies in the box of voxel centres.
+fn in_grid(q: vec3<f32>) -> bool {
+    return all(q >= ray.box_min) && all(q <= ray.box_max);
+}
+
+// The object brick table's entry for the brick around q (see ray_objects.wgsl): x > y where no
+// drawn object reaches the brick, z the one object every sample of it sees (−1: several).
+fn brick_entry(q: vec3<f32>) -> vec4<f32> {
     let brick = vec3<i32>(floor(clamp(q, vec3<f32>(0.0), ray.dims - 1.0) / f32(ray.brick_size)));
-    let info = textureLoad(bricks, brick, 0);
-    if info.x > info.y {
-        return 0u;
-    }
+    return textureLoad(bricks, brick, 0);
+}
+
+// The drawn object at voxel-space q inside the grid, given its brick entry (boundary
+// filtering or the nearest voxel, as TwoLevelRaycast); 0 for none.
+fn drawn_object(q: vec3<f32>, info: vec4<f32>) -> u32 {
     var id = 0u;
     if info.z >= 0.0 {
         id = u32(info.z);
@@ -73,36 +77,21 @@ fn drawn_object_at(q: vec3<f32>) -> u32 {
     return id;
 }
 
-// The object part i holds at its source point qi, 0 if none.
-fn part_object(i: u32, qi: vec3<f32>) -> u32 {
-    let side = part_texel(i, 2).w;
-    if side != 0.0 {
-        let plane = part_texel(i, 1);
-        let s = dot(plane.xyz, qi) + plane.w;
-        if (side > 0.0 && s < 0.0) || (side < 0.0 && s >= 0.0) {
-            return 0u;
-        }
+// Whether a part whose object is `want` (0: any) may own object `id`; the rest (want = −1)
+// owns the objects no part names.
+fn part_takes(want: i32, id: u32) -> bool {
+    if want == 0 {
+        return true;
     }
-    let id = drawn_object_at(qi);
-    let want = u32(part_texel(i, 0).w + 0.5);
-    if id == 0u || (want != 0u && id != want) {
-        return 0u;
-    }
-    return id;
-}
-
-// The drawn object at q if no part names it (the objects that stay in place), else 0.
-fn rest_object(q: vec3<f32>) -> u32 {
-    let id = drawn_object_at(q);
-    if id == 0u {
-        return 0u;
+    if want > 0 {
+        return u32(want) == id;
     }
     for (var i = 0u; i < min(exploded.count, MAX_PARTS); i++) {
         if u32(part_texel(i, 0).w + 0.5) == id {
-            return 0u;
+            return false;
         }
     }
-    return id;
+    return true;
 }
 
 // Cool-to-warm tone shading, TwoLevelRaycast's `tone` mode (Gooch et al. 1998).
@@ -126,23 +115,38 @@ fn cast_exploded(position: vec2<f32>) -> RayResult {
     if ray.jitter != 0u {
         base += h * hash(position);
     }
-    let n = min(exploded.count, MAX_PARTS);
-    var spans: array<vec2<f32>, 16>;
+    // The parts along this ray, the rest (the objects no part names, in place) last: the
+    // displacement, the plane and side, the object (0: any, −1: the rest's) and where the ray
+    // meets the part's moved box.
+    var n = min(exploded.count, MAX_PARTS);
+    var disp: array<vec3<f32>, 17>;
+    var planes: array<vec4<f32>, 17>;
+    var sides: array<f32, 17>;
+    var wants: array<i32, 17>;
+    var spans: array<vec2<f32>, 17>;
     var t_min = 1e30;
     var t_max = -1e30;
     for (var i = 0u; i < n; i++) {
-        let d = part_texel(i, 0).xyz;
-        let s = slab(r.q0 - d, r.dq, part_texel(i, 2).xyz, part_texel(i, 3).xyz);
-        spans[i] = s;
-        if s.x <= s.y {
-            t_min = min(t_min, s.x);
-            t_max = max(t_max, s.y);
-        }
+        let first = part_texel(i, 0);
+        let lo = part_texel(i, 2);
+        disp[i] = first.xyz;
+        wants[i] = i32(first.w + 0.5);
+        planes[i] = part_texel(i, 1);
+        sides[i] = lo.w;
+        spans[i] = slab(r.q0 - first.xyz, r.dq, lo.xyz, part_texel(i, 3).xyz);
     }
-    let rest = exploded.rest != 0u && r.hits;
-    if rest {
-        t_min = min(t_min, r.t_in);
-        t_max = max(t_max, r.t_out);
+    if exploded.rest != 0u && r.hits {
+        disp[n] = vec3<f32>(0.0);
+        wants[n] = -1;
+        sides[n] = 0.0;
+        spans[n] = vec2<f32>(r.t_in, r.t_out);
+        n += 1u;
+    }
+    for (var i = 0u; i < n; i++) {
+        if spans[i].x <= spans[i].y {
+            t_min = min(t_min, spans[i].x);
+            t_max = max(t_max, spans[i].y);
+        }
     }
     if t_min > t_max {
         return out;
@@ -157,42 +161,55 @@ fn cast_exploded(position: vec2<f32>) -> RayResult {
         let q = r.q0 + r.dq * t;
         var id = 0u;
         var qs = q;
-        var inside = false;
-        var next = 1e30;
+        // How far no part can show anything: the next part's box, the far side of a part's
+        // plane, the exit of a brick no drawn object reaches (in the part's source).
+        var skip_to = 1e30;
         for (var i = 0u; i < n; i++) {
-            let s = spans[i];
-            if t < s.x {
-                next = min(next, s.x);
+            let span = spans[i];
+            if t > span.y {
                 continue;
             }
-            if t > s.y {
+            if t < span.x {
+                skip_to = min(skip_to, span.x);
                 continue;
             }
-            inside = true;
-            let qi = q - part_texel(i, 0).xyz;
-            let o = part_object(i, qi);
-            if o != 0u {
+            let qi = q - disp[i];
+            if sides[i] != 0.0 {
+                let plane = planes[i];
+                let dist = dot(plane.xyz, qi) + plane.w;
+                if (sides[i] > 0.0 && dist < 0.0) || (sides[i] < 0.0 && dist >= 0.0) {
+                    // On the other side: the part starts where the ray crosses its plane.
+                    let rate = dot(plane.xyz, r.dq);
+                    var cross = span.y;
+                    if abs(rate) > 1e-12 && -dist / rate > 0.0 {
+                        cross = min(cross, t - dist / rate - 1e-4 * h);
+                    }
+                    skip_to = min(skip_to, cross);
+                    continue;
+                }
+            }
+            if !in_grid(qi) {
+                skip_to = t;
+                continue;
+            }
+            let info = brick_entry(qi);
+            if info.x > info.y {
+                skip_to = min(skip_to, brick_exit(qi, r.dq, t) - 1e-4 * h);
+                continue;
+            }
+            skip_to = t;
+            let o = drawn_object(qi, info);
+            if o != 0u && part_takes(wants[i], o) {
                 id = o;
                 qs = qi;
                 break;
             }
         }
-        if id == 0u && rest {
-            if t < r.t_in {
-                next = min(next, r.t_in);
-            } else if t <= r.t_out {
-                inside = true;
-                id = rest_object(q);
-            }
-        }
         if id == 0u {
-            if !inside {
-                // No part's box holds this sample: on to the next sample inside one.
-                if next >= 1e29 {
-                    break;
-                }
-                k = max(ceil((next - base) / h), k + 1.0) - 1.0;
+            if skip_to >= 1e29 {
+                break;
             }
+            k = max(ceil((skip_to - base) / h), k + 1.0) - 1.0;
             continue;
         }
         let info = object_info(id, 0u);
