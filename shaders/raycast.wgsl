@@ -96,8 +96,19 @@ struct Enhancement {
     silhouette: f32,
     banding_period: f32,
     banding_power: f32,
+    // A 2-D transfer function's second domain (RAY_TF2D != 0; docs/transfer_functions_2d.md).
+    second_domain: vec2<f32>,
+    pad0: f32,
+    pad1: f32,
 };
 @group(1) @binding(3) var<uniform> enhancement: Enhancement;
+
+// 2-D transfer functions (Kniss et al. 2002, Svakhine et al. 2005 §3.3): tf_table holds a
+// LUT_SIZE × LUT_SIZE table over value × a second coordinate, RAY_TF2D says which (a TF2D_*
+// constant; 0: a 1-D table, none of this code is in the loop). Specialised by the Raycast node.
+const TF2D_GRADIENT: u32 = 1u;
+const TF2D_LAPLACIAN: u32 = 2u;
+override RAY_TF2D: u32 = 0u;
 
 fn enhanced(bit: u32) -> bool {
     return (RAY_ENHANCE & bit) != 0u;
@@ -300,7 +311,18 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         // Direct volume rendering. Classify first: samples the transfer function makes fully
         // transparent contribute nothing, so they skip the six gradient fetches.
         let row = table_row_at(q);
-        var entry = table_lookup_row(v, row.row, row.domain);
+        var entry = vec4<f32>(0.0);
+        // The gradient, taken before classification where a 2-D function needs its magnitude.
+        var g = vec3<f32>(0.0);
+        if RAY_TF2D == TF2D_GRADIENT {
+            g = gradient_at(q);
+            let s = clamp(length(g) / max(ray.max_gradient, 1e-20), 0.0, 1.0);
+            entry = table2d_lookup(v, s, enhancement.second_domain);
+        } else if RAY_TF2D == TF2D_LAPLACIAN {
+            entry = table2d_lookup(v, laplacian_at(q), enhancement.second_domain);
+        } else {
+            entry = table_lookup_row(v, row.row, row.domain);
+        }
         // Colour TFs keep opacity in .a, style TFs α_u in .y.
         var classified = entry.a;
         if shading == SHADING_STYLE {
@@ -326,7 +348,9 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
                 entry.a = banding(entry.a);
             }
         }
-        let g = gradient_at(q);
+        if RAY_TF2D != TF2D_GRADIENT {
+            g = gradient_at(q);
+        }
         let g_length = length(g);
         let n = view_normal(g);
         let v_dir = view_direction(p);

@@ -6,21 +6,18 @@
 
 mod common;
 
-use common::raycast_reference::{self as reference, Enhancement, Mode, RayParams, Shading};
+use common::ray_columns::{
+    assert_matches, column_alpha, columns, on_columns, raycast_image, reference_params,
+};
+use common::raycast_reference::{self as reference, Enhancement, Shading};
 use glam::Vec3;
 use hatchery_data::VolumeData;
 use hatchery_data::transfer_function::{ControlPoint, TransferFunction1D};
 use hatchery_graph::ParamValue;
 use hatchery_nodes::camera::Camera;
 use hatchery_nodes::value::{TransferFunction, Volume};
-use hatchery_nodes::{Session, Value, export};
+use hatchery_nodes::{Session, Value};
 use std::sync::Arc;
-
-/// Largest channel difference GPU − CPU reference allowed per pixel (premultiplied RGBA in
-/// [0, 1]; the image is half floats, whose steps near 1 are 1/2048), and the RMS over the frame.
-/// Measured on lavapipe: worst 0.00053, RMS at most 0.00027.
-const WORST: f32 = 1.0 / 255.0;
-const RMS: f64 = 0.25 / 255.0;
 
 struct Scene {
     session: Session,
@@ -36,12 +33,7 @@ impl Scene {
             .iter()
             .map(|&(value, rgba)| ControlPoint { value, rgba })
             .collect();
-        let mut session = common::session_from_text(
-            r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#,
-            camera.width,
-            camera.height,
-        );
-        session.ctx.set_size(camera.width, camera.height).unwrap();
+        let session = common::ray_columns::session_for(&camera);
         Self {
             session,
             volume: Arc::new(Volume::new(data.clone())),
@@ -51,51 +43,16 @@ impl Scene {
         }
     }
 
-    /// The Raycast node's image (premultiplied RGBA, row 0 at the top): no jitter, no early
-    /// termination, `step` voxels, then `extra` parameters.
+    /// The Raycast node's image through the scene's function (see `raycast_image`).
     fn gpu(&mut self, shading: &str, step: f32, extra: &[(&str, ParamValue)]) -> Vec<[f32; 4]> {
-        let mut params = vec![
-            ("shading", ParamValue::Choice(shading.into())),
-            ("step", ParamValue::Float(step.into())),
-            ("jitter", ParamValue::Bool(false)),
-            ("early_termination", ParamValue::Float(1.0)),
-        ];
-        params.extend(extra.iter().cloned());
-        let outputs = common::run_node(
-            &mut self.session,
-            "Raycast",
-            vec![
-                ("volume", Value::Volume(self.volume.clone())),
-                ("camera", Value::Camera(Arc::new(self.camera.clone()))),
-                (
-                    "tf",
-                    Value::TransferFunction(Arc::new(TransferFunction::Color(self.tf.clone()))),
-                ),
-            ],
-            &params,
-        );
-        let a = export::to_array(&outputs[0], &self.session.ctx.gpu).unwrap();
-        a.data
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect()
+        let tf = Value::TransferFunction(Arc::new(TransferFunction::Color(self.tf.clone())));
+        let (volume, camera) = (&self.volume, &self.camera);
+        raycast_image(&mut self.session, volume, camera, tf, shading, step, extra)
     }
 
     /// The CPU reference with the same rays (the node's default headlight).
     fn cpu(&self, shading: Shading, step: f32, e: Enhancement) -> Vec<[f32; 4]> {
-        let c = &self.camera;
-        let p = RayParams {
-            view_proj: c.view_proj(),
-            view: c.view,
-            width: c.width,
-            height: c.height,
-            orthographic: c.orthographic,
-            step_voxels: step,
-            mode: Mode::Dvr,
-            shading,
-            light_dir_view: Vec3::new(0.3, 0.4, 1.0).normalize(),
-            early_termination: 1.0,
-        };
+        let p = reference_params(&self.camera, shading, step);
         reference::render_enhanced(&self.data, &self.tf, &p, e)
     }
 }
@@ -109,17 +66,6 @@ fn params(e: Enhancement) -> Vec<(&'static str, ParamValue)> {
         ("banding", f(e.banding_period)),
         ("banding_power", f(e.banding_power)),
     ]
-}
-
-/// An orthographic camera looking along −z whose w × h pixel centres sit on the voxel columns
-/// (x, h − 1 − row) of a unit-spacing grid.
-fn on_columns(w: u32, h: u32) -> Camera {
-    let distance = 40.0f32;
-    let fov = 2.0 * (h as f32 / 2.0 / distance).atan().to_degrees();
-    let target = Vec3::new((w - 1) as f32 / 2.0, (h - 1) as f32 / 2.0, 0.5);
-    Camera::orbit(
-        target, 0.0, 0.0, distance, fov, true, 0.05, 100.0, false, w, h,
-    )
 }
 
 /// A square `size`-pixel view of the origin (degrees; near 0.05, far 50).
@@ -147,44 +93,6 @@ const PHONG: Shading = Shading::Phong {
     specular: 0.4,
     exponent: 32.0,
 };
-
-/// Fails unless GPU and CPU agree within [`WORST`] per channel and [`RMS`]; prints both figures.
-fn assert_matches(name: &str, gpu: &[[f32; 4]], cpu: &[[f32; 4]], width: u32) {
-    let diff = common::diff_images(gpu, cpu, width, |_| true, WORST);
-    let squares: f64 = gpu
-        .iter()
-        .zip(cpu)
-        .flat_map(|(g, c)| (0..4).map(move |k| f64::from(g[k] - c[k]).powi(2)))
-        .sum();
-    let rms = (squares / (gpu.len() * 4) as f64).sqrt();
-    eprintln!(
-        "{name}: worst channel difference {:.5} at ({}, {}) (GPU {:?}, CPU {:?}), RMS {rms:.6}",
-        diff.worst, diff.x, diff.y, gpu[diff.index], cpu[diff.index]
-    );
-    if !diff.over.is_empty() || rms > RMS {
-        diff.fail(
-            name,
-            gpu,
-            cpu,
-            format!(
-                "{} pixels beyond {WORST}, RMS {rms} (at most {RMS})",
-                diff.over.len()
-            ),
-        );
-    }
-    assert!(gpu.iter().any(|p| p[3] > 0.1), "{name}: the image is empty");
-}
-
-/// Values constant along z: `f(x)` on a w × h × d unit-spacing grid.
-fn columns(w: u32, h: u32, d: u32, f: impl Fn(u32) -> f32) -> VolumeData {
-    let values = (0..w * h * d).map(|i| f(i % w)).collect();
-    VolumeData::new([w, h, d], [1.0; 3], [0.0; 3], values).unwrap()
-}
-
-/// Front-to-back compositing of `samples` equal samples of opacity `o` (step 1 voxel).
-fn column_alpha(o: f32, samples: u32) -> f32 {
-    1.0 - (1.0 - o).powi(samples as i32)
-}
 
 /// A ramp along x with two slopes (0.02 and 0.06 per voxel), so |∇P| (divided by the volume's
 /// largest gradient magnitude, 0.06) is 1/3 on the left and 1 on the right; constant along each

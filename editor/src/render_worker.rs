@@ -434,6 +434,7 @@ impl Worker {
                 let domain = match tf.as_ref() {
                     TransferFunction::Color(f) => f.domain,
                     TransferFunction::Style { function, .. } => function.domain,
+                    TransferFunction::TwoD(f) => f.domain,
                 };
                 answer.tf_domains.insert(node.clone(), domain);
             }

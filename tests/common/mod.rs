@@ -8,6 +8,7 @@ pub mod images;
 pub mod importance_reference;
 pub mod importance_scene;
 pub mod npy;
+pub mod ray_columns;
 pub mod raycast_reference;
 pub mod selection_reference;
 pub mod two_level_reference;

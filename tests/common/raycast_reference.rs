@@ -33,6 +33,9 @@
 //!   where `|g| < 1e-12`; `V` the view-space direction to the viewer, `+z` for orthographic
 //!   cameras) multiply the opacity after shading (after eq. 8's enhancement) and before the step
 //!   correction (and before eq. 5).
+//! - 2-D transfer functions ([`render_2d`]; DVR): each sample is classified by
+//!   `TransferFunction2D::lookup(v, s)`, `s` the normalised gradient magnitude `|g| / gmax` or
+//!   the Laplacian of `hatchery_data::transfer_function_2d::laplacian`.
 
 #![allow(dead_code)]
 
@@ -229,6 +232,33 @@ pub fn render_enhanced(
     per_pixel(p.width, p.height, |x, y| caster.pixel(tf, x, y))
 }
 
+/// [`render`] (DVR) classified by a 2-D transfer function (value × normalised gradient
+/// magnitude or Laplacian, `hatchery_data::transfer_function_2d`), with Table 1's enhancements.
+pub fn render_2d(
+    volume: &VolumeData,
+    tf: &hatchery_data::transfer_function_2d::TransferFunction2D,
+    p: &RayParams,
+    enhancement: Enhancement,
+) -> Vec<[f32; 4]> {
+    let mut caster = Caster::new(volume, p, Filter::Trilinear);
+    caster.enhancement = enhancement;
+    caster.tf2d = Some(tf);
+    caster.gmax = max_gradient_magnitude(volume);
+    // The 1-D table is not read.
+    let unused = TransferFunction1D::from_points(&[
+        hatchery_data::transfer_function::ControlPoint {
+            value: 0.0,
+            rgba: [0.0; 4],
+        },
+        hatchery_data::transfer_function::ControlPoint {
+            value: 1.0,
+            rgba: [0.0; 4],
+        },
+    ])
+    .unwrap();
+    per_pixel(p.width, p.height, |x, y| caster.pixel(&unused, x, y))
+}
+
 /// Premultiplied RGBA per pixel, row 0 at the top.
 pub fn render(volume: &VolumeData, tf: &TransferFunction1D, p: &RayParams) -> Vec<[f32; 4]> {
     render_with(volume, tf, p, Filter::Trilinear)
@@ -340,6 +370,8 @@ struct Caster<'a> {
     filter: Filter,
     preintegrated: bool,
     enhancement: Enhancement,
+    /// A 2-D transfer function classifies instead of the 1-D one (DVR).
+    tf2d: Option<&'a hatchery_data::transfer_function_2d::TransferFunction2D>,
     h: f32,
     /// Gradient magnitude normaliser (0 for a constant volume).
     gmax: f32,
@@ -368,6 +400,7 @@ impl<'a> Caster<'a> {
             filter,
             preintegrated: false,
             enhancement: Enhancement::default(),
+            tf2d: None,
             h,
             gmax: if needs_gmax {
                 max_gradient_magnitude(volume)
@@ -592,7 +625,17 @@ impl<'a> Caster<'a> {
         for t in self.samples(ray) {
             let pos = ray.at(t);
             let v = self.value(pos);
-            let [r, g, b, mut a] = tf.lookup(v);
+            let [r, g, b, mut a] = match self.tf2d {
+                Some(t) => {
+                    use hatchery_data::transfer_function_2d::{SecondAxis, laplacian};
+                    let s = match t.axis {
+                        SecondAxis::GradientMagnitude => self.gradient_norm(self.gradient(pos)),
+                        SecondAxis::Laplacian => laplacian(self.volume, self.voxel(pos)),
+                    };
+                    t.lookup(v, s)
+                }
+                None => tf.lookup(v),
+            };
             if enhanced {
                 if a <= 0.0 {
                     continue;

@@ -35,6 +35,7 @@ pub mod stream_file;
 pub mod style;
 pub mod tiff_stack;
 pub mod transfer_function;
+pub mod transfer_function_2d;
 pub mod value_stats;
 pub mod volume;
 pub mod volume_file;

@@ -220,7 +220,7 @@ impl VolumeData {
         self.geometry.world_to_voxel(p)
     }
 
-    fn max_voxel(&self) -> Vec3 {
+    pub(crate) fn max_voxel(&self) -> Vec3 {
         Vec3::new(
             (self.dims[0] - 1) as f32,
             (self.dims[1] - 1) as f32,

@@ -192,6 +192,13 @@ impl Node<Value, Ctx> for CurvatureColorNode {
                          function",
                     ));
                 }
+                TransferFunction::TwoD(_) => {
+                    return Err(NodeError::at_port(
+                        "tf",
+                        "a 2-D transfer function; CurvatureColor takes a 1-D colour transfer \
+                         function",
+                    ));
+                }
             };
             let lut = ctx.gpu.texture_2d_init(
                 "curvature lut",

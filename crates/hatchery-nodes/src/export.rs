@@ -81,6 +81,14 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, ExportError> {
                 shape: vec![function.tft.len(), 2],
                 data: function.tft.iter().flatten().copied().collect(),
             },
+            TransferFunction::TwoD(f) => Array {
+                shape: vec![
+                    hatchery_data::transfer_function_2d::ROWS,
+                    hatchery_data::transfer_function::LUT_SIZE,
+                    4,
+                ],
+                data: f.table.iter().flatten().copied().collect(),
+            },
         },
         Value::StyleSet(set) => {
             let size = set.maps.first().map_or(0, |m| m.size as usize);
@@ -226,7 +234,7 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Exp
         Value::TransferFunction(tf) => {
             // The colour ramp (over white, by opacity) or the style index as grey.
             let (w, h) = (256u32, 32u32);
-            image::RgbaImage::from_fn(w, h, |x, _| match tf.as_ref() {
+            image::RgbaImage::from_fn(w, h, |x, y| match tf.as_ref() {
                 TransferFunction::Color(f) => {
                     let c = f.lut[(x as usize * (f.lut.len() - 1)) / (w as usize - 1)];
                     let over = |v: f32| v * c[3] + (1.0 - c[3]);
@@ -237,6 +245,16 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Exp
                         function.tft[(x as usize * (function.tft.len() - 1)) / (w as usize - 1)];
                     let g = to_u8(e[0] / (function.ift.len().max(2) - 1) as f32);
                     image::Rgba([g, g, g, to_u8(e[1])])
+                }
+                TransferFunction::TwoD(f) => {
+                    // Value along x, the second coordinate upwards, over white by opacity.
+                    let cols = hatchery_data::transfer_function::LUT_SIZE;
+                    let rows = hatchery_data::transfer_function_2d::ROWS;
+                    let i = (x as usize * (cols - 1)) / (w as usize - 1);
+                    let j = ((h - 1 - y) as usize * (rows - 1)) / (h as usize - 1);
+                    let c = f.table[j * cols + i];
+                    let over = |v: f32| v * c[3] + (1.0 - c[3]);
+                    image::Rgba([to_u8(over(c[0])), to_u8(over(c[1])), to_u8(over(c[2])), 255])
                 }
             })
         }

@@ -96,6 +96,7 @@ declaring_modules! {
     style_set,
     style_transfer_function,
     transfer_function_1d,
+    transfer_function_2d,
     two_level_raycast,
     volume_file,
 }

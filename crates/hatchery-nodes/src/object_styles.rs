@@ -242,6 +242,10 @@ impl Node<Value, Ctx> for ObjectStylesNode {
                         port,
                         "a style transfer function: ObjectStyles takes colour transfer functions",
                     )),
+                    TransferFunction::TwoD(_) => Err(NodeError::at_port(
+                        port,
+                        "a 2-D transfer function: ObjectStyles takes 1-D colour transfer functions",
+                    )),
                 },
             }
         };

@@ -224,6 +224,10 @@ fn color_tf(
             port,
             "a style transfer function; SelectionRender takes colour transfer functions",
         )),
+        TransferFunction::TwoD(_) => Err(NodeError::at_port(
+            port,
+            "a 2-D transfer function; SelectionRender takes 1-D colour transfer functions",
+        )),
     }
 }
 

@@ -41,12 +41,37 @@ crate::gpu_enum! {
 }
 
 crate::uniform_block! {
-    /// `Enhancement` of shaders/raycast.wgsl: the exponents and the banding period.
+    /// `Enhancement` of shaders/raycast.wgsl: the exponents and the banding period, and a 2-D
+    /// transfer function's second domain.
     pub struct EnhancementUniforms in "raycast" as "Enhancement" {
         pub boundary: f32,
         pub silhouette: f32,
         pub banding_period: f32,
         pub banding_power: f32,
+        pub second_domain: [f32; 2],
+        pub pad0: f32,
+        pub pad1: f32,
+    }
+}
+
+crate::gpu_enum! {
+    /// raycast.wgsl's `RAY_TF2D`: the second axis of a 2-D transfer function (0: a 1-D one).
+    pub enum Tf2dAxis in "raycast" {
+        /// |∇f| / max |∇f|.
+        GradientMagnitude = 1 as "TF2D_GRADIENT",
+        /// ∇²f (data units per voxel²).
+        Laplacian = 2 as "TF2D_LAPLACIAN",
+    }
+}
+
+impl Tf2dAxis {
+    /// The code of a data-crate axis.
+    pub fn of(axis: hatchery_data::transfer_function_2d::SecondAxis) -> Self {
+        use hatchery_data::transfer_function_2d::SecondAxis;
+        match axis {
+            SecondAxis::GradientMagnitude => Self::GradientMagnitude,
+            SecondAxis::Laplacian => Self::Laplacian,
+        }
     }
 }
 
@@ -91,6 +116,9 @@ impl Enhancement {
             silhouette: self.silhouette,
             banding_period: self.banding_period,
             banding_power: self.banding_power,
+            second_domain: [0.0, 1.0],
+            pad0: 0.0,
+            pad1: 0.0,
         }
     }
 }

@@ -15,7 +15,9 @@ mod uniforms;
 pub use crate::kernel::{Kernel, KernelChoice};
 pub use crate::reconstruction::Reconstruction;
 pub use bindings::{RayBindings, RayOutputs, StrokeBindings};
-pub use enhancement::{EnhanceBit, Enhancement, EnhancementParams, EnhancementUniforms};
+pub use enhancement::{
+    EnhanceBit, Enhancement, EnhancementParams, EnhancementUniforms, Tf2dAxis,
+};
 pub(crate) use importance_pass::PingPong;
 pub use importance_pass::{ImportanceBindings, ImportancePipelines, PassUniforms};
 pub use iso_surface_raycast::{IsoSurfaceRaycastNode, IsoSurfaceRaycastParams};
@@ -334,6 +336,13 @@ impl Node<Value, Ctx> for RaycastNode {
             .get("labels")
             .map(|l| l.volume("labels").cloned())
             .transpose()?;
+        if matches!(tf.as_ref(), TransferFunction::TwoD(_)) && options.mode != RayMode::Dvr {
+            return Err(NodeError::at_port(
+                "tf",
+                "a 2-D transfer function classifies DVR samples only: use mode dvr, or a 1-D \
+                 transfer function for mip and iso",
+            ));
+        }
         if options.preintegrated {
             let plain_tf = matches!(tf.as_ref(), TransferFunction::Color(_));
             let shading = matches!(options.shading, RayShading::None | RayShading::Phong);
@@ -408,6 +417,7 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
         .uniform(StrokeUniforms::layout())
         .uniform(EnhancementUniforms::layout())
         .gpu_enum(EnhanceBit::wgsl())
+        .gpu_enum(Tf2dAxis::wgsl())
         .gpu_enum(RayMode::wgsl())
         .gpu_enum(RayShading::wgsl());
 }

@@ -307,8 +307,16 @@ pub fn cast(
         super::Enhancement::OFF
     };
     let enhance = enhancement.bits();
+    // A 2-D transfer function (DVR only; the Raycast node refuses it for the other modes).
+    let (tf2d, second_domain) = match tf {
+        Some(TransferFunction::TwoD(f)) if o.mode == super::RayMode::Dvr => {
+            (super::Tf2dAxis::of(f.axis).code(), f.second_domain)
+        }
+        _ => (0, [0.0, 1.0]),
+    };
     let max_gradient = if tables.info.shading.code() >= RayShading::Lighting.code()
         || enhance & super::EnhanceBit::Boundary.code() != 0
+        || tf2d == super::Tf2dAxis::GradientMagnitude.code()
     {
         volume.max_gradient()
     } else {
@@ -371,7 +379,10 @@ pub fn cast(
     );
     let enhancement_buffer = gpu.buffer_init(
         "enhancement",
-        bytemuck::bytes_of(&enhancement.uniforms()),
+        bytemuck::bytes_of(&super::EnhancementUniforms {
+            second_domain,
+            ..enhancement.uniforms()
+        }),
         wgpu::BufferUsages::UNIFORM,
     );
     let depth_only = wgpu::TextureViewDescriptor {
@@ -408,7 +419,7 @@ pub fn cast(
     let pipelines = ctx
         .cached(
             &format!(
-                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}.{enhance}"
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}.{enhance}.{tf2d}"
             ),
             |gpu| {
                 let constants = [
@@ -420,6 +431,7 @@ pub fn cast(
                     o.reconstruction.constant(),
                     ("RAY_PREINTEGRATED", f64::from(preintegrated)),
                     ("RAY_ENHANCE", f64::from(enhance)),
+                    ("RAY_TF2D", f64::from(tf2d)),
                 ];
                 RayPipelines::specialised(gpu, "raycast", &constants)
             },

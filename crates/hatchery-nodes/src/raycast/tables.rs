@@ -203,6 +203,19 @@ impl RayTables {
                     bytemuck::cast_slice(&tables.tft),
                 ))
             }
+            Some(TransferFunction::TwoD(f)) => {
+                // LUT_SIZE × ROWS (value × second coordinate); the second domain is in the
+                // `Enhancement` block (raycast.wgsl, RAY_TF2D).
+                info.domain = f.domain;
+                let flat: Vec<f32> = f.table.iter().flatten().copied().collect();
+                Some(gpu.texture_2d_init(
+                    "tf 2d",
+                    hatchery_data::transfer_function::LUT_SIZE as u32,
+                    hatchery_data::transfer_function_2d::ROWS as u32,
+                    wgpu::TextureFormat::Rgba32Float,
+                    bytemuck::cast_slice(&flat),
+                ))
+            }
             None => None,
         };
         // Which values the transfer function shows, for empty-space skipping.
@@ -218,6 +231,9 @@ impl RayTables {
                 .chain(per_label.iter().map(|(_, f)| f))
                 .map(|f| (f.tft.iter().map(|e| e[1]).collect(), f.domain))
                 .collect(),
+            // A value is visible where any second coordinate makes it so (exact: the lookup
+            // interpolates between columns as a 1-D table does).
+            Some(TransferFunction::TwoD(f)) => vec![(f.max_opacity_per_value(), f.domain)],
             None => Vec::new(),
         };
         let rows: Vec<bricks::OpacityRow> = visible_rows

@@ -458,6 +458,10 @@ pub enum TransferFunction {
         per_label: Vec<(i64, hatchery_data::style::StyleTransferFunction)>,
         styles: Arc<StyleSet>,
     },
+    /// A 2-D colour transfer function over value × a second coordinate (gradient magnitude or
+    /// Laplacian; `TransferFunction2D`, Kniss et al. 2002 / Svakhine et al. 2005 §3.3). Only
+    /// `Raycast` (mode dvr) classifies with it; the other consumers refuse it.
+    TwoD(hatchery_data::transfer_function_2d::TransferFunction2D),
 }
 
 /// Lit-sphere maps (§3.1), each with its own mip chain, uploaded as the layers of one texture
