@@ -56,7 +56,11 @@ fn dabs_paint_balls_in_world_units_on_a_volume_or_over_labels() {
 
 #[test]
 fn bad_strokes_and_no_grid_are_errors_naming_the_node() {
-    let e = painted(&graph(r#""strokes": "0 0 0 0.25 3; 0 0 zero 0.1 1""#, false)).unwrap_err();
+    let e = painted(&graph(
+        r#""strokes": "0 0 0 0.25 3; 0 0 zero 0.1 1""#,
+        false,
+    ))
+    .unwrap_err();
     assert!(e.contains("paint") && e.contains("dab 2"), "{e}");
     let mut session: Session = common::session_from_text(
         r#"(version: 3, nodes: [(id: "paint", kind: "PaintLabels", params: {})])"#,

@@ -131,6 +131,10 @@ pub fn add_dab(state: &mut EditorState, node: &str, at: Vec3, erase: bool) -> Re
         strokes.push_str("; ");
     }
     strokes.push_str(&hatchery_data::paint::format_dabs(&[dab]));
-    state.set_params(node, &[("strokes", ParamValue::Text(strokes))], "viewport paint")?;
+    state.set_params(
+        node,
+        &[("strokes", ParamValue::Text(strokes))],
+        "viewport paint",
+    )?;
     Ok(radius)
 }

@@ -60,7 +60,11 @@ fn viewport_colour(h: &mut Harness<EditorApp>) -> [f32; 3] {
 }
 
 /// Steps frames until `done` holds (the file poll and the render run on frames).
-pub(super) fn step_until(h: &mut Harness<EditorApp>, what: &str, done: impl Fn(&Harness<EditorApp>) -> bool) {
+pub(super) fn step_until(
+    h: &mut Harness<EditorApp>,
+    what: &str,
+    done: impl Fn(&Harness<EditorApp>) -> bool,
+) {
     let start = std::time::Instant::now();
     while !done(h) {
         assert!(start.elapsed().as_secs() < 60, "waited 60 s for {what}");

@@ -71,7 +71,11 @@ fn a_drag_with_the_paint_tool_paints_the_visible_surface_and_survives_reopening(
     let app = EditorApp::new(state);
     let mut h = wgpu_harness(app);
     wait_for_render(&mut h);
-    assert!(h.state().preview.error.is_none(), "{:?}", h.state().preview.error);
+    assert!(
+        h.state().preview.error.is_none(),
+        "{:?}",
+        h.state().preview.error
+    );
     let before = redness(&mut h);
     let camera_raw_before = camera_raw(&h, "azimuth").map(|v| format!("{v:?}"));
 
@@ -98,7 +102,10 @@ fn a_drag_with_the_paint_tool_paints_the_visible_surface_and_survives_reopening(
     for dab in &dabs {
         // On the sphere's visible surface: radius 0.7 to about a voxel (2/47), facing +z.
         let r = dab.center.length();
-        assert!((r - 0.7).abs() < 0.06, "dab off the surface: {dab:?} (|p| = {r})");
+        assert!(
+            (r - 0.7).abs() < 0.06,
+            "dab off the surface: {dab:?} (|p| = {r})"
+        );
         assert!(dab.center.z > 0.6, "dab not on the visible side: {dab:?}");
         assert_eq!((dab.radius, dab.id), (0.15, 1), "the node's brush");
     }
