@@ -309,7 +309,7 @@ hatchery_graph::node_params! {
         /// objects' largest extent; OBJECT a label id, an object's name or `volume` (the whole
         /// volume); earlier parts own overlapping samples
         pub parts: String = "volume: split x 20";
-        /// draw guides: an arrow from each moved part's original centre (a dot) to its centre
+        /// draw guides: an arrow from each moved part's original centre (a dot) to its moved one
         pub guides: bool = true;
         /// colour of the guides
         pub guide_color: [f32; 4] = [0.15, 0.15, 0.15, 0.9];
