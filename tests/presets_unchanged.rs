@@ -16,6 +16,8 @@
 //! smoothed over ±2 voxels, `surface_smoothing`, checked in tests/label_surfaces.rs).
 //! `importance_frog_mimp` (issue 31: MImP's per-ray rule, the skeleton not drawn on rays that
 //! meet the more important lung, stomach or intestine behind it; tests/importance.rs).
+//! `distance_to_risk_frog` (its organs limited to those every frog-like label map names, so it
+//! also runs on tests/presets_on_other_data.rs's labels).
 
 mod common;
 

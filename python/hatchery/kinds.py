@@ -62,6 +62,7 @@ Kind = Literal[
     'StyleSet',
     'StyleTransferFunction',
     'TransferFunction1D',
+    'TransferFunction2D',
     'TwoLevelRaycast',
     'VolumeFile',
 ]
@@ -604,11 +605,11 @@ class ExplodedView:
     Parameters:
         parts (text; default 'volume: split x 20'): the parts and how they move, `;`-separated:
             `OBJECT: split AXIS DISTANCE` (its halves either side of the plane through its
-            centre normal to x, y or z, moved ±DISTANCE world units along it) or `OBJECT: move
-            DX DY DZ`; OBJECT a label id, an object's name or `volume` (the whole volume);
-            earlier parts own overlapping samples
+            centre normal to x, y or z, moved ±DISTANCE along it) or `OBJECT: move DX DY DZ`;
+            world units, or `%` of the labelled objects' largest extent; OBJECT a label id, an
+            object's name or `volume` (the whole volume); earlier parts own overlapping samples
         guides (bool; default True): draw guides: an arrow from each moved part's original
-            centre (a dot) to its centre
+            centre (a dot) to its moved one
         guide_color (RGBA in [0, 1]; default (0.15, 0.15, 0.15, 0.9)): colour of the guides
         guide_width (float in [0.1, 32]; default 1.5): width of the guides, pixels
         boundary (one of 'filtered', 'point'; default 'filtered'): boundary filtering of the
@@ -1914,6 +1915,47 @@ class TransferFunction1D:
     points: str = '0: 0 0 0 0; 255: 1 1 1 1'
     range_min: float = 0.0
     range_max: float = 255.0
+
+class TransferFunction2D:
+    """A 2-D transfer function (Kniss et al. 2002; Svakhine et al. 2005 §3.3): colour and opacity
+        per voxel of path over the data value × a second coordinate — the gradient magnitude as
+        a fraction of the volume's largest, or the Laplacian in data units per voxel² — drawn by
+        rectangle and triangle widgets (`widgets`) and baked into a 256×256 table. `Raycast`
+        (mode dvr) classifies each sample with it; the other consumers of `tf` refuse it
+        (docs/transfer_functions_2d.md).
+
+    Outputs:
+        tf (TransferFunction): the 2-D transfer function
+
+    Parameters:
+        axis (one of 'gradient_magnitude', 'laplacian'; default 'gradient_magnitude'): the
+            second axis: gradient_magnitude (|∇f| as a fraction of the volume's largest, 0..1)
+            or laplacian (∇²f by second differences, data units per voxel²)
+        value_min (float in [-1e+12, 1e+12]; default 0.0): first data value of the table (data
+            units)
+        value_max (float in [-1e+12, 1e+12]; default 255.0): last data value of the table (data
+            units)
+        second_min (float in [-1e+12, 1e+12]; default 0.0): first second-axis coordinate of the
+            table (a fraction of the largest gradient for gradient_magnitude, data units per
+            voxel² for laplacian)
+        second_max (float in [-1e+12, 1e+12]; default 1.0): last second-axis coordinate of the
+            table (same units as second_min)
+        widgets (text; default 'tri 128 x 0..1 width 60: 1 1 1 0.5'): widgets, ';'-separated:
+            "rect V0..V1 x S0..S1: r g b a" (a box) or "tri C x S0..S1 width W: r g b a"
+            (Kniss's triangle: apex at value C and S0, W data units wide at S1, opacity falling
+            from the centre line to the edges); overlaps take the largest opacity and the
+            opacity-weighted mean colour
+
+    """
+
+    kind = 'TransferFunction2D'
+    category = 'Volume'
+    axis: Literal['gradient_magnitude', 'laplacian'] = 'gradient_magnitude'
+    value_min: float = 0.0
+    value_max: float = 255.0
+    second_min: float = 0.0
+    second_max: float = 1.0
+    widgets: str = 'tri 128 x 0..1 width 60: 1 1 1 0.5'
 
 class TwoLevelRaycast:
     """Two-level volume rendering of a segmented volume (Hadwiger §2.2–2.4): each ray is split into
