@@ -41,6 +41,10 @@ fn relative_values_resolve_to_the_numbers_they_replaced_on_the_presets_own_data(
         let old = common::repo_root()
             .join("tests/fixtures/v2_presets")
             .join(&name);
+        // Presets written after issue 25 had no version 2 with absolute numbers.
+        if !old.exists() {
+            continue;
+        }
         let (old, _) = GraphDocument::load(&old).unwrap();
         let mut session = Session::open(&preset, 64, 48).unwrap();
         let ids: Vec<String> = session.graph.node_ids().map(str::to_owned).collect();
