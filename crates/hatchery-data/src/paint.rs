@@ -16,7 +16,11 @@ pub struct Dab {
 }
 
 /// Parses dabs written "x y z r id; …" (world units; `id` 0 erases). Errors name the dab.
-pub fn parse_dabs(text: &str) -> Result<Vec<Dab>, String> {
+pub fn parse_dabs(text: &str) -> Result<Vec<Dab>, DataError> {
+    parse_dab_list(text).map_err(DataError::Invalid)
+}
+
+fn parse_dab_list(text: &str) -> Result<Vec<Dab>, String> {
     let mut dabs = Vec::new();
     for (n, part) in text.split(';').map(str::trim).enumerate() {
         if part.is_empty() {
@@ -173,7 +177,7 @@ mod tests {
             ("1 2 3 -4 5", "radius positive"),
             ("1 2 3 4 70000", "0 to 65535"),
         ] {
-            let e = parse_dabs(text).unwrap_err();
+            let e = parse_dabs(text).unwrap_err().to_string();
             assert!(e.contains(says), "{text}: {e}");
         }
     }

@@ -75,7 +75,7 @@ fn axis_of(word: &str) -> Option<Vec3> {
 /// `OBJECT: move DX DY DZ` (world units, or with `%` percent of `size`, the largest side of the
 /// labelled objects' box). OBJECT is a label id, an object's name (case ignored) or `volume`
 /// (the whole volume: geometrical splitting). Errors name the entry.
-pub fn parse_parts(
+pub(crate) fn parse_parts(
     text: &str,
     objects: &std::collections::BTreeMap<u16, String>,
     size: f32,
