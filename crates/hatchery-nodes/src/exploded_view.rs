@@ -541,15 +541,8 @@ impl Node<Value, Ctx> for ExplodedViewNode {
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
         let gpu = &ctx.gpu;
         let volume_texture = volume.texture(gpu).map_err(err)?;
-        let contours = styles
-            .iter()
-            .any(|s| s.enabled && s.mode == RenderMode::Contours);
-        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
-        let max_gradient = match (object_normals, contours) {
-            (true, _) => 0.5 / min_spacing,
-            (false, true) => volume.max_gradient(),
-            (false, false) => 1.0,
-        };
+        let max_gradient =
+            crate::raycast::objects::segmented_max_gradient(volume, &styles, object_normals);
         let uniforms = RayUniforms::new(
             &camera,
             v,

@@ -3,7 +3,7 @@
 //! transfer functions and modes) and the brick table of drawn objects, and the check that labels
 //! and volume share one grid.
 
-use crate::value::{Compositing, ImportanceMethod, Labels, ObjectStyle, RenderMode};
+use crate::value::{Compositing, ImportanceMethod, Labels, ObjectStyle, RenderMode, Volume};
 use hatchery_data::transfer_function::LUT_SIZE;
 use hatchery_graph::NodeError;
 
@@ -91,6 +91,31 @@ pub(crate) struct ObjectTables {
 /// Ids per row pair of the object table: id → column id % 256, rows 2 · (id / 256) (modes) and
 /// the one after (TF domain), so every u16 id fits any adapter's 2-D texture limit.
 pub(crate) const TABLE_WIDTH: u32 = 256;
+
+/// The gradient magnitude the segmented ray casters normalise by: with normals from object
+/// masks, a mask's central difference across a 0 → 1 step (at most 0.5 per voxel of the
+/// smallest spacing); else the volume's largest gradient where a drawn object draws contours;
+/// else 1.
+pub(crate) fn segmented_max_gradient(
+    volume: &Volume,
+    styles: &[ObjectStyle],
+    object_normals: bool,
+) -> f32 {
+    let contours = styles
+        .iter()
+        .any(|s| s.enabled && s.mode == RenderMode::Contours);
+    let min_spacing = volume
+        .data
+        .spacing()
+        .iter()
+        .copied()
+        .fold(f32::INFINITY, f32::min);
+    match (object_normals, contours) {
+        (true, _) => 0.5 / min_spacing,
+        (false, true) => volume.max_gradient(),
+        (false, false) => 1.0,
+    }
+}
 
 pub(crate) fn object_tables(styles: &[ObjectStyle]) -> ObjectTables {
     let columns = styles
