@@ -98,16 +98,34 @@ struct Enhancement {
     banding_power: f32,
     // A 2-D transfer function's second domain (RAY_TF2D != 0; docs/transfer_functions_2d.md).
     second_domain: vec2<f32>,
-    pad0: f32,
-    pad1: f32,
+    // The second field's value range: second_field's w is (S − min) / (max − min).
+    second_range: vec2<f32>,
 };
 @group(1) @binding(3) var<uniform> enhancement: Enhancement;
+
+// Svakhine et al. 2005 §3.2–3.3: fields besides the rendered one, on its grid. second_field:
+// xyz = ∇S / max |∇S| (world axes), w = S normalised over its range; vector_field: xyz =
+// U / max |U|. RAY_ENHANCE_FIELD (an ENHANCE_FROM_* constant) says which one boundary and
+// silhouette enhancement measure; 1³ blanks stand in for fields a pipeline does not read.
+@group(1) @binding(4) var second_field: texture_3d<f32>;
+@group(1) @binding(5) var vector_field: texture_3d<f32>;
+const ENHANCE_FROM_RENDERED: u32 = 0u;
+const ENHANCE_FROM_SECOND: u32 = 1u;
+const ENHANCE_FROM_VECTOR: u32 = 2u;
+override RAY_ENHANCE_FIELD: u32 = 0u;
+
+// A field texture on the volume's grid at voxel-space q (trilinear, as the volume is sampled).
+fn field_sample(field: texture_3d<f32>, q: vec3<f32>) -> vec4<f32> {
+    let p = clamp(q, vec3<f32>(0.0), ray.dims - 1.0);
+    return textureSampleLevel(field, linear_clamp, (p + 0.5) / ray.dims, 0.0);
+}
 
 // 2-D transfer functions (Kniss et al. 2002, Svakhine et al. 2005 §3.3): tf_table holds a
 // LUT_SIZE × LUT_SIZE table over value × a second coordinate, RAY_TF2D says which (a TF2D_*
 // constant; 0: a 1-D table, none of this code is in the loop). Specialised by the Raycast node.
 const TF2D_GRADIENT: u32 = 1u;
 const TF2D_LAPLACIAN: u32 = 2u;
+const TF2D_SECOND: u32 = 3u;
 override RAY_TF2D: u32 = 0u;
 
 fn enhanced(bit: u32) -> bool {
@@ -320,6 +338,10 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             entry = table2d_lookup(v, s, enhancement.second_domain);
         } else if RAY_TF2D == TF2D_LAPLACIAN {
             entry = table2d_lookup(v, laplacian_at(q), enhancement.second_domain);
+        } else if RAY_TF2D == TF2D_SECOND {
+            let range = enhancement.second_range;
+            let s = range.x + field_sample(second_field, q).w * (range.y - range.x);
+            entry = table2d_lookup(v, s, enhancement.second_domain);
         } else {
             entry = table_lookup_row(v, row.row, row.domain);
         }
@@ -387,7 +409,18 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
             a = min(1.0, a / max(1e-6, min(1.0, lt.w + (1.0 - g_norm))));
         }
         if enhanced(ENHANCE_BOUNDARY | ENHANCE_SILHOUETTE) {
-            a *= enhancement_factor(g_norm, n, v_dir);
+            if RAY_ENHANCE_FIELD == ENHANCE_FROM_RENDERED {
+                a *= enhancement_factor(g_norm, n, v_dir);
+            } else {
+                // Already divided by its largest magnitude, in world axes.
+                var f = vec3<f32>(0.0);
+                if RAY_ENHANCE_FIELD == ENHANCE_FROM_SECOND {
+                    f = field_sample(second_field, q).xyz;
+                } else {
+                    f = field_sample(vector_field, q).xyz;
+                }
+                a *= enhancement_factor(clamp(length(f), 0.0, 1.0), view_normal(f), v_dir);
+            }
         }
         // Global alpha ρ (Yuan & Chen §5), then the opacity correction for the step length
         // (TF opacities are per voxel).

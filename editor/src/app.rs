@@ -29,6 +29,7 @@ pub fn port_color(ty: PortType) -> Color32 {
         PortType::Importance => Color32::from_rgb(250, 130, 60),
         PortType::Annotations => Color32::from_rgb(120, 120, 240),
         PortType::Strokes => Color32::from_rgb(90, 90, 90),
+        PortType::VectorField => Color32::from_rgb(210, 170, 120),
     }
 }
 

@@ -47,6 +47,7 @@ Kind = Literal[
     'ObjectStyles',
     'Over',
     'PaintLabels',
+    'ProceduralVectorField',
     'ProceduralVolume',
     'Raycast',
     'RidgeValley',
@@ -64,6 +65,8 @@ Kind = Literal[
     'TransferFunction1D',
     'TransferFunction2D',
     'TwoLevelRaycast',
+    'VectorField',
+    'VectorOperator',
     'VolumeFile',
 ]
 """Every node kind's name."""
@@ -1214,20 +1217,49 @@ class PaintLabels:
     id: int = 1
     name: str = 'selection'
 
+class ProceduralVectorField:
+    """Analytic vector fields on a resolution³ grid over [-1, 1]³ (the grid of ProceduralVolume):
+        convection, the velocity of Rayleigh–Bénard convection rolls (U = (∂ψ/∂y, −∂ψ/∂x, 0) of
+        ψ = a(z)·sin(2π(x + 1))·sin(π(y + 1)/2), four rolls across x, divergence-free), the flow
+        of ProceduralVolume's convection temperature; abc, the Arnold–Beltrami–Childress flow U
+        = (A sin πz + C cos πy, B sin πx + A cos πz, C sin πy + B cos πx), a Beltrami field (∇×U
+        = π·U).
+
+    Outputs:
+        field (VectorField): the generated vector field
+
+    Parameters:
+        shape (one of 'convection', 'abc'; default 'convection'): which field: convection (the
+            velocity of Rayleigh–Bénard rolls, ProceduralVolume convection's flow) or abc (the
+            Arnold–Beltrami–Childress flow, whose curl is π·U)
+        resolution (int in [4, 512]; default 96): voxels along each axis
+        abc ((x, y, z); default (1.0, 0.8, 0.6)): abc: the coefficients A, B, C
+
+    """
+
+    kind = 'ProceduralVectorField'
+    category = 'Data'
+    shape: Literal['convection', 'abc'] = 'convection'
+    resolution: int = 96
+    abc: Tuple[float, float, float] = (1.0, 0.8, 0.6)
+
 class ProceduralVolume:
     """Analytic distance fields on a resolution³ grid over [-1, 1]³ (positive inside, iso 0 is the
         surface): three nested spherical shells (centre radii 0.8, 0.5, 0.2, half-thickness
         0.05), a sphere, a torus in the xy plane, an engine-like block (a box with two vertical
         bores and a horizontal one) and the two pistons that sit in its bores; and one density
         field, not a distance: plume, the air around a hot plume rising along +y from a small
-        heated ball (1 in still air, lower where it is hot), a subject for Schlieren.
+        heated ball (1 in still air, lower where it is hot), a subject for Schlieren; and
+        convection, the temperature of Rayleigh–Bénard convection rolls between a hot floor (y =
+        −1, 1) and a cold lid (y = 1, 0), whose velocity ProceduralVectorField's convection
+        gives (Svakhine et al. 2005 Fig. 4's subject).
 
     Outputs:
         volume (Volume): the generated scalar field
 
     Parameters:
-        shape (one of 'shells', 'sphere', 'torus', 'engine_block', 'pistons', 'plume'; default
-            'shells'): which field to generate
+        shape (one of 'shells', 'sphere', 'torus', 'engine_block', 'pistons', 'plume',
+            'convection'; default 'shells'): which field to generate
         resolution (int in [4, 512]; default 96): voxels along each axis
         radius (float in [0.01, 1]; default 0.7): sphere radius, or torus major radius
         minor_radius (float in [0.01, 1]; default 0.25): torus tube radius
@@ -1236,7 +1268,7 @@ class ProceduralVolume:
 
     kind = 'ProceduralVolume'
     category = 'Data'
-    shape: Literal['shells', 'sphere', 'torus', 'engine_block', 'pistons', 'plume'] = 'shells'
+    shape: Literal['shells', 'sphere', 'torus', 'engine_block', 'pistons', 'plume', 'convection'] = 'shells'
     resolution: int = 96
     radius: float = 0.7
     minor_radius: float = 0.25
@@ -1255,7 +1287,9 @@ class Raycast:
         and its colour lies under what is in front; `rho` scales every sample's opacity (DVR).
         Svakhine et al. 2005's Table 1 enhancements of each sample's opacity (DVR): boundary
         enhancement |∇P|^n, silhouette enhancement (1 − |∇P̂·V|)^n and the banding widget ((1 +
-        sin(o·π·m)) / 2)^n (docs/enhancement.md).
+        sin(o·π·m)) / 2)^n, measuring the rendered field, a second field's gradient (`second`)
+        or a vector field U (`vector`: |U|^n, (1 − |Û·V|)^n); a 2-D transfer function over value
+        × gradient magnitude, Laplacian or the second field (docs/enhancement.md).
 
     Inputs:
         volume (Volume, required): the scalar field
@@ -1263,6 +1297,10 @@ class Raycast:
         tf (TransferFunction, required): colour/opacity or style transfer function
         light (Light, optional): the light (default: a headlight)
         labels (Volume, optional): object labels on the same grid (per-label style rows, §4.2)
+        second (Volume, optional): a second scalar field on the same grid (Svakhine et al. 2005
+            §3.2–3.3): a 2-D transfer function's second_field axis, or enhancement_field second
+        vector (VectorField, optional): a vector field on the same grid, for enhancement_field
+            vector (Table 1's U)
         strokes (Mask, optional): lines or strokes to embed (Yuan & Chen §5), with
             `strokes_depth`
         strokes_depth (GBuffer, optional): the depth of the surface the strokes were drawn on
@@ -1330,6 +1368,12 @@ class Raycast:
         banding_power (float in [0.05, 16]; default 1.0): banding widget power n (Svakhine et
             al. 2005 §3.3, Table 1): above 1 makes the bands thinner and sharper, below 1 softer
             and wider
+        enhancement_field (one of 'rendered', 'second', 'vector'; default 'rendered'): what
+            boundary and silhouette enhancement measure (Svakhine et al. 2005 §3.2, Table 1):
+            rendered (∇P of the rendered field), second (the gradient of the field on the
+            `second` input, e.g. temperature while density is rendered) or vector (the vector
+            field U on the `vector` input itself: |U|^n, divided by the largest |U|, and (1 −
+            |Û·V|)^n, so flow seen side-on keeps its opacity)
         rho (float in [0, 1]; default 1.0): global alpha ρ (Yuan & Chen §5): every sample's
             opacity × ρ (DVR), so embedded strokes show through
         stroke_color (RGBA in [0, 1]; default (0.0, 0.0, 0.0, 1.0)): colour of embedded strokes
@@ -1370,6 +1414,7 @@ class Raycast:
     silhouette_enhancement: float = 0.0
     banding: float = 0.0
     banding_power: float = 1.0
+    enhancement_field: Literal['rendered', 'second', 'vector'] = 'rendered'
     rho: float = 1.0
     stroke_color: Tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
     early_termination: float = 0.99
@@ -1919,25 +1964,28 @@ class TransferFunction1D:
 class TransferFunction2D:
     """A 2-D transfer function (Kniss et al. 2002; Svakhine et al. 2005 §3.3): colour and opacity
         per voxel of path over the data value × a second coordinate — the gradient magnitude as
-        a fraction of the volume's largest, or the Laplacian in data units per voxel² — drawn by
-        rectangle and triangle widgets (`widgets`) and baked into a 256×256 table. `Raycast`
-        (mode dvr) classifies each sample with it; the other consumers of `tf` refuse it
-        (docs/transfer_functions_2d.md).
+        a fraction of the volume's largest, the Laplacian in data units per voxel², or a second
+        field's value (Raycast's `second` input: another variable, or a vector field's |U| or
+        |∇×U| from VectorOperator) — drawn by rectangle and triangle widgets (`widgets`) and
+        baked into a 256×256 table. `Raycast` (mode dvr) classifies each sample with it; the
+        other consumers of `tf` refuse it (docs/transfer_functions_2d.md).
 
     Outputs:
         tf (TransferFunction): the 2-D transfer function
 
     Parameters:
-        axis (one of 'gradient_magnitude', 'laplacian'; default 'gradient_magnitude'): the
-            second axis: gradient_magnitude (|∇f| as a fraction of the volume's largest, 0..1)
-            or laplacian (∇²f by second differences, data units per voxel²)
+        axis (one of 'gradient_magnitude', 'laplacian', 'second_field'; default
+            'gradient_magnitude'): the second axis: gradient_magnitude (|∇f| as a fraction of
+            the volume's largest, 0..1), laplacian (∇²f by second differences, data units per
+            voxel²) or second_field (the value of the field on Raycast's `second` input, its
+            data units)
         value_min (float in [-1e+12, 1e+12]; default 0.0): first data value of the table (data
             units)
         value_max (float in [-1e+12, 1e+12]; default 255.0): last data value of the table (data
             units)
         second_min (float in [-1e+12, 1e+12]; default 0.0): first second-axis coordinate of the
             table (a fraction of the largest gradient for gradient_magnitude, data units per
-            voxel² for laplacian)
+            voxel² for laplacian, the second field's data units for second_field)
         second_max (float in [-1e+12, 1e+12]; default 1.0): last second-axis coordinate of the
             table (same units as second_min)
         widgets (text; default 'tri 128 x 0..1 width 60: 1 1 1 0.5'): widgets, ';'-separated:
@@ -1950,7 +1998,7 @@ class TransferFunction2D:
 
     kind = 'TransferFunction2D'
     category = 'Volume'
-    axis: Literal['gradient_magnitude', 'laplacian'] = 'gradient_magnitude'
+    axis: Literal['gradient_magnitude', 'laplacian', 'second_field'] = 'gradient_magnitude'
     value_min: float = 0.0
     value_max: float = 255.0
     second_min: float = 0.0
@@ -2044,6 +2092,50 @@ class TwoLevelRaycast:
     sparse_mode: Literal['contours', 'dvr', 'shaded_dvr', 'tone', 'mip'] = 'contours'
     sparse_compositing: Literal['mip', 'over', 'sum'] = 'mip'
     thinning_levels: int = 4
+
+class VectorField:
+    """A vector field U = (x, y, z) made of three scalar volumes on one grid, each the component
+        along a world axis (e.g. velocity components a simulation wrote as separate files).
+        Raycast's `vector` input reads it for Svakhine et al. 2005's vector enhancements;
+        VectorOperator makes scalar fields of it (|U|, ∇·U, |∇×U|).
+
+    Inputs:
+        x (Volume, required): U_x, the component along world x
+        y (Volume, required): U_y, on the same grid
+        z (Volume, required): U_z, on the same grid
+
+    Outputs:
+        field (VectorField): the vector field
+
+    """
+
+    kind = 'VectorField'
+    category = 'Data'
+
+class VectorOperator:
+    """A scalar field of a vector field by one of Svakhine et al. 2005's Table 1 operators: the
+        magnitude |U|, the divergence ∇·U or the curl's magnitude |∇×U| (vortex cores), on the
+        field's grid. Derivatives are central differences (one-sided at the border) with respect
+        to world coordinates, so rotated and anisotropic grids give the field's own numbers.
+        Computed once on the CPU (data preparation). Render it, or give it to Raycast's `second`
+        input: a 2-D transfer function over value × it, or enhancement by its gradient.
+
+    Inputs:
+        field (VectorField, required): the vector field U
+
+    Outputs:
+        volume (Volume): the operator's value at every voxel
+
+    Parameters:
+        operator (one of 'magnitude', 'divergence', 'curl_magnitude'; default 'magnitude'):
+            magnitude |U| (U's units), divergence ∇·U or curl_magnitude |∇×U| (U's units per
+            world unit; Svakhine et al. 2005 Table 1)
+
+    """
+
+    kind = 'VectorOperator'
+    category = 'Volume'
+    operator: Literal['magnitude', 'divergence', 'curl_magnitude'] = 'magnitude'
 
 class VolumeFile:
     """Reads a volume: NIfTI-1 or NIfTI-2 (.nii, .nii.gz, scl_slope/scl_inter applied), FreeSurfer

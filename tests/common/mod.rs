@@ -125,6 +125,17 @@ pub fn run_node(
     inputs: Vec<(&'static str, hatchery_nodes::Value)>,
     params: &[(&str, ParamValue)],
 ) -> Vec<hatchery_nodes::Value> {
+    try_run_node(session, kind, inputs, params).unwrap_or_else(|e| panic!("{kind}: {e}"))
+}
+
+/// [`run_node`], returning the node's error (its message, with the port it names) instead of
+/// failing.
+pub fn try_run_node(
+    session: &mut Session,
+    kind: &str,
+    inputs: Vec<(&'static str, hatchery_nodes::Value)>,
+    params: &[(&str, ParamValue)],
+) -> Result<Vec<hatchery_nodes::Value>, hatchery_graph::NodeError> {
     let node = session
         .registry
         .node(kind)
@@ -148,13 +159,11 @@ pub fn run_node(
                 .map(|(_, v)| v.clone())
         })
         .collect();
-    let outputs = node
-        .execute(
-            &mut session.ctx,
-            &NodeInputs::new(names, ordered),
-            &Params::new(values, None),
-        )
-        .unwrap_or_else(|e| panic!("{kind}: {e}"));
+    let outputs = node.execute(
+        &mut session.ctx,
+        &NodeInputs::new(names, ordered),
+        &Params::new(values, None),
+    )?;
     // What the executor checks: one value per declared output, of the declared type.
     assert_eq!(
         outputs.len(),
@@ -164,7 +173,7 @@ pub fn run_node(
     for (value, port) in outputs.iter().zip(&schema.outputs) {
         assert_eq!(value.port_type(), port.ty, "{kind}: output `{}`", port.name);
     }
-    outputs
+    Ok(outputs)
 }
 
 /// `f` sampled on an n³ grid over world [-1, 1]³ (analytic surfaces as level sets).

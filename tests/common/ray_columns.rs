@@ -84,6 +84,21 @@ pub fn raycast_image(
     step: f32,
     extra: &[(&str, hatchery_graph::ParamValue)],
 ) -> Vec<[f32; 4]> {
+    let inputs = vec![("tf", tf)];
+    raycast_with(session, volume, camera, inputs, shading, step, extra)
+        .unwrap_or_else(|e| panic!("Raycast: {e}"))
+}
+
+/// [`raycast_image`] with more `inputs` (`tf` among them), returning the node's error.
+pub fn raycast_with(
+    session: &mut hatchery_nodes::Session,
+    volume: &std::sync::Arc<hatchery_nodes::value::Volume>,
+    camera: &Camera,
+    mut inputs: Vec<(&'static str, hatchery_nodes::Value)>,
+    shading: &str,
+    step: f32,
+    extra: &[(&str, hatchery_graph::ParamValue)],
+) -> Result<Vec<[f32; 4]>, hatchery_graph::NodeError> {
     use hatchery_graph::ParamValue;
     use hatchery_nodes::Value;
     let mut params = vec![
@@ -93,21 +108,14 @@ pub fn raycast_image(
         ("early_termination", ParamValue::Float(1.0)),
     ];
     params.extend(extra.iter().cloned());
-    let outputs = super::run_node(
-        session,
-        "Raycast",
-        vec![
-            ("volume", Value::Volume(volume.clone())),
-            ("camera", Value::Camera(std::sync::Arc::new(camera.clone()))),
-            ("tf", tf),
-        ],
-        &params,
-    );
+    inputs.push(("volume", Value::Volume(volume.clone())));
+    inputs.push(("camera", Value::Camera(std::sync::Arc::new(camera.clone()))));
+    let outputs = super::try_run_node(session, "Raycast", inputs, &params)?;
     let a = hatchery_nodes::export::to_array(&outputs[0], &session.ctx.gpu).unwrap();
-    a.data
+    Ok(a.data
         .chunks_exact(4)
         .map(|c| [c[0], c[1], c[2], c[3]])
-        .collect()
+        .collect())
 }
 
 /// The CPU reference's parameters for the same rays as [`raycast_image`] (DVR, the node's

@@ -187,6 +187,54 @@ impl Default for Enhancement {
     }
 }
 
+/// Fields besides the rendered one (Svakhine et al. 2005 §3.2–3.3), on its grid: a second
+/// scalar field S (a 2-D transfer function's second_field axis; `Measure::Second`) and a vector
+/// field U (`Measure::Vector`).
+#[derive(Clone, Copy, Default)]
+pub struct Fields<'a> {
+    pub second: Option<&'a VolumeData>,
+    pub vector: Option<&'a hatchery_data::vector_field::VectorFieldData>,
+    pub measure: Measure,
+}
+
+/// What boundary and silhouette enhancement measure (the node's `enhancement_field`).
+#[derive(Clone, Copy, Default, PartialEq, Eq, Debug)]
+pub enum Measure {
+    /// ∇P / max |∇P| of the rendered field.
+    #[default]
+    Rendered,
+    /// ∇S / max |∇S| of the second field.
+    Second,
+    /// U / max |U|.
+    Vector,
+}
+
+/// [`render`] (DVR) with a 1-D (`tf2d` None) or 2-D transfer function, Table 1's enhancements
+/// and the `fields` they read.
+pub fn render_fields(
+    volume: &VolumeData,
+    tf: &TransferFunction1D,
+    tf2d: Option<&hatchery_data::transfer_function_2d::TransferFunction2D>,
+    p: &RayParams,
+    enhancement: Enhancement,
+    fields: Fields,
+) -> Vec<[f32; 4]> {
+    let mut caster = Caster::new(volume, p, Filter::Trilinear);
+    caster.enhancement = enhancement;
+    caster.tf2d = tf2d;
+    caster.gmax = max_gradient_magnitude(volume);
+    caster.second = fields.second.map(|s| (s, max_gradient_magnitude(s)));
+    caster.vector = fields.vector.map(|u| {
+        let component = |c: usize| {
+            let values = u.vectors.iter().map(|v| v[c]).collect();
+            VolumeData::with_geometry(u.dims, u.geometry, values).unwrap()
+        };
+        ([0, 1, 2].map(component), u.max_magnitude())
+    });
+    caster.measure = fields.measure;
+    per_pixel(p.width, p.height, |x, y| caster.pixel(tf, x, y))
+}
+
 /// `x^n` for `x` in [0, 1] (0 for `x <= 0`), as the shader's `power`.
 fn power(x: f32, n: f32) -> f32 {
     if x <= 0.0 { 0.0 } else { x.min(1.0).powf(n) }
@@ -372,6 +420,11 @@ struct Caster<'a> {
     enhancement: Enhancement,
     /// A 2-D transfer function classifies instead of the 1-D one (DVR).
     tf2d: Option<&'a hatchery_data::transfer_function_2d::TransferFunction2D>,
+    /// The second field with its largest gradient magnitude.
+    second: Option<(&'a VolumeData, f32)>,
+    /// The vector field's components with its largest magnitude.
+    vector: Option<([VolumeData; 3], f32)>,
+    measure: Measure,
     h: f32,
     /// Gradient magnitude normaliser (0 for a constant volume).
     gmax: f32,
@@ -401,6 +454,9 @@ impl<'a> Caster<'a> {
             preintegrated: false,
             enhancement: Enhancement::default(),
             tf2d: None,
+            second: None,
+            vector: None,
+            measure: Measure::Rendered,
             h,
             gmax: if needs_gmax {
                 max_gradient_magnitude(volume)
@@ -607,14 +663,34 @@ impl<'a> Caster<'a> {
         if e.boundary <= 0.0 && e.silhouette <= 0.0 {
             return 1.0;
         }
-        let g = self.gradient(pos);
-        let (n, _, _) = self.frame(pos, g);
         let v = if self.p.orthographic {
             Vec3::Z
         } else {
             -self.p.view.transform_point3(pos).normalize_or_zero()
         };
-        e.factor(self.gradient_norm(g), n, v)
+        // The measured field, divided by its largest magnitude.
+        let scaled = |f: Vec3, max: f32| if max > 0.0 { f / max } else { Vec3::ZERO };
+        let f = match self.measure {
+            Measure::Rendered => {
+                let g = self.gradient(pos);
+                let (n, _, _) = self.frame(pos, g);
+                return e.factor(self.gradient_norm(g), n, v);
+            }
+            Measure::Second => {
+                let (s, max) = self.second.expect("Measure::Second needs a second field");
+                scaled(s.gradient(self.voxel(pos)), max)
+            }
+            Measure::Vector => {
+                let (u, max) = self.vector.as_ref().expect("Measure::Vector needs U");
+                let q = self.voxel(pos);
+                scaled(
+                    Vec3::from(u.each_ref().map(|c| c.sample_trilinear(q))),
+                    *max,
+                )
+            }
+        };
+        let (n, _, _) = self.frame(pos, f);
+        e.factor(f.length().min(1.0), n, v)
     }
 
     fn dvr(&self, tf: &TransferFunction1D, ray: &Ray) -> [f32; 4] {
@@ -631,6 +707,10 @@ impl<'a> Caster<'a> {
                     let s = match t.axis {
                         SecondAxis::GradientMagnitude => self.gradient_norm(self.gradient(pos)),
                         SecondAxis::Laplacian => laplacian(self.volume, self.voxel(pos)),
+                        SecondAxis::SecondField => {
+                            let (s, _) = self.second.expect("second_field needs a second field");
+                            s.sample_trilinear(self.voxel(pos))
+                        }
                     };
                     t.lookup(v, s)
                 }

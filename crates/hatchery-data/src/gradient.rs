@@ -10,9 +10,45 @@ use crate::voxels::Voxel;
 /// [`VolumeData::gradient`] at every voxel centre. Used to normalise gradient magnitudes to
 /// [0, 1]. 0 for a constant volume.
 pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
+    let nz = volume.dims[2];
+    (0..nz)
+        .into_par_iter()
+        .map(|z| {
+            let mut max2 = 0.0f32;
+            slice_gradients(volume, z, |_, g| {
+                let m2 = g.length_squared();
+                // Differences across "no data" are not gradients.
+                if m2.is_finite() {
+                    max2 = max2.max(m2);
+                }
+            });
+            max2
+        })
+        .reduce(|| 0.0, f32::max)
+        .sqrt()
+}
+
+/// The world-space gradients at the voxel centres of slices `z0..z1` (x fastest), as
+/// [`max_gradient_magnitude`] takes them; 0 where a difference crosses "no data". One rayon
+/// task per slice.
+pub fn voxel_gradients(volume: &VolumeData, z0: u32, z1: u32) -> Vec<glam::Vec3> {
+    let slice = volume.dims[0] as usize * volume.dims[1] as usize;
+    let mut out = vec![glam::Vec3::ZERO; slice * (z1 - z0) as usize];
+    out.par_chunks_mut(slice.max(1))
+        .zip(z0..z1)
+        .for_each(|(chunk, z)| {
+            slice_gradients(volume, z, |i, g| {
+                chunk[i] = if g.is_finite() { g } else { glam::Vec3::ZERO };
+            })
+        });
+    out
+}
+
+/// Calls `f(i, ∇f)` for every voxel `i` of slice `z` (index within the slice): central
+/// differences on the grid (one-sided at the borders) mapped to world units.
+fn slice_gradients(volume: &VolumeData, z: u32, mut f: impl FnMut(usize, glam::Vec3)) {
     let [nx, ny, nz] = volume.dims.map(|d| d as usize);
     let slice = nx * ny;
-
     // Voxel-step differences → world gradient: M^-T of the voxel → world linear part.
     let to_world = {
         let g = &volume.geometry;
@@ -21,39 +57,30 @@ pub fn max_gradient_magnitude(volume: &VolumeData) -> f32 {
             .transpose()
             .as_mat3()
     };
-    crate::with_voxels!(&volume.voxels, values => (0..nz)
-        .into_par_iter()
-        .map(|z| {
-            let mut max2 = 0.0f32;
-            // Neighbour offsets and voxel distances per axis at index i of n.
-            let span = |i: usize, n: usize, stride: usize| {
-                let lo = i.saturating_sub(1);
-                let hi = (i + 1).min(n - 1);
-                ((i - lo) * stride, (hi - i) * stride, (hi - lo) as f32)
-            };
-            let (zl, zh, zd) = span(z, nz, slice);
-            for y in 0..ny {
-                let (yl, yh, yd) = span(y, ny, nx);
-                for x in 0..nx {
-                    let (xl, xh, xd) = span(x, nx, 1);
-                    let i = x + nx * (y + ny * z);
-                    let g = to_world
-                        * glam::Vec3::new(
-                            (values[i + xh].to_f32() - values[i - xl].to_f32()) / xd,
-                            (values[i + yh].to_f32() - values[i - yl].to_f32()) / yd,
-                            (values[i + zh].to_f32() - values[i - zl].to_f32()) / zd,
-                        );
-                    let m2 = g.length_squared();
-                    // Differences across "no data" are not gradients.
-                    if m2.is_finite() {
-                        max2 = max2.max(m2);
-                    }
-                }
+    let z = z as usize;
+    // Neighbour offsets and voxel distances per axis at index i of n.
+    let span = |i: usize, n: usize, stride: usize| {
+        let lo = i.saturating_sub(1);
+        let hi = (i + 1).min(n - 1);
+        ((i - lo) * stride, (hi - i) * stride, (hi - lo) as f32)
+    };
+    let (zl, zh, zd) = span(z, nz, slice);
+    crate::with_voxels!(&volume.voxels, values => {
+        for y in 0..ny {
+            let (yl, yh, yd) = span(y, ny, nx);
+            for x in 0..nx {
+                let (xl, xh, xd) = span(x, nx, 1);
+                let i = x + nx * (y + ny * z);
+                let g = to_world
+                    * glam::Vec3::new(
+                        (values[i + xh].to_f32() - values[i - xl].to_f32()) / xd,
+                        (values[i + yh].to_f32() - values[i - yl].to_f32()) / yd,
+                        (values[i + zh].to_f32() - values[i - zl].to_f32()) / zd,
+                    );
+                f(x + nx * y, g);
             }
-            max2
-        })
-        .reduce(|| 0.0, f32::max))
-    .sqrt()
+        }
+    })
 }
 
 #[cfg(test)]

@@ -37,6 +37,7 @@ pub mod tiff_stack;
 pub mod transfer_function;
 pub mod transfer_function_2d;
 pub mod value_stats;
+pub mod vector_field;
 pub mod volume;
 pub mod volume_file;
 pub mod voxels;

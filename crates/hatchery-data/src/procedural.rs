@@ -1,6 +1,7 @@
 //! Built-in volumes that are always available and deterministic: signed distance fields on a
 //! grid covering world [-1, 1]^3, positive inside, so iso 0 gives the exact shape; and one
-//! density field, [`plume`], a subject for Schlieren photographs.
+//! density field, [`plume`], a subject for Schlieren photographs; and [`convection`]'s
+//! temperature.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -121,6 +122,20 @@ pub fn plume(resolution: u32) -> Result<VolumeData, DataError> {
         let radial = ((dx * dx + dz * dz) / (width * width)).powi(2);
         let ball = (p - Vec3::new(0.0, PLUME_SOURCE_Y, 0.0)).length_squared() / (0.05 * 0.05);
         1.0 - column * (-0.5 * radial).exp() - 0.3 * (-0.5 * ball).exp()
+    })
+}
+
+/// The temperature of the Rayleigh–Bénard convection rolls of
+/// [`crate::vector_field::convection_rolls`] (Svakhine et al. 2005, Figure 4's subject): the
+/// conduction profile from 1 at the hot floor (y = −1) to 0 at the cold lid (y = 1), plus the
+/// rolls' perturbation, warm where the fluid rises: T = (1 − y)/2 − 0.25·a(z)·cos(k(x + 1))·
+/// sin(π(y + 1)/2). Values lie in about [−0.2, 1.2].
+pub fn convection(resolution: u32) -> Result<VolumeData, DataError> {
+    use crate::vector_field::{ROLL_WAVENUMBER, roll_amplitude};
+    field(resolution, |p| {
+        let rolls = (ROLL_WAVENUMBER * (p.x + 1.0)).cos()
+            * (std::f32::consts::FRAC_PI_2 * (p.y + 1.0)).sin();
+        (1.0 - p.y) / 2.0 - 0.25 * roll_amplitude(p.z) * rolls
     })
 }
 

@@ -32,6 +32,9 @@ pub enum SecondAxis {
     GradientMagnitude,
     /// ∇²f by second differences in voxel space (data units per voxel²).
     Laplacian,
+    /// The value of a second scalar field on the same grid (its data units; Svakhine et al.
+    /// 2005 §3.3's U₂: another simulation variable, or a vector field's |U| or |∇×U|).
+    SecondField,
 }
 
 /// The shape of a widget.

@@ -34,10 +34,13 @@ pub enum PortType {
     Annotations,
     /// Hatching strokes as polylines in pixels (HatchStrokes), for vector export.
     Strokes,
+    /// A 3-component field on a grid (a flow's velocity): the `vector` of Svakhine et al. 2005's
+    /// Table 1.
+    VectorField,
 }
 
 impl PortType {
-    pub const ALL: [PortType; 14] = [
+    pub const ALL: [PortType; 15] = [
         PortType::Volume,
         PortType::Labels,
         PortType::Mesh,
@@ -52,6 +55,7 @@ impl PortType {
         PortType::Importance,
         PortType::Annotations,
         PortType::Strokes,
+        PortType::VectorField,
     ];
 
     pub fn name(self) -> &'static str {
@@ -70,6 +74,7 @@ impl PortType {
             PortType::Importance => "Importance",
             PortType::Annotations => "Annotations",
             PortType::Strokes => "Strokes",
+            PortType::VectorField => "VectorField",
         }
     }
 }

@@ -64,6 +64,7 @@ pub fn source_size(value: &Value) -> Option<(u32, u32)> {
         Value::Importance(i) => &i.buffer,
         Value::Volume(v) => return Some((v.data.dims[0], v.data.dims[1])),
         Value::Labels(l) => return Some((l.data.dims[0], l.data.dims[1])),
+        Value::VectorField(f) => return Some((f.data.dims[0], f.data.dims[1])),
         Value::TransferFunction(_) => return Some((256, 32)),
         Value::StyleSet(s) => {
             let size = s.maps.first().map_or(1, |m| m.size);

@@ -29,7 +29,7 @@ fn read(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<TextureData, GpuErr
 }
 
 /// The raw data of a value: Image H×W×4 (premultiplied RGBA), Mask H×W, GBuffer H×W×4
-/// (depth, nx, ny, nz), Volume D×H×W, Mesh N×6 (position, normal per vertex), Importance H×W×4
+/// (depth, nx, ny, nz), Volume D×H×W, VectorField D×H×W×3 (U_x, U_y, U_z), Mesh N×6 (position, normal per vertex), Importance H×W×4
 /// (countersink depth E, importance sum, footprint flag, focus last-hit depth).
 pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, ExportError> {
     Ok(match value {
@@ -100,6 +100,13 @@ pub fn to_array(value: &Value, gpu: &GpuContext) -> Result<Array, ExportError> {
             Array {
                 shape: vec![set.maps.len(), size, size, 4],
                 data,
+            }
+        }
+        Value::VectorField(f) => {
+            let [x, y, z] = f.data.dims.map(|d| d as usize);
+            Array {
+                shape: vec![z, y, x, 3],
+                data: f.data.vectors.iter().flatten().copied().collect(),
             }
         }
         Value::Labels(l) => {
@@ -186,7 +193,8 @@ pub fn image_to_rgba8(t: &TextureData) -> image::RgbaImage {
 }
 
 /// A picture of a value: images as they are, masks in grey, G-buffer normals as colours
-/// (n·0.5 + 0.5), the middle z-slice of a volume scaled to its value range.
+/// (n·0.5 + 0.5), the middle z-slice of a volume scaled to its value range (of a vector field:
+/// U / max |U| as colours).
 /// A viewable 8-bit picture of `value` (see the module doc); errors: [`ExportError`].
 pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, ExportError> {
     Ok(match value {
@@ -256,6 +264,17 @@ pub fn to_rgba8(value: &Value, gpu: &GpuContext) -> Result<image::RgbaImage, Exp
                     let over = |v: f32| v * c[3] + (1.0 - c[3]);
                     image::Rgba([to_u8(over(c[0])), to_u8(over(c[1])), to_u8(over(c[2])), 255])
                 }
+            })
+        }
+        Value::VectorField(f) => {
+            // The middle z-slice, U / max |U| as colour (u·0.5 + 0.5), upright as volumes are.
+            let [w, h, d] = f.data.dims;
+            let max = f.data.max_magnitude();
+            let scale = if max > 0.0 { 0.5 / max } else { 0.0 };
+            image::RgbaImage::from_fn(w, h, |x, y| {
+                let i = (x + w * ((h - 1 - y) + h * (d / 2))) as usize;
+                let c = f.data.vectors[i].map(|u| to_u8(u * scale + 0.5));
+                image::Rgba([c[0], c[1], c[2], 255])
             })
         }
         Value::Labels(l) => {

@@ -81,6 +81,7 @@ declaring_modules! {
     over,
     overlay,
     paint_labels,
+    procedural_vector_field,
     procedural_volume,
     raycast,
     ridge_valley,
@@ -98,6 +99,8 @@ declaring_modules! {
     transfer_function_1d,
     transfer_function_2d,
     two_level_raycast,
+    vector_field,
+    vector_operator,
     volume_file,
 }
 

@@ -17,6 +17,7 @@ hatchery_graph::param_choice! {
         EngineBlock = "engine_block",
         Pistons = "pistons",
         Plume = "plume",
+        Convection = "convection",
     }
 }
 
@@ -47,7 +48,9 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
                   two vertical bores and a horizontal one) and the two pistons that sit in its bores; and one \
                   density field, not a distance: plume, the air around a hot plume rising along +y \
                   from a small heated ball (1 in still air, lower where it is hot), a subject for \
-                  Schlieren.",
+                  Schlieren; and convection, the temperature of Rayleigh–Bénard convection rolls \
+                  between a hot floor (y = −1, 1) and a cold lid (y = 1, 0), whose velocity \
+                  ProceduralVectorField's convection gives (Svakhine et al. 2005 Fig. 4's subject).",
             inputs: vec![],
             outputs: vec![PortSpec::output(
                 "volume",
@@ -74,6 +77,7 @@ impl Node<Value, Ctx> for ProceduralVolumeNode {
             Shape::EngineBlock => procedural::engine_block(res),
             Shape::Pistons => procedural::pistons(res),
             Shape::Plume => procedural::plume(res),
+            Shape::Convection => procedural::convection(res),
             Shape::Shells => procedural::shells(res),
         }
         .map_err(|e| NodeError::new(e.to_string()))?;

@@ -13,21 +13,27 @@ use std::sync::Arc;
 
 hatchery_graph::param_choice! {
     /// The second axis of a 2-D transfer function.
-    pub enum Axis { GradientMagnitude = "gradient_magnitude", Laplacian = "laplacian" }
+    pub enum Axis {
+        GradientMagnitude = "gradient_magnitude",
+        Laplacian = "laplacian",
+        SecondField = "second_field",
+    }
 }
 
 hatchery_graph::node_params! {
     /// Parameters of `TransferFunction2D`.
     pub struct TransferFunction2DParams {
-        /// the second axis: gradient_magnitude (|∇f| as a fraction of the volume's largest, 0..1)
-        /// or laplacian (∇²f by second differences, data units per voxel²)
+        /// the second axis: gradient_magnitude (|∇f| as a fraction of the volume's largest, 0..1),
+        /// laplacian (∇²f by second differences, data units per voxel²) or second_field (the
+        /// value of the field on Raycast's `second` input, its data units)
         pub axis: Axis = Axis::GradientMagnitude;
         /// first data value of the table (data units)
         pub value_min: f32 = 0.0, range(-1e12, 1e12);
         /// last data value of the table (data units)
         pub value_max: f32 = 255.0, range(-1e12, 1e12);
         /// first second-axis coordinate of the table (a fraction of the largest gradient for
-        /// gradient_magnitude, data units per voxel² for laplacian)
+        /// gradient_magnitude, data units per voxel² for laplacian, the second field's data units
+        /// for second_field)
         pub second_min: f32 = 0.0, range(-1e12, 1e12);
         /// last second-axis coordinate of the table (same units as second_min)
         pub second_max: f32 = 1.0, range(-1e12, 1e12);
@@ -48,8 +54,9 @@ impl Node<Value, Ctx> for TransferFunction2DNode {
             category: "Volume",
             doc: "A 2-D transfer function (Kniss et al. 2002; Svakhine et al. 2005 §3.3): colour and \
                   opacity per voxel of path over the data value × a second coordinate — the gradient \
-                  magnitude as a fraction of the volume's largest, or the Laplacian in data units per \
-                  voxel² — drawn by rectangle and triangle widgets (`widgets`) and baked into a \
+                  magnitude as a fraction of the volume's largest, the Laplacian in data units per \
+                  voxel², or a second field's value (Raycast's `second` input: another variable, or \
+                  a vector field's |U| or |∇×U| from VectorOperator) — drawn by rectangle and triangle widgets (`widgets`) and baked into a \
                   256×256 table. `Raycast` (mode dvr) classifies each sample with it; the other \
                   consumers of `tf` refuse it (docs/transfer_functions_2d.md).",
             inputs: vec![],
@@ -76,6 +83,7 @@ impl Node<Value, Ctx> for TransferFunction2DNode {
         let axis = match params.axis {
             Axis::GradientMagnitude => SecondAxis::GradientMagnitude,
             Axis::Laplacian => SecondAxis::Laplacian,
+            Axis::SecondField => SecondAxis::SecondField,
         };
         let function = tf2d::TransferFunction2D::new(
             axis,

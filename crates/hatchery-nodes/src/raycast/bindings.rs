@@ -21,13 +21,15 @@ crate::bind_group! {
 }
 
 crate::bind_group! {
-    /// Raycast's own group: the embedded strokes and the Table 1 enhancements
-    /// (shaders/raycast.wgsl).
+    /// Raycast's own group: the embedded strokes and the Table 1 enhancements with their
+    /// second and vector fields (shaders/raycast.wgsl).
     pub struct StrokeBindings in "raycast", group 1 from 0 {
         pub stroke_depth: TextureView,
         pub stroke_mask: TextureView,
         pub strokes: Buffer,
         pub enhancement: Buffer,
+        pub second_field: TextureView,
+        pub vector_field: TextureView,
     }
 }
 

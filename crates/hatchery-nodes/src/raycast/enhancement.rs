@@ -25,6 +25,30 @@ hatchery_graph::node_params! {
         /// banding widget power n (Svakhine et al. 2005 §3.3, Table 1): above 1 makes the bands
         /// thinner and sharper, below 1 softer and wider
         pub banding_power: f32 = 1.0, range(0.05, 16.0);
+        /// what boundary and silhouette enhancement measure (Svakhine et al. 2005 §3.2, Table
+        /// 1): rendered (∇P of the rendered field), second (the gradient of the field on the
+        /// `second` input, e.g. temperature while density is rendered) or vector (the vector
+        /// field U on the `vector` input itself: |U|^n, divided by the largest |U|, and
+        /// (1 − |Û·V|)^n, so flow seen side-on keeps its opacity)
+        pub enhancement_field: EnhancementField = EnhancementField::Rendered;
+    }
+}
+
+hatchery_graph::param_choice! {
+    /// The field boundary and silhouette enhancement measure.
+    pub enum EnhancementField { Rendered = "rendered", Second = "second", Vector = "vector" }
+}
+
+crate::gpu_enum! {
+    /// raycast.wgsl's `RAY_ENHANCE_FIELD`: where boundary and silhouette enhancement take
+    /// their direction and normalised magnitude.
+    pub enum EnhanceField in "raycast" {
+        /// ∇P / max |∇P| of the rendered field.
+        Rendered = 0 as "ENHANCE_FROM_RENDERED",
+        /// ∇S / max |∇S| of the second field (`second_field`'s xyz).
+        Second = 1 as "ENHANCE_FROM_SECOND",
+        /// U / max |U| (`vector_field`'s xyz).
+        Vector = 2 as "ENHANCE_FROM_VECTOR",
     }
 }
 
@@ -49,8 +73,8 @@ crate::uniform_block! {
         pub banding_period: f32,
         pub banding_power: f32,
         pub second_domain: [f32; 2],
-        pub pad0: f32,
-        pub pad1: f32,
+        /// The second field's value range (its texture's w is (S − min) / (max − min)).
+        pub second_range: [f32; 2],
     }
 }
 
@@ -61,6 +85,8 @@ crate::gpu_enum! {
         GradientMagnitude = 1 as "TF2D_GRADIENT",
         /// ∇²f (data units per voxel²).
         Laplacian = 2 as "TF2D_LAPLACIAN",
+        /// The second field's value S (its data units).
+        SecondField = 3 as "TF2D_SECOND",
     }
 }
 
@@ -71,6 +97,7 @@ impl Tf2dAxis {
         match axis {
             SecondAxis::GradientMagnitude => Self::GradientMagnitude,
             SecondAxis::Laplacian => Self::Laplacian,
+            SecondAxis::SecondField => Self::SecondField,
         }
     }
 }
@@ -85,6 +112,8 @@ pub struct Enhancement {
     /// Banding period m (0: off) and power n.
     pub banding_period: f32,
     pub banding_power: f32,
+    /// What boundary and silhouette enhancement measure.
+    pub field: EnhanceField,
 }
 
 impl Enhancement {
@@ -94,6 +123,7 @@ impl Enhancement {
         silhouette: 0.0,
         banding_period: 0.0,
         banding_power: 1.0,
+        field: EnhanceField::Rendered,
     };
 
     /// The bits of `RAY_ENHANCE` (0: none, the shader folds every enhancement away).
@@ -109,6 +139,12 @@ impl Enhancement {
         self.bits() != 0
     }
 
+    /// The field boundary or silhouette enhancement read, if one of them is on.
+    pub fn measured_field(&self) -> Option<EnhanceField> {
+        let measuring = EnhanceBit::Boundary.code() | EnhanceBit::Silhouette.code();
+        (self.bits() & measuring != 0).then_some(self.field)
+    }
+
     /// The uniform block.
     pub fn uniforms(&self) -> EnhancementUniforms {
         EnhancementUniforms {
@@ -117,8 +153,7 @@ impl Enhancement {
             banding_period: self.banding_period,
             banding_power: self.banding_power,
             second_domain: [0.0, 1.0],
-            pad0: 0.0,
-            pad1: 0.0,
+            second_range: [0.0, 1.0],
         }
     }
 }
@@ -131,6 +166,11 @@ impl EnhancementParams {
             silhouette: self.silhouette_enhancement,
             banding_period: self.banding,
             banding_power: self.banding_power,
+            field: match self.enhancement_field {
+                EnhancementField::Rendered => EnhanceField::Rendered,
+                EnhancementField::Second => EnhanceField::Second,
+                EnhancementField::Vector => EnhanceField::Vector,
+            },
         }
     }
 }

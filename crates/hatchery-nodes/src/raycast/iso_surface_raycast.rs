@@ -81,6 +81,8 @@ impl Node<Value, Ctx> for IsoSurfaceRaycastNode {
             reconstruction: params.reconstruction.on(ctx, &volume.data),
             preintegrated: false,
             enhancement: super::Enhancement::OFF,
+            second_field: None,
+            vector_field: None,
         };
         let (_, gbuffer) = cast(ctx, &volume, &camera, None, None, None, &options)?;
         Ok(vec![Value::GBuffer(Arc::new(gbuffer))])

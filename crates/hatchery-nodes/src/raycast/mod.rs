@@ -16,7 +16,8 @@ pub use crate::kernel::{Kernel, KernelChoice};
 pub use crate::reconstruction::Reconstruction;
 pub use bindings::{RayBindings, RayOutputs, StrokeBindings};
 pub use enhancement::{
-    EnhanceBit, Enhancement, EnhancementParams, EnhancementUniforms, Tf2dAxis,
+    EnhanceBit, EnhanceField, Enhancement, EnhancementField, EnhancementParams,
+    EnhancementUniforms, Tf2dAxis,
 };
 pub(crate) use importance_pass::PingPong;
 pub use importance_pass::{ImportanceBindings, ImportancePipelines, PassUniforms};
@@ -26,7 +27,7 @@ pub use tables::check_same_grid;
 pub use uniforms::{Grid, RayMode, RayShading, RayUniforms, TableInfo};
 
 use crate::camera::Camera;
-use crate::value::{Image, TransferFunction};
+use crate::value::{Image, TransferFunction, Volume};
 use crate::{Ctx, Value};
 use glam::Vec3;
 use hatchery_graph::{
@@ -68,6 +69,11 @@ pub struct RayOptions<'a> {
     pub preintegrated: bool,
     /// Svakhine et al. 2005's Table 1 enhancements (Raycast, DVR; off for the other casters).
     pub enhancement: Enhancement,
+    /// A second scalar field on the volume's grid (Raycast's `second`): a 2-D transfer
+    /// function's second_field axis, or the gradient enhancement measures.
+    pub second_field: Option<&'a Volume>,
+    /// A vector field on the volume's grid (Raycast's `vector`) enhancement may measure.
+    pub vector_field: Option<&'a crate::value::vector_field::VectorField>,
 }
 
 impl RayOptions<'static> {
@@ -105,6 +111,8 @@ impl RayOptions<'static> {
             reconstruction: Reconstruction::Trilinear,
             preintegrated: false,
             enhancement: Enhancement::OFF,
+            second_field: None,
+            vector_field: None,
         }
     }
 }
@@ -257,7 +265,10 @@ impl Node<Value, Ctx> for RaycastNode {
                   `rho` scales every sample's opacity (DVR). Svakhine et al. 2005's Table 1 \
                   enhancements of each sample's opacity (DVR): boundary enhancement |∇P|^n, \
                   silhouette enhancement (1 − |∇P̂·V|)^n and the banding widget \
-                  ((1 + sin(o·π·m)) / 2)^n (docs/enhancement.md).",
+                  ((1 + sin(o·π·m)) / 2)^n, measuring the rendered field, a second field's \
+                  gradient (`second`) or a vector field U (`vector`: |U|^n, (1 − |Û·V|)^n); a \
+                  2-D transfer function over value × gradient magnitude, Laplacian or the second \
+                  field (docs/enhancement.md).",
             inputs: vec![
                 PortSpec::input("volume", PortType::Volume, "the scalar field"),
                 PortSpec::input("camera", PortType::Camera, "the view"),
@@ -271,6 +282,17 @@ impl Node<Value, Ctx> for RaycastNode {
                     "labels",
                     PortType::Volume,
                     "object labels on the same grid (per-label style rows, §4.2)",
+                ),
+                PortSpec::optional(
+                    "second",
+                    PortType::Volume,
+                    "a second scalar field on the same grid (Svakhine et al. 2005 §3.2–3.3): a \
+                     2-D transfer function's second_field axis, or enhancement_field second",
+                ),
+                PortSpec::optional(
+                    "vector",
+                    PortType::VectorField,
+                    "a vector field on the same grid, for enhancement_field vector (Table 1's U)",
                 ),
                 PortSpec::optional(
                     "strokes",
@@ -307,6 +329,8 @@ impl Node<Value, Ctx> for RaycastNode {
         let volume = inputs.require("volume")?.volume("volume")?.clone();
         let camera = inputs.require("camera")?.camera("camera")?.clone();
         let tf = inputs.require("tf")?.transfer_function("tf")?.clone();
+        let second = inputs.get("second").map(|v| v.volume("second")).transpose()?;
+        let vector = inputs.get("vector").map(|v| v.vector_field("vector")).transpose()?;
         let options = RayOptions {
             mode: params.mode.into(),
             iso: crate::relative::data_value(ctx, "iso", params.iso, &volume.data)?,
@@ -331,6 +355,8 @@ impl Node<Value, Ctx> for RaycastNode {
             reconstruction: params.reconstruction.on(ctx, &volume.data),
             preintegrated: params.preintegrated,
             enhancement: params.enhancement.enhancement(),
+            second_field: second.map(|v| v.as_ref()),
+            vector_field: vector.map(|v| v.as_ref()),
         };
         let labels = inputs
             .get("labels")

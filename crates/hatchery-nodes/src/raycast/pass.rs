@@ -40,6 +40,8 @@ pub struct Statics {
     /// 1×1 stand-ins when no strokes are embedded: a depth (cleared to 1) and a mask.
     pub blank_depth: wgpu::Texture,
     pub blank_mask: wgpu::Texture,
+    /// A 1³ stand-in for the second and vector fields (Rgba16Float zeros).
+    pub blank_field: wgpu::Texture,
 }
 
 /// A ray caster's pipelines: the full-screen fragment shader, the same rays as a compute kernel
@@ -215,7 +217,14 @@ fn statics(gpu: &GpuContext) -> Result<Statics, GpuError> {
         wgpu::TextureFormat::R32Float,
         &[0u8; 4],
     );
+    let blank_field = gpu.texture_3d_init(
+        "blank field",
+        [1, 1, 1],
+        wgpu::TextureFormat::Rgba16Float,
+        &[0u8; 8],
+    );
     Ok(Statics {
+        blank_field,
         sampler,
         blank_table,
         blank_styles,
@@ -377,10 +386,12 @@ pub fn cast(
         bytemuck::bytes_of(&stroke_uniforms),
         wgpu::BufferUsages::UNIFORM,
     );
+    let fields = Fields::bind(gpu, volume, whole.is_some(), tf2d, &enhancement, o)?;
     let enhancement_buffer = gpu.buffer_init(
         "enhancement",
         bytemuck::bytes_of(&super::EnhancementUniforms {
             second_domain,
+            second_range: fields.second_range,
             ..enhancement.uniforms()
         }),
         wgpu::BufferUsages::UNIFORM,
@@ -398,11 +409,18 @@ pub fn cast(
     let volume_view = volume_texture.texture.create_view(&Default::default());
     let page_view = volume_texture.page_table.create_view(&Default::default());
     let shared = tables.bindings(&uniform, &volume_view, &page_view, &st.sampler);
+    let view = |t: Option<&wgpu::Texture>| {
+        t.unwrap_or(&st.blank_field)
+            .create_view(&Default::default())
+    };
+    let (second_view, vector_view) = (view(fields.second), view(fields.vector));
     let own = StrokeBindings {
         stroke_depth: Some(&stroke_depth_view),
         stroke_mask: Some(&stroke_mask_view),
         strokes: Some(&strokes_buffer),
         enhancement: Some(&enhancement_buffer),
+        second_field: Some(&second_view),
+        vector_field: Some(&vector_view),
     };
     // One pipeline per mode, shading, projection, exponent, bricking and set of enhancements (the
     // pipeline constants of raycast.wgsl and ray_common.wgsl).
@@ -416,10 +434,11 @@ pub fn cast(
     };
     let reconstruction = o.reconstruction.code();
     let preintegrated = u8::from(o.preintegrated);
+    let field = fields.measured;
     let pipelines = ctx
         .cached(
             &format!(
-                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}.{enhance}.{tf2d}"
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}.{enhance}.{field}.{tf2d}"
             ),
             |gpu| {
                 let constants = [
@@ -432,12 +451,88 @@ pub fn cast(
                     ("RAY_PREINTEGRATED", f64::from(preintegrated)),
                     ("RAY_ENHANCE", f64::from(enhance)),
                     ("RAY_TF2D", f64::from(tf2d)),
+                    ("RAY_ENHANCE_FIELD", f64::from(field)),
                 ];
                 RayPipelines::specialised(gpu, "raycast", &constants)
             },
         )
         .map_err(err)?;
     pipelines.run(ctx, camera, [shared.entries(), own.entries()], o.kernel)
+}
+
+/// The second and vector fields one pass reads (Svakhine et al. 2005 §3.2–3.3; `None`: the
+/// pass does not read it, a blank stands in).
+struct Fields<'a> {
+    second: Option<&'a wgpu::Texture>,
+    vector: Option<&'a wgpu::Texture>,
+    /// The second field's value range (`EnhancementUniforms::second_range`).
+    second_range: [f32; 2],
+    /// `RAY_ENHANCE_FIELD` (an `EnhanceField` code).
+    measured: u32,
+}
+
+impl<'a> Fields<'a> {
+    /// The fields that a 2-D transfer function over a second field (`tf2d`) and boundary or
+    /// silhouette enhancement of `enhancement.field` need, from `o`. Errors: a needed input is
+    /// missing, lies on another grid, or the volume is streamed (the fields are whole textures
+    /// on the volume's grid); each names its port.
+    fn bind(
+        gpu: &GpuContext,
+        volume: &Volume,
+        streamed: bool,
+        tf2d: u32,
+        enhancement: &super::Enhancement,
+        o: &RayOptions<'a>,
+    ) -> Result<Self, NodeError> {
+        use super::EnhanceField;
+        let err = |e: GpuError| NodeError::new(e.to_string());
+        let measured = enhancement.measured_field();
+        let needs_second = tf2d == super::Tf2dAxis::SecondField.code()
+            || measured == Some(EnhanceField::Second);
+        let needs_vector = measured == Some(EnhanceField::Vector);
+        let mut fields = Fields {
+            second: None,
+            vector: None,
+            second_range: [0.0, 1.0],
+            measured: measured.map_or(0, |f| f.code()),
+        };
+        let why = if tf2d == super::Tf2dAxis::SecondField.code() {
+            "the 2-D transfer function's axis is second_field"
+        } else {
+            "enhancement_field is second"
+        };
+        if (needs_second || needs_vector) && streamed {
+            return Err(NodeError::at_port(
+                if needs_second { "second" } else { "vector" },
+                "the volume is streamed (beyond HATCHERY_HOST_BUDGET_MB): second and vector \
+                 fields need it whole on the device; raise the budget",
+            ));
+        }
+        if needs_second {
+            let Some(second) = o.second_field else {
+                return Err(NodeError::at_port(
+                    "second",
+                    format!("{why}: connect the second scalar field (on the volume's grid)"),
+                ));
+            };
+            let d = &second.data;
+            super::tables::check_grid_at("second", "the second field", d.dims, &d.geometry, volume)?;
+            fields.second = Some(second.second_field_texture(gpu).map_err(err)?);
+            fields.second_range = d.value_range;
+        }
+        if needs_vector {
+            let Some(vector) = o.vector_field else {
+                return Err(NodeError::at_port(
+                    "vector",
+                    "enhancement_field is vector: connect a vector field (on the volume's grid)",
+                ));
+            };
+            let d = &vector.data;
+            super::tables::check_grid_at("vector", "the vector field", d.dims, &d.geometry, volume)?;
+            fields.vector = Some(vector.texture(gpu).map_err(err)?.0);
+        }
+        Ok(fields)
+    }
 }
 
 impl RayPipelines {

@@ -334,25 +334,38 @@ impl RayTables {
 
 /// Labels are read at the volume's voxels: the grids must be the same and lie in the same place.
 pub fn check_same_grid(labels: &Volume, volume: &Volume) -> Result<(), NodeError> {
-    let (l, data) = (&labels.data, &volume.data);
-    if l.dims != data.dims {
+    let l = &labels.data;
+    check_grid_at("labels", "label volume", l.dims, &l.geometry, volume)
+}
+
+/// That a field on port `port` (`what`, in messages) with `dims` and `geometry` lies on
+/// `volume`'s grid: the same dims and voxel → world transform.
+pub fn check_grid_at(
+    port: &str,
+    what: &str,
+    dims: [u32; 3],
+    geometry: &hatchery_data::geometry::Geometry,
+    volume: &Volume,
+) -> Result<(), NodeError> {
+    let data = &volume.data;
+    if dims != data.dims {
         return Err(NodeError::at_port(
-            "labels",
+            port,
             format!(
-                "label volume is {:?} voxels, the volume {:?}: they must share the grid",
-                l.dims, data.dims
+                "{what} is {dims:?} voxels, the volume {:?}: they must share the grid",
+                data.dims
             ),
         ));
     }
-    let (a, b) = (l.geometry.to_world(), data.geometry.to_world());
+    let (a, b) = (geometry.to_world(), data.geometry.to_world());
     let tolerance = 1e-3 * data.geometry.spacing.min_element();
     if !a.abs_diff_eq(b, tolerance) {
         return Err(NodeError::at_port(
-            "labels",
+            port,
             format!(
-                "label volume lies elsewhere in the world ({}) than the volume ({}): \
+                "{what} lies elsewhere in the world ({}) than the volume ({}): \
                  they must share the voxel → world transform",
-                l.geometry.describe(),
+                geometry.describe(),
                 data.geometry.describe()
             ),
         ));

@@ -10,6 +10,7 @@ pub mod light;
 mod resident;
 pub mod stream;
 pub mod strokes;
+pub mod vector_field;
 
 use crate::brick_pool::GridTexture;
 use crate::volume_texture::VolumeTexture;
@@ -33,6 +34,8 @@ pub struct Volume {
     /// same by majority, for a volume of label ids).
     coarser: OnceLock<Arc<Volume>>,
     coarser_labels: OnceLock<Arc<Volume>>,
+    /// Its gradient and value as another volume's second field (see [`vector_field`]).
+    second_field: OnceLock<wgpu::Texture>,
     /// The file a volume beyond the host budget streams from (`data` is then its preview
     /// level; see [`stream`]).
     stream: Option<Arc<stream::Stream>>,
@@ -53,6 +56,7 @@ impl Volume {
             frame_points: OnceLock::new(),
             coarser: OnceLock::new(),
             coarser_labels: OnceLock::new(),
+            second_field: OnceLock::new(),
             stream: None,
         }
     }
@@ -597,6 +601,7 @@ pub enum Value {
     Importance(Arc<Importance>),
     Annotations(Arc<annotations::Annotations>),
     Strokes(Arc<strokes::Strokes>),
+    VectorField(Arc<vector_field::VectorField>),
 }
 
 impl Value {
@@ -616,6 +621,7 @@ impl Value {
             Value::Importance(_) => PortType::Importance,
             Value::Annotations(_) => PortType::Annotations,
             Value::Strokes(_) => PortType::Strokes,
+            Value::VectorField(_) => PortType::VectorField,
         }
     }
 }
@@ -655,3 +661,4 @@ accessor!(object_styles, ObjectStyles, Arc<Vec<ObjectStyle>>);
 accessor!(importance, Importance, Arc<Importance>);
 accessor!(annotations, Annotations, Arc<annotations::Annotations>);
 accessor!(strokes, Strokes, Arc<strokes::Strokes>);
+accessor!(vector_field, VectorField, Arc<vector_field::VectorField>);
