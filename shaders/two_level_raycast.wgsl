@@ -23,6 +23,16 @@
 @group(1) @binding(5) var importance_cut: texture_2d<f32>;
 // 1×1: x = α_avg of the occluding context (VPImC's first pass), else 1.
 @group(1) @binding(6) var occluder_stats: texture_2d<f32>;
+// Volume thinning's ranks (hatchery_data::thinning): row = object id, column = key bin (of
+// THIN_BINS over [0, 1]); the fraction of that object's voxels whose key is in a lower bin.
+@group(1) @binding(7) var thin_ranks: texture_2d<f32>;
+const THIN_BINS: f32 = 256.0;
+
+// The rank within object `id` of thinning key `key`: the fraction of its voxels sorted before.
+fn thinning_rank(id: u32, key: f32) -> f32 {
+    let bin = min(u32(key * THIN_BINS), u32(THIN_BINS) - 1u);
+    return textureLoad(thin_ranks, vec2<i32>(i32(bin), i32(id)), 0).r;
+}
 
 const IMP_NONE: u32 = 0u;
 const IMP_MIMP: u32 = 1u;
@@ -42,8 +52,10 @@ const SPARSE_THINNING: u32 = 4u;
 // gradient magnitude (B levels, |∇f|max the volume's largest) and κ̂ = min(√(κ1² + κ2²) · w, 1)
 // its curvature magnitude in units of w, the smallest spacing (curvature_shape: the Hessian by
 // central differences of the gradient at ±w, or the B-spline's own). Sorting samples by this key
-// sorts them by level, then by curvature; a sample of level of sparseness S is kept where its key
-// exceeds 1 − S (0 where the gradient vanishes: dropped first).
+// sorts them by level, then by curvature; a sample of level of sparseness S is kept where the
+// fraction of its object's voxels sorted before it (`thinning_rank`) is at least 1 − S, so the
+// last S of the object's voxels in this order remain (0 where the gradient vanishes: dropped
+// first).
 fn thinning_key(q: vec3<f32>, p: vec3<f32>) -> f32 {
     let g = gradient_at(q);
     let g_length = length(g);
@@ -375,11 +387,11 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             }
             s = 1.0;
         }
-        // Volume thinning keeps a context sample, unchanged, where its key exceeds 1 − s; the
-        // focus is never thinned (in image-space AImC it keeps opacity × s, as with a sparse
-        // style).
+        // Volume thinning keeps a context sample, unchanged, where its rank within its object
+        // is at least 1 − s; the focus is never thinned (in image-space AImC it keeps opacity
+        // × s, as with a sparse style).
         if s < 1.0 && thinning(level) && current != focus {
-            if thinning_key(q, r.p0 + r.dir * t) <= 1.0 - s {
+            if thinning_rank(current, thinning_key(q, r.p0 + r.dir * t)) < 1.0 - s {
                 continue;
             }
             s = 1.0;

@@ -1,8 +1,10 @@
 //! Volume thinning, the fourth level of sparseness of importance-driven rendering (Viola et al.
-//! §V.C; TwoLevelRaycast `sparseness = thinning`): a context sample of level of sparseness S is
-//! kept, unchanged, only where its key (L + κ̂) / B exceeds 1 − S — L its level of gradient
-//! magnitude (of B), κ̂ its curvature magnitude in voxel units (see shaders/two_level_raycast.wgsl
-//! and the CPU reference tests/common/importance_reference.rs).
+//! §V.C; TwoLevelRaycast `sparseness = thinning`): an object's voxels are sorted by the key
+//! (L + κ̂) / B — L the level of gradient magnitude (of B), κ̂ the curvature magnitude in voxel
+//! units — and a context sample of level of sparseness S is kept, unchanged, only where the
+//! fraction of its object's voxels sorted before it (its rank) is at least 1 − S: the last S of
+//! the order remain (see hatchery_data::thinning, shaders/two_level_raycast.wgsl and the CPU
+//! reference tests/common/importance_reference.rs).
 //!
 //! The scene: a context slab of three layers of known, constant gradient (planar iso-surfaces,
 //! no curvature) in front of a focus block, seen orthographically along the layers' normal;
@@ -34,6 +36,11 @@ const LAYERS: [u32; 3] = [13, 22, 31];
 /// their keys are 3/4, 0 and 1/2.
 const LEVELS: u32 = 4;
 const KEYS: [f32; 3] = [0.75, 0.0, 0.5];
+/// Their ranks within the slab (27 slices, z 13 … 39; keys at the voxel centres): the red layer
+/// has 8 slices of key 3/4 (its first slice mixes slopes 1 and 7: key 1/2), the green 8 of key 0,
+/// the blue 8 of key 1/2 after one of key 1/4. Sorted before the red: 19 slices; before the
+/// blue: 9; before the green: none.
+const RANKS: [f32; 3] = [19.0 / 27.0, 0.0, 9.0 / 27.0];
 const OPACITY: f32 = 0.02;
 
 /// The value at z index k: piecewise linear with the slopes above (continuous).
@@ -161,6 +168,30 @@ fn volume_thinning_drops_the_weakest_gradient_layers_first_and_never_the_focus()
         spacing: 1.0,
     };
     assert!((th.max_gradient - 7.0).abs() < 1e-4, "{}", th.max_gradient);
+    // The slab's ranks of the layers' keys, the reference's (every voxel keyed) and the
+    // library's (the table the node uploads) against the count in RANKS' comment.
+    let reference_ranks = reference::thinning_ranks(&scene.volume, &scene.labels, &th);
+    let key = hatchery_data::thinning::KeyParams {
+        bands: LEVELS as f32,
+        inv_max_gradient: 1.0 / th.max_gradient,
+        step: 1.0,
+    };
+    let library = hatchery_data::thinning::thinning_ranks(
+        &scene.volume,
+        &scene.labels.ids,
+        3,
+        &key,
+        usize::MAX,
+    );
+    for c in 0..3 {
+        let bin = hatchery_data::thinning::key_bin(KEYS[c]);
+        let (r, l) = (
+            reference_ranks[1][bin],
+            library[hatchery_data::thinning::RANK_BINS + bin],
+        );
+        assert!((r - RANKS[c]).abs() < 1e-6, "layer {c}: reference rank {r}");
+        assert!((l - RANKS[c]).abs() < 1e-6, "layer {c}: library rank {l}");
+    }
     let (_, plain) = render_gpu(&mut session, &cam, &scene, None, &[]);
     let centre = centre();
     let (dense, dense_focus) = measure(&plain, &centre);
@@ -193,12 +224,12 @@ fn volume_thinning_drops_the_weakest_gradient_layers_first_and_never_the_focus()
         );
         let (kept, focus) = measure(&gpu, &centre);
         let fraction: Vec<f32> = kept.iter().zip(&dense).map(|(k, d)| k / d).collect();
-        // The rule: a layer stays where its key exceeds 1 − S; only the samples within a voxel
-        // of a layer boundary (whose central differences mix two slopes, so their level
+        // The rule: a layer stays where its rank is at least 1 − S; only the samples within a
+        // voxel of a layer boundary (whose central differences mix two slopes, so their level
         // differs; up to 0.6 voxel at each of a layer's two boundaries) go against it: a kept layer
-        // keeps ≥ 80 % (worst measured: 84.7 %), a dropped one ≤ 20 %.
+        // keeps ≥ 80 %, a dropped one ≤ 20 %.
         for c in 0..3 {
-            let expected = KEYS[c] > 1.0 - s;
+            let expected = RANKS[c] >= 1.0 - s;
             let f = fraction[c];
             assert!(
                 if expected { f >= 0.8 } else { f <= 0.2 },
@@ -209,10 +240,11 @@ fn volume_thinning_drops_the_weakest_gradient_layers_first_and_never_the_focus()
             assert!(kept[c] <= previous[c] + 1e-4, "S = {s}: layer {c} grew");
         }
         previous = kept;
-        // The slab's kept fraction: the layers whose key exceeds 1 − S, each a third of it,
-        // within 0.07.
+        // The slab's kept fraction: the layers whose rank is at least 1 − S, each a third of
+        // it, within 0.07 — never more than S, as the paper's sort keeps.
         let whole = kept.iter().sum::<f32>() / dense.iter().sum::<f32>();
-        let rule = KEYS.iter().filter(|&&k| k > 1.0 - s).count() as f32 / 3.0;
+        let rule = RANKS.iter().filter(|&&r| r >= 1.0 - s).count() as f32 / 3.0;
+        assert!(rule <= s, "S = {s}: the rule keeps {rule}");
         assert!(
             (whole - rule).abs() < 0.07,
             "S = {s}: kept {whole:.3}, rule {rule:.3}"

@@ -17,7 +17,9 @@
 //! `importance_frog_mimp` (issue 31: MImP's per-ray rule, the skeleton not drawn on rays that
 //! meet the more important lung, stomach or intestine behind it; tests/importance.rs).
 //! `distance_to_risk_frog` (its organs limited to those every frog-like label map names, so it
-//! also runs on tests/presets_on_other_data.rs's labels).
+//! also runs on tests/presets_on_other_data.rs's labels). `importance_brain_thinning` (issue 31:
+//! volume thinning keeps the grey matter's samples by their rank within the object, not by the
+//! key's value; tests/importance_thinning.rs).
 
 mod common;
 

@@ -23,7 +23,9 @@
 //!   accumulated colour and opacity are scaled by S_o / α_avg (eq. 3), α_avg the mean opacity
 //!   of a first pass drawing only those segments, over its non-empty pixels.
 //! - Volume thinning (§V.C) as the level of sparseness ([`render_thinned`]): a non-focus sample
-//!   with s < 1 is kept, unchanged, where its key (L + κ̂) / B exceeds 1 − s, else dropped: L =
+//!   with s < 1 is kept, unchanged, where the fraction of its object's voxels whose key lies in a
+//!   lower of 256 bins over [0, 1] (its rank, [`thinning_ranks`], every voxel keyed) is at least
+//!   1 − s, else dropped. The key is (L + κ̂) / B: L =
 //!   min(⌊B · |g| / g_max⌋, B − 1), g the trilinear central-difference gradient (world) and g_max
 //!   the volume's largest; κ̂ = min(w · √(a² + 2b² + c²), 1), (a, b; b, c) the shape operator
 //!   −t_i·H t_j / |g| in the tangent basis of n = −g/|g|, H the central differences of g at
@@ -275,6 +277,39 @@ pub fn thinning_key(volume: &VolumeData, th: &Thinning, p: Vec3) -> f32 {
     (level + kappa) / b
 }
 
+/// Per object id, per key bin (256 over [0, 1]), the fraction of the object's voxels whose key
+/// lies in a lower bin, every voxel keyed at its centre.
+pub fn thinning_ranks(volume: &VolumeData, labels: &LabelData, th: &Thinning) -> Vec<Vec<f32>> {
+    const BINS: usize = 256;
+    let bin = |key: f32| ((key * BINS as f32) as usize).min(BINS - 1);
+    let rows = labels.ids.iter().copied().max().unwrap_or(0) as usize + 1;
+    let mut counts = vec![vec![0u64; BINS]; rows];
+    let [nx, ny, nz] = volume.dims;
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                let q = Vec3::new(x as f32, y as f32, z as f32);
+                let id = labels.ids[volume.index(x, y, z)] as usize;
+                counts[id][bin(thinning_key(volume, th, volume.voxel_to_world(q)))] += 1;
+            }
+        }
+    }
+    counts
+        .iter()
+        .map(|c| {
+            let total = c.iter().sum::<u64>().max(1) as f32;
+            let mut below = 0u64;
+            c.iter()
+                .map(|&n| {
+                    let r = below as f32 / total;
+                    below += n;
+                    r
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// [`render`] (not VPImC) with volume thinning as the level of sparseness.
 pub fn render_thinned(
     volume: &VolumeData,
@@ -317,6 +352,7 @@ fn render_pass(
     let h = world_step(volume, p);
     let margin = box_margin(volume);
     let last = last_voxel(volume);
+    let ranks = thinning.map(|th| thinning_ranks(volume, labels, th));
     let importance = |id: u16| {
         setup
             .importance
@@ -429,7 +465,10 @@ fn render_pass(
                     && s < 1.0
                     && id != setup.focus
                 {
-                    if thinning_key(volume, th, origin + dir * t) <= 1.0 - s {
+                    let key = thinning_key(volume, th, origin + dir * t);
+                    let bin = ((key * 256.0) as usize).min(255);
+                    let ranks = ranks.as_ref().expect("ranks are made with thinning");
+                    if ranks[id as usize].get(bin).copied().unwrap_or(0.0) < 1.0 - s {
                         continue;
                     }
                     s = 1.0;

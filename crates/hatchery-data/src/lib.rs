@@ -33,6 +33,7 @@ pub(crate) mod raw_voxels;
 pub mod segmentation;
 pub mod stream_file;
 pub mod style;
+pub mod thinning;
 pub mod tiff_stack;
 pub mod transfer_function;
 pub mod transfer_function_2d;

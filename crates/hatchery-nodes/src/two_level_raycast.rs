@@ -343,9 +343,18 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let placeholders = ctx
             .cached("two_level.placeholders", |gpu| Ok(Placeholders::new(gpu)))
             .map_err(err)?;
+        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+        let thin_ranks = thinning.then(|| {
+            let key = hatchery_data::thinning::KeyParams {
+                bands: params.thinning_levels as f32,
+                inv_max_gradient: 1.0 / volume.max_gradient().max(1e-20),
+                step: min_spacing,
+            };
+            let rows = object_tables(&styles).columns;
+            thinning_ranks(ctx, volume, labels, rows, key)
+        });
         let gpu = &ctx.gpu;
         let volume_texture = volume.texture(gpu).map_err(err)?;
-        let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
         let max_gradient =
             crate::raycast::objects::segmented_max_gradient(volume, &styles, object_normals);
         let uniforms = RayUniforms::new(
@@ -451,6 +460,9 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             None => (one(), one()),
         };
         let no_occluder = one();
+        let ranks_view = thin_ranks
+            .as_ref()
+            .map_or_else(one, |t| t.create_view(&Default::default()));
         let shared = RayBindings {
             ray: Some(&ray_buffer),
             volume: Some(&views[0]),
@@ -474,6 +486,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 importance_buffer: Some(&importance_view),
                 importance_cut: Some(&cut_view),
                 occluder_stats: Some(occluder),
+                thin_ranks: Some(&ranks_view),
             };
             [shared.entries(), [objects.entries(), importance.entries()].concat()]
         };
@@ -517,7 +530,36 @@ crate::bind_group! {
         pub importance_buffer: TextureView,
         pub importance_cut: TextureView,
         pub occluder_stats: TextureView,
+        pub thin_ranks: TextureView,
     }
+}
+
+/// Volume thinning's rank table (`hatchery_data::thinning`): per object id (rows) and key bin
+/// (columns), the fraction of the object's voxels with a lower key, as an R32Float texture; kept
+/// for the node's next run while the volume, labels and levels stay the same. Keys are taken at
+/// up to 2 M voxels (a uniform sample).
+fn thinning_ranks(
+    ctx: &mut Ctx,
+    volume: &crate::value::Volume,
+    labels: &crate::value::Labels,
+    rows: u32,
+    key: hatchery_data::thinning::KeyParams,
+) -> wgpu::Texture {
+    use hatchery_data::thinning::{RANK_BINS, thinning_ranks};
+    use std::hash::{Hash, Hasher};
+    let mut h = std::hash::DefaultHasher::new();
+    (Arc::as_ptr(&volume.data), Arc::as_ptr(&labels.data)).hash(&mut h);
+    (volume.data.dims, rows, key.bands.to_bits(), key.step.to_bits()).hash(&mut h);
+    let ranks = ctx.keep("thinning ranks", h.finish(), || {
+        thinning_ranks(&volume.data, &labels.data.ids, rows as usize, &key, 2_000_000)
+    });
+    ctx.gpu.texture_2d_init(
+        "thinning ranks",
+        RANK_BINS as u32,
+        rows,
+        wgpu::TextureFormat::R32Float,
+        bytemuck::cast_slice(&ranks),
+    )
 }
 
 /// VPImC's α_avg (eq. 3): the mean opacity of `picture` over its non-empty pixels, as a 1×1
