@@ -4,7 +4,7 @@
 mod common;
 
 use hatchery_nodes::raycast::Kernel;
-use hatchery_nodes::{Session, export};
+use hatchery_nodes::{Session, Value, export};
 
 /// Every fusable kind, every Silhouette PIP mode but `texture`, both switches, all six mask
 /// operations, MixByMask with and without an `over` image, an inverted MultiplyByMask,
@@ -367,4 +367,62 @@ fn an_edit_inside_a_fused_pass_re_runs_only_what_follows_it() {
             theta += 5.0;
         }
     }
+}
+
+/// A re-run of a pass draws into the texture of an earlier run once nothing holds that run's
+/// picture any more (the editor's θ drag allocates no new frames), and never into a picture
+/// someone still holds: a picture kept from the first run is unchanged after many re-runs, and
+/// every re-run equals a fresh render bit for bit.
+#[test]
+fn re_runs_reuse_free_targets_and_never_draw_over_a_held_picture() {
+    let mut session = common::session_from_text(ALL_KINDS, W, H);
+    session.run(&["final"]).unwrap();
+    let texture = |v: &Value| match v {
+        Value::Image(i) => i.texture.clone(),
+        _ => panic!("not an image"),
+    };
+    let set_theta = |session: &mut Session, theta: f32| {
+        session
+            .set_param_text("screen", "theta", &theta.to_string())
+            .unwrap();
+        session.run(&["final"]).unwrap();
+    };
+    // The first edits re-plan the pass (the members before the halftone start writing what it
+    // reads); from then on a θ drag re-runs the same pass.
+    for theta in [31.0, 33.0, 35.0] {
+        set_theta(&mut session, theta);
+    }
+    // A picture someone keeps (the editor's preview, an export in flight).
+    let held = session.output("final", "image").unwrap().clone();
+    let held_pixels = pixels(&session, "final", "image");
+    let mut seen = vec![texture(&held)];
+    let mut reused = 0;
+    for (k, theta) in [41.0, 46.0, 51.0, 56.0, 61.0].into_iter().enumerate() {
+        set_theta(&mut session, theta);
+        let t = texture(session.output("final", "image").unwrap());
+        assert!(t != seen[0], "run {k} drew into the held picture's texture");
+        if seen.contains(&t) {
+            reused += 1;
+        } else {
+            // Two targets take turns: the one the executor holds and the free one; the held
+            // picture's is replaced once.
+            assert!(k < 2, "run {k} made a new target ({} so far)", seen.len());
+            seen.push(t);
+        }
+        let mut fresh = common::session_from_text(ALL_KINDS, W, H);
+        set_theta(&mut fresh, theta);
+        assert_identical(
+            &format!("θ {theta} after re-runs"),
+            &pixels(&session, "final", "image"),
+            &pixels(&fresh, "final", "image"),
+            4,
+        );
+    }
+    // Still what was drawn when it was taken.
+    let data = export::to_array(&held, &session.ctx.gpu).unwrap().data;
+    assert_eq!(data, held_pixels, "the held picture changed");
+    assert!(
+        reused >= 3,
+        "{reused} of 5 re-runs drew into a recycled target"
+    );
 }

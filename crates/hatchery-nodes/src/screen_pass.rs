@@ -287,19 +287,36 @@ pub fn draw_into(
     bind_groups: &[&wgpu::BindGroup],
     targets: &[wgpu::Texture],
 ) -> wgpu::CommandBuffer {
-    let views: Vec<wgpu::TextureView> = targets
+    let targets: Vec<(&wgpu::Texture, bool)> = targets.iter().map(|t| (t, false)).collect();
+    draw_into_loading(gpu, label, pipeline, bind_groups, &targets)
+}
+
+/// [`draw_into`], loading the targets marked `true` instead of clearing them: for targets that
+/// already hold a picture the pass overwrites at every pixel (no clear to pay for).
+pub fn draw_into_loading(
+    gpu: &GpuContext,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    bind_groups: &[&wgpu::BindGroup],
+    targets: &[(&wgpu::Texture, bool)],
+) -> wgpu::CommandBuffer {
+    let views: Vec<(wgpu::TextureView, bool)> = targets
         .iter()
-        .map(|t| t.create_view(&Default::default()))
+        .map(|(t, load)| (t.create_view(&Default::default()), *load))
         .collect();
     let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
         .iter()
-        .map(|view| {
+        .map(|(view, load)| {
             Some(wgpu::RenderPassColorAttachment {
                 view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    load: if *load {
+                        wgpu::LoadOp::Load
+                    } else {
+                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                    },
                     store: wgpu::StoreOp::Store,
                 },
             })

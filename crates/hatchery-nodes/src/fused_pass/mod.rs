@@ -16,14 +16,14 @@
 use crate::kernel::Kernel;
 use crate::screen_pass::{self, IMAGE_FORMAT};
 pub use crate::stage::{Arg, Fusable, Stage, StageInputs};
-use crate::value::{Image, Mask};
 use crate::{Ctx, Value};
 use hatchery_graph::executor::Node;
 use hatchery_graph::fusion::{Fuser, Member, Outside, Source};
 use hatchery_graph::{NodeError, NodeInputs, NodeSchema, Params, PortType};
 use shader::build;
+
+mod recycle;
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::sync::Arc;
 
 mod shader;
 
@@ -156,7 +156,7 @@ pub fn run_group(
         };
         (last, NodeError::new(message))
     };
-    let targets: Vec<wgpu::Texture> = match kernel {
+    let targets: Vec<recycle::Target> = match kernel {
         Kernel::Fragment => {
             let pipeline = ctx
                 .cached(&pipeline_key(&source, &formats), |gpu| {
@@ -174,13 +174,22 @@ pub fn run_group(
                     })
                 })
                 .map_err(error)?;
+            let pool = recycle::Recycled::of(ctx).map_err(error)?;
             let gpu = &ctx.gpu;
             let bind_group = screen_pass::bind_group(gpu, label, &pipeline, &textures, uniform);
-            let targets: Vec<wgpu::Texture> = formats
+            let needs = wgpu::TextureUsages::RENDER_ATTACHMENT;
+            let targets = pool.targets(&formats, (width, height), needs, IMAGE_FORMAT, |f| {
+                gpu.render_target(label, width, height, f)
+            });
+            // A recycled target is loaded, not cleared: the full-screen triangle writes every
+            // pixel unless a stage discards.
+            let writes_all = !source.contains("discard");
+            let attachments: Vec<(&wgpu::Texture, bool)> = targets
                 .iter()
-                .map(|&f| gpu.render_target(label, width, height, f))
+                .map(|t| (t.texture(), t.recycled && writes_all))
                 .collect();
-            let work = screen_pass::draw_into(gpu, label, &pipeline, &[&bind_group], &targets);
+            let work =
+                screen_pass::draw_into_loading(gpu, label, &pipeline, &[&bind_group], &attachments);
             ctx.submit(work);
             targets
         }
@@ -200,12 +209,17 @@ pub fn run_group(
                     })
                 })
                 .map_err(error)?;
+            let pool = recycle::Recycled::of(ctx).map_err(error)?;
             let gpu = &ctx.gpu;
-            let targets: Vec<wgpu::Texture> = formats
+            let needs = wgpu::TextureUsages::STORAGE_BINDING;
+            let targets = pool.targets(&formats, (width, height), needs, IMAGE_FORMAT, |f| {
+                gpu.storage_target(label, width, height, f)
+            });
+            let bound: Vec<&wgpu::Texture> = textures
                 .iter()
-                .map(|&f| gpu.storage_target(label, width, height, f))
+                .copied()
+                .chain(targets.iter().map(|t| t.texture()))
                 .collect();
-            let bound: Vec<&wgpu::Texture> = textures.iter().copied().chain(&targets).collect();
             let layout = pipeline.get_bind_group_layout(0);
             let bind_group = screen_pass::bind_group_with(gpu, label, &layout, &bound, uniform);
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -227,12 +241,8 @@ pub fn run_group(
         .iter()
         .map(|m| vec![None; m.keep.len().max(1)])
         .collect();
-    for ((member, format), texture) in shader.targets.iter().zip(targets) {
-        outputs[*member][0] = Some(if *format == IMAGE_FORMAT {
-            Value::Image(Arc::new(Image { texture }))
-        } else {
-            Value::Mask(Arc::new(Mask { texture }))
-        });
+    for ((member, _), target) in shader.targets.iter().zip(targets) {
+        outputs[*member][0] = Some(target.value);
     }
     Ok(outputs)
 }
