@@ -225,6 +225,7 @@ impl EditorApp {
     /// idea (see [`crate::preview::share_device_by_default`]).
     pub fn with_creation_context(state: EditorState, cc: &eframe::CreationContext<'_>) -> Self {
         let mut app = Self::new(state);
+        crate::fonts::install_math_fallback(&cc.egui_ctx);
         if let Some(rs) = &cc.wgpu_render_state {
             let share = crate::preview::share_device_by_default(&rs.adapter.get_info());
             app.preview.set_render_state(rs.clone(), share);

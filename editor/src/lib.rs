@@ -16,6 +16,7 @@ pub mod data_panel;
 pub mod export_dialog;
 pub mod file_watch;
 pub mod files;
+pub mod fonts;
 pub mod frames;
 pub mod gallery;
 pub mod groups;
