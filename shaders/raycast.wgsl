@@ -104,7 +104,7 @@ struct Enhancement {
 @group(1) @binding(3) var<uniform> enhancement: Enhancement;
 
 // Svakhine et al. 2005 §3.2–3.3: fields besides the rendered one, on its grid. second_field:
-// xyz = ∇S / max |∇S| (world axes), w = S normalised over its range; vector_field: xyz =
+// xyz = ∇S / max |∇S| (world axes), w = S normalised over its range (−1: no data); vector_field: xyz =
 // U / max |U|. RAY_ENHANCE_FIELD (an ENHANCE_FROM_* constant) says which one boundary and
 // silhouette enhancement measure; 1³ blanks stand in for fields a pipeline does not read.
 @group(1) @binding(4) var second_field: texture_3d<f32>;
@@ -339,9 +339,12 @@ fn cast_ray(position: vec2<f32>) -> RayResult {
         } else if RAY_TF2D == TF2D_LAPLACIAN {
             entry = table2d_lookup(v, laplacian_at(q), enhancement.second_domain);
         } else if RAY_TF2D == TF2D_SECOND {
+            // w < 0: the second field has no data here (transparent, as for the volume).
+            let w = field_sample(second_field, q).w;
             let range = enhancement.second_range;
-            let s = range.x + field_sample(second_field, q).w * (range.y - range.x);
-            entry = table2d_lookup(v, s, enhancement.second_domain);
+            if w >= 0.0 {
+                entry = table2d_lookup(v, range.x + w * (range.y - range.x), enhancement.second_domain);
+            }
         } else {
             entry = table_lookup_row(v, row.row, row.domain);
         }

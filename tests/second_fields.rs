@@ -473,3 +473,33 @@ fn vector_operators_of_the_abc_flow_and_a_field_from_components() {
     .expect("components on different grids must fail");
     assert_eq!(e.port.as_deref(), Some("y"), "{e}");
 }
+
+/// A volume the device's brick pool cannot hold whole renders at a coarser level; second and
+/// vector fields are read on the full grid, so the node refuses them there, naming the port and
+/// the level (rather than blaming the field's grid).
+#[test]
+fn fields_with_a_volume_at_a_coarser_level_are_refused_naming_the_port() {
+    let n = 64u32;
+    let mut scene = Scene::new(columns(n, n, n, |x| x as f32), on_columns(n, n));
+    // A 1 MiB pool holds 64 bricks of 16³ (14³ voxels each): 64³ needs 125, 32³ 27.
+    scene
+        .session
+        .ctx
+        .gpu
+        .set_volume_limits(hatchery_gpu::VolumeLimits {
+            max_texture_3d: Some(16),
+            brick: 16,
+            pool_bytes: 1 << 20,
+        });
+    let s = columns(n, n, n, |x| x as f32);
+    let e = Enhancement {
+        boundary: 1.0,
+        ..Enhancement::default()
+    };
+    let inputs = vec![("tf", tf_value(&flat_tf(0.2))), ("second", volume(&s))];
+    let err = scene
+        .gpu(inputs, 1.0, &enhancement_params(e, "second"))
+        .unwrap_err();
+    assert_eq!(err.port.as_deref(), Some("second"), "{err}");
+    assert!(err.message.contains("coarser level"), "{err}");
+}

@@ -129,7 +129,7 @@ pub fn plume(resolution: u32) -> Result<VolumeData, DataError> {
 /// [`crate::vector_field::convection_rolls`] (Svakhine et al. 2005, Figure 4's subject): the
 /// conduction profile from 1 at the hot floor (y = −1) to 0 at the cold lid (y = 1), plus the
 /// rolls' perturbation, warm where the fluid rises: T = (1 − y)/2 − 0.25·a(z)·cos(k(x + 1))·
-/// sin(π(y + 1)/2). Values lie in about [−0.2, 1.2].
+/// sin(π(y + 1)/2). Values lie in about [0, 1] (the perturbation vanishes at floor and lid).
 pub fn convection(resolution: u32) -> Result<VolumeData, DataError> {
     use crate::vector_field::{ROLL_WAVENUMBER, roll_amplitude};
     field(resolution, |p| {

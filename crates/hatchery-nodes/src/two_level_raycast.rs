@@ -351,6 +351,13 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 step: min_spacing,
             };
             let rows = object_tables(&styles).columns;
+            if params.reconstruction == crate::reconstruction::Reconstruction::Bspline {
+                ctx.warn(
+                    "volume thinning ranks each object's voxels by keys from central differences; \
+                     the B-spline's own keys order them slightly differently, so the kept fraction \
+                     is close to the level of sparseness, not exact (trilinear: exact)",
+                );
+            }
             thinning_ranks(ctx, volume, labels, rows, key)
         });
         let gpu = &ctx.gpu;
@@ -550,15 +557,18 @@ fn thinning_ranks(
     let mut h = std::hash::DefaultHasher::new();
     (Arc::as_ptr(&volume.data), Arc::as_ptr(&labels.data)).hash(&mut h);
     (volume.data.dims, rows, key.bands.to_bits(), key.step.to_bits()).hash(&mut h);
-    let ranks = ctx.keep("thinning ranks", h.finish(), || {
-        thinning_ranks(&volume.data, &labels.data.ids, rows as usize, &key, 2_000_000)
+    // The kept ranks hold weak references to the data they were made of: the allocations stay
+    // reserved, so new data can never reuse the addresses the key hashes.
+    let kept = ctx.keep("thinning ranks", h.finish(), || {
+        let ranks = thinning_ranks(&volume.data, &labels.data.ids, rows as usize, &key, 2_000_000);
+        (Arc::downgrade(&volume.data), Arc::downgrade(&labels.data), ranks)
     });
     ctx.gpu.texture_2d_init(
         "thinning ranks",
         RANK_BINS as u32,
         rows,
         wgpu::TextureFormat::R32Float,
-        bytemuck::cast_slice(&ranks),
+        bytemuck::cast_slice(&kept.2),
     )
 }
 

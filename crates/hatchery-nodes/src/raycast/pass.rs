@@ -281,6 +281,7 @@ pub fn cast(
         ctx.warn(why);
     }
     // The level of detail the device holds (see `Volume::resident`).
+    let input = volume;
     let volume = view.resident(&ctx.gpu).map_err(err)?;
     let labels = match &labels {
         Some(l) => Some(l.resident_labels(&ctx.gpu).map_err(err)?),
@@ -386,7 +387,12 @@ pub fn cast(
         bytemuck::bytes_of(&stroke_uniforms),
         wgpu::BufferUsages::UNIFORM,
     );
-    let fields = Fields::bind(gpu, volume, whole.is_some(), tf2d, &enhancement, o)?;
+    let levels = Levels {
+        input,
+        resident: volume,
+        streamed: whole.is_some(),
+    };
+    let fields = Fields::bind(gpu, &levels, tf2d, &enhancement, o)?;
     let enhancement_buffer = gpu.buffer_init(
         "enhancement",
         bytemuck::bytes_of(&super::EnhancementUniforms {
@@ -471,19 +477,28 @@ struct Fields<'a> {
     measured: u32,
 }
 
+/// The volume as the node got it and as the device holds it (a coarser level where the brick
+/// pool cannot hold it whole), and whether it streams.
+struct Levels<'v> {
+    input: &'v Volume,
+    resident: &'v Volume,
+    streamed: bool,
+}
+
 impl<'a> Fields<'a> {
     /// The fields that a 2-D transfer function over a second field (`tf2d`) and boundary or
     /// silhouette enhancement of `enhancement.field` need, from `o`. Errors: a needed input is
-    /// missing, lies on another grid, or the volume is streamed (the fields are whole textures
-    /// on the volume's grid); each names its port.
+    /// missing, lies on another grid than the volume, or the volume renders at a coarser level
+    /// or streams (the fields are whole textures on the volume's full grid); each names its
+    /// port.
     fn bind(
         gpu: &GpuContext,
-        volume: &Volume,
-        streamed: bool,
+        levels: &Levels,
         tf2d: u32,
         enhancement: &super::Enhancement,
         o: &RayOptions<'a>,
     ) -> Result<Self, NodeError> {
+        let (volume, streamed) = (levels.input, levels.streamed);
         use super::EnhanceField;
         let err = |e: GpuError| NodeError::new(e.to_string());
         let measured = enhancement.measured_field();
@@ -501,11 +516,24 @@ impl<'a> Fields<'a> {
         } else {
             "enhancement_field is second"
         };
+        let port = if needs_second { "second" } else { "vector" };
         if (needs_second || needs_vector) && streamed {
             return Err(NodeError::at_port(
-                if needs_second { "second" } else { "vector" },
+                port,
                 "the volume is streamed (beyond HATCHERY_HOST_BUDGET_MB): second and vector \
                  fields need it whole on the device; raise the budget",
+            ));
+        }
+        if (needs_second || needs_vector) && levels.resident.data.dims != volume.data.dims {
+            return Err(NodeError::at_port(
+                port,
+                format!(
+                    "the volume renders at a coarser level ({:?} of {:?} voxels: the device's \
+                     brick pool cannot hold it whole), and second and vector fields are read on \
+                     its full grid: render a smaller volume or raise the pool \
+                     (HATCHERY_GPU_POOL_MB)",
+                    levels.resident.data.dims, volume.data.dims
+                ),
             ));
         }
         if needs_second {

@@ -55,8 +55,8 @@ impl VectorField {
 impl Volume {
     /// This volume as a *second field* of another one's rendering: an Rgba16Float texture with
     /// xyz = ∇f / max |∇f| (world-space central differences, as [`Volume::max_gradient`] takes
-    /// them; 0 across "no data") and w = (f − min) / (max − min) over the value range (0 for
-    /// "no data"). Uploaded once.
+    /// them; 0 across "no data") and w = (f − min) / (max − min) over the value range (−1 for
+    /// "no data", so a filtered w below 0 marks a sample next to it). Uploaded once.
     pub fn second_field_texture(&self, gpu: &GpuContext) -> Result<&wgpu::Texture, GpuError> {
         if let Some(t) = self.second_field.get() {
             return Ok(t);
@@ -75,7 +75,7 @@ impl Volume {
                 let gradients = hatchery_data::gradient::voxel_gradients(d, z0, z1);
                 for (k, g) in gradients.iter().enumerate() {
                     let v = d.voxels.get(z0 as usize * slice + k);
-                    let w = if v.is_finite() { (v - lo) * span } else { 0.0 };
+                    let w = if v.is_finite() { (v - lo) * span } else { -1.0 };
                     for c in (*g * scale).to_array().into_iter().chain([w]) {
                         out.extend_from_slice(&half::f16::from_f32(c).to_le_bytes());
                     }
