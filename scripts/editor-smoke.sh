@@ -43,7 +43,19 @@ while [ -e "/tmp/.X11-unix/X$display" ] || [ -e "/tmp/.X$display-lock" ]; do dis
 Xvfb ":$display" -screen 0 1600x1000x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
 xvfb_pid=$!
 export DISPLAY=":$display"
-for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+# Xvfb can take seconds to accept clients on a busy machine (a CI run once started the editor
+# before it did: "Failed to open connection to X server"): wait up to 30 s, and say so if not.
+xvfb_up=""
+for _ in $(seq 300); do
+    if xdotool getmouselocation >/dev/null 2>&1; then xvfb_up=1; break; fi
+    kill -0 "$xvfb_pid" 2>/dev/null || break
+    sleep 0.1
+done
+if [ -z "$xvfb_up" ]; then
+    echo "editor-smoke: FAILED: Xvfb :$display did not accept connections within 30 s" >&2
+    cat "$work/xvfb.log" >&2 || true
+    exit 1
+fi
 
 # Its own settings folder: views and panel widths saved by earlier runs must not move things.
 HATCHERY_EDITOR_LAYOUT="$layout" XDG_CONFIG_HOME="$work/config" "$bin" "$work/graph.ron" \
