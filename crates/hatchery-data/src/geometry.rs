@@ -134,6 +134,14 @@ impl Geometry {
         self.to_voxel().transform_point3(p.as_dvec3()).as_vec3()
     }
 
+    /// Whether `other` places voxels where this geometry does: the voxel → world transforms
+    /// agree within 1/1000 of the smallest spacing (what lets two volumes be read at the same
+    /// voxel coordinates: labels, a second field, vector components).
+    pub fn same_placement(&self, other: &Geometry) -> bool {
+        let tolerance = 1e-3 * self.spacing.min_element();
+        self.to_world().abs_diff_eq(other.to_world(), tolerance)
+    }
+
     /// Whether the direction matrix is the identity (the grid is axis-aligned, no flips).
     pub fn is_axis_aligned(&self) -> bool {
         self.direction.abs_diff_eq(DMat3::IDENTITY, 1e-9)

@@ -67,7 +67,7 @@ impl VectorFieldData {
         z: &VolumeData,
     ) -> Result<Self, DataError> {
         for (name, other) in [("y", y), ("z", z)] {
-            if other.dims != x.dims || !same_geometry(&other.geometry, &x.geometry) {
+            if other.dims != x.dims || !x.geometry.same_placement(&other.geometry) {
                 return Err(DataError::Invalid(format!(
                     "component {name} lies on another grid ({:?} voxels, {}) than component x \
                      ({:?} voxels, {}): resample the components onto one grid",
@@ -147,13 +147,6 @@ fn world_derivatives(g: &Geometry) -> Mat3 {
         .inverse()
         .transpose()
         .as_mat3()
-}
-
-fn same_geometry(a: &Geometry, b: &Geometry) -> bool {
-    let scale = a.spacing.max_element().max(1e-12);
-    (a.spacing - b.spacing).abs().max_element() <= 1e-6 * scale
-        && (a.origin - b.origin).abs().max_element() <= 1e-4 * scale
-        && a.direction.abs_diff_eq(b.direction, 1e-6)
 }
 
 /// The ABC (Arnold–Beltrami–Childress) flow on a `resolution`³ grid over [-1, 1]³:

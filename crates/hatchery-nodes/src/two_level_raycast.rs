@@ -344,13 +344,14 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             .cached("two_level.placeholders", |gpu| Ok(Placeholders::new(gpu)))
             .map_err(err)?;
         let min_spacing = v.spacing().iter().copied().fold(f32::INFINITY, f32::min);
+        let tables = object_tables(&styles);
         let thin_ranks = thinning.then(|| {
             let key = hatchery_data::thinning::KeyParams {
                 bands: params.thinning_levels as f32,
                 inv_max_gradient: 1.0 / volume.max_gradient().max(1e-20),
                 step: min_spacing,
             };
-            let rows = object_tables(&styles).columns;
+            let rows = tables.columns;
             if params.reconstruction == crate::reconstruction::Reconstruction::Bspline {
                 ctx.warn(
                     "volume thinning ranks each object's voxels by keys from central differences; \
@@ -373,7 +374,6 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             volume_texture.texel_range,
         )
         .with_bricks(volume_texture.layout.as_ref());
-        let tables = object_tables(&styles);
         let limit = gpu.device.limits().max_texture_dimension_2d;
         if tables.rows > limit {
             return Err(NodeError::at_port(

@@ -44,11 +44,12 @@ impl Node<Value, Ctx> for VectorFieldNode {
     ) -> Result<Vec<Value>, NodeError> {
         let [x, y, z] = ["x", "y", "z"].map(|port| inputs.require(port));
         let (x, y, z) = (x?.volume("x")?, y?.volume("y")?, z?.volume("z")?);
-        let field = VectorFieldData::from_components(&x.data, &y.data, &z.data).map_err(|e| {
-            // The message names the component (y or z) that lies elsewhere.
-            let port = if e.to_string().starts_with("component y") { "y" } else { "z" };
-            NodeError::at_port(port, e.to_string())
-        })?;
+        for (port, c) in [("y", y), ("z", z)] {
+            let what = format!("component {port}");
+            crate::raycast::check_grid_at(port, &what, c.data.dims, &c.data.geometry, x)?;
+        }
+        let field = VectorFieldData::from_components(&x.data, &y.data, &z.data)
+            .map_err(|e| NodeError::new(e.to_string()))?;
         Ok(vec![Value::VectorField(Arc::new(VectorField::new(field)))])
     }
 }

@@ -23,7 +23,7 @@ pub(crate) use importance_pass::PingPong;
 pub use importance_pass::{ImportanceBindings, ImportancePipelines, PassUniforms};
 pub use iso_surface_raycast::{IsoSurfaceRaycastNode, IsoSurfaceRaycastParams};
 pub use pass::{RayPipelines, StrokeUniforms, Strokes, cast};
-pub use tables::check_same_grid;
+pub use tables::{check_grid_at, check_same_grid};
 pub use uniforms::{Grid, RayMode, RayShading, RayUniforms, TableInfo};
 
 use crate::camera::Camera;

@@ -357,9 +357,7 @@ pub fn check_grid_at(
             ),
         ));
     }
-    let (a, b) = (geometry.to_world(), data.geometry.to_world());
-    let tolerance = 1e-3 * data.geometry.spacing.min_element();
-    if !a.abs_diff_eq(b, tolerance) {
+    if !data.geometry.same_placement(geometry) {
         return Err(NodeError::at_port(
             port,
             format!(

@@ -32,21 +32,17 @@ impl VectorField {
         let max = d.max_magnitude();
         let scale = if max > 0.0 { 1.0 / max } else { 0.0 };
         let slice = d.dims[0] as usize * d.dims[1] as usize;
-        let t = gpu.volume_texture_by_slabs(
-            "vector field",
-            d.dims,
-            wgpu::TextureFormat::Rgba16Float,
-            |z0, z1, out| {
-                let range = z0 as usize * slice..z1 as usize * slice;
-                for v in &d.vectors[range] {
-                    let finite = v.iter().all(|c| c.is_finite());
-                    for c in v.iter().chain(&[0.0]) {
-                        let c = if finite { c * scale } else { 0.0 };
-                        out.extend_from_slice(&half::f16::from_f32(c).to_le_bytes());
-                    }
-                }
-            },
-        )?;
+        let t = rgba16f_texture(gpu, "vector field", d.dims, |z0, z1, push| {
+            for v in &d.vectors[z0 as usize * slice..z1 as usize * slice] {
+                let finite = v.iter().all(|c| c.is_finite());
+                let [x, y, z] = if finite {
+                    v.map(|c| c * scale)
+                } else {
+                    [0.0; 3]
+                };
+                push([x, y, z, 0.0]);
+            }
+        })?;
         let (t, m) = self.texture.get_or_init(|| (t, max));
         Ok((t, *m))
     }
@@ -67,21 +63,32 @@ impl Volume {
         let [lo, hi] = d.value_range;
         let span = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
         let slice = d.dims[0] as usize * d.dims[1] as usize;
-        let t = gpu.volume_texture_by_slabs(
-            "second field",
-            d.dims,
-            wgpu::TextureFormat::Rgba16Float,
-            |z0, z1, out| {
-                let gradients = hatchery_data::gradient::voxel_gradients(d, z0, z1);
-                for (k, g) in gradients.iter().enumerate() {
-                    let v = d.voxels.get(z0 as usize * slice + k);
-                    let w = if v.is_finite() { (v - lo) * span } else { -1.0 };
-                    for c in (*g * scale).to_array().into_iter().chain([w]) {
-                        out.extend_from_slice(&half::f16::from_f32(c).to_le_bytes());
-                    }
-                }
-            },
-        )?;
+        let t = rgba16f_texture(gpu, "second field", d.dims, |z0, z1, push| {
+            let gradients = hatchery_data::gradient::voxel_gradients(d, z0, z1);
+            for (k, g) in gradients.iter().enumerate() {
+                let v = d.voxels.get(z0 as usize * slice + k);
+                let w = if v.is_finite() { (v - lo) * span } else { -1.0 };
+                push((*g * scale).extend(w).to_array());
+            }
+        })?;
         Ok(self.second_field.get_or_init(|| t))
     }
+}
+
+/// An Rgba16Float 3-D texture of `dims`, filled a slab of slices z0..z1 at a time by `fill`,
+/// which hands each texel (x fastest) to `push`.
+fn rgba16f_texture(
+    gpu: &GpuContext,
+    label: &str,
+    dims: [u32; 3],
+    mut fill: impl FnMut(u32, u32, &mut dyn FnMut([f32; 4])),
+) -> Result<wgpu::Texture, GpuError> {
+    let format = wgpu::TextureFormat::Rgba16Float;
+    gpu.volume_texture_by_slabs(label, dims, format, |z0, z1, out| {
+        fill(z0, z1, &mut |texel| {
+            for c in texel {
+                out.extend_from_slice(&half::f16::from_f32(c).to_le_bytes());
+            }
+        })
+    })
 }
