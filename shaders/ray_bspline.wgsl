@@ -83,6 +83,9 @@ fn bspline_cell(q: vec3<f32>) -> array<vec3<f32>, 2> {
 
 // The B-spline's normalised texel at q (8 fetches), or the trilinear one next to "no data".
 fn bspline_texel(q: vec3<f32>) -> f32 {
+    if RAY_BSPLINE_QUADS != 0 {
+        return quads_value_and_gradient(q);
+    }
     let cell = bspline_cell(q);
     let r = eight_fetches(taps(cell[0], bspline_weights(cell[1])));
     if r.y != 0.0 {
@@ -94,6 +97,12 @@ fn bspline_texel(q: vec3<f32>) -> f32 {
 // The B-spline's gradient at q in data units per voxel (24 fetches); w = 1 where a fetch leans
 // on "no data" (the caller falls back to central differences).
 fn bspline_gradient(q: vec3<f32>) -> vec4<f32> {
+    if RAY_BSPLINE_QUADS != 0 {
+        if any(q != quads_last.q) {
+            quads_value_and_gradient(q);
+        }
+        return quads_last.gradient;
+    }
     let cell = bspline_cell(q);
     let value = taps(cell[0], bspline_weights(cell[1]));
     let slope = taps(cell[0], bspline_derivative_weights(cell[1]));
@@ -160,4 +169,63 @@ fn bspline_derivatives(q: vec3<f32>) -> Derivatives {
     out.hessian = scale * mat3x3<f32>(vec3<f32>(h[0], h[3], h[4]), vec3<f32>(h[3], h[1], h[5]),
                                       vec3<f32>(h[4], h[5], h[2]));
     return out;
+}
+
+// On CPU drivers (llvmpipe/lavapipe) a texture fetch is a loop in software, filtered or not, so
+// the 32 fetches of a sample's value and gradient cost more than reading its 64 voxels once.
+// There the `volume` binding holds x-quads instead (value/bspline_quads.rs): texel (i, j, k) =
+// voxels i … i+3 of row (j, k), clamped to the row, in the volume's own encoding — so .r is the
+// voxel itself and every other read of `volume` is unchanged — and one load brings a whole row
+// of the 4×4×4 neighbourhood: 16 loads give the value and the gradient together. The gradient
+// is kept for the sample just valued (ray casters classify, then shade the same sample).
+override RAY_BSPLINE_QUADS: i32 = 0;
+
+struct QuadsSample {
+    q: vec3<f32>,
+    // Data units per voxel; w = 1 where a voxel holds "no data" (the caller falls back).
+    gradient: vec4<f32>,
+};
+
+var<private> quads_last: QuadsSample = QuadsSample(vec3<f32>(-1e30), vec4<f32>(0.0, 0.0, 0.0, 1.0));
+
+// Voxels i−1 … i+2 of row (y, z) of the neighbourhood whose first voxel is `base`.
+fn quads_row(base: vec3<i32>, y: i32, z: i32) -> vec4<f32> {
+    let t = textureLoad(volume, grid_texel(base + vec3<i32>(0, y, z)), 0);
+    // Below the grid's first voxel the row starts clamped: voxel 0 twice.
+    return select(t, vec4<f32>(t.r, t.rgb), base.x < 0);
+}
+
+// The B-spline's normalised texel at q (see bspline_texel); stores its gradient in quads_last.
+fn quads_value_and_gradient(q: vec3<f32>) -> f32 {
+    let cell = bspline_cell(q);
+    let w = bspline_weights(cell[1]);
+    let d = bspline_derivative_weights(cell[1]);
+    // The weights of the four voxels along each axis, as vectors over the voxels.
+    let wx = vec4<f32>(w.w0.x, w.w1.x, w.w2.x, w.w3.x);
+    let dx = vec4<f32>(d.w0.x, d.w1.x, d.w2.x, d.w3.x);
+    let wy = vec4<f32>(w.w0.y, w.w1.y, w.w2.y, w.w3.y);
+    let dy = vec4<f32>(d.w0.y, d.w1.y, d.w2.y, d.w3.y);
+    let wz = vec4<f32>(w.w0.z, w.w1.z, w.w2.z, w.w3.z);
+    let dz = vec4<f32>(d.w0.z, d.w1.z, d.w2.z, d.w3.z);
+    let base = vec3<i32>(cell[0]) - 1;
+    // Sums over x, then y, then z (separable): value, ∂x, ∂y, ∂z.
+    var sum = vec4<f32>(0.0);
+    var lowest = 1e30;
+    for (var z = 0; z < 4; z++) {
+        var plane = vec3<f32>(0.0); // Σy wy·(wx·row), Σy wy·(dx·row), Σy dy·(wx·row)
+        for (var y = 0; y < 4; y++) {
+            let row = quads_row(base, y, z);
+            lowest = min(lowest, min(min(row.x, row.y), min(row.z, row.w)));
+            let along = dot(wx, row);
+            plane += vec3<f32>(wy[y] * along, wy[y] * dot(dx, row), dy[y] * along);
+        }
+        sum += vec4<f32>(wz[z] * plane, dz[z] * plane.x);
+    }
+    let missing = lowest < -0.5;
+    let scale = ray.texel_values.y - ray.texel_values.x;
+    quads_last = QuadsSample(q, vec4<f32>(sum.yzw * scale, select(0.0, 1.0, missing)));
+    if missing {
+        return trilinear_texel(q);
+    }
+    return sum.x;
 }

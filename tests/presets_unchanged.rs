@@ -20,6 +20,9 @@
 //! also runs on tests/presets_on_other_data.rs's labels). `importance_brain_thinning` (issue 31:
 //! volume thinning keeps the grey matter's samples by their rank within the object, not by the
 //! key's value; tests/importance_thinning.rs).
+//! `tf1d_phong_brain`, `style_tf_brain` and `enhanced_sketch_brain` (issue 32: on CPU adapters
+//! the B-spline sums its 64 voxels from x-quads instead of 32 filtered fetches; by 1/255 in a few
+//! pixels; both against the CPU reference in tests/reconstruction.rs).
 
 mod common;
 

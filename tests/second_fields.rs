@@ -490,6 +490,7 @@ fn fields_with_a_volume_at_a_coarser_level_are_refused_naming_the_port() {
             max_texture_3d: Some(16),
             brick: 16,
             pool_bytes: 1 << 20,
+            ..hatchery_gpu::VolumeLimits::default()
         });
     let s = columns(n, n, n, |x| x as f32);
     let e = Enhancement {

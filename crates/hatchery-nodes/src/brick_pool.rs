@@ -272,6 +272,7 @@ mod tests {
             max_texture_3d: Some(max),
             brick,
             pool_bytes: pool_mb << 20,
+            ..VolumeLimits::default()
         }
     }
 

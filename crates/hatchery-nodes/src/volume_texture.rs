@@ -57,6 +57,28 @@ pub fn widen_8bit_wanted(voxels: u64, low_memory: Option<&str>) -> bool {
 
 /// Uploads `data` in the format of the table above.
 pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<VolumeTexture, GpuError> {
+    upload_texels(gpu, label, data, Texels::Voxels)
+}
+
+/// What each texel of a volume texture holds.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Texels {
+    /// One voxel (the table above).
+    Voxels,
+    /// Voxels i … i+3 of the row, clamped to the row's end, in the four channels of the
+    /// table's format (R8Unorm → Rgba8Unorm, R16Float → Rgba16Float, R16Unorm → Rgba16Unorm,
+    /// R32Float → Rgba32Float): the B-spline's loads on CPU adapters (`value/bspline_quads.rs`).
+    XQuads,
+}
+
+/// Uploads `data` with `texels` per texel in the format of the table above (four channels of it
+/// for [`Texels::XQuads`]); the texture is bricked where it exceeds the device's limits.
+pub fn upload_texels(
+    gpu: &GpuContext,
+    label: &str,
+    data: &VolumeData,
+    texels: Texels,
+) -> Result<VolumeTexture, GpuError> {
     let features = gpu.device.features();
     let norm16 = features.contains(wgpu::Features::TEXTURE_FORMAT_16BIT_NORM);
     let float32 = features.contains(wgpu::Features::FLOAT32_FILTERABLE);
@@ -71,72 +93,64 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
     };
     let dims = data.dims;
     let slice = dims[0] as usize * dims[1] as usize;
-    // Copies slices z0..z1 of `values`, each texel converted by `texel`.
-    fn slabs<T: Copy, const N: usize>(
-        values: &[T],
-        slice: usize,
-        texel: impl Fn(T) -> [u8; N],
-    ) -> impl FnMut(u32, u32, &mut Vec<u8>) {
-        move |z0, z1, out| {
-            for &v in &values[z0 as usize * slice..z1 as usize * slice] {
-                out.extend_from_slice(&texel(v));
-            }
-        }
-    }
+    let (row, quads) = (dims[0] as usize, texels == Texels::XQuads);
     let half = |v: f32| half::f16::from_f32(v).to_le_bytes();
     let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
     let widen_8bit = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
         && widen_8bit_wanted(voxels, std::env::var("HATCHERY_LOW_MEMORY").ok().as_deref());
+    // The table's format, or its four-channel sibling for quads.
+    let stored = |single: TextureFormat| if quads { four_channels(single) } else { single };
     let (format, range, texture) = match &data.voxels {
         Voxels::U8(v) if widen_8bit => {
-            let fill = slabs(v, slice, |x: u8| half(normalise(x as f32)));
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: u8| half(normalise(x as f32)));
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Float), fill)?;
             ("R16Float (8-bit widened, normalised)", [lo, hi], t)
         }
         Voxels::I8(v) if widen_8bit => {
-            let fill = slabs(v, slice, |x: i8| half(normalise(x as f32)));
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: i8| half(normalise(x as f32)));
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Float), fill)?;
             ("R16Float (8-bit widened, normalised)", [lo, hi], t)
         }
         Voxels::U8(v) => {
-            let t = grid_texture(gpu, label, dims, TextureFormat::R8Unorm, |z0, z1, out| {
-                out.extend_from_slice(&v[z0 as usize * slice..z1 as usize * slice]);
-            })?;
+            let fill = slabs(v, slice, row, quads, |x: u8| [x]);
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R8Unorm), fill)?;
             ("R8Unorm", [0.0, 255.0], t)
         }
         Voxels::I8(v) => {
-            let fill = slabs(v, slice, |x: i8| [(x as i16 + 128) as u8]);
-            let t = grid_texture(gpu, label, dims, TextureFormat::R8Unorm, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: i8| [(x as i16 + 128) as u8]);
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R8Unorm), fill)?;
             ("R8Unorm (+128)", [-128.0, 127.0], t)
         }
         Voxels::U16(v) if norm16 => {
-            let fill = slabs(v, slice, |x: u16| x.to_le_bytes());
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Unorm, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: u16| x.to_le_bytes());
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Unorm), fill)?;
             ("R16Unorm", [0.0, 65535.0], t)
         }
         Voxels::I16(v) if norm16 => {
-            let fill = slabs(v, slice, |x: i16| ((x as i32 + 32768) as u16).to_le_bytes());
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Unorm, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: i16| {
+                ((x as i32 + 32768) as u16).to_le_bytes()
+            });
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Unorm), fill)?;
             ("R16Unorm (+32768)", [-32768.0, 32767.0], t)
         }
         Voxels::U16(v) => {
-            let fill = slabs(v, slice, |x: u16| half(normalise(x as f32)));
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: u16| half(normalise(x as f32)));
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Float), fill)?;
             ("R16Float (normalised)", [lo, hi], t)
         }
         Voxels::I16(v) => {
-            let fill = slabs(v, slice, |x: i16| half(normalise(x as f32)));
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: i16| half(normalise(x as f32)));
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Float), fill)?;
             ("R16Float (normalised)", [lo, hi], t)
         }
         Voxels::F32(v) if float32 => {
-            let fill = slabs(v, slice, |x: f32| normalise(x).to_le_bytes());
-            let t = grid_texture(gpu, label, dims, TextureFormat::R32Float, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: f32| normalise(x).to_le_bytes());
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R32Float), fill)?;
             ("R32Float (normalised)", [lo, hi], t)
         }
         Voxels::F32(v) => {
-            let fill = slabs(v, slice, |x: f32| half(normalise(x)));
-            let t = grid_texture(gpu, label, dims, TextureFormat::R16Float, fill)?;
+            let fill = slabs(v, slice, row, quads, |x: f32| half(normalise(x)));
+            let t = grid_texture(gpu, label, dims, stored(TextureFormat::R16Float), fill)?;
             ("R16Float (normalised)", [lo, hi], t)
         }
     };
@@ -166,6 +180,47 @@ pub fn upload(gpu: &GpuContext, label: &str, data: &VolumeData) -> Result<Volume
         layout,
         page_table,
     })
+}
+
+/// Copies slices z0..z1 of `values` (rows of `row` voxels, `slice` voxels per slice), each
+/// texel converted by `texel`; with `quads`, each texel holds voxels i … i+3 of its row (the
+/// last voxel repeated past the row's end).
+fn slabs<T: Copy, const N: usize>(
+    values: &[T],
+    slice: usize,
+    row: usize,
+    quads: bool,
+    texel: impl Fn(T) -> [u8; N],
+) -> impl FnMut(u32, u32, &mut Vec<u8>) {
+    move |z0, z1, out| {
+        let slab = &values[z0 as usize * slice..z1 as usize * slice];
+        if !quads {
+            for &v in slab {
+                out.extend_from_slice(&texel(v));
+            }
+            return;
+        }
+        for voxels in slab.chunks(row) {
+            for i in 0..row {
+                for k in 0..4 {
+                    out.extend_from_slice(&texel(voxels[(i + k).min(row - 1)]));
+                }
+            }
+        }
+    }
+}
+
+/// The four-channel format with `single`'s channel encoding.
+fn four_channels(single: TextureFormat) -> TextureFormat {
+    match single {
+        TextureFormat::R8Unorm => TextureFormat::Rgba8Unorm,
+        TextureFormat::R16Unorm => TextureFormat::Rgba16Unorm,
+        TextureFormat::R16Float => TextureFormat::Rgba16Float,
+        TextureFormat::R32Float => TextureFormat::Rgba32Float,
+        other => unreachable!(
+            "volume textures are R8Unorm, R16Unorm, R16Float or R32Float, not {other:?}"
+        ),
+    }
 }
 
 #[cfg(test)]

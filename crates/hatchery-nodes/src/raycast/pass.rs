@@ -3,7 +3,7 @@
 use super::bindings::{RayOutputs, StrokeBindings};
 use super::tables::RayTables;
 use super::uniforms::{RayShading, RayUniforms};
-use super::{Kernel, RayOptions};
+use super::{Kernel, RayOptions, Reconstruction};
 use crate::Ctx;
 use crate::camera::Camera;
 use crate::gbuffer::NORMAL_FORMAT;
@@ -412,7 +412,14 @@ pub fn cast(
     let stroke_mask_view = strokes
         .map_or(&st.blank_mask, |s| &s.mask.texture)
         .create_view(&Default::default());
-    let volume_view = volume_texture.texture.create_view(&Default::default());
+    // The B-spline reads x-quads where fetches are software loops (value/bspline_quads.rs).
+    let quads = match o.reconstruction {
+        Reconstruction::Bspline => volume.bspline_quads(gpu).map_err(err)?,
+        Reconstruction::Trilinear => None,
+    };
+    let volume_view = quads
+        .unwrap_or(&volume_texture.texture)
+        .create_view(&Default::default());
     let page_view = volume_texture.page_table.create_view(&Default::default());
     let shared = tables.bindings(&uniform, &volume_view, &page_view, &st.sampler);
     let view = |t: Option<&wgpu::Texture>| {
@@ -439,12 +446,13 @@ pub fn cast(
         0
     };
     let reconstruction = o.reconstruction.code();
+    let read_quads = u8::from(quads.is_some());
     let preintegrated = u8::from(o.preintegrated);
     let field = fields.measured;
     let pipelines = ctx
         .cached(
             &format!(
-                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{preintegrated}.{enhance}.{field}.{tf2d}"
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{read_quads}.{preintegrated}.{enhance}.{field}.{tf2d}"
             ),
             |gpu| {
                 let constants = [
@@ -454,6 +462,7 @@ pub fn cast(
                     ("RAY_FAST_EXPONENT", fast as f64),
                     ("RAY_BRICKED", bricked as f64),
                     o.reconstruction.constant(),
+                    ("RAY_BSPLINE_QUADS", f64::from(read_quads)),
                     ("RAY_PREINTEGRATED", f64::from(preintegrated)),
                     ("RAY_ENHANCE", f64::from(enhance)),
                     ("RAY_TF2D", f64::from(tf2d)),

@@ -5,6 +5,7 @@
 //! types of their own are in the submodules.
 
 pub mod annotations;
+mod bspline_quads;
 pub mod camera;
 pub mod light;
 mod resident;
@@ -36,6 +37,8 @@ pub struct Volume {
     coarser_labels: OnceLock<Arc<Volume>>,
     /// Its gradient and value as another volume's second field (see [`vector_field`]).
     second_field: OnceLock<wgpu::Texture>,
+    /// The volume as x-quads for the B-spline on CPU adapters (see [`bspline_quads`]).
+    bspline_quads: OnceLock<Option<wgpu::Texture>>,
     /// The file a volume beyond the host budget streams from (`data` is then its preview
     /// level; see [`stream`]).
     stream: Option<Arc<stream::Stream>>,
@@ -57,6 +60,7 @@ impl Volume {
             coarser: OnceLock::new(),
             coarser_labels: OnceLock::new(),
             second_field: OnceLock::new(),
+            bspline_quads: OnceLock::new(),
             stream: None,
         }
     }
