@@ -9,19 +9,10 @@
 // part with no displacement) unless a part is a half of the whole volume.
 // Prepended: ray_common, ray_bspline, ray_classify, ray_shade, ray_skip, ray_objects.
 
-struct Exploded {
-    // Number of rows of `parts`.
-    count: u32,
-    // 1 to draw the objects no part names where they are.
-    rest: u32,
-    pad0: u32,
-    pad1: u32,
-};
-@group(1) @binding(4) var<uniform> exploded: Exploded;
-// One row per part, four texels: (displacement in voxels, object id or 0 for the whole
+// One row per part (EXPLODED_PARTS rows), four texels: (displacement in voxels, object id or 0 for the whole
 // volume), (voxel-space plane: normal, offset), (source box min, side: +1 the plane's positive
 // half, −1 the negative, 0 whole), (source box max, 0).
-@group(1) @binding(5) var parts: texture_2d<f32>;
+@group(1) @binding(4) var parts: texture_2d<f32>;
 
 // The codes of the object table (hatchery_nodes::value::RenderMode and Compositing, as in
 // two_level_raycast.wgsl).
@@ -31,6 +22,12 @@ const MODE_CONTOURS: u32 = 3u;
 const MODE_ISO: u32 = 5u;
 const LOCAL_ISO: u32 = 2u;
 const MAX_PARTS: u32 = 16u;
+// The number of parts, and 1 to draw the objects no part names where they are: pipeline
+// constants, so the per-part loops have constant bounds, which lets the compiler unroll them
+// and keep the parts' arrays in registers (CPU drivers otherwise index them in memory at
+// every sample).
+override EXPLODED_PARTS: u32 = 16u;
+override EXPLODED_REST: u32 = 1u;
 
 fn part_texel(i: u32, j: i32) -> vec4<f32> {
     return textureLoad(parts, vec2<i32>(j, i32(i)), 0);
@@ -86,7 +83,7 @@ fn part_takes(want: i32, id: u32) -> bool {
     if want > 0 {
         return u32(want) == id;
     }
-    for (var i = 0u; i < min(exploded.count, MAX_PARTS); i++) {
+    for (var i = 0u; i < min(EXPLODED_PARTS, MAX_PARTS); i++) {
         if u32(part_texel(i, 0).w + 0.5) == id {
             return false;
         }
@@ -118,7 +115,8 @@ fn cast_exploded(position: vec2<f32>) -> RayResult {
     // The parts along this ray, the rest (the objects no part names, in place) last: the
     // displacement, the plane and side, the object (0: any, −1: the rest's) and where the ray
     // meets the part's moved box.
-    var n = min(exploded.count, MAX_PARTS);
+    let parts_moved = min(EXPLODED_PARTS, MAX_PARTS);
+    let n = parts_moved + min(EXPLODED_REST, 1u);
     var disp: array<vec3<f32>, 17>;
     var planes: array<vec4<f32>, 17>;
     var sides: array<f32, 17>;
@@ -126,7 +124,7 @@ fn cast_exploded(position: vec2<f32>) -> RayResult {
     var spans: array<vec2<f32>, 17>;
     var t_min = 1e30;
     var t_max = -1e30;
-    for (var i = 0u; i < n; i++) {
+    for (var i = 0u; i < parts_moved; i++) {
         let first = part_texel(i, 0);
         let lo = part_texel(i, 2);
         disp[i] = first.xyz;
@@ -135,12 +133,12 @@ fn cast_exploded(position: vec2<f32>) -> RayResult {
         sides[i] = lo.w;
         spans[i] = slab(r.q0 - first.xyz, r.dq, lo.xyz, part_texel(i, 3).xyz);
     }
-    if exploded.rest != 0u && r.hits {
-        disp[n] = vec3<f32>(0.0);
-        wants[n] = -1;
-        sides[n] = 0.0;
-        spans[n] = vec2<f32>(r.t_in, r.t_out);
-        n += 1u;
+    if EXPLODED_REST != 0u {
+        // Empty where the ray misses the volume.
+        disp[parts_moved] = vec3<f32>(0.0);
+        wants[parts_moved] = -1;
+        sides[parts_moved] = 0.0;
+        spans[parts_moved] = select(vec2<f32>(1.0, 0.0), vec2<f32>(r.t_in, r.t_out), r.hits);
     }
     for (var i = 0u; i < n; i++) {
         if spans[i].x <= spans[i].y {

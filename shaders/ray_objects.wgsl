@@ -57,6 +57,10 @@ struct TwoLevel {
 // pipeline (TwoLevelRaycast does; −1, the default, reads `two_level`).
 override TL_FILTER: i32 = -1;
 override TL_MASK_NORMALS: i32 = -1;
+// 1 where `object_ids` holds 2×2 id quads (texel (i, j, k): the ids of (i, j), (i+1, j),
+// (i, j+1), (i+1, j+1) in slice k; value/id_quads.rs), which CPU-adapter nodes bind: a
+// footprint's 8 corners in 2 loads. `.r` is the voxel's own id either way.
+override TL_ID_QUADS: i32 = 0;
 
 fn boundary_filtered() -> bool {
     return select(two_level.boundary_filter != 0u, TL_FILTER > 0, TL_FILTER >= 0);
@@ -79,6 +83,13 @@ fn id_at(v: vec3<i32>) -> u32 {
 // apron: one page-table fetch for all 8.
 fn corner_ids(base: vec3<i32>) -> array<u32, 8> {
     var ids: array<u32, 8>;
+    if TL_ID_QUADS != 0 && !bricked() {
+        // 2×2 id quads (value/id_quads.rs): slices z and z + 1, clamped as grid_texel does.
+        let v = clamp(base, vec3<i32>(0), vec3<i32>(ray.dims) - 1);
+        let near = textureLoad(object_ids, v, 0);
+        let far = textureLoad(object_ids, vec3<i32>(v.xy, min(v.z + 1, i32(ray.dims.z) - 1)), 0);
+        return array<u32, 8>(near.x, near.y, near.z, near.w, far.x, far.y, far.z, far.w);
+    }
     if bricked() {
         let origin = grid_texel(base);
         for (var c = 0; c < 8; c++) {

@@ -23,7 +23,7 @@ fn forced() -> VolumeLimits {
 /// bricked volumes do (its x-quads, tested in tests/reconstruction.rs, sum in another order).
 fn one_texture() -> VolumeLimits {
     VolumeLimits {
-        bspline_quads_bytes: 0,
+        quads_bytes: 0,
         ..VolumeLimits::default()
     }
 }

@@ -215,7 +215,7 @@ fn raycast_with_the_bspline_matches_its_cpu_reference() {
         let mut s = session(48, 40);
         if !quads {
             s.ctx.gpu.set_volume_limits(hatchery_gpu::VolumeLimits {
-                bspline_quads_bytes: 0,
+                quads_bytes: 0,
                 ..hatchery_gpu::VolumeLimits::default()
             });
         }
@@ -372,7 +372,7 @@ fn the_bspline_reads_a_bricked_volume_as_one_texture() {
     // Both through the filtered fetches (a bricked volume never reads x-quads).
     let mut whole = session(48, 40);
     whole.ctx.gpu.set_volume_limits(hatchery_gpu::VolumeLimits {
-        bspline_quads_bytes: 0,
+        quads_bytes: 0,
         ..hatchery_gpu::VolumeLimits::default()
     });
     let one = raycast(

@@ -677,3 +677,72 @@ fn label_file_names_objects_from_a_slicer_segmentation_header() {
         .collect();
     assert_eq!(names, vec![(1, "skin"), (3, "liver")]);
 }
+
+/// On CPU adapters the ids are read as 2×2 quads (value/id_quads.rs: a footprint's 8 corners in
+/// 2 loads); the picture must equal the one-id texture's bit for bit — boundary filtering and
+/// the objects' mask normals read every corner — for ids below 256 (Rgba8Uint) and above
+/// (Rgba16Uint).
+#[test]
+fn id_quads_give_the_one_id_textures_picture_bit_for_bit() {
+    for offset in [0u16, 300] {
+        let (volume, labels) = nested_spheres();
+        let ids = labels
+            .ids
+            .iter()
+            .map(|&id| if id == 0 { 0 } else { id + offset })
+            .collect();
+        let labels = LabelData::new(labels.dims, labels.geometry, ids);
+        let mut pictures = Vec::new();
+        for quads in [true, false] {
+            let mut s = session();
+            if !quads {
+                s.ctx.gpu.set_volume_limits(hatchery_gpu::VolumeLimits {
+                    quads_bytes: 0,
+                    ..hatchery_gpu::VolumeLimits::default()
+                });
+            }
+            let shared = Arc::new(Labels::new(labels.clone()));
+            let made = shared.id_quads(&s.ctx.gpu).unwrap().is_some();
+            let cpu = s.ctx.gpu.adapter_info.device_type == wgpu::DeviceType::Cpu;
+            assert_eq!(made, quads && cpu, "id quads made (allowed: {quads})");
+            let cam = zoomed_camera(&mut s, Vec3::new(3.0, -2.0, 0.0), 14.0);
+            let styles: Vec<ObjectStyle> = [(1, SHELL), (2, CORE)]
+                .into_iter()
+                .map(|(id, rgba)| ObjectStyle {
+                    mode: RenderMode::ShadedDvr,
+                    ..style(id + offset, &flat(rgba), Local::Over)
+                })
+                .collect();
+            let out = common::run_node(
+                &mut s,
+                "TwoLevelRaycast",
+                vec![
+                    (
+                        "volume",
+                        Value::Volume(Arc::new(Volume::new(volume.clone()))),
+                    ),
+                    ("labels", Value::Labels(shared)),
+                    ("styles", Value::ObjectStyles(Arc::new(styles))),
+                    ("camera", Value::Camera(Arc::new(cam))),
+                ],
+                &[
+                    ("boundary", ParamValue::Choice("filtered".into())),
+                    ("normals", ParamValue::Choice("objects".into())),
+                    ("step", ParamValue::Float(STEP as f64)),
+                    ("jitter", ParamValue::Bool(false)),
+                ],
+            );
+            pictures.push(export::to_array(&out[0], &s.ctx.gpu).unwrap().data);
+        }
+        let (with, without) = (&pictures[0], &pictures[1]);
+        assert!(
+            with.chunks(4).filter(|p| p[3] > 0.1).count() > 100,
+            "an empty picture"
+        );
+        let differ = with.iter().zip(without).filter(|(a, b)| a != b).count();
+        assert_eq!(
+            differ, 0,
+            "ids from {offset}: {differ} channels differ with id quads"
+        );
+    }
+}

@@ -18,11 +18,13 @@ pub struct VolumeLimits {
     /// Bytes each brick pool (one atlas texture per volume grid texture) may use, counted at 4
     /// bytes a voxel whatever its format. `HATCHERY_GPU_POOL_MB`, default 2048.
     pub pool_bytes: u64,
-    /// Bytes the tricubic B-spline's x-quads of one volume may take on a CPU adapter, where
-    /// they replace its 32 filtered fetches a sample by 16 loads (four times the volume
-    /// texture; 0: never). `HATCHERY_BSPLINE_QUADS_MB`, default 256; `HATCHERY_LOW_MEMORY=1`
-    /// makes it 0.
-    pub bspline_quads_bytes: u64,
+    /// Bytes each read-ahead copy may take on a CPU adapter, where a texture load is a loop in
+    /// software and one load of four neighbours replaces four: a volume's x-quads for the
+    /// tricubic B-spline (16 loads a sample instead of 32 filtered fetches; four times the
+    /// volume texture) and a label map's 2×2 id quads for boundary filtering and object masks
+    /// (2 loads instead of 8; two or four times the id texture). 0: never.
+    /// `HATCHERY_QUADS_MB`, default 256; `HATCHERY_LOW_MEMORY=1` makes it 0.
+    pub quads_bytes: u64,
 }
 
 impl Default for VolumeLimits {
@@ -31,7 +33,7 @@ impl Default for VolumeLimits {
             max_texture_3d: None,
             brick: 64,
             pool_bytes: 2048 << 20,
-            bspline_quads_bytes: 256 << 20,
+            quads_bytes: 256 << 20,
         }
     }
 }
@@ -41,7 +43,7 @@ pub const MIN_BRICK: u32 = 4;
 
 impl VolumeLimits {
     /// The defaults, overridden by `HATCHERY_MAX_TEXTURE_3D`, `HATCHERY_BRICK`,
-    /// `HATCHERY_GPU_POOL_MB`, `HATCHERY_BSPLINE_QUADS_MB` and `HATCHERY_LOW_MEMORY=1`. Errors: a value that is not a whole number in range, naming the
+    /// `HATCHERY_GPU_POOL_MB`, `HATCHERY_QUADS_MB` and `HATCHERY_LOW_MEMORY=1`. Errors: a value that is not a whole number in range, naming the
     /// variable.
     pub fn from_env() -> Result<Self, GpuError> {
         Self::from_vars(|name| std::env::var(name).ok())
@@ -71,11 +73,11 @@ impl VolumeLimits {
         if let Some(n) = number("HATCHERY_GPU_POOL_MB", 1)? {
             limits.pool_bytes = n.saturating_mul(1 << 20);
         }
-        if let Some(n) = number("HATCHERY_BSPLINE_QUADS_MB", 0)? {
-            limits.bspline_quads_bytes = n.saturating_mul(1 << 20);
+        if let Some(n) = number("HATCHERY_QUADS_MB", 0)? {
+            limits.quads_bytes = n.saturating_mul(1 << 20);
         }
         if var("HATCHERY_LOW_MEMORY").is_some_and(|v| v.trim() == "1") {
-            limits.bspline_quads_bytes = 0;
+            limits.quads_bytes = 0;
         }
         Ok(limits)
     }
@@ -114,15 +116,15 @@ mod tests {
             ("HATCHERY_MAX_TEXTURE_3D", "64"),
             ("HATCHERY_BRICK", "16"),
             ("HATCHERY_GPU_POOL_MB", "3"),
-            ("HATCHERY_BSPLINE_QUADS_MB", "5"),
+            ("HATCHERY_QUADS_MB", "5"),
         ]))
         .unwrap();
-        assert_eq!(l.bspline_quads_bytes, 5 << 20);
+        assert_eq!(l.quads_bytes, 5 << 20);
         let low = VolumeLimits::from_vars(vars(&[
-            ("HATCHERY_BSPLINE_QUADS_MB", "5"),
+            ("HATCHERY_QUADS_MB", "5"),
             ("HATCHERY_LOW_MEMORY", "1"),
         ]));
-        assert_eq!(low.unwrap().bspline_quads_bytes, 0);
+        assert_eq!(low.unwrap().quads_bytes, 0);
         assert_eq!(l.max_texture_3d, Some(64));
         assert_eq!(l.brick, 16);
         assert_eq!(l.pool_bytes, 3 << 20);

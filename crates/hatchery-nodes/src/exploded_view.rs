@@ -26,16 +26,6 @@ use hatchery_graph::{
 };
 use std::sync::Arc;
 
-crate::uniform_block! {
-    /// `Exploded` of shaders/exploded_view.wgsl.
-    pub struct ExplodedUniforms in "exploded_view" as "Exploded" {
-        pub count: u32,
-        pub rest: u32,
-        pub pad0: u32,
-        pub pad1: u32,
-    }
-}
-
 /// At most this many parts (a split counts two): the shader keeps each part's span per ray.
 pub const MAX_PARTS: usize = 16;
 
@@ -522,11 +512,16 @@ impl Node<Value, Ctx> for ExplodedViewNode {
         let filtered = params.boundary != Boundary::Point;
         let object_normals = params.normals == Normals::Objects;
         let bricked = volume.texture(&ctx.gpu).map_err(err)?.layout.is_some();
+        let (ids_texture, id_quads) =
+            crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
             params.reconstruction.on(ctx, &volume.data).constant(),
             ("TL_FILTER", f64::from(u8::from(filtered))),
             ("TL_MASK_NORMALS", f64::from(u8::from(object_normals))),
+            ("EXPLODED_PARTS", parts.len() as f64),
+            ("EXPLODED_REST", f64::from(u8::from(!whole_volume))),
+            id_quads,
         ];
         let key = constants
             .iter()
@@ -564,17 +559,10 @@ impl Node<Value, Ctx> for ExplodedViewNode {
             },
             ..Default::default()
         };
-        let exploded = ExplodedUniforms {
-            count: parts.len() as u32,
-            rest: (!whole_volume).into(),
-            pad0: 0,
-            pad1: 0,
-        };
         let buffer =
             |label, bytes: &[u8]| gpu.buffer_init(label, bytes, wgpu::BufferUsages::UNIFORM);
         let ray_buffer = buffer("exploded ray", bytemuck::bytes_of(&uniforms));
         let two_level_buffer = buffer("exploded objects", bytemuck::bytes_of(&two_level));
-        let exploded_buffer = buffer("exploded parts", bytemuck::bytes_of(&exploded));
         let texture_2d = |label, w: u32, h: u32, data: &[f32]| {
             gpu.texture_2d_init(
                 label,
@@ -598,7 +586,6 @@ impl Node<Value, Ctx> for ExplodedViewNode {
         );
         let parts_texture = texture_2d("exploded part table", 4, (table.len() / 16) as u32, &table);
         let placeholder = texture_2d("exploded placeholder", 1, 1, &[0.0; 4]);
-        let ids_texture = labels.texture(gpu).map_err(err)?;
         let mut drawn: Vec<u16> = styles.iter().filter(|s| s.enabled).map(|s| s.id).collect();
         drawn.sort_unstable();
         let drawn_mask = labels.drawn_mask(gpu, &drawn).map_err(err)?;
@@ -613,7 +600,7 @@ impl Node<Value, Ctx> for ExplodedViewNode {
         let views = [
             view(&volume_texture.texture),
             view(&tf_texture),
-            view(&ids_texture.texture),
+            view(ids_texture),
             view(&table_texture),
             view(&brick_texture),
             view(&drawn_mask.texture),
@@ -641,7 +628,6 @@ impl Node<Value, Ctx> for ExplodedViewNode {
             }
             .entries(),
             ExplodedBindings {
-                exploded: Some(&exploded_buffer),
                 parts: Some(&views[8]),
             }
             .entries(),
@@ -727,7 +713,6 @@ fn draw_guides(
 crate::bind_group! {
     /// ExplodedView's own bindings, after the object tables (shaders/exploded_view.wgsl).
     pub struct ExplodedBindings in "exploded_view", group 1 from 4 {
-        pub exploded: Buffer,
         pub parts: TextureView,
     }
 }
@@ -740,7 +725,6 @@ pub fn declare(k: &mut crate::kinds::Kinds) {
             "exploded_view",
             shaders::ray_objects(shaders::part!("exploded_view.wgsl")),
         )
-        .uniform(ExplodedUniforms::layout())
         .bind_group(ExplodedBindings::layout())
         .uniform_in("exploded_view", TwoLevelUniforms::layout())
         .uniform_in("exploded_view", RayUniforms::layout())

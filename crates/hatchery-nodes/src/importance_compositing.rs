@@ -186,8 +186,13 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
             weights[i / 4][i % 4] = s.importance.max(0.0);
         }
         let err = |e: GpuError| NodeError::new(e.to_string());
+        let bricked = labels.texture(&ctx.gpu).map_err(err)?.layout.is_some();
+        let (ids_texture, id_quads) =
+            crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let pipelines = ctx
-            .cached("importance.pipelines", ImportancePipelines::new)
+            .cached(&format!("importance.pipelines.{}", id_quads.1), |gpu| {
+                ImportancePipelines::specialised(gpu, &[id_quads])
+            })
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
         let gpu = &ctx.gpu;
@@ -291,7 +296,7 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let groups = (w.div_ceil(8), h.div_ceil(8));
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let (ids_v, drawn_v, bricks_v, table_v, pages_v) = (
-            view(&ids.texture),
+            view(ids_texture),
             view(&drawn_mask.texture),
             view(&brick_texture),
             view(&table_texture),

@@ -322,6 +322,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         }
         let method = importance.as_ref().map_or(0, |i| i.method.code());
         let thinning = importance.is_some() && params.sparseness == Sparseness::Thinning;
+        let (ids, id_quads) =
+            crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
             params.reconstruction.on(ctx, &volume.data).constant(),
@@ -332,6 +334,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ("TL_MODES", f64::from(modes)),
             ("TL_LOCALS", f64::from(locals)),
             ("TL_THINNING", f64::from(u8::from(thinning))),
+            id_quads,
         ];
         let key = constants.iter().map(|(_, v)| v.to_string()).collect::<Vec<_>>().join(".");
         let pipelines = ctx
@@ -437,7 +440,6 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             wgpu::TextureFormat::Rgba32Float,
             bytemuck::cast_slice(&tables.table),
         );
-        let ids = labels.texture(gpu).map_err(err)?;
         let mut drawn: Vec<u16> = styles.iter().filter(|s| s.enabled).map(|s| s.id).collect();
         drawn.sort_unstable();
         let drawn_mask = labels.drawn_mask(gpu, &drawn).map_err(err)?;
@@ -451,7 +453,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let views = [
             volume_texture.texture.create_view(&Default::default()),
             tf_texture.create_view(&Default::default()),
-            ids.texture.create_view(&Default::default()),
+            ids.create_view(&Default::default()),
             table_texture.create_view(&Default::default()),
             brick_texture.create_view(&Default::default()),
             drawn_mask.texture.create_view(&Default::default()),

@@ -35,7 +35,19 @@ pub struct ImportancePipelines {
 
 impl ImportancePipelines {
     pub fn new(gpu: &GpuContext) -> Result<Self, GpuError> {
+        Self::specialised(gpu, &[])
+    }
+
+    /// The pipelines with `constants` written into the program (see `shaders::specialise`),
+    /// e.g. `TL_ID_QUADS`. Errors: a constant the program does not declare, or compilation.
+    pub fn specialised(gpu: &GpuContext, constants: &[(&str, f64)]) -> Result<Self, GpuError> {
         let source = crate::kinds::source("importance").expect("registered program");
+        let source = crate::shaders::specialise(&source, constants).map_err(|message| {
+            GpuError::Validation {
+                what: "specialising importance".into(),
+                message,
+            }
+        })?;
         let module = gpu.shader("importance", &source)?;
         let pipelines = KERNELS
             .iter()

@@ -226,3 +226,19 @@ pub(crate) fn check_labels_grid(
     }
     Ok(())
 }
+
+/// The texture to bind as `object_ids` (shaders/ray_objects.wgsl) and the `TL_ID_QUADS`
+/// constant that goes with it: the labels' 2×2 id quads where they are made (CPU adapters,
+/// value/id_quads.rs) and the pipeline reads an unbricked grid, else the one-id texture.
+/// Errors: the uploads'.
+pub(crate) fn object_id_texture<'l>(
+    gpu: &hatchery_gpu::GpuContext,
+    labels: &'l Labels,
+    bricked: bool,
+) -> Result<(&'l wgpu::Texture, (&'static str, f64)), hatchery_gpu::GpuError> {
+    let quads = if bricked { None } else { labels.id_quads(gpu)? };
+    Ok(match quads {
+        Some(t) => (t, ("TL_ID_QUADS", 1.0)),
+        None => (&labels.texture(gpu)?.texture, ("TL_ID_QUADS", 0.0)),
+    })
+}

@@ -7,6 +7,7 @@
 pub mod annotations;
 mod bspline_quads;
 pub mod camera;
+mod id_quads;
 pub mod light;
 mod resident;
 pub mod stream;
@@ -155,6 +156,8 @@ pub struct Labels {
     frame_points: OnceLock<Vec<glam::Vec3>>,
     /// The next coarser level of detail, made when a brick pool cannot hold this one.
     coarser: OnceLock<Arc<Labels>>,
+    /// The ids as 2×2 quads for CPU adapters (see [`id_quads`]).
+    id_quads: OnceLock<Option<wgpu::Texture>>,
 }
 
 /// Which object ids the samples in each 8³-voxel brick can see (a sample's object comes from
@@ -179,6 +182,7 @@ impl Labels {
             selection_mask: std::sync::Mutex::new(None),
             frame_points: OnceLock::new(),
             coarser: OnceLock::new(),
+            id_quads: OnceLock::new(),
         }
     }
 
