@@ -389,13 +389,11 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         }
         // Volume thinning keeps a context sample, unchanged, where its rank within its object
         // is at least 1 − s; the focus is never thinned (in image-space AImC it keeps opacity
-        // × s, as with a sparse style).
-        if s < 1.0 && thinning(level) && current != focus {
-            if thinning_rank(current, thinning_key(q, r.p0 + r.dir * t)) < 1.0 - s {
-                continue;
-            }
-            s = 1.0;
-        }
+        // × s, as with a sparse style). Its key needs a Hessian (36 fetches), so a DVR sample
+        // is decided once its transfer function gives it opacity: samples that add nothing
+        // anyway skip it. An iso object's samples are decided before the crossing test, as
+        // they always were (a thinned sample is not the one the crossing interpolates from).
+        let thinned = s < 1.0 && thinning(level) && current != focus;
         // Just behind a countersink cut the cut surface shades the context (MImP).
         let on_cut = method == IMP_MIMP && t >= t_cut && t - t_cut <= two_level.cut_band;
         let v = value_at(q);
@@ -404,6 +402,12 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
             continue;
         }
         if may_local(LOCAL_ISO) && local == LOCAL_ISO {
+            if thinned {
+                if thinning_rank(current, thinning_key(q, r.p0 + r.dir * t)) < 1.0 - s {
+                    continue;
+                }
+                s = 1.0;
+            }
             if v >= iso {
                 var t_hit = t;
                 if !no_data(previous_value) && v != previous_value {
@@ -446,6 +450,12 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         let entry = table_lookup_row(v, row, domain);
         if entry.a <= 0.0 {
             continue;
+        }
+        if thinned {
+            if thinning_rank(current, thinning_key(q, r.p0 + r.dir * t)) < 1.0 - s {
+                continue;
+            }
+            s = 1.0;
         }
         var c = entry.rgb;
         var a = entry.a;
