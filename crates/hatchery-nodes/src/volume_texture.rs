@@ -173,7 +173,7 @@ pub fn upload_texels(
     } else {
         [lo, lo + 1.0]
     };
-    tracing::debug!(label, format, ?dims, "volume texture");
+    tracing::debug!(label, format, quads, ?dims, "volume texture");
     Ok(VolumeTexture {
         texture,
         texel_range,
