@@ -219,3 +219,76 @@ fn a_volume_beyond_the_adapter_limit_is_bricked_and_renders() {
     assert_eq!(layout.pages[1..], [1, 1], "{}", layout.describe());
     assert!(layout.atlas_dims().iter().all(|&d| d <= limit));
 }
+
+/// Next to "no data" the gradient is one-sided (the ray caster keeps that fallback for volumes
+/// with NaN voxels: RAY_NO_DATA). A ramp f = x cut off by NaN for z ≥ 12, its iso-surface
+/// x = 7.5 seen head-on with pixel centres on voxel centres: the plane shades uniformly up to
+/// the row next to the NaN (there ∂f/∂z is one-sided, 0; across the NaN it would not be).
+#[test]
+fn a_plane_shades_uniformly_up_to_no_data() {
+    use hatchery_data::VolumeData;
+    use hatchery_data::geometry::Geometry;
+    let n = 16u32;
+    let mut values = Vec::new();
+    for z in 0..n {
+        for _y in 0..n {
+            for x in 0..n {
+                values.push(if z >= 12 { f32::NAN } else { x as f32 });
+            }
+        }
+    }
+    let geometry = Geometry::axis_aligned([1.0; 3], [0.0; 3]);
+    let data = VolumeData::with_geometry([n; 3], geometry, values).unwrap();
+    assert!(data.has_no_data());
+    let volume = Arc::new(Volume::new(data));
+    let mut s =
+        common::session_from_text(r#"(version: 1, nodes: [(id: "c", kind: "Camera")])"#, n, n);
+    let half = n as f32 / 2.0;
+    let fov = 2.0 * (half / 200.0).atan().to_degrees();
+    let cam = Camera::orbit(
+        Vec3::splat(7.5),
+        -90.0,
+        0.0,
+        200.0,
+        fov,
+        true,
+        1.0,
+        400.0,
+        true,
+        n,
+        n,
+    );
+    let f = tf(&[(0.0, [0.8, 0.6, 0.4, 1.0]), (15.0, [0.8, 0.6, 0.4, 1.0])]);
+    let out = common::run_node(
+        &mut s,
+        "Raycast",
+        vec![
+            ("volume", Value::Volume(volume)),
+            ("camera", Value::Camera(Arc::new(cam))),
+            (
+                "tf",
+                Value::TransferFunction(Arc::new(TransferFunction::Color(f))),
+            ),
+        ],
+        &[
+            ("mode", ParamValue::Choice("iso".into())),
+            ("iso", ParamValue::Float(7.5)),
+            ("shading", ParamValue::Choice("phong".into())),
+            ("step", ParamValue::Float(0.5)),
+            ("jitter", ParamValue::Bool(false)),
+        ],
+    );
+    let a = export::to_array(&out[0], &s.ctx.gpu).unwrap();
+    let hits: Vec<&[f32]> = a.data.chunks_exact(4).filter(|p| p[3] > 0.5).collect();
+    assert!(hits.len() >= 150, "{} pixels show the plane", hits.len());
+    let first = hits[0];
+    for p in &hits {
+        let off = (0..3)
+            .map(|c| (p[c] - first[c]).abs())
+            .fold(0.0f32, f32::max);
+        assert!(
+            p.iter().all(|c| c.is_finite()) && off <= 1.0 / 255.0,
+            "the plane's shade varies: {p:?} against {first:?}"
+        );
+    }
+}

@@ -326,6 +326,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
+            ("RAY_NO_DATA", f64::from(u8::from(volume.data.has_no_data()))),
             params.reconstruction.on(ctx, &volume.data).constant(),
             ("TL_GLOBAL", f64::from(params.global.code())),
             ("TL_METHOD", f64::from(method)),

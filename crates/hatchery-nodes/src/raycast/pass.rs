@@ -447,12 +447,14 @@ pub fn cast(
     };
     let reconstruction = o.reconstruction.code();
     let read_quads = u8::from(quads.is_some());
+    // A streamed volume's bricks are not all in memory to check: keep the fallbacks.
+    let no_data = u8::from(whole.is_some() || input.data.has_no_data() || volume.data.has_no_data());
     let preintegrated = u8::from(o.preintegrated);
     let field = fields.measured;
     let pipelines = ctx
         .cached(
             &format!(
-                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{read_quads}.{preintegrated}.{enhance}.{field}.{tf2d}"
+                "raycast.pipelines.{mode}.{shading}.{orthographic}.{fast}.{bricked}.{reconstruction}.{read_quads}.{no_data}.{preintegrated}.{enhance}.{field}.{tf2d}"
             ),
             |gpu| {
                 let constants = [
@@ -463,6 +465,7 @@ pub fn cast(
                     ("RAY_BRICKED", bricked as f64),
                     o.reconstruction.constant(),
                     ("RAY_BSPLINE_QUADS", f64::from(read_quads)),
+                    ("RAY_NO_DATA", f64::from(no_data)),
                     ("RAY_PREINTEGRATED", f64::from(preintegrated)),
                     ("RAY_ENHANCE", f64::from(enhance)),
                     ("RAY_TF2D", f64::from(tf2d)),
