@@ -189,9 +189,16 @@ impl Node<Value, Ctx> for ImportanceCompositingNode {
         let bricked = labels.texture(&ctx.gpu).map_err(err)?.layout.is_some();
         let (ids_texture, id_quads) =
             crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
+        // Specialised on what this run reads (lavapipe folds `const`s, not uniforms).
+        let constants = [
+            id_quads,
+            ("RAY_BRICKED", f64::from(u8::from(bricked))),
+            ("TL_FILTER", f64::from(u8::from(params.boundary != Boundary::Point))),
+        ];
+        let key = constants.iter().map(|(_, v)| v.to_string()).collect::<Vec<_>>().join(".");
         let pipelines = ctx
-            .cached(&format!("importance.pipelines.{}", id_quads.1), |gpu| {
-                ImportancePipelines::specialised(gpu, &[id_quads])
+            .cached(&format!("importance.pipelines.{key}"), |gpu| {
+                ImportancePipelines::specialised(gpu, &constants)
             })
             .map_err(err)?;
         let sampler = crate::raycast::linear_clamp_sampler(ctx).map_err(err)?;
