@@ -289,3 +289,73 @@ fn volume_thinning_drops_the_weakest_gradient_layers_first_and_never_the_focus()
         );
     }
 }
+
+/// Curved iso-surfaces (spheres about a point far in front) keyed by curvature: a copy of the
+/// scene stored with its x axis flipped (LAS: direction −1, the same world) thins as the
+/// original does. On such grids the key's Hessian reads its 19 values directly
+/// (`TL_THIN_GRID`), and a flipped axis turns its difference around.
+#[test]
+fn a_flipped_grid_thins_as_the_original() {
+    use glam::{DMat3, DVec3};
+    let half = (N - 1) as f64 / 2.0;
+    let scene = |direction: DMat3, origin: DVec3| {
+        let geometry = Geometry {
+            spacing: DVec3::ONE,
+            direction,
+            origin,
+        };
+        let (mut ids, mut values) = (Vec::new(), Vec::new());
+        for z in 0..N {
+            for y in 0..N {
+                for x in 0..N {
+                    let p = geometry.voxel_to_world(glam::Vec3::new(x as f32, y as f32, z as f32));
+                    values.push(p.distance(glam::Vec3::new(3.0, -2.0, 40.0)));
+                    let centre = p.x.abs() < 8.0 && p.y.abs() < 8.0;
+                    ids.push(if p.z >= -6.5 {
+                        1
+                    } else if centre && (-16.5..-8.5).contains(&p.z) {
+                        2
+                    } else {
+                        0
+                    });
+                }
+            }
+        }
+        let volume = VolumeData::with_geometry([N; 3], geometry, values).unwrap();
+        Scene {
+            volume,
+            labels: LabelData::new([N; 3], geometry, ids),
+            objects: vec![
+                Object {
+                    id: 1,
+                    tf: flat([0.9, 0.5, 0.2, 0.05]),
+                    local: Local::Over,
+                },
+                Object {
+                    id: 2,
+                    tf: flat([0.1, 0.3, 0.9, 0.5]),
+                    local: Local::Over,
+                },
+            ],
+        }
+    };
+    let ras = scene(DMat3::IDENTITY, DVec3::splat(-half));
+    let las = scene(
+        DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0)),
+        DVec3::new(half, -half, -half),
+    );
+    let mut session = session();
+    let cam = camera(&mut session);
+    let (_, want) = render_gpu(&mut session, &cam, &ras, Some(&setup(0.5)), &thinning());
+    let (_, got) = render_gpu(&mut session, &cam, &las, Some(&setup(0.5)), &thinning());
+    let (_, dense) = render_gpu(&mut session, &cam, &ras, None, &[]);
+    // The context (orange) thinned in front of the focus (blue): the pictures differ there.
+    let thinned = (0..want.len())
+        .filter(|&i| (want[i][0] - dense[i][0]).abs() > 8.0 / 255.0)
+        .count();
+    assert!(
+        thinned > 100,
+        "only {thinned} pixels thinned: the test shows nothing"
+    );
+    common::assert_images_close("LAS vs RAS thinning", &got, &want, SIZE, 2.0 / 255.0);
+}
