@@ -57,7 +57,11 @@ const SPARSE_THINNING: u32 = 4u;
 // last S of the object's voxels in this order remain (0 where the gradient vanishes: dropped
 // first).
 fn thinning_key(q: vec3<f32>, p: vec3<f32>) -> f32 {
-    let g = gradient_at(q);
+    return thinning_key_of(gradient_at(q), q, p);
+}
+
+// thinning_key with the sample's gradient g (gradient_at(q)) already taken.
+fn thinning_key_of(g: vec3<f32>, q: vec3<f32>, p: vec3<f32>) -> f32 {
     let g_length = length(g);
     if g_length < 1e-12 {
         return 0.0;
@@ -508,8 +512,11 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         if entry.a <= 0.0 {
             continue;
         }
+        // The data's gradient at q, where the key has taken it (shading reuses it).
+        var data_gradient = vec3<f32>(0.0);
         if thinned {
-            if thinning_rank(current, thinning_key(q, r.p0 + r.dir * t)) < 1.0 - s {
+            data_gradient = gradient_at(q);
+            if thinning_rank(current, thinning_key_of(data_gradient, q, r.p0 + r.dir * t)) < 1.0 - s {
                 continue;
             }
             s = 1.0;
@@ -522,7 +529,10 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         let contoured = may_mode(MODE_CONTOURS) && mode == MODE_CONTOURS;
         if shaded || toned || contoured {
             let p = r.p0 + r.dir * t;
-            let g = shading_gradient(q, current);
+            var g = data_gradient;
+            if !thinned || mask_normals() {
+                g = shading_gradient(q, current);
+            }
             n = view_normal(g);
             if on_cut {
                 n = cut.xyz;
