@@ -57,11 +57,7 @@ const SPARSE_THINNING: u32 = 4u;
 // last S of the object's voxels in this order remain (0 where the gradient vanishes: dropped
 // first).
 fn thinning_key(q: vec3<f32>, p: vec3<f32>) -> f32 {
-    return thinning_key_of(gradient_at(q), q, p);
-}
-
-// thinning_key with the sample's gradient g (gradient_at(q)) already taken.
-fn thinning_key_of(g: vec3<f32>, q: vec3<f32>, p: vec3<f32>) -> f32 {
+    let g = gradient_at(q);
     let g_length = length(g);
     if g_length < 1e-12 {
         return 0.0;
@@ -69,66 +65,9 @@ fn thinning_key_of(g: vec3<f32>, q: vec3<f32>, p: vec3<f32>) -> f32 {
     let bands = max(two_level.thin_bands, 1.0);
     let l = min(floor(bands * min(g_length * two_level.thin_gradient, 1.0)), bands - 1.0);
     let w = two_level.thin_step;
-    let shape = shape_operator(g, g_length, thinning_hessian(q, p, w));
+    let shape = shape_operator(g, g_length, world_hessian(p, w));
     let kappa = min(curvature_magnitude(shape) * w, 1.0);
     return (l + kappa) / bands;
-}
-
-// 1 where the grid's axes are the world's (each direction ±1) with one spacing, which is then
-// the key's step w: the node sets it (two_level_raycast.rs). There world_hessian's central
-// differences of six gradients at ±w read 36 values at only 19 places — q, q ± 2e_i and
-// q ± e_i ± e_j in voxel space — and `thinning_hessian` reads each once.
-override TL_THIN_GRID: i32 = 0;
-
-// The Hessian of volume thinning's key at voxel-space q, world p: world_hessian(p, w), from
-// 19 fetches instead of 36 where TL_THIN_GRID holds, the volume has no "no data" and q lies
-// two voxels or more inside the grid (no difference is clamped at a face).
-fn thinning_hessian(q: vec3<f32>, p: vec3<f32>, w: f32) -> mat3x3<f32> {
-    if TL_THIN_GRID == 0 || RAY_NO_DATA != 0 || any(q < vec3<f32>(2.0)) || any(q > ray.dims - 3.0) {
-        return world_hessian(p, w);
-    }
-    let f0 = trilinear_value(q);
-    // f at q ± 2e_i, and at q + a·e_i + b·e_j (a, b = ±1) for the pairs (x, y), (x, z), (y, z).
-    var far_plus: vec3<f32>;
-    var far_minus: vec3<f32>;
-    for (var i = 0; i < 3; i++) {
-        var e = vec3<f32>(0.0);
-        e[i] = 2.0;
-        far_plus[i] = trilinear_value(q + e);
-        far_minus[i] = trilinear_value(q - e);
-    }
-    let ex = vec3<f32>(1.0, 0.0, 0.0);
-    let ey = vec3<f32>(0.0, 1.0, 0.0);
-    let ez = vec3<f32>(0.0, 0.0, 1.0);
-    // Per pair: (+,+), (+,−), (−,+), (−,−).
-    let xy = vec4<f32>(trilinear_value(q + ex + ey), trilinear_value(q + ex - ey),
-                       trilinear_value(q - ex + ey), trilinear_value(q - ex - ey));
-    let xz = vec4<f32>(trilinear_value(q + ex + ez), trilinear_value(q + ex - ez),
-                       trilinear_value(q - ex + ez), trilinear_value(q - ex - ez));
-    let yz = vec4<f32>(trilinear_value(q + ey + ez), trilinear_value(q + ey - ez),
-                       trilinear_value(q - ey + ez), trilinear_value(q - ey - ez));
-    // Voxel-space central differences (hi − lo = 2) at q ± e_i, as central_gradient takes them.
-    let plus_x = vec3<f32>((far_plus.x - f0) / 2.0, (xy.x - xy.y) / 2.0, (xz.x - xz.y) / 2.0);
-    let minus_x = vec3<f32>((f0 - far_minus.x) / 2.0, (xy.z - xy.w) / 2.0, (xz.z - xz.w) / 2.0);
-    let plus_y = vec3<f32>((xy.x - xy.z) / 2.0, (far_plus.y - f0) / 2.0, (yz.x - yz.y) / 2.0);
-    let minus_y = vec3<f32>((xy.y - xy.w) / 2.0, (f0 - far_minus.y) / 2.0, (yz.z - yz.w) / 2.0);
-    let plus_z = vec3<f32>((xz.x - xz.z) / 2.0, (yz.x - yz.z) / 2.0, (far_plus.z - f0) / 2.0);
-    let minus_z = vec3<f32>((xz.y - xz.w) / 2.0, (yz.y - yz.w) / 2.0, (f0 - far_minus.z) / 2.0);
-    let to_world = ray.grad_to_world;
-    let world = array<vec3<f32>, 6>(
-        (to_world * vec4<f32>(plus_x, 0.0)).xyz, (to_world * vec4<f32>(minus_x, 0.0)).xyz,
-        (to_world * vec4<f32>(plus_y, 0.0)).xyz, (to_world * vec4<f32>(minus_y, 0.0)).xyz,
-        (to_world * vec4<f32>(plus_z, 0.0)).xyz, (to_world * vec4<f32>(minus_z, 0.0)).xyz);
-    // World +w·e_i is voxel q + d_i·e_i, d_i the sign of the grid's axis i.
-    let d = vec3<f32>(ray.to_voxel[0][0], ray.to_voxel[1][1], ray.to_voxel[2][2]);
-    var columns: array<vec3<f32>, 3>;
-    for (var i = 0; i < 3; i++) {
-        let up = world[2 * i];
-        let down = world[2 * i + 1];
-        columns[i] = select(down - up, up - down, d[i] > 0.0) / (2.0 * w);
-    }
-    let hessian = mat3x3<f32>(columns[0], columns[1], columns[2]);
-    return 0.5 * (hessian + transpose(hessian));
 }
 
 // Screen-door threshold of voxel-space point q: a low-discrepancy value over the voxel lattice
@@ -512,11 +451,8 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         if entry.a <= 0.0 {
             continue;
         }
-        // The data's gradient at q, where the key has taken it (shading reuses it).
-        var data_gradient = vec3<f32>(0.0);
         if thinned {
-            data_gradient = gradient_at(q);
-            if thinning_rank(current, thinning_key_of(data_gradient, q, r.p0 + r.dir * t)) < 1.0 - s {
+            if thinning_rank(current, thinning_key(q, r.p0 + r.dir * t)) < 1.0 - s {
                 continue;
             }
             s = 1.0;
@@ -529,10 +465,7 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         let contoured = may_mode(MODE_CONTOURS) && mode == MODE_CONTOURS;
         if shaded || toned || contoured {
             let p = r.p0 + r.dir * t;
-            var g = data_gradient;
-            if !thinned || mask_normals() {
-                g = shading_gradient(q, current);
-            }
+            let g = shading_gradient(q, current);
             n = view_normal(g);
             if on_cut {
                 n = cut.xyz;

@@ -292,8 +292,7 @@ fn volume_thinning_drops_the_weakest_gradient_layers_first_and_never_the_focus()
 
 /// Curved iso-surfaces (spheres about a point far in front) keyed by curvature: a copy of the
 /// scene stored with its x axis flipped (LAS: direction −1, the same world) thins as the
-/// original does. On such grids the key's Hessian reads its 19 values directly
-/// (`TL_THIN_GRID`), and a flipped axis turns its difference around.
+/// original does — the key's gradient and Hessian are taken in world space.
 #[test]
 fn a_flipped_grid_thins_as_the_original() {
     use glam::{DMat3, DVec3};

@@ -335,7 +335,6 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ("TL_MODES", f64::from(modes)),
             ("TL_LOCALS", f64::from(locals)),
             ("TL_THINNING", f64::from(u8::from(thinning))),
-            ("TL_THIN_GRID", f64::from(u8::from(thinning && world_axes_one_spacing(&volume.data)))),
             id_quads,
         ];
         let key = constants.iter().map(|(_, v)| v.to_string()).collect::<Vec<_>>().join(".");
@@ -574,18 +573,6 @@ fn thinning_ranks(
         wgpu::TextureFormat::R32Float,
         bytemuck::cast_slice(&kept.2),
     )
-}
-
-/// Whether the grid's axes are the world's (a direction of ±1 on the diagonal) with one spacing
-/// on all three: then the thinning key's step (the smallest spacing) is one voxel along each
-/// axis, and its Hessian reads 19 values instead of 36 (`TL_THIN_GRID`, shaders/
-/// two_level_raycast.wgsl).
-fn world_axes_one_spacing(data: &hatchery_data::VolumeData) -> bool {
-    let g = &data.geometry;
-    let d = g.direction.to_cols_array();
-    let diagonal = [1, 2, 3, 5, 6, 7].iter().all(|&i| d[i] == 0.0)
-        && [0, 4, 8].iter().all(|&i| d[i].abs() == 1.0);
-    diagonal && g.spacing.x == g.spacing.y && g.spacing.y == g.spacing.z
 }
 
 /// VPImC's α_avg (eq. 3): the mean opacity of `picture` over its non-empty pixels, as a 1×1
