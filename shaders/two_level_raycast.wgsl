@@ -26,6 +26,35 @@
 // Volume thinning's ranks (hatchery_data::thinning): row = object id, column = key bin (of
 // THIN_BINS over [0, 1]); the fraction of that object's voxels whose key is in a lower bin.
 @group(1) @binding(7) var thin_ranks: texture_2d<f32>;
+// The volume's world gradients at the voxel centres (value/gradient_texture.rs) where
+// TL_THIN_GRADIENTS is 1 (CPU adapters): the key's gradients by one filtered fetch each, the
+// same as central_gradient's six inside the grid; a 1³ blank otherwise.
+@group(1) @binding(8) var thin_gradients: texture_3d<f32>;
+override TL_THIN_GRADIENTS: i32 = 0;
+
+// world_gradient(p) for the thinning key: from thin_gradients where bound.
+fn thinning_gradient(p: vec3<f32>) -> vec3<f32> {
+    if TL_THIN_GRADIENTS != 0 {
+        let q = (ray.to_voxel * vec4<f32>(p, 1.0)).xyz;
+        return textureSampleLevel(thin_gradients, linear_clamp, grid_uv(q), 0.0).xyz;
+    }
+    return world_gradient(p);
+}
+
+// world_hessian(p, h) for the thinning key, its six gradients by thinning_gradient.
+fn thinning_hessian(p: vec3<f32>, h: f32) -> mat3x3<f32> {
+    if TL_THIN_GRADIENTS == 0 {
+        return world_hessian(p, h);
+    }
+    var columns: array<vec3<f32>, 3>;
+    for (var axis = 0; axis < 3; axis++) {
+        var e = vec3<f32>(0.0);
+        e[axis] = h;
+        columns[axis] = (thinning_gradient(p + e) - thinning_gradient(p - e)) / (2.0 * h);
+    }
+    let hessian = mat3x3<f32>(columns[0], columns[1], columns[2]);
+    return 0.5 * (hessian + transpose(hessian));
+}
 const THIN_BINS: f32 = 256.0;
 
 // The rank within object `id` of thinning key `key`: the fraction of its voxels sorted before.
@@ -57,7 +86,12 @@ const SPARSE_THINNING: u32 = 4u;
 // last S of the object's voxels in this order remain (0 where the gradient vanishes: dropped
 // first).
 fn thinning_key(q: vec3<f32>, p: vec3<f32>) -> f32 {
-    let g = gradient_at(q);
+    var g = vec3<f32>(0.0);
+    if TL_THIN_GRADIENTS != 0 {
+        g = textureSampleLevel(thin_gradients, linear_clamp, grid_uv(q), 0.0).xyz;
+    } else {
+        g = gradient_at(q);
+    }
     let g_length = length(g);
     if g_length < 1e-12 {
         return 0.0;
@@ -65,7 +99,7 @@ fn thinning_key(q: vec3<f32>, p: vec3<f32>) -> f32 {
     let bands = max(two_level.thin_bands, 1.0);
     let l = min(floor(bands * min(g_length * two_level.thin_gradient, 1.0)), bands - 1.0);
     let w = two_level.thin_step;
-    let shape = shape_operator(g, g_length, world_hessian(p, w));
+    let shape = shape_operator(g, g_length, thinning_hessian(p, w));
     let kappa = min(curvature_magnitude(shape) * w, 1.0);
     return (l + kappa) / bands;
 }

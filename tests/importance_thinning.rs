@@ -297,49 +297,8 @@ fn volume_thinning_drops_the_weakest_gradient_layers_first_and_never_the_focus()
 fn a_flipped_grid_thins_as_the_original() {
     use glam::{DMat3, DVec3};
     let half = (N - 1) as f64 / 2.0;
-    let scene = |direction: DMat3, origin: DVec3| {
-        let geometry = Geometry {
-            spacing: DVec3::ONE,
-            direction,
-            origin,
-        };
-        let (mut ids, mut values) = (Vec::new(), Vec::new());
-        for z in 0..N {
-            for y in 0..N {
-                for x in 0..N {
-                    let p = geometry.voxel_to_world(glam::Vec3::new(x as f32, y as f32, z as f32));
-                    values.push(p.distance(glam::Vec3::new(3.0, -2.0, 40.0)));
-                    let centre = p.x.abs() < 8.0 && p.y.abs() < 8.0;
-                    ids.push(if p.z >= -6.5 {
-                        1
-                    } else if centre && (-16.5..-8.5).contains(&p.z) {
-                        2
-                    } else {
-                        0
-                    });
-                }
-            }
-        }
-        let volume = VolumeData::with_geometry([N; 3], geometry, values).unwrap();
-        Scene {
-            volume,
-            labels: LabelData::new([N; 3], geometry, ids),
-            objects: vec![
-                Object {
-                    id: 1,
-                    tf: flat([0.9, 0.5, 0.2, 0.05]),
-                    local: Local::Over,
-                },
-                Object {
-                    id: 2,
-                    tf: flat([0.1, 0.3, 0.9, 0.5]),
-                    local: Local::Over,
-                },
-            ],
-        }
-    };
-    let ras = scene(DMat3::IDENTITY, DVec3::splat(-half));
-    let las = scene(
+    let ras = curved(DMat3::IDENTITY, DVec3::splat(-half));
+    let las = curved(
         DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0)),
         DVec3::new(half, -half, -half),
     );
@@ -348,13 +307,101 @@ fn a_flipped_grid_thins_as_the_original() {
     let (_, want) = render_gpu(&mut session, &cam, &ras, Some(&setup(0.5)), &thinning());
     let (_, got) = render_gpu(&mut session, &cam, &las, Some(&setup(0.5)), &thinning());
     let (_, dense) = render_gpu(&mut session, &cam, &ras, None, &[]);
-    // The context (orange) thinned in front of the focus (blue): the pictures differ there.
-    let thinned = (0..want.len())
-        .filter(|&i| (want[i][0] - dense[i][0]).abs() > 8.0 / 255.0)
-        .count();
     assert!(
-        thinned > 100,
-        "only {thinned} pixels thinned: the test shows nothing"
+        thinned_pixels(&want, &dense) > 100,
+        "the test shows no thinning"
     );
     common::assert_images_close("LAS vs RAS thinning", &got, &want, SIZE, 2.0 / 255.0);
+}
+
+/// On CPU adapters the key's gradients come from a texture of the voxel gradients (one filtered
+/// fetch each; value/gradient_texture.rs) instead of central differences of the volume (six):
+/// the same thinning as with the texture switched off (`quads_bytes` 0), within 2/255.
+#[test]
+fn the_gradient_texture_thins_as_central_differences_do() {
+    let half = (N - 1) as f64 / 2.0;
+    let scene = curved(glam::DMat3::IDENTITY, glam::DVec3::splat(-half));
+    let mut pictures = Vec::new();
+    for texture in [true, false] {
+        let mut session = session();
+        if !texture {
+            session
+                .ctx
+                .gpu
+                .set_volume_limits(hatchery_gpu::VolumeLimits {
+                    quads_bytes: 0,
+                    ..hatchery_gpu::VolumeLimits::default()
+                });
+        }
+        let volume = hatchery_nodes::value::Volume::new(scene.volume.clone());
+        let made = volume.gradient_texture(&session.ctx.gpu).unwrap().is_some();
+        let cpu = session.ctx.gpu.adapter_info.device_type == wgpu::DeviceType::Cpu;
+        assert_eq!(
+            made,
+            texture && cpu,
+            "gradient texture made (allowed: {texture})"
+        );
+        let cam = camera(&mut session);
+        let (_, picture) = render_gpu(&mut session, &cam, &scene, Some(&setup(0.5)), &thinning());
+        pictures.push(picture);
+    }
+    common::assert_images_close(
+        "gradient texture vs differences",
+        &pictures[0],
+        &pictures[1],
+        SIZE,
+        2.0 / 255.0,
+    );
+}
+
+/// Pixels where thinning changed the context's colour (red) by more than 8/255.
+fn thinned_pixels(thinned: &[[f32; 4]], dense: &[[f32; 4]]) -> usize {
+    (0..thinned.len())
+        .filter(|&i| (thinned[i][0] - dense[i][0]).abs() > 8.0 / 255.0)
+        .count()
+}
+
+/// Spheres about a point far in front (curved iso-surfaces, |∇f| = 1), stored with `direction`
+/// and `origin`: the context (id 1, orange) from z = −6.5 on, the focus (id 2, blue) a block
+/// behind it.
+fn curved(direction: glam::DMat3, origin: glam::DVec3) -> Scene {
+    let geometry = Geometry {
+        spacing: glam::DVec3::ONE,
+        direction,
+        origin,
+    };
+    let (mut ids, mut values) = (Vec::new(), Vec::new());
+    for z in 0..N {
+        for y in 0..N {
+            for x in 0..N {
+                let p = geometry.voxel_to_world(glam::Vec3::new(x as f32, y as f32, z as f32));
+                values.push(p.distance(glam::Vec3::new(3.0, -2.0, 40.0)));
+                let centre = p.x.abs() < 8.0 && p.y.abs() < 8.0;
+                ids.push(if p.z >= -6.5 {
+                    1
+                } else if centre && (-16.5..-8.5).contains(&p.z) {
+                    2
+                } else {
+                    0
+                });
+            }
+        }
+    }
+    let volume = VolumeData::with_geometry([N; 3], geometry, values).unwrap();
+    Scene {
+        volume,
+        labels: LabelData::new([N; 3], geometry, ids),
+        objects: vec![
+            Object {
+                id: 1,
+                tf: flat([0.9, 0.5, 0.2, 0.05]),
+                local: Local::Over,
+            },
+            Object {
+                id: 2,
+                tf: flat([0.1, 0.3, 0.9, 0.5]),
+                local: Local::Over,
+            },
+        ],
+    }
 }

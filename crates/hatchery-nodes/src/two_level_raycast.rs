@@ -199,6 +199,8 @@ hatchery_graph::node_params! {
 struct Placeholders {
     one: wgpu::Texture,
     zero: wgpu::Texture,
+    /// A 1³ 3-D texture for the gradients when thinning does not read them.
+    grid: wgpu::Texture,
 }
 
 impl Placeholders {
@@ -215,6 +217,12 @@ impl Placeholders {
         Placeholders {
             one: texture("two-level placeholder (1)", 1.0),
             zero: texture("two-level placeholder (0)", 0.0),
+            grid: gpu.texture_3d_init(
+                "two-level placeholder (3-D)",
+                [1, 1, 1],
+                wgpu::TextureFormat::Rgba32Float,
+                bytemuck::cast_slice(&[0.0f32; 4]),
+            ),
         }
     }
 }
@@ -322,6 +330,11 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         }
         let method = importance.as_ref().map_or(0, |i| i.method.code());
         let thinning = importance.is_some() && params.sparseness == Sparseness::Thinning;
+        // The key's gradients from one fetch each, where the device keeps them (CPU adapters).
+        let thin_gradients = match thinning {
+            true => volume.gradient_texture(&ctx.gpu).map_err(err)?,
+            false => None,
+        };
         let (ids, id_quads) =
             crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let constants = [
@@ -335,6 +348,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             ("TL_MODES", f64::from(modes)),
             ("TL_LOCALS", f64::from(locals)),
             ("TL_THINNING", f64::from(u8::from(thinning))),
+            ("TL_THIN_GRADIENTS", f64::from(u8::from(thin_gradients.is_some()))),
             id_quads,
         ];
         let key = constants.iter().map(|(_, v)| v.to_string()).collect::<Vec<_>>().join(".");
@@ -473,6 +487,9 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let ranks_view = thin_ranks
             .as_ref()
             .map_or_else(one, |t| t.create_view(&Default::default()));
+        let gradients_view = thin_gradients
+            .unwrap_or(&placeholders.grid)
+            .create_view(&Default::default());
         let shared = RayBindings {
             ray: Some(&ray_buffer),
             volume: Some(&views[0]),
@@ -497,6 +514,7 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
                 importance_cut: Some(&cut_view),
                 occluder_stats: Some(occluder),
                 thin_ranks: Some(&ranks_view),
+                thin_gradients: Some(&gradients_view),
             };
             [shared.entries(), [objects.entries(), importance.entries()].concat()]
         };
@@ -541,6 +559,7 @@ crate::bind_group! {
         pub importance_cut: TextureView,
         pub occluder_stats: TextureView,
         pub thin_ranks: TextureView,
+        pub thin_gradients: TextureView,
     }
 }
 

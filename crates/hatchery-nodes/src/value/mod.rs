@@ -7,6 +7,7 @@
 pub mod annotations;
 mod bspline_quads;
 pub mod camera;
+mod gradient_texture;
 mod id_quads;
 pub mod light;
 mod resident;
@@ -40,6 +41,8 @@ pub struct Volume {
     second_field: OnceLock<wgpu::Texture>,
     /// The volume as x-quads for the B-spline on CPU adapters (see [`bspline_quads`]).
     bspline_quads: OnceLock<Option<wgpu::Texture>>,
+    /// Its world gradients at the voxel centres for volume thinning (see [`gradient_texture`]).
+    gradients: OnceLock<Option<wgpu::Texture>>,
     /// The file a volume beyond the host budget streams from (`data` is then its preview
     /// level; see [`stream`]).
     stream: Option<Arc<stream::Stream>>,
@@ -62,6 +65,7 @@ impl Volume {
             coarser_labels: OnceLock::new(),
             second_field: OnceLock::new(),
             bspline_quads: OnceLock::new(),
+            gradients: OnceLock::new(),
             stream: None,
         }
     }
