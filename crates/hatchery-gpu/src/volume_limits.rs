@@ -22,7 +22,8 @@ pub struct VolumeLimits {
     /// software and one load of four neighbours replaces four: a volume's x-quads for the
     /// tricubic B-spline (16 loads a sample instead of 32 filtered fetches; four times the
     /// volume texture) and a label map's 2×2 id quads for boundary filtering and object masks
-    /// (2 loads instead of 8; two or four times the id texture). 0: never.
+    /// (2 loads instead of 8; two or four times the id texture), and a volume's voxel gradients
+    /// for volume thinning's key (one fetch instead of six; 16 bytes a voxel). 0: never.
     /// `HATCHERY_QUADS_MB`, default 256; `HATCHERY_LOW_MEMORY=1` makes it 0.
     pub quads_bytes: u64,
 }
