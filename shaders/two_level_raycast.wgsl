@@ -425,8 +425,9 @@ fn cast_two_level(position: vec2<f32>) -> RayResult {
         // is at least 1 − s; the focus is never thinned (in image-space AImC it keeps opacity
         // × s, as with a sparse style). Its key needs a Hessian (36 fetches), so a DVR sample
         // is decided once its transfer function gives it opacity: samples that add nothing
-        // anyway skip it. An iso object's samples are decided before the crossing test, as
-        // they always were (a thinned sample is not the one the crossing interpolates from).
+        // anyway skip it. An iso object's samples are decided before the crossing test (a
+        // thinned sample is not the one the crossing interpolates from); a "no data" sample
+        // now restarts the crossing before it is decided.
         let thinned = s < 1.0 && thinning(level) && current != focus;
         // Just behind a countersink cut the cut surface shades the context (MImP).
         let on_cut = method == IMP_MIMP && t >= t_cut && t - t_cut <= two_level.cut_band;

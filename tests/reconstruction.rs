@@ -273,6 +273,8 @@ fn the_bspline_at_the_grid_faces_matches_its_reference() {
     let mut s = session(48, 40);
     let v = Arc::new(Volume::new(data.clone()));
     let read = v.bspline_quads(&s.ctx.gpu).unwrap().is_some();
+    // The filtered fetches (real GPUs) round their weights: the sibling test's tolerance.
+    let worst = if read { 1.0 } else { 24.0 } / 255.0;
     bspline_cases_match_the_reference(
         &mut s,
         &data,
@@ -280,7 +282,7 @@ fn the_bspline_at_the_grid_faces_matches_its_reference() {
         &colour,
         &cases,
         read,
-        1.0 / 255.0,
+        worst,
     );
 }
 

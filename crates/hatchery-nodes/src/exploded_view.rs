@@ -516,7 +516,7 @@ impl Node<Value, Ctx> for ExplodedViewNode {
             crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
-            ("RAY_NO_DATA", f64::from(u8::from(volume.data.has_no_data()))),
+            ("RAY_NO_DATA", f64::from(u8::from(volume.has_no_data()))),
             params.reconstruction.on(ctx, &volume.data).constant(),
             ("TL_FILTER", f64::from(u8::from(filtered))),
             ("TL_MASK_NORMALS", f64::from(u8::from(object_normals))),

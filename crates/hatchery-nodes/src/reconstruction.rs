@@ -7,9 +7,9 @@ hatchery_graph::param_choice! {
     /// The `reconstruction` parameter. `trilinear`: one fetch per value, six per gradient; the
     /// voxel lattice shows as a waffle of highlights on sharp boundaries under a sharp transfer
     /// function. `bspline`: the tricubic B-spline (C² smooth, slightly smoothing: it
-    /// approximates rather than interpolates), 8 fetches per value and 24 per gradient — on
-    /// CPU adapters 16 loads of x-quads for both (value/bspline_quads.rs; docs/benchmarks.md
-    /// gives the cost).
+    /// approximates rather than interpolates), 8 fetches per value and 24 per gradient — in
+    /// Raycast on CPU adapters, for unbricked volumes within the budget, 16 loads of x-quads for
+    /// both (value/bspline_quads.rs; docs/benchmarks.md gives the cost).
     pub enum Reconstruction { Trilinear = "trilinear", Bspline = "bspline" }
 }
 

@@ -217,11 +217,12 @@ impl Placeholders {
         Placeholders {
             one: texture("two-level placeholder (1)", 1.0),
             zero: texture("two-level placeholder (0)", 0.0),
+            // Rgba16Float: filterable on every device, as the binding is sampled.
             grid: gpu.texture_3d_init(
                 "two-level placeholder (3-D)",
                 [1, 1, 1],
-                wgpu::TextureFormat::Rgba32Float,
-                bytemuck::cast_slice(&[0.0f32; 4]),
+                wgpu::TextureFormat::Rgba16Float,
+                &[0u8; 8],
             ),
         }
     }
@@ -331,7 +332,10 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
         let method = importance.as_ref().map_or(0, |i| i.method.code());
         let thinning = importance.is_some() && params.sparseness == Sparseness::Thinning;
         // The key's gradients from one fetch each, where the device keeps them (CPU adapters).
-        let thin_gradients = match thinning {
+        // (Trilinear only: the B-spline takes its own derivatives.)
+        let reconstruction = params.reconstruction.on(ctx, &volume.data);
+        let trilinear = reconstruction == crate::reconstruction::Reconstruction::Trilinear;
+        let thin_gradients = match thinning && trilinear {
             true => volume.gradient_texture(&ctx.gpu).map_err(err)?,
             false => None,
         };
@@ -339,8 +343,8 @@ impl Node<Value, Ctx> for TwoLevelRaycastNode {
             crate::raycast::objects::object_id_texture(&ctx.gpu, labels, bricked).map_err(err)?;
         let constants = [
             ("RAY_BRICKED", f64::from(u8::from(bricked))),
-            ("RAY_NO_DATA", f64::from(u8::from(volume.data.has_no_data()))),
-            params.reconstruction.on(ctx, &volume.data).constant(),
+            ("RAY_NO_DATA", f64::from(u8::from(volume.has_no_data()))),
+            reconstruction.constant(),
             ("TL_GLOBAL", f64::from(params.global.code())),
             ("TL_METHOD", f64::from(method)),
             ("TL_FILTER", f64::from(u8::from(filtered))),

@@ -412,10 +412,13 @@ pub fn cast(
     let stroke_mask_view = strokes
         .map_or(&st.blank_mask, |s| &s.mask.texture)
         .create_view(&Default::default());
-    // The B-spline reads x-quads where fetches are software loops (value/bspline_quads.rs).
+    // A streamed volume's bricks are not all in memory to check: it may hold "no data".
+    let no_data = u8::from(whole.is_some() || input.has_no_data() || volume.has_no_data());
+    // The B-spline reads x-quads where fetches are software loops (value/bspline_quads.rs);
+    // they have no "no data" guard.
     let quads = match o.reconstruction {
-        Reconstruction::Bspline => volume.bspline_quads(gpu).map_err(err)?,
-        Reconstruction::Trilinear => None,
+        Reconstruction::Bspline if no_data == 0 => volume.bspline_quads(gpu).map_err(err)?,
+        _ => None,
     };
     let volume_view = quads
         .unwrap_or(&volume_texture.texture)
@@ -447,8 +450,6 @@ pub fn cast(
     };
     let reconstruction = o.reconstruction.code();
     let read_quads = u8::from(quads.is_some());
-    // A streamed volume's bricks are not all in memory to check: keep the fallbacks.
-    let no_data = u8::from(whole.is_some() || input.data.has_no_data() || volume.data.has_no_data());
     let preintegrated = u8::from(o.preintegrated);
     let field = fields.measured;
     let pipelines = ctx

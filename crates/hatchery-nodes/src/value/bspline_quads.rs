@@ -11,8 +11,9 @@ use hatchery_gpu::{GpuContext, GpuError};
 
 impl Volume {
     /// The x-quads texture, uploaded on first use, where the B-spline should read it: a CPU
-    /// adapter, the volume in one texture (not bricked) and the quads within the device's
-    /// `VolumeLimits::quads_bytes`. `None` elsewhere: the caller binds
+    /// adapter, the volume in one texture (not bricked) without "no data" (the quads' sums
+    /// have no guard), and the quads within the device's `VolumeLimits::quads_bytes` and
+    /// buffer limit. `None` elsewhere: the caller binds
     /// [`Volume::texture`] and the fetches. Errors: the upload's.
     pub fn bspline_quads(&self, gpu: &GpuContext) -> Result<Option<&wgpu::Texture>, GpuError> {
         if let Some(t) = self.bspline_quads.get() {
@@ -21,10 +22,12 @@ impl Volume {
         let single = self.texture(gpu)?;
         let texel = single.texture.format().block_copy_size(None).unwrap_or(4) as u64;
         let voxels: u64 = self.data.dims.iter().map(|&d| d as u64).product();
-        let budget = gpu.volume_limits()?.quads_bytes;
+        let bytes = 4 * texel * voxels;
         let wanted = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
             && single.layout.is_none()
-            && 4 * texel * voxels <= budget;
+            && !self.has_no_data()
+            && bytes <= gpu.volume_limits()?.quads_bytes
+            && bytes <= gpu.device.limits().max_buffer_size;
         let quads = if wanted {
             let t = upload_texels(gpu, "volume x-quads", &self.data, Texels::XQuads)?;
             // Bricked (beyond one texture's limits at four channels): the fetches instead.

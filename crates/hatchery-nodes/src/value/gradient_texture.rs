@@ -13,7 +13,7 @@ impl Volume {
     /// The gradient texture, made on first use, where the thinning key should read it: a CPU
     /// adapter with filterable 32-bit float textures, the volume in one texture (not bricked),
     /// without "no data", and the texture (16 bytes a voxel) within the device's
-    /// `VolumeLimits::quads_bytes`. `None` elsewhere. Errors: the upload's.
+    /// `VolumeLimits::quads_bytes` and buffer limit. `None` elsewhere. Errors: the upload's.
     pub fn gradient_texture(&self, gpu: &GpuContext) -> Result<Option<&wgpu::Texture>, GpuError> {
         if let Some(t) = self.gradients.get() {
             return Ok(t.as_ref());
@@ -26,8 +26,9 @@ impl Volume {
                 .features()
                 .contains(wgpu::Features::FLOAT32_FILTERABLE)
             && !bricked
-            && !self.data.has_no_data()
-            && 16 * voxels <= gpu.volume_limits()?.quads_bytes;
+            && !self.has_no_data()
+            && 16 * voxels <= gpu.volume_limits()?.quads_bytes
+            && 16 * voxels <= gpu.device.limits().max_buffer_size;
         let texture = if wanted {
             let d = &self.data;
             let t = gpu.volume_texture_by_slabs(

@@ -12,7 +12,8 @@ use hatchery_gpu::{GpuContext, GpuError};
 impl Labels {
     /// The id-quads texture (Rgba8Uint where every id is below 256, else Rgba16Uint), uploaded
     /// on first use, where segmented ray casters should read it: a CPU adapter, the ids in one
-    /// texture (not bricked) and the quads within the device's `VolumeLimits::quads_bytes`.
+    /// texture (not bricked) and the quads within the device's `VolumeLimits::quads_bytes` and
+    /// buffer limit.
     /// `None` elsewhere: the caller binds [`Labels::texture`]. Errors: the upload's.
     pub fn id_quads(&self, gpu: &GpuContext) -> Result<Option<&wgpu::Texture>, GpuError> {
         if let Some(t) = self.id_quads.get() {
@@ -26,9 +27,11 @@ impl Labels {
             (wgpu::TextureFormat::Rgba16Uint, 8)
         };
         let voxels: u64 = self.data.dims.iter().map(|&d| d as u64).product();
+        let bytes = texel * voxels;
         let wanted = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
             && !bricked
-            && texel * voxels <= gpu.volume_limits()?.quads_bytes;
+            && bytes <= gpu.volume_limits()?.quads_bytes
+            && bytes <= gpu.device.limits().max_buffer_size;
         let quads = if wanted {
             let [nx, ny, _] = self.data.dims.map(|d| d as usize);
             let ids = &self.data.ids;

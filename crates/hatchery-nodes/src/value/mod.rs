@@ -43,6 +43,8 @@ pub struct Volume {
     bspline_quads: OnceLock<Option<wgpu::Texture>>,
     /// Its world gradients at the voxel centres for volume thinning (see [`gradient_texture`]).
     gradients: OnceLock<Option<wgpu::Texture>>,
+    /// Whether `data` holds "no data" (NaN) voxels, scanned once.
+    no_data: OnceLock<bool>,
     /// The file a volume beyond the host budget streams from (`data` is then its preview
     /// level; see [`stream`]).
     stream: Option<Arc<stream::Stream>>,
@@ -66,6 +68,7 @@ impl Volume {
             second_field: OnceLock::new(),
             bspline_quads: OnceLock::new(),
             gradients: OnceLock::new(),
+            no_data: OnceLock::new(),
             stream: None,
         }
     }
@@ -138,6 +141,11 @@ impl Volume {
             },
         )?;
         Ok(cell.get_or_init(|| t))
+    }
+    /// Whether the data holds "no data" (NaN) voxels ([`VolumeData::has_no_data`]), scanned
+    /// once: the ray casters' `RAY_NO_DATA` and the CPU-adapter copies ask every frame.
+    pub fn has_no_data(&self) -> bool {
+        *self.no_data.get_or_init(|| self.data.has_no_data())
     }
     /// The largest gradient magnitude (world units), computed once: normalises |g| to [0, 1].
     pub fn max_gradient(&self) -> f32 {
