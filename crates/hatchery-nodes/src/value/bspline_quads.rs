@@ -23,11 +23,8 @@ impl Volume {
         let texel = single.texture.format().block_copy_size(None).unwrap_or(4) as u64;
         let voxels: u64 = self.data.dims.iter().map(|&d| d as u64).product();
         let bytes = 4 * texel * voxels;
-        let wanted = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
-            && single.layout.is_none()
-            && !self.has_no_data()
-            && bytes <= gpu.volume_limits()?.quads_bytes
-            && bytes <= gpu.device.limits().max_buffer_size;
+        let wanted =
+            single.layout.is_none() && !self.has_no_data() && super::read_ahead_fits(gpu, bytes)?;
         let quads = if wanted {
             let t = upload_texels(gpu, "volume x-quads", &self.data, Texels::XQuads)?;
             // Bricked (beyond one texture's limits at four channels): the fetches instead.

@@ -20,15 +20,13 @@ impl Volume {
         }
         let bricked = self.texture(gpu)?.layout.is_some();
         let voxels: u64 = self.data.dims.iter().map(|&d| d as u64).product();
-        let wanted = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
-            && gpu
-                .device
-                .features()
-                .contains(wgpu::Features::FLOAT32_FILTERABLE)
+        let wanted = gpu
+            .device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE)
             && !bricked
             && !self.has_no_data()
-            && 16 * voxels <= gpu.volume_limits()?.quads_bytes
-            && 16 * voxels <= gpu.device.limits().max_buffer_size;
+            && super::read_ahead_fits(gpu, 16 * voxels)?;
         let texture = if wanted {
             let d = &self.data;
             let t = gpu.volume_texture_by_slabs(

@@ -28,10 +28,7 @@ impl Labels {
         };
         let voxels: u64 = self.data.dims.iter().map(|&d| d as u64).product();
         let bytes = texel * voxels;
-        let wanted = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
-            && !bricked
-            && bytes <= gpu.volume_limits()?.quads_bytes
-            && bytes <= gpu.device.limits().max_buffer_size;
+        let wanted = !bricked && super::read_ahead_fits(gpu, bytes)?;
         let quads = if wanted {
             let [nx, ny, _] = self.data.dims.map(|d| d as usize);
             let ids = &self.data.ids;

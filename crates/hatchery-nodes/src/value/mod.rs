@@ -50,6 +50,15 @@ pub struct Volume {
     stream: Option<Arc<stream::Stream>>,
 }
 
+/// Whether a CPU-adapter read-ahead copy of `bytes` (x-quads, id quads, the gradient texture)
+/// is wanted on `gpu`: a CPU adapter, within `VolumeLimits::quads_bytes` and the device's
+/// buffer limit (the upload goes through one buffer). Errors: malformed volume settings.
+fn read_ahead_fits(gpu: &GpuContext, bytes: u64) -> Result<bool, GpuError> {
+    Ok(gpu.adapter_info.device_type == wgpu::DeviceType::Cpu
+        && bytes <= gpu.volume_limits()?.quads_bytes
+        && bytes <= gpu.device.limits().max_buffer_size)
+}
+
 impl Volume {
     pub fn new(data: VolumeData) -> Self {
         Self::shared(Arc::new(data))
