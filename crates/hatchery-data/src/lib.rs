@@ -10,6 +10,7 @@ pub mod derived_levels;
 pub mod dicom_series;
 pub mod distance;
 pub mod error;
+pub mod files;
 pub mod geometry;
 pub mod gradient;
 pub mod labels;
@@ -23,6 +24,10 @@ pub mod mgh_file;
 pub mod nifti_file;
 pub mod nifti_header;
 pub mod nrrd_file;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod ome_zarr;
+#[cfg(target_arch = "wasm32")]
+#[path = "ome_zarr_web.rs"]
 pub mod ome_zarr;
 pub mod paint;
 pub mod preintegration;

@@ -18,8 +18,12 @@ pub struct GpuContext {
     /// When volumes are bricked and how large their pools grow (from the environment; a bad
     /// value surfaces when a volume is uploaded).
     volume_limits: Result<crate::VolumeLimits, String>,
+    /// Read-backs of the browser build, which arrive between passes ([`crate::web_readback`]).
+    #[cfg(target_arch = "wasm32")]
+    pub(crate) web_readbacks: crate::web_readback::WebReadbacks,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn backends_from_env() -> Option<wgpu::Backends> {
     match std::env::var("HATCHERY_BACKEND")
         .ok()?
@@ -36,7 +40,9 @@ fn backends_from_env() -> Option<wgpu::Backends> {
 
 impl GpuContext {
     /// Opens the best adapter: a real GPU if there is one, else lavapipe (Vulkan) or llvmpipe (GL).
-    /// `HATCHERY_BACKEND=vulkan|gl` restricts the choice.
+    /// `HATCHERY_BACKEND=vulkan|gl` restricts the choice. Not in the browser build, which opens
+    /// its adapter for the page's canvas ([`Self::from_adapter_async`]).
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn new() -> Result<Self, GpuError> {
         // Vulkan (or Metal/DX12) first; GL only if that finds nothing, since probing EGL on a
         // headless machine prints driver noise.
@@ -99,15 +105,22 @@ impl GpuContext {
     }
 
     /// Opens a device on a chosen adapter.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
+        pollster::block_on(Self::from_adapter_async(adapter))
+    }
+
+    /// [`Self::from_adapter`] without blocking: the browser build (crates/hatchery-web) awaits it,
+    /// since a page cannot block on the device request.
+    pub async fn from_adapter_async(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
         let adapter_info = adapter.get_info();
-        let (device, queue) = pollster::block_on(
-            adapter.request_device(&Self::device_descriptor(adapter)),
-        )
-        .map_err(|e| GpuError::Device {
-            adapter: adapter_info.name.clone(),
-            message: e.to_string(),
-        })?;
+        let (device, queue) = adapter
+            .request_device(&Self::device_descriptor(adapter))
+            .await
+            .map_err(|e| GpuError::Device {
+                adapter: adapter_info.name.clone(),
+                message: e.to_string(),
+            })?;
         Ok(Self::from_device(adapter_info, device, queue))
     }
 
@@ -133,6 +146,8 @@ impl GpuContext {
             adapter_info,
             uncaptured,
             volume_limits: crate::VolumeLimits::from_env().map_err(|e| e.to_string()),
+            #[cfg(target_arch = "wasm32")]
+            web_readbacks: Default::default(),
         }
     }
 
@@ -186,9 +201,9 @@ impl GpuContext {
         what: &str,
         f: impl FnOnce(&wgpu::Device) -> T,
     ) -> Result<T, GpuError> {
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let scope = self.scope();
         let value = f(&self.device);
-        match pollster::block_on(scope.pop()) {
+        match self.pop_now(scope) {
             None => Ok(value),
             Some(error) => Err(GpuError::Validation {
                 what: what.to_owned(),
@@ -199,14 +214,14 @@ impl GpuContext {
 
     /// Compiles a WGSL shader; errors name the shader and carry naga's message.
     pub fn shader(&self, name: &str, source: &str) -> Result<wgpu::ShaderModule, GpuError> {
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let scope = self.scope();
         let module = self
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(name),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
-        match pollster::block_on(scope.pop()) {
+        match self.pop_now(scope) {
             None => Ok(module),
             Some(error) => Err(GpuError::Validation {
                 what: format!("shader {name}"),
@@ -218,6 +233,29 @@ impl GpuContext {
                     .join(" | "),
             }),
         }
+    }
+
+    /// A validation error scope. None in the browser, which cannot wait for a scope's verdict
+    /// (a page's promises resolve only after the running task returns; scopes popped later
+    /// would be popped out of order): there errors reach the uncaptured-error handler, which
+    /// [`Self::take_uncaptured_errors`] reports once the page has let them arrive.
+    fn scope(&self) -> Option<wgpu::ErrorScopeGuard> {
+        #[cfg(not(target_arch = "wasm32"))]
+        return Some(self.device.push_error_scope(wgpu::ErrorFilter::Validation));
+        #[cfg(target_arch = "wasm32")]
+        None
+    }
+
+    /// The error a [`Self::scope`] caught, waiting for the device to say.
+    #[cfg(not(target_arch = "wasm32"))]
+    fn pop_now(&self, scope: Option<wgpu::ErrorScopeGuard>) -> Option<wgpu::Error> {
+        pollster::block_on(scope?.pop())
+    }
+
+    #[cfg(target_arch = "wasm32")]
+    fn pop_now(&self, scope: Option<wgpu::ErrorScopeGuard>) -> Option<wgpu::Error> {
+        drop(scope);
+        None
     }
 
     /// Errors that escaped every scope since the last call.

@@ -7,6 +7,7 @@ mod error;
 mod readback;
 mod timing;
 mod volume_limits;
+pub mod web_readback;
 
 pub use context::{GpuContext, NO_DATA_TEXEL};
 pub use error::GpuError;

@@ -84,7 +84,10 @@ impl GpuContext {
         );
         self.queue.submit([encoder.finish()]);
         let bytes = self
-            .map_bytes(&buffer)
+            .staged_bytes(
+                crate::web_readback::ReadKey::Texture(texture.clone()),
+                &buffer,
+            )
             .map_err(|message| GpuError::Readback {
                 what: what.clone(),
                 message,
@@ -116,7 +119,35 @@ impl GpuContext {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
         self.queue.submit([encoder.finish()]);
-        self.map_buffer(&staging)
+        self.staged_bytes(
+            crate::web_readback::ReadKey::Buffer(buffer.clone(), size),
+            &staging,
+        )
+        .map_err(|message| GpuError::Readback {
+            what: buffer_name(buffer),
+            message,
+        })
+    }
+
+    /// The contents of `staging`, a MAP_READ copy of what `key` names: natively mapped at once;
+    /// in the browser from [`crate::web_readback`] (an error the first time, asking the page to
+    /// run the pass again once the copy has arrived).
+    #[cfg(not(target_arch = "wasm32"))]
+    fn staged_bytes(
+        &self,
+        _key: crate::web_readback::ReadKey,
+        staging: &wgpu::Buffer,
+    ) -> Result<Vec<u8>, String> {
+        self.map_bytes(staging)
+    }
+
+    #[cfg(target_arch = "wasm32")]
+    fn staged_bytes(
+        &self,
+        key: crate::web_readback::ReadKey,
+        staging: &wgpu::Buffer,
+    ) -> Result<Vec<u8>, String> {
+        self.web_readbacks.read(key, staging)
     }
 
     /// A bind group of `layout` from (binding number, resource) pairs.
@@ -150,6 +181,15 @@ impl GpuContext {
             })
     }
 
+    /// The browser cannot wait for a mapping inside a pass (its promise resolves only after the
+    /// running task returns); [`Self::read_texture`] and [`Self::read_buffer`] go through
+    /// [`crate::web_readback`] there instead.
+    #[cfg(target_arch = "wasm32")]
+    fn map_bytes(&self, _buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
+        Err("mapping a GPU buffer inside a pass is not available in the browser build".into())
+    }
+
+    #[cfg(not(target_arch = "wasm32"))]
     fn map_bytes(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
         let (tx, rx) = std::sync::mpsc::channel();
         buffer.map_async(wgpu::MapMode::Read, .., move |result| {

@@ -8,7 +8,8 @@ use crate::schema::{NodeSchema, SchemaLookup};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 use std::hash::{DefaultHasher, Hash, Hasher};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 /// An execution error, naming the node and, where known, the port.
 #[derive(Clone, Debug, PartialEq)]

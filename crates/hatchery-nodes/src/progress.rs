@@ -5,7 +5,8 @@
 use std::collections::HashMap;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 /// A pass's progress, as last reported.
 #[derive(Clone, Debug, Default, PartialEq)]

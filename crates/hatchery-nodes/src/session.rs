@@ -2,7 +2,9 @@
 
 use crate::export::ExportError;
 use crate::memory_inputs::InputData;
-use crate::{Ctx, Registry, RenderContext, Value, registry};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::registry;
+use crate::{Ctx, Registry, RenderContext, Value};
 use hatchery_gpu::{GpuContext, GpuError};
 use hatchery_graph::GraphDocument;
 use hatchery_graph::executor::PassReport;
@@ -91,12 +93,14 @@ pub struct Session {
 
 impl Session {
     /// Loads and validates a graph file and opens the GPU.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn open(path: &Path, width: u32, height: u32) -> Result<Session, SessionError> {
         let registry = registry();
         let graph = Graph::load_file(path, &registry)?;
         Session::with_graph(registry, graph, width, height)
     }
 
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn with_graph(
         registry: Registry,
         graph: Graph,

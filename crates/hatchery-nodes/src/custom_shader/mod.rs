@@ -282,6 +282,7 @@ fn read_source(path: &Path) -> Result<String, String> {
 /// accepted (the memory is only reserved, not used, unless the recursion goes deep). Used for
 /// our reading of the file and for wgpu's (which parses the text again). `None` if the thread
 /// could not start or `f` panicked.
+#[cfg(not(target_arch = "wasm32"))]
 fn on_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> Option<T> {
     std::thread::scope(|scope| {
         std::thread::Builder::new()
@@ -292,6 +293,13 @@ fn on_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> Option<T> {
             .join()
             .ok()
     })
+}
+
+/// The browser build has one thread: the parse runs on the page's stack (shaders nested deeply
+/// enough to need more trap there instead of aborting a process).
+#[cfg(target_arch = "wasm32")]
+fn on_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> Option<T> {
+    Some(f())
 }
 
 fn reflect_deep(path: &Path, source: String, base: NodeSchema) -> Result<Reflection, String> {

@@ -83,7 +83,7 @@ impl Stream {
         if let Some(v) = self.cached(r) {
             return Ok(v);
         }
-        let started = std::time::Instant::now();
+        let started = web_time::Instant::now();
         let data = region_volume(
             self.source.as_ref(),
             r.level,
