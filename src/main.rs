@@ -4,6 +4,7 @@ mod batch;
 mod bench;
 mod catalogue;
 mod convert;
+mod export_web;
 mod info;
 mod logging;
 mod orbit;
@@ -120,6 +121,9 @@ enum Command {
     /// Render a batch job: a parameter sweep, camera path and data sets over one graph, this
     /// process's shard of it (docs/batch.md).
     Batch(batch::Args),
+    /// Write a figure folder for the web: the graph rendered in the browser with WebGPU, turned
+    /// and zoomed by the reader, with the graph's controls (docs/web.md).
+    ExportWeb(export_web::Args),
     /// Rewrite a graph file in the canonical layout (what saving writes).
     Fmt {
         graph: PathBuf,
@@ -253,6 +257,7 @@ fn run(cli: Cli) -> Result<()> {
             orbit: None,
             ..
         } => render(&graph, output.as_deref(), &frame, &dump),
+        Command::ExportWeb(args) => export_web::run(&args),
         Command::Validate { graph } => {
             let registry = hatchery_nodes::registry();
             let g = Graph::load_file(&graph, &registry)?;

@@ -28,6 +28,9 @@ pub struct GraphDocument {
     /// The data files the graph reads, by name (version 3; see [`crate::inputs`]).
     #[serde(default)]
     pub inputs: Vec<InputDoc>,
+    /// The parameters a figure's reader may change (version 3; see [`crate::controls`]).
+    #[serde(default)]
+    pub controls: Vec<ControlDoc>,
     #[serde(default)]
     pub nodes: Vec<NodeDoc>,
     #[serde(default)]
@@ -49,6 +52,7 @@ impl PartialEq for GraphDocument {
         self.version == other.version
             && self.description == other.description
             && self.inputs == other.inputs
+            && self.controls == other.controls
             && self.nodes == other.nodes
             && self.edges == other.edges
             && self.groups == other.groups
@@ -130,6 +134,22 @@ pub struct InputDoc {
     pub doc: String,
     /// The `(node, parameter)` pairs that take the input's path.
     pub to: Vec<(String, String)>,
+}
+
+/// A parameter a figure's reader may change (see [`crate::controls`]).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControlDoc {
+    pub node: String,
+    pub param: String,
+    /// What the page writes next to it; the parameter's name when empty.
+    #[serde(default)]
+    pub label: String,
+    /// A number's slider range, within the parameter's own (its whole range when not given).
+    #[serde(default)]
+    pub min: Option<f64>,
+    #[serde(default)]
+    pub max: Option<f64>,
 }
 
 fn rgba<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 4], D::Error> {
@@ -231,6 +251,25 @@ impl GraphDocument {
                     string_literal(&i.doc),
                     to.join(", ")
                 );
+            }
+            out.push_str("    ],\n");
+        }
+        if !self.controls.is_empty() {
+            out.push_str("    controls: [\n");
+            for c in &self.controls {
+                let mut fields = vec![
+                    format!("node: {}", string_literal(&c.node)),
+                    format!("param: {}", string_literal(&c.param)),
+                ];
+                if !c.label.is_empty() {
+                    fields.push(format!("label: {}", string_literal(&c.label)));
+                }
+                for (name, value) in [("min", c.min), ("max", c.max)] {
+                    if let Some(v) = value {
+                        fields.push(format!("{name}: Some({})", float_literal(v)));
+                    }
+                }
+                let _ = writeln!(out, "        ({}),", fields.join(", "));
             }
             out.push_str("    ],\n");
         }

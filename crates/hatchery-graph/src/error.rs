@@ -43,6 +43,7 @@ impl GraphError {
             UnknownNode { edge_to, .. } => Some(&edge_to.0),
             TypeMismatch { to, .. } => Some(&to.0),
             Cycle { nodes } => nodes.first().map(String::as_str),
+            BadControl { control, .. } => control.split('.').next(),
             Syntax { .. } | UnsupportedVersion { .. } | Io { .. } | BadInput { .. } => None,
         }
     }
@@ -143,6 +144,9 @@ pub enum ErrorKind {
     /// A graph input (version 3) that is declared wrongly.
     #[error("input `{input}`: {reason}")]
     BadInput { input: String, reason: String },
+    /// A control (version 3) that names no suitable parameter.
+    #[error("control `{control}`: {reason}")]
+    BadControl { control: String, reason: String },
 }
 
 fn list(names: &[&str]) -> String {

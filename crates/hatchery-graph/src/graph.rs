@@ -62,6 +62,9 @@ pub struct Graph {
     /// The declared inputs as written, and the validated ones.
     input_docs: Vec<crate::inputs::InputDoc>,
     inputs: Vec<crate::inputs::GraphInput>,
+    /// The declared controls as written, and the validated ones.
+    control_docs: Vec<crate::controls::ControlDoc>,
+    controls: Vec<crate::controls::Control>,
 }
 
 impl Graph {
@@ -88,9 +91,11 @@ impl Graph {
             frames: doc.frames.clone(),
             description: doc.description.clone(),
             input_docs: doc.inputs.clone(),
+            control_docs: doc.controls.clone(),
             ..Default::default()
         };
         graph.inputs = crate::inputs::check(doc, source, schemas, &mut errors);
+        graph.controls = crate::controls::check(doc, source, schemas, &mut errors);
         // Version 2 only adds optional sections, so a version 1 document validates as it is.
         if doc.version == 0 || doc.version > FORMAT_VERSION {
             errors.push(source.error(
@@ -380,6 +385,7 @@ impl Graph {
             version: FORMAT_VERSION,
             description: self.description.clone(),
             inputs: self.input_docs.clone(),
+            controls: self.control_docs.clone(),
             nodes,
             edges,
             groups: self.groups.clone(),
@@ -400,6 +406,11 @@ impl Graph {
     /// The declared inputs (see [`crate::inputs`]), in file order.
     pub fn inputs(&self) -> &[crate::inputs::GraphInput] {
         &self.inputs
+    }
+
+    /// The declared controls (see [`crate::controls`]), in file order.
+    pub fn controls(&self) -> &[crate::controls::Control] {
+        &self.controls
     }
 
     /// The input named `name`, or an error that lists the graph's inputs.

@@ -11,6 +11,7 @@
 #![allow(clippy::result_large_err)]
 
 pub mod atomic;
+pub mod controls;
 pub mod document;
 pub mod edit;
 pub mod error;

@@ -41,6 +41,16 @@ pub(crate) fn input_offset(text: &str, input: &str) -> Option<usize> {
     })
 }
 
+/// Where the control of `node.param` is written: its `node: "node"` followed by `"param"`.
+pub(crate) fn control_offset(text: &str, node: &str, param: &str) -> Option<usize> {
+    let section = text.find("controls:")?;
+    quoted(text, node).into_iter().find(|&i| {
+        i > section
+            && before(text, i).ends_with(':')
+            && text[i..].split(')').next().is_some_and(|c| c.contains(&format!("\"{param}\"")))
+    })
+}
+
 /// Where parameter `"param":` of a node is written (first one after the node's id).
 pub(crate) fn param_offset(text: &str, node: &str, param: &str) -> Option<usize> {
     let start = node_offset(text, node)?;

@@ -29,9 +29,16 @@ struct Manifest {
     graph: String,
     width: u32,
     height: u32,
+    /// Rendered pixels per pixel of the designed figure (`export-web --scale`).
+    #[serde(default = "one")]
+    scale: f64,
     /// Data files the graph reads, relative to the folder (their paths as the graph names them).
     #[serde(default)]
     files: Vec<String>,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// An open figure: its graph session on the page's device and the canvas it draws on.
@@ -105,8 +112,10 @@ impl Figure {
         let graph = Graph::from_document(&doc, &source, &registry, Some(Path::new("")))
             .map_err(js_error)?;
         let orbit = orbit::Orbit::of(&graph);
-        let session = Session::with_gpu(registry, graph, gpu, manifest.width, manifest.height)
-            .map_err(js_error)?;
+        let mut session =
+            Session::with_gpu(registry, graph, gpu, manifest.width, manifest.height)
+                .map_err(js_error)?;
+        session.ctx.set_pixel_scale(manifest.scale);
         let picture = session.picture_port(None, None).map_err(js_error)?;
         Ok(Figure {
             session,

@@ -93,14 +93,16 @@ pub fn add_reroute(doc: &mut GraphDocument, position: EditorPos) -> String {
     id
 }
 
-/// Removes a node and every edge touching it; returns the node, or `None` if there was none.
+/// Removes a node, every edge touching it and its controls; returns the node, or `None` if
+/// there was none.
 pub fn remove_node(doc: &mut GraphDocument, id: &str) -> Option<NodeDoc> {
     let index = doc.nodes.iter().position(|n| n.id == id)?;
     doc.edges.retain(|e| e.from.0 != id && e.to.0 != id);
+    doc.controls.retain(|c| c.node != id);
     Some(doc.nodes.remove(index))
 }
 
-/// Renames a node, updating the edges that name it.
+/// Renames a node, updating the edges, input bindings and controls that name it.
 pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), EditError> {
     if old == new {
         return node(doc, old).map(|_| ());
@@ -118,11 +120,15 @@ pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), 
         .position(|n| n.id == old)
         .ok_or_else(|| EditError::NotFound(format!("no node `{old}` in the graph")))?;
     doc.nodes[index].id = new.to_owned();
-    for e in &mut doc.edges {
-        for end in [&mut e.from.0, &mut e.to.0] {
-            if end == old {
-                *end = new.to_owned();
-            }
+    let names = doc
+        .edges
+        .iter_mut()
+        .flat_map(|e| [&mut e.from.0, &mut e.to.0])
+        .chain(doc.inputs.iter_mut().flat_map(|i| i.to.iter_mut().map(|(n, _)| n)))
+        .chain(doc.controls.iter_mut().map(|c| &mut c.node));
+    for name in names {
+        if name == old {
+            *name = new.to_owned();
         }
     }
     Ok(())

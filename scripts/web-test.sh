@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# The browser test (docs/web.md): builds the browser build, exports graphs/default.ron with
+# `hatchery export-web`, and drives it in headless Chromium with WebGPU (tests/web/check.mjs):
+# the canvas against the native render of the same graph and size, a drag and a control that
+# must change the picture, and the poster without WebGPU. Installs Debian's chromium and the
+# test's two npm packages (playwright-core, pngjs: tests/web/package-lock.json) when missing;
+# skips, saying why, where it cannot.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target_dir="${CARGO_TARGET_DIR:-target}"
+skip() {
+    echo "web-test: SKIPPED: $*" >&2
+    exit 0
+}
+
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+if ! command -v chromium >/dev/null 2>&1 || ! command -v node >/dev/null 2>&1; then
+    missing=()
+    command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+    command -v node >/dev/null 2>&1 || missing+=(nodejs npm)
+    echo "web-test: installing ${missing[*]} from Debian" >&2
+    { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
+        $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null; } ||
+        skip "could not install ${missing[*]} (apt-get failed)"
+fi
+
+scripts/build-web.sh
+cargo build --release --bin hatchery
+
+tools="$target_dir/web-tools"
+mkdir -p "$tools"
+cp tests/web/package.json tests/web/package-lock.json "$tools/"
+(cd "$tools" && npm ci --silent --no-audit --no-fund) || skip "npm could not install playwright-core and pngjs"
+
+out="$target_dir/web-test"
+rm -rf "$out"
+mkdir -p "$out"
+size=480x360
+"$target_dir/release/hatchery" export-web graphs/default.ron -o "$out/default" --size "$size"
+render() {
+    "$target_dir/release/hatchery" render graphs/default.ron --size "$size" "$@" 2>&1 | tail -1
+}
+render -o "$out/native.png"
+# The page's hatching-angle slider moved to 180°, then a drag of (160, 40) pixels: the page turns
+# the camera by 180° per canvas width (480 px), so azimuth 35° − 60° and elevation 25° + 15°.
+control=hatching.theta=180
+render -o "$out/native-control.png" --set "$control"
+# After the drag the test compares the hatched picture before the labels (the label layout starts
+# from its last frame, so labels placed during a drag differ from a fresh render's).
+render -o "$out/native-dragged-labelled.png" --set "$control" --set camera.azimuth=-25 \
+    --set camera.elevation=40 --dump "front_hatching.image=$out/native-dragged.png"
+WEB_TOOLS="$tools" node tests/web/check.mjs --dir "$out/default" --out "$out" \
+    --native "$out/native.png" \
+    --control "$control" --control-native "$out/native-control.png" \
+    --drag 160,40 --drag-port front_hatching.image --drag-native "$out/native-dragged.png"

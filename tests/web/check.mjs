@@ -1,0 +1,207 @@
+// The browser test of a figure export (scripts/web-test.sh, docs/web.md): serves the folder on
+// 127.0.0.1 and opens it in headless Chromium with WebGPU. Each picture the page draws is
+// compared with the native render of the same graph, size and settings:
+//   1. as opened, against --native;
+//   2. after moving the control --control NODE.PARAM=VALUE's slider, against --control-native
+//      (rendered natively with --set NODE.PARAM=VALUE);
+//   3. after a mouse drag of --drag DX,DY pixels on the canvas, the picture of --drag-port
+//      NODE.PORT against --drag-native (rendered with the camera turned as the page turns it:
+//      DX·180°/width of azimuth, DY·180°/width of elevation). A port before the labels: the
+//      layout starts from its last frame (temporal coherence), so labels placed during a drag
+//      differ from a fresh render's. Each change must also change the picture.
+// Then a browser without WebGPU must show the poster.
+//
+// node check.mjs --dir EXPORT --native A.png --control N.P=V --control-native B.png
+//                --drag DX,DY --drag-port NODE.PORT --drag-native C.png --out FOLDER
+// Writes FOLDER/web.png, control.png, dragged.png and web-test.json; exits 1 naming the failed
+// check.
+import http from "node:http";
+import fs from "node:fs";
+import path from "node:path";
+import { createRequire } from "node:module";
+
+const require = createRequire(path.resolve(process.env.WEB_TOOLS ?? ".", "node_modules", "x.js"));
+const { chromium } = require("playwright-core");
+const { PNG } = require("pngjs");
+
+const arg = name => {
+  const i = process.argv.indexOf(`--${name}`);
+  if (i < 0 || i + 1 >= process.argv.length) throw new Error(`missing --${name}`);
+  return process.argv[i + 1];
+};
+const dir = arg("dir"), native = arg("native"), out = arg("out");
+const [controlName, controlValue] = arg("control").split("=");
+const [dragX, dragY] = arg("drag").split(",").map(Number);
+
+// Tolerance against the native render: Chromium's WebGPU here is SwiftShader (Vulkan), the native
+// render lavapipe. The nodes run the same shaders, but the two rasterisers place one-pixel lines
+// (silhouettes, hatching strokes, glyph edges) a pixel apart in a few places. So: mean difference
+// within 1/255 per channel, and at most 0.5 % of pixels more than 16/255 apart.
+const MEAN_LIMIT = 1.0, FAR = 16, FAR_FRACTION_LIMIT = 0.005;
+// Each change (a control, a drag) must change more than 2 % of the pixels.
+const CHANGED_LIMIT = 0.02;
+
+const types = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm",
+                ".json": "application/json", ".png": "image/png" };
+const server = http.createServer((req, res) => {
+  const url = decodeURIComponent(new URL(req.url, "http://x").pathname);
+  const file = path.resolve(dir, "." + (url === "/" ? "/index.html" : url));
+  if (!file.startsWith(path.resolve(dir)) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
+    res.writeHead(404).end();
+    return;
+  }
+  res.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
+  fs.createReadStream(file).pipe(res);
+});
+await new Promise(r => server.listen(0, "127.0.0.1", r));
+const base = `http://127.0.0.1:${server.address().port}/`;
+
+const read = file => PNG.sync.read(fs.readFileSync(file));
+function compare(a, b) {
+  if (a.width !== b.width || a.height !== b.height) {
+    throw new Error(`sizes differ: ${a.width}×${a.height} and ${b.width}×${b.height}`);
+  }
+  let sum = 0, far = 0, changed = 0, worst = { d: -1 };
+  for (let i = 0; i < a.data.length; i += 4) {
+    let d = 0;
+    for (let c = 0; c < 3; c++) d = Math.max(d, Math.abs(a.data[i + c] - b.data[i + c]));
+    sum += d;
+    if (d > FAR) far++;
+    if (d > 0) changed++;
+    if (d > worst.d) {
+      const p = i / 4;
+      worst = { d, x: p % a.width, y: Math.floor(p / a.width) };
+    }
+  }
+  const n = a.data.length / 4;
+  return { mean: sum / n, farFraction: far / n, changedFraction: changed / n, worst };
+}
+
+const results = { wasmBytes: fs.statSync(path.join(dir, "hatchery_web_bg.wasm")).size };
+const fail = message => {
+  results.failure = message;
+  fs.writeFileSync(path.join(out, "web-test.json"), JSON.stringify(results, null, 2));
+  console.error(`web-test: FAILED: ${message} (pictures and web-test.json in ${out})`);
+  process.exitCode = 1;
+};
+
+// SwiftShader's Vulkan for WebGPU and for compositing: with Chromium's default (GL) compositor
+// the WebGPU canvas reaches the page but not screenshots.
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+  args: ["--headless=new", "--enable-unsafe-webgpu", "--enable-features=Vulkan",
+         "--use-vulkan=swiftshader", "--use-angle=vulkan", "--no-sandbox", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 1100 }, deviceScaleFactor: 1 });
+  const log = [];
+  page.on("console", m => log.push(`${m.type()}: ${m.text()}`));
+  page.on("pageerror", e => log.push(`page error: ${e.message}`));
+  const ready = async frames => {
+    await page.waitForFunction(
+      n => document.body.dataset.state === "error" || document.body.dataset.state === "no-webgpu" ||
+           (window.hatchery && window.hatchery.frames >= n && document.body.dataset.state === "ready"),
+      frames, { timeout: 300_000 });
+    const state = await page.evaluate(() => document.body.dataset.state);
+    if (state !== "ready") {
+      throw new Error(`the page says ${state}: ${await page.textContent("#status")}\n${log.join("\n")}`);
+    }
+  };
+  const shot = async name => {
+    const file = path.join(out, name);
+    await page.locator("#figure").screenshot({ path: file });
+    return read(file);
+  };
+
+  const opened = Date.now();
+  await page.goto(base + "index.html");
+  await ready(1);
+  results.firstPictureMs = await page.evaluate(() => window.hatchery.firstPictureMs);
+  results.pageLoadToPictureMs = Date.now() - opened;
+  results.status = await page.textContent("#status");
+
+  const against = (name, picture, file) => {
+    const d = compare(picture, read(file));
+    results[name] = d;
+    console.log(`web-test: ${name}: mean ${d.mean.toFixed(3)}/255, ` +
+                `${(100 * d.farFraction).toFixed(3)} % of pixels over ${FAR}/255, ` +
+                `worst ${d.worst.d}/255 at (${d.worst.x}, ${d.worst.y}) against ${file}`);
+    if (d.mean > MEAN_LIMIT || d.farFraction > FAR_FRACTION_LIMIT) {
+      fail(`${name}: the canvas differs from the native render beyond the tolerance ` +
+           `(mean ≤ ${MEAN_LIMIT}/255, ≤ ${100 * FAR_FRACTION_LIMIT} % over ${FAR}/255)`);
+    }
+  };
+  const changedFrom = (name, picture, before) => {
+    const d = compare(picture, before);
+    console.log(`web-test: ${name} changed ${(100 * d.changedFraction).toFixed(1)} % of the pixels`);
+    if (d.changedFraction < CHANGED_LIMIT) fail(`${name} did not change the picture`);
+  };
+  const settled = async frames => {
+    await ready(frames);
+    await page.waitForFunction(() => !window.hatchery.busy, null, { timeout: 300_000 });
+  };
+
+  const web = await shot("web.png");
+  against("as opened", web, native);
+
+  // The control's slider, as a reader moves it.
+  const [node, param] = controlName.split(".");
+  const slider = page.locator(`#control-${node}-${param}`);
+  if (await slider.count() === 0) {
+    throw new Error(`the page shows no control for ${controlName}`);
+  }
+  let frames = await page.evaluate(() => window.hatchery.frames);
+  await slider.evaluate((e, v) => { e.value = v; e.dispatchEvent(new Event("input")); }, controlValue);
+  await settled(frames + 1);
+  const controlled = await shot("control.png");
+  changedFrom(`the control ${controlName}`, controlled, web);
+  against(`after ${controlName}=${controlValue}`, controlled, arg("control-native"));
+
+  // A drag across the canvas with the mouse, as a reader turns the figure.
+  const box = await page.locator("#figure").boundingBox();
+  const [cx, cy] = [box.x + box.width / 2, box.y + box.height / 2];
+  frames = await page.evaluate(() => window.hatchery.frames);
+  await page.mouse.move(cx, cy);
+  await page.mouse.down();
+  const steps = 8;
+  for (let i = 1; i <= steps; i++) await page.mouse.move(cx + dragX * i / steps, cy + dragY * i / steps);
+  await page.mouse.up();
+  await settled(frames + 1);
+  const dragged = await shot("dragged.png");
+  changedFrom("the drag", dragged, controlled);
+  const [shownNode, shownPort] = arg("drag-port").split(".");
+  frames = await page.evaluate(() => window.hatchery.frames);
+  await page.evaluate(([n, p]) => { window.hatchery.figure.show(n, p); window.hatchery.changed(); },
+                      [shownNode, shownPort]);
+  await settled(frames + 1);
+  against(`${shownNode}.${shownPort} after a drag of (${dragX}, ${dragY})`,
+          await shot("dragged-port.png"), arg("drag-native"));
+
+  // Without WebGPU the page keeps the poster and says why.
+  const plain = await browser.newPage();
+  await plain.addInitScript(() =>
+    Object.defineProperty(Navigator.prototype, "gpu", { get: () => undefined }));
+  await plain.goto(base + "index.html");
+  await plain.waitForFunction(() => document.body.dataset.state, null, { timeout: 60_000 });
+  const fallback = await plain.evaluate(() => ({
+    state: document.body.dataset.state,
+    poster: document.getElementById("poster").complete &&
+            document.getElementById("poster").naturalWidth > 0 &&
+            getComputedStyle(document.getElementById("poster")).display !== "none",
+  }));
+  results.withoutWebGpu = fallback;
+  if (fallback.state !== "no-webgpu" || !fallback.poster) {
+    fail(`without WebGPU the page should show the poster: ${JSON.stringify(fallback)}`);
+  }
+} catch (e) {
+  fail(e.message);
+} finally {
+  await browser.close();
+  server.close();
+}
+if (!results.failure) {
+  fs.writeFileSync(path.join(out, "web-test.json"), JSON.stringify(results, null, 2));
+  console.log(`web-test: passed (first picture ${results.firstPictureMs.toFixed(0)} ms after the page ` +
+              `started, wasm ${(results.wasmBytes / 1e6).toFixed(1)} MB)`);
+}
