@@ -18,6 +18,12 @@ have_vulkan_driver() {
     [[ "$libs" == *libvulkan.so.1* && -n "$manifests" ]]
 }
 
+# The browser build (scripts/build-web.sh, docs/web.md) compiles for wasm32.
+if command -v rustup >/dev/null 2>&1 &&
+    ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then
+    rustup target add wasm32-unknown-unknown
+fi
+
 packages=()
 if ! have_vulkan_driver; then
     echo "install-deps: no Vulkan driver found; installing Mesa's software driver (lavapipe)" >&2

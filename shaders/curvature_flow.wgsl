@@ -24,7 +24,7 @@ struct Flow {
 @group(0) @binding(2) var<uniform> flow: Flow;
 
 fn hash3(c: vec3<i32>) -> f32 {
-    var h = u32(c.x) * 73856093u ^ u32(c.y) * 19349663u ^ u32(c.z) * 83492791u;
+    var h = (u32(c.x) * 73856093u) ^ (u32(c.y) * 19349663u) ^ (u32(c.z) * 83492791u);
     h = (h ^ (h >> 16u)) * 0x45d9f3bu;
     h = (h ^ (h >> 16u)) * 0x45d9f3bu;
     h = h ^ (h >> 16u);

@@ -44,6 +44,8 @@ pub fn run(args: &Args) -> Result<()> {
     let mut session = crate::open(&args.graph, &args.frame)?;
     let (width, height) = session.ctx.size();
     let out = &args.output;
+    // Refuse what the page cannot read before writing anything.
+    let reads = data_reads(&session)?;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
 
     // The poster first, from the graph as the user's paths have it.
@@ -54,7 +56,7 @@ pub fn run(args: &Args) -> Result<()> {
         .save(out.join("poster.png"))
         .with_context(|| format!("cannot write {}", out.join("poster.png").display()))?;
 
-    let files = copy_data(&mut session, out)?;
+    let files = copy_data(&mut session, reads, out)?;
     let mut doc = session.document();
     doc.base_dir = None;
     write(out, "figure.ron", &doc.to_ron_string())?;
@@ -65,7 +67,11 @@ pub fn run(args: &Args) -> Result<()> {
         "scale": args.frame.scale,
         "files": files,
     });
-    write(out, "figure.json", &serde_json::to_string_pretty(&manifest)?)?;
+    write(
+        out,
+        "figure.json",
+        &serde_json::to_string_pretty(&manifest)?,
+    )?;
     let title = match session.graph.description() {
         "" => args
             .graph
@@ -129,12 +135,14 @@ fn web_pkg(given: Option<&Path>) -> Result<PathBuf> {
     )
 }
 
-/// Copies every file the graph reads into `out/data/N/` (one folder per file, with the files it
-/// names beside it) and points the graph's parameters there. Returns the copied paths,
-/// relative to `out`. Errors: a folder (DICOM series, TIFF stack, OME-Zarr), which the browser
-/// build does not read, naming the node.
-fn copy_data(session: &mut Session, out: &Path) -> Result<Vec<String>> {
-    let mut reads: Vec<(String, String, PathBuf)> = Vec::new();
+/// A file a node reads: (node, parameter, path as resolved).
+type Read = (String, String, PathBuf);
+
+/// The files the graph reads (its non-empty path parameters, savers' excepted). Errors: a
+/// folder (DICOM series, TIFF stack, OME-Zarr), which the browser build does not read, or a
+/// missing file, naming the node.
+fn data_reads(session: &Session) -> Result<Vec<Read>> {
+    let mut reads: Vec<Read> = Vec::new();
     for node in session.graph.nodes() {
         if WRITERS.contains(&node.kind.as_str()) {
             continue;
@@ -149,9 +157,7 @@ fn copy_data(session: &mut Session, out: &Path) -> Result<Vec<String>> {
             }
         }
     }
-    let mut copied: BTreeMap<PathBuf, String> = BTreeMap::new();
-    let mut files = Vec::new();
-    for (node, param, path) in reads {
+    for (node, param, path) in &reads {
         if path.is_dir() {
             bail!(
                 "node `{node}` reads the folder {} ({param}); the browser build reads single \
@@ -159,6 +165,20 @@ fn copy_data(session: &mut Session, out: &Path) -> Result<Vec<String>> {
                 path.display()
             );
         }
+        if !path.is_file() {
+            bail!("node `{node}`: {param} {} is not a file", path.display());
+        }
+    }
+    Ok(reads)
+}
+
+/// Copies the files the graph reads into `out/data/N/` (one folder per file, with the files it
+/// names beside it) and points the graph's parameters there. Returns the copied paths,
+/// relative to `out`.
+fn copy_data(session: &mut Session, reads: Vec<Read>, out: &Path) -> Result<Vec<String>> {
+    let mut copied: BTreeMap<PathBuf, String> = BTreeMap::new();
+    let mut files = Vec::new();
+    for (node, param, path) in reads {
         let source = std::fs::canonicalize(&path)
             .with_context(|| format!("node `{node}`: cannot read {}", path.display()))?;
         let target = match copied.get(&source) {

@@ -9,7 +9,8 @@
 //      DX·180°/width of azimuth, DY·180°/width of elevation). A port before the labels: the
 //      layout starts from its last frame (temporal coherence), so labels placed during a drag
 //      differ from a fresh render's. Each change must also change the picture.
-// Then a browser without WebGPU must show the poster.
+// Every shader program of the node library must also compile in the browser, and a browser
+// without WebGPU must show the poster.
 //
 // node check.mjs --dir EXPORT --native A.png --control N.P=V --control-native B.png
 //                --drag DX,DY --drag-port NODE.PORT --drag-native C.png --out FOLDER
@@ -144,6 +145,32 @@ try {
 
   const web = await shot("web.png");
   against("as opened", web, native);
+
+  // Every shader program, compiled by the browser's WGSL compiler (Tint), stricter than naga in
+  // places: the figure above uses only some of them. Programs with 64-bit integers run only on
+  // adapters that have them (DepthLayers' k-buffer; WebGPU has none) and are left out.
+  const compiled = await page.evaluate(async () => {
+    const build = await import("./hatchery_web.js");
+    const programs = JSON.parse(build.shader_programs());
+    const device = await (await navigator.gpu.requestAdapter()).requestDevice();
+    const failed = [], skipped = [];
+    for (const { name, source } of programs) {
+      if (/\b[ui]64\b/.test(source)) { skipped.push(name); continue; }
+      const info = await device.createShaderModule({ code: source, label: name }).getCompilationInfo();
+      for (const m of info.messages.filter(m => m.type === "error")) {
+        const line = source.split("\n")[m.lineNum - 1] ?? "";
+        failed.push(`${name}:${m.lineNum}:${m.linePos}: ${m.message} | ${line.trim()}`);
+      }
+    }
+    return { count: programs.length, failed, skipped };
+  });
+  results.shaders = compiled;
+  console.log(`web-test: ${compiled.count - compiled.skipped.length} shader programs compiled by ` +
+              `the browser (${compiled.skipped.join(", ")} left out: 64-bit integers)`);
+  if (compiled.failed.length > 0) {
+    fail(`the browser's WGSL compiler refuses ${compiled.failed.length} shader(s):\n` +
+         compiled.failed.join("\n"));
+  }
 
   // The control's slider, as a reader moves it.
   const [node, param] = controlName.split(".");

@@ -36,8 +36,9 @@ fn normal(path: &Path) -> PathBuf {
         .collect()
 }
 
-/// The whole file at `path`. Errors: as `std::fs::read`; in the browser, a path the figure did
-/// not fetch is `NotFound`, naming it.
+/// The whole file at `path`. Errors: as `std::fs::read`, and `InvalidInput` for what is not a
+/// regular file (a device such as /dev/zero, a pipe: reading them would never end); in the
+/// browser, a path the figure did not fetch is `NotFound`.
 pub fn read(path: &Path) -> io::Result<Vec<u8>> {
     #[cfg(target_arch = "wasm32")]
     {
@@ -51,7 +52,15 @@ pub fn read(path: &Path) -> io::Result<Vec<u8>> {
         }
     }
     #[cfg(not(target_arch = "wasm32"))]
-    std::fs::read(path)
+    {
+        if !std::fs::metadata(path)?.is_file() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "is not a regular file",
+            ));
+        }
+        std::fs::read(path)
+    }
 }
 
 /// Whether `path` is a file [`read`] can read.

@@ -43,7 +43,7 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, DataError> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let read = || std::fs::read(path).map_err(|e| DataError::io(path, e));
+    let read = || crate::files::read(path).map_err(|e| DataError::io(path, e));
     let mesh = match extension.as_str() {
         "obj" => load_obj(path, &read()?),
         "ply" => ply::read(path, &read()?),

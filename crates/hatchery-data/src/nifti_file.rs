@@ -31,15 +31,13 @@ pub use crate::voxels::MAX_VOXELS;
 ///   refuses the qform); only `qfac` (or the sform) mirrors an axis.
 /// * Non-finite voxel values (NaN is common in float maps) are kept: they mean "no data".
 pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
-    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
-    let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
-    let mut buffered = BufReader::new(file);
-    let head = buffered.fill_buf().map_err(|e| DataError::io(path, e))?;
-    let gzip = head.starts_with(&[0x1f, 0x8b]);
+    let bytes = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = bytes.len() as u64;
+    let gzip = bytes.starts_with(&[0x1f, 0x8b]);
     let mut source: Box<dyn Read> = if gzip {
-        Box::new(flate2::bufread::MultiGzDecoder::new(buffered))
+        Box::new(flate2::bufread::MultiGzDecoder::new(&bytes[..]))
     } else {
-        Box::new(buffered)
+        Box::new(&bytes[..])
     };
     let read_error = |e: io::Error| stream_error(path, gzip, e);
 
@@ -65,25 +63,30 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     }
 
     let byte_count = layout.voxels as usize * layout.datatype.size_of();
-    // Reserve no more than the file can hold (a gzip stream at deflate's best ratio): a header
-    // may promise gigabytes that are not there.
-    let available = if gzip {
-        raw_voxels::decoded_bound(file_len, true)
+    let raw = if gzip {
+        // Reserve no more than the file can hold (a gzip stream at deflate's best ratio): a
+        // header may promise gigabytes that are not there.
+        let available = raw_voxels::decoded_bound(file_len, true);
+        let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
+        let mut raw = Vec::new();
+        raw.try_reserve_exact(room).map_err(|_| {
+            DataError::format(
+                path,
+                format!("cannot allocate {room} bytes for the voxel data"),
+            )
+        })?;
+        (&mut source)
+            .take(byte_count as u64)
+            .read_to_end(&mut raw)
+            .map_err(read_error)?;
+        // Decoding needs no compressed bytes.
+        drop(source);
+        drop(bytes);
+        raw
     } else {
-        file_len.saturating_sub(layout.data_offset)
+        drop(source);
+        raw_voxels::cut(bytes, layout.data_offset as usize, byte_count)
     };
-    let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
-    let mut raw = Vec::new();
-    raw.try_reserve_exact(room).map_err(|_| {
-        DataError::format(
-            path,
-            format!("cannot allocate {room} bytes for the voxel data"),
-        )
-    })?;
-    (&mut source)
-        .take(byte_count as u64)
-        .read_to_end(&mut raw)
-        .map_err(read_error)?;
     if raw.len() < byte_count {
         return Err(DataError::format(
             path,

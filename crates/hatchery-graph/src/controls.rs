@@ -17,7 +17,11 @@ use crate::schema::SchemaLookup;
 #[derive(Clone, Debug, PartialEq)]
 pub enum ControlKind {
     /// A slider from `min` to `max` (integers step by one).
-    Slider { min: f64, max: f64, integer: bool },
+    Slider {
+        min: f64,
+        max: f64,
+        integer: bool,
+    },
     Toggle,
     Menu(&'static [&'static str]),
     Colour,
@@ -105,7 +109,7 @@ fn control_kind(
     let range = |lo: f64, hi: f64, integer: bool| {
         let min = control.min.unwrap_or(lo);
         let max = control.max.unwrap_or(hi);
-        if !(min < max) || min < lo || max > hi {
+        if min.is_nan() || max.is_nan() || min >= max || min < lo || max > hi {
             return Err(format!(
                 "min {min} and max {max} must be increasing and within the parameter's range \
                  [{lo}, {hi}]"

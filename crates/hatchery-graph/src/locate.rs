@@ -47,7 +47,10 @@ pub(crate) fn control_offset(text: &str, node: &str, param: &str) -> Option<usiz
     quoted(text, node).into_iter().find(|&i| {
         i > section
             && before(text, i).ends_with(':')
-            && text[i..].split(')').next().is_some_and(|c| c.contains(&format!("\"{param}\"")))
+            && text[i..]
+                .split(')')
+                .next()
+                .is_some_and(|c| c.contains(&format!("\"{param}\"")))
     })
 }
 

@@ -9,6 +9,13 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
+/// The image file at `path`, read through [`hatchery_data::files`] (in the browser: a file the
+/// page fetched), its format told by the name's ending as `image::open` tells it.
+pub(crate) fn read_image(path: &Path) -> image::ImageResult<image::DynamicImage> {
+    let bytes = hatchery_data::files::read(path).map_err(image::ImageError::IoError)?;
+    image::load_from_memory_with_format(&bytes, image::ImageFormat::from_path(path)?)
+}
+
 pub struct RenderContext {
     pub gpu: GpuContext,
     width: u32,
@@ -266,13 +273,21 @@ impl RenderContext {
     /// An image file as an Rgba8Unorm texture, read once per path and modification time.
     /// Errors: the file cannot be read or decoded, or is larger than the GPU allows.
     pub fn file_texture(&mut self, path: &Path) -> Result<wgpu::Texture, NodeError> {
-        let modified = std::fs::metadata(path)
-            .and_then(|m| m.modified())
-            .map_err(|e| NodeError::new(format!("cannot read {}: {e}", path.display())))?;
+        let modified = match std::fs::metadata(path).and_then(|m| m.modified()) {
+            Ok(time) => Some(time),
+            // The browser has no file system: a file the page mounted is read once.
+            Err(_) if hatchery_data::files::is_file(path) => None,
+            Err(e) => {
+                return Err(NodeError::new(format!(
+                    "cannot read {}: {e}",
+                    path.display()
+                )));
+            }
+        };
         let key = format!("file_texture:{}:{modified:?}", path.display());
         let texture = self
             .cached(&key, |gpu| {
-                let picture = image::open(path)
+                let picture = read_image(path)
                     .map_err(|e| GpuError::Validation {
                         what: format!("{}", path.display()),
                         message: e.to_string(),

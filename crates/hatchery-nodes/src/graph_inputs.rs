@@ -51,21 +51,27 @@ pub enum InputFileError {
 /// volume (NIfTI .nii/.nii.gz, …)".
 pub fn check_input_file(input: &str, kind: InputKind, path: &Path) -> Result<(), InputFileError> {
     let shown = path.display();
-    let metadata = std::fs::metadata(path).map_err(|e| {
+    let unreadable = |e: std::io::Error| {
         InputFileError::Unreadable(format!("input `{input}`: cannot read {shown}: {e}"))
-    })?;
-    if metadata.is_file() {
-        std::fs::File::open(path).map_err(|e| {
-            InputFileError::Unreadable(format!("input `{input}`: cannot read {shown}: {e}"))
-        })?;
-    }
+    };
+    let folder = match std::fs::metadata(path) {
+        Ok(metadata) => {
+            if metadata.is_file() {
+                std::fs::File::open(path).map_err(unreadable)?;
+            }
+            metadata.is_dir()
+        }
+        // The browser has no file system: a file the page mounted is readable.
+        Err(_) if hatchery_data::files::is_file(path) => false,
+        Err(e) => return Err(unreadable(e)),
+    };
     let (wanted, endings): (&str, Vec<&str>) = match kind {
         InputKind::Volume => ("volume", VOLUME_ENDINGS.to_vec()),
         InputKind::Labels => ("volume", VOLUME_ENDINGS.to_vec()),
         InputKind::Mesh => ("mesh", MESH_ENDINGS.to_vec()),
         InputKind::Names => ("names table", NAMES_ENDINGS.to_vec()),
     };
-    if metadata.is_dir() && kind != InputKind::Volume && kind != InputKind::Labels {
+    if folder && kind != InputKind::Volume && kind != InputKind::Labels {
         return Err(InputFileError::WrongKind(format!(
             "input `{input}`: {shown} is a folder, not a {kind} file ({})",
             endings.join(", ")

@@ -53,7 +53,7 @@ impl Node<Value, Ctx> for StyleSetNode {
             let lower = entry.to_ascii_lowercase();
             let map = if [".png", ".jpg", ".jpeg"].iter().any(|e| lower.ends_with(e)) {
                 let path = resolve(p, &entry);
-                let picture = image::open(&path)
+                let picture = crate::context::read_image(&path)
                     .map_err(|e| NodeError::new(format!("style {}: {e}", path.display())))?
                     .resize_exact(SIZE, SIZE, image::imageops::FilterType::Triangle)
                     .to_rgba8();

@@ -41,6 +41,23 @@ fn one() -> f64 {
     1.0
 }
 
+/// Every shader program of the node library as `[{name, source}]` JSON, for the browser test
+/// (tests/web/check.mjs) to compile with the browser's own WGSL compiler, which is stricter than
+/// naga in places (operator precedence, uniformity).
+#[wasm_bindgen]
+pub fn shader_programs() -> String {
+    let programs: Vec<serde_json::Value> = hatchery_nodes::kinds::programs()
+        .iter()
+        .map(|(name, _)| {
+            serde_json::json!({
+                "name": name,
+                "source": hatchery_nodes::kinds::source(name).unwrap_or_default(),
+            })
+        })
+        .collect();
+    serde_json::Value::Array(programs).to_string()
+}
+
 /// An open figure: its graph session on the page's device and the canvas it draws on.
 #[wasm_bindgen]
 pub struct Figure {
@@ -112,9 +129,8 @@ impl Figure {
         let graph = Graph::from_document(&doc, &source, &registry, Some(Path::new("")))
             .map_err(js_error)?;
         let orbit = orbit::Orbit::of(&graph);
-        let mut session =
-            Session::with_gpu(registry, graph, gpu, manifest.width, manifest.height)
-                .map_err(js_error)?;
+        let mut session = Session::with_gpu(registry, graph, gpu, manifest.width, manifest.height)
+            .map_err(js_error)?;
         session.ctx.set_pixel_scale(manifest.scale);
         let picture = session.picture_port(None, None).map_err(js_error)?;
         Ok(Figure {

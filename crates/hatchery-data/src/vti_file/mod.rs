@@ -59,7 +59,7 @@ const SPARSE_VOXELS: u64 = 1 << 24;
 ///   their place; voxels no piece covers are NaN (noted in `placement`). A grid more than 16
 ///   times (and 2^24 voxels) larger than the voxels its pieces hold is refused.
 pub fn load_vti(path: &Path, array: Option<&str>) -> Result<VolumeData, DataError> {
-    let bytes = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
+    let bytes = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
     let file = parse_markup(path, &bytes)?;
     // Numbered as in the file, for errors.
     let pieces: Vec<(usize, &Piece)> = file

@@ -124,7 +124,11 @@ pub fn rename_node(doc: &mut GraphDocument, old: &str, new: &str) -> Result<(), 
         .edges
         .iter_mut()
         .flat_map(|e| [&mut e.from.0, &mut e.to.0])
-        .chain(doc.inputs.iter_mut().flat_map(|i| i.to.iter_mut().map(|(n, _)| n)))
+        .chain(
+            doc.inputs
+                .iter_mut()
+                .flat_map(|i| i.to.iter_mut().map(|(n, _)| n)),
+        )
         .chain(doc.controls.iter_mut().map(|c| &mut c.node));
     for name in names {
         if name == old {

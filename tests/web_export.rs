@@ -1,0 +1,213 @@
+//! `hatchery export-web` (issue 33): the folder it writes, natively. The page itself runs in
+//! Chromium in scripts/web-test.sh; here a stand-in browser build (two marked files) shows what
+//! the command copies, and the exported graph is rendered again from the folder to show that it
+//! is self-contained: the same pixels as its poster.
+
+mod common;
+
+use common::{hatchery, read_png};
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+/// A stand-in for target/web-pkg: the two files the command copies, with known bytes.
+fn fake_pkg(dir: &Path) -> PathBuf {
+    let pkg = dir.join("pkg");
+    std::fs::create_dir_all(&pkg).unwrap();
+    std::fs::write(pkg.join("hatchery_web.js"), "// glue").unwrap();
+    std::fs::write(pkg.join("hatchery_web_bg.wasm"), b"\0asm-test").unwrap();
+    pkg
+}
+
+fn ok(o: &Output) {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+fn export(graph: &str, out: &Path, pkg: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "export-web",
+        graph,
+        "-o",
+        out.to_str().unwrap(),
+        "--web-pkg",
+        pkg.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    hatchery(&args)
+}
+
+/// Renders `graph` natively at `size` and returns the picture.
+fn render(graph: &Path, size: &str, dir: &Path) -> image::RgbaImage {
+    let png = dir.join("native.png");
+    ok(&hatchery(&[
+        "render",
+        graph.to_str().unwrap(),
+        "--size",
+        size,
+        "-o",
+        png.to_str().unwrap(),
+    ]));
+    read_png(&png)
+}
+
+fn manifest(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("figure.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn the_default_figure_folder_holds_the_page_the_build_the_graph_and_its_poster() {
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = fake_pkg(dir.path());
+    let out = dir.path().join("figure");
+    ok(&export(
+        "graphs/default.ron",
+        &out,
+        &pkg,
+        &["--size", "160x120"],
+    ));
+
+    let m = manifest(&out);
+    assert_eq!(
+        (&m["graph"], &m["width"], &m["height"], &m["scale"]),
+        (
+            &serde_json::json!("figure.ron"),
+            &serde_json::json!(160),
+            &serde_json::json!(120),
+            &serde_json::json!(1.0)
+        )
+    );
+    assert_eq!(m["files"], serde_json::json!([]));
+    assert_eq!(
+        std::fs::read(out.join("hatchery_web_bg.wasm")).unwrap(),
+        b"\0asm-test"
+    );
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(page.contains(r#"<canvas id="figure" width="160" height="120">"#));
+    assert!(page.contains("<title>the default: the hidden-structures engine block"));
+    assert!(!page.contains("{{"), "every placeholder filled");
+
+    // The poster is the native render of the graph at that size, and the exported graph renders
+    // the same pixels from its folder.
+    let poster = read_png(&out.join("poster.png"));
+    assert_eq!(
+        poster,
+        render(Path::new("graphs/default.ron"), "160x120", dir.path())
+    );
+    assert_eq!(
+        poster,
+        render(&out.join("figure.ron"), "160x120", dir.path())
+    );
+    let exported = std::fs::read_to_string(out.join("figure.ron")).unwrap();
+    assert!(
+        exported.contains("controls: ["),
+        "the controls travel with the graph"
+    );
+}
+
+#[test]
+fn the_data_a_graph_reads_is_copied_and_the_graph_points_at_the_copies() {
+    let mri = common::shared_data("volumes/mni152_t1.nii.gz");
+    if !mri.is_file() {
+        eprintln!("skipped: {} is missing (../shared/data)", mri.display());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = fake_pkg(dir.path());
+    let out = dir.path().join("brain");
+    ok(&export(
+        "graphs/brain_surface.ron",
+        &out,
+        &pkg,
+        &["--size", "96x72"],
+    ));
+
+    assert_eq!(
+        manifest(&out)["files"],
+        serde_json::json!(["data/1/mni152_t1.nii.gz"])
+    );
+    assert_eq!(
+        std::fs::read(out.join("data/1/mni152_t1.nii.gz")).unwrap(),
+        std::fs::read(&mri).unwrap()
+    );
+    let exported = std::fs::read_to_string(out.join("figure.ron")).unwrap();
+    assert!(
+        exported.contains(r#""path": "data/1/mni152_t1.nii.gz""#),
+        "{exported}"
+    );
+    let poster = read_png(&out.join("poster.png"));
+    assert_eq!(poster, render(&out.join("figure.ron"), "96x72", dir.path()));
+}
+
+#[test]
+fn a_metaimage_header_travels_with_the_voxel_file_it_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = fake_pkg(dir.path());
+    // A 12³ ball of 200 in 0, as ITK writes a MetaImage: a text header naming its raw voxels.
+    let n = 12usize;
+    let voxels: Vec<u8> = (0..n * n * n)
+        .map(|i| {
+            let (x, y, z) = (i % n, (i / n) % n, i / (n * n));
+            let d = |a: usize| a as f32 - 5.5;
+            if d(x).hypot(d(y)).hypot(d(z)) < 4.0 {
+                200
+            } else {
+                0
+            }
+        })
+        .collect();
+    let data = dir.path().join("data");
+    std::fs::create_dir_all(&data).unwrap();
+    std::fs::write(data.join("ball.raw"), &voxels).unwrap();
+    std::fs::write(
+        data.join("ball.mhd"),
+        "ObjectType = Image\nNDims = 3\nDimSize = 12 12 12\nElementSpacing = 4 4 4\n\
+         ElementType = MET_UCHAR\nElementDataFile = ball.raw\n",
+    )
+    .unwrap();
+    let out = dir.path().join("ball");
+    let set = format!("mri.path={}", data.join("ball.mhd").display());
+    ok(&export(
+        "graphs/brain_surface.ron",
+        &out,
+        &pkg,
+        &["--size", "64x48", "--set", &set],
+    ));
+    assert_eq!(
+        manifest(&out)["files"],
+        serde_json::json!(["data/1/ball.mhd", "data/1/ball.raw"])
+    );
+    assert_eq!(std::fs::read(out.join("data/1/ball.raw")).unwrap(), voxels);
+    let poster = read_png(&out.join("poster.png"));
+    assert_eq!(poster, render(&out.join("figure.ron"), "64x48", dir.path()));
+}
+
+#[test]
+fn a_folder_and_a_missing_build_are_refused_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = fake_pkg(dir.path());
+    let set = format!("mri.path={}", dir.path().display());
+    let out = dir.path().join("refused");
+    let o = export("graphs/brain_surface.ron", &out, &pkg, &["--set", &set]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("node `mri` reads the folder") && err.contains("single files only"),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing written for a refused export");
+
+    let o = export(
+        "graphs/default.ron",
+        &out,
+        &dir.path().join("no-such-build"),
+        &[],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert_eq!(
+        err.lines().filter(|l| l.starts_with("error:")).count(),
+        1,
+        "{err}"
+    );
+    assert!(err.contains("run scripts/build-web.sh"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
