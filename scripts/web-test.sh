@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The browser test (docs/web.md): builds the browser build, exports graphs/default.ron with
+# The browser test (docs/web.md): builds the browser build, exports graphs/default.ron (and
+# graphs/brain_surface.ron, a NIfTI file, where ../shared/data is there) with
 # `hatchery export-web`, and drives it in headless Chromium with WebGPU (tests/web/check.mjs):
 # the canvas against the native render of the same graph and size, a drag and a control that
 # must change the picture, and the poster without WebGPU. Installs Debian's chromium and the
@@ -54,3 +55,16 @@ WEB_TOOLS="$tools" node tests/web/check.mjs --dir "$out/default" --out "$out" \
     --native "$out/native.png" \
     --control "$control" --control-native "$out/native-control.png" \
     --drag 160,40 --drag-port front_hatching.image --drag-native "$out/native-dragged.png"
+
+# A figure with a data file: the MNI template (NIfTI, gzip) read by the loaders from what the
+# page fetched. Where ../shared/data is not beside the checkout, say so and stop here.
+mri=../shared/data/volumes/mni152_t1.nii.gz
+if [ ! -f "$mri" ]; then
+    echo "web-test: the data-file figure is skipped: $mri is missing" >&2
+    exit 0
+fi
+mkdir -p "$out/brain"
+"$target_dir/release/hatchery" export-web graphs/brain_surface.ron -o "$out/brain/figure" --size 320x240
+"$target_dir/release/hatchery" render graphs/brain_surface.ron --size 320x240 -o "$out/brain/native.png" 2>&1 | tail -1
+WEB_TOOLS="$tools" node tests/web/check.mjs --dir "$out/brain/figure" --out "$out/brain" \
+    --native "$out/brain/native.png" --opened-only

@@ -14,6 +14,7 @@
 //
 // node check.mjs --dir EXPORT --native A.png --control N.P=V --control-native B.png
 //                --drag DX,DY --drag-port NODE.PORT --drag-native C.png --out FOLDER
+// node check.mjs --dir EXPORT --native A.png --out FOLDER --opened-only
 // Writes FOLDER/web.png, control.png, dragged.png and web-test.json; exits 1 naming the failed
 // check.
 import http from "node:http";
@@ -31,8 +32,10 @@ const arg = name => {
   return process.argv[i + 1];
 };
 const dir = arg("dir"), native = arg("native"), out = arg("out");
-const [controlName, controlValue] = arg("control").split("=");
-const [dragX, dragY] = arg("drag").split(",").map(Number);
+// --opened-only: step 1 alone (a figure with data files: the loaders in the browser).
+const full = !process.argv.includes("--opened-only");
+const [controlName, controlValue] = full ? arg("control").split("=") : [];
+const [dragX, dragY] = full ? arg("drag").split(",").map(Number) : [];
 
 // Tolerance against the native render: Chromium's WebGPU here is SwiftShader (Vulkan), the native
 // render lavapipe. The nodes run the same shaders, but the two rasterisers place one-pixel lines
@@ -146,81 +149,85 @@ try {
   const web = await shot("web.png");
   against("as opened", web, native);
 
-  // Every shader program, compiled by the browser's WGSL compiler (Tint), stricter than naga in
-  // places: the figure above uses only some of them. Programs with 64-bit integers run only on
-  // adapters that have them (DepthLayers' k-buffer; WebGPU has none) and are left out.
-  const compiled = await page.evaluate(async () => {
-    const build = await import("./hatchery_web.js");
-    const programs = JSON.parse(build.shader_programs());
-    const device = await (await navigator.gpu.requestAdapter()).requestDevice();
-    const failed = [], skipped = [];
-    for (const { name, source } of programs) {
-      if (/\b[ui]64\b/.test(source)) { skipped.push(name); continue; }
-      const info = await device.createShaderModule({ code: source, label: name }).getCompilationInfo();
-      for (const m of info.messages.filter(m => m.type === "error")) {
-        const line = source.split("\n")[m.lineNum - 1] ?? "";
-        failed.push(`${name}:${m.lineNum}:${m.linePos}: ${m.message} | ${line.trim()}`);
+  // Steps 2–4: a nested function so that --opened-only can leave them out.
+  async function interact() {
+    // Every shader program, compiled by the browser's WGSL compiler (Tint), stricter than naga in
+    // places: the figure above uses only some of them. Programs with 64-bit integers run only on
+    // adapters that have them (DepthLayers' k-buffer; WebGPU has none) and are left out.
+    const compiled = await page.evaluate(async () => {
+      const build = await import("./hatchery_web.js");
+      const programs = JSON.parse(build.shader_programs());
+      const device = await (await navigator.gpu.requestAdapter()).requestDevice();
+      const failed = [], skipped = [];
+      for (const { name, source } of programs) {
+        if (/\b[ui]64\b/.test(source)) { skipped.push(name); continue; }
+        const info = await device.createShaderModule({ code: source, label: name }).getCompilationInfo();
+        for (const m of info.messages.filter(m => m.type === "error")) {
+          const line = source.split("\n")[m.lineNum - 1] ?? "";
+          failed.push(`${name}:${m.lineNum}:${m.linePos}: ${m.message} | ${line.trim()}`);
+        }
       }
+      return { count: programs.length, failed, skipped };
+    });
+    results.shaders = compiled;
+    console.log(`web-test: ${compiled.count - compiled.skipped.length} shader programs compiled by ` +
+                `the browser (${compiled.skipped.join(", ")} left out: 64-bit integers)`);
+    if (compiled.failed.length > 0) {
+      fail(`the browser's WGSL compiler refuses ${compiled.failed.length} shader(s):\n` +
+           compiled.failed.join("\n"));
     }
-    return { count: programs.length, failed, skipped };
-  });
-  results.shaders = compiled;
-  console.log(`web-test: ${compiled.count - compiled.skipped.length} shader programs compiled by ` +
-              `the browser (${compiled.skipped.join(", ")} left out: 64-bit integers)`);
-  if (compiled.failed.length > 0) {
-    fail(`the browser's WGSL compiler refuses ${compiled.failed.length} shader(s):\n` +
-         compiled.failed.join("\n"));
-  }
 
-  // The control's slider, as a reader moves it.
-  const [node, param] = controlName.split(".");
-  const slider = page.locator(`#control-${node}-${param}`);
-  if (await slider.count() === 0) {
-    throw new Error(`the page shows no control for ${controlName}`);
-  }
-  let frames = await page.evaluate(() => window.hatchery.frames);
-  await slider.evaluate((e, v) => { e.value = v; e.dispatchEvent(new Event("input")); }, controlValue);
-  await settled(frames + 1);
-  const controlled = await shot("control.png");
-  changedFrom(`the control ${controlName}`, controlled, web);
-  against(`after ${controlName}=${controlValue}`, controlled, arg("control-native"));
+    // The control's slider, as a reader moves it.
+    const [node, param] = controlName.split(".");
+    const slider = page.locator(`#control-${node}-${param}`);
+    if (await slider.count() === 0) {
+      throw new Error(`the page shows no control for ${controlName}`);
+    }
+    let frames = await page.evaluate(() => window.hatchery.frames);
+    await slider.evaluate((e, v) => { e.value = v; e.dispatchEvent(new Event("input")); }, controlValue);
+    await settled(frames + 1);
+    const controlled = await shot("control.png");
+    changedFrom(`the control ${controlName}`, controlled, web);
+    against(`after ${controlName}=${controlValue}`, controlled, arg("control-native"));
 
-  // A drag across the canvas with the mouse, as a reader turns the figure.
-  const box = await page.locator("#figure").boundingBox();
-  const [cx, cy] = [box.x + box.width / 2, box.y + box.height / 2];
-  frames = await page.evaluate(() => window.hatchery.frames);
-  await page.mouse.move(cx, cy);
-  await page.mouse.down();
-  const steps = 8;
-  for (let i = 1; i <= steps; i++) await page.mouse.move(cx + dragX * i / steps, cy + dragY * i / steps);
-  await page.mouse.up();
-  await settled(frames + 1);
-  const dragged = await shot("dragged.png");
-  changedFrom("the drag", dragged, controlled);
-  const [shownNode, shownPort] = arg("drag-port").split(".");
-  frames = await page.evaluate(() => window.hatchery.frames);
-  await page.evaluate(([n, p]) => { window.hatchery.figure.show(n, p); window.hatchery.changed(); },
-                      [shownNode, shownPort]);
-  await settled(frames + 1);
-  against(`${shownNode}.${shownPort} after a drag of (${dragX}, ${dragY})`,
-          await shot("dragged-port.png"), arg("drag-native"));
+    // A drag across the canvas with the mouse, as a reader turns the figure.
+    const box = await page.locator("#figure").boundingBox();
+    const [cx, cy] = [box.x + box.width / 2, box.y + box.height / 2];
+    frames = await page.evaluate(() => window.hatchery.frames);
+    await page.mouse.move(cx, cy);
+    await page.mouse.down();
+    const steps = 8;
+    for (let i = 1; i <= steps; i++) await page.mouse.move(cx + dragX * i / steps, cy + dragY * i / steps);
+    await page.mouse.up();
+    await settled(frames + 1);
+    const dragged = await shot("dragged.png");
+    changedFrom("the drag", dragged, controlled);
+    const [shownNode, shownPort] = arg("drag-port").split(".");
+    frames = await page.evaluate(() => window.hatchery.frames);
+    await page.evaluate(([n, p]) => { window.hatchery.figure.show(n, p); window.hatchery.changed(); },
+                        [shownNode, shownPort]);
+    await settled(frames + 1);
+    against(`${shownNode}.${shownPort} after a drag of (${dragX}, ${dragY})`,
+            await shot("dragged-port.png"), arg("drag-native"));
 
-  // Without WebGPU the page keeps the poster and says why.
-  const plain = await browser.newPage();
-  await plain.addInitScript(() =>
-    Object.defineProperty(Navigator.prototype, "gpu", { get: () => undefined }));
-  await plain.goto(base + "index.html");
-  await plain.waitForFunction(() => document.body.dataset.state, null, { timeout: 60_000 });
-  const fallback = await plain.evaluate(() => ({
-    state: document.body.dataset.state,
-    poster: document.getElementById("poster").complete &&
-            document.getElementById("poster").naturalWidth > 0 &&
-            getComputedStyle(document.getElementById("poster")).display !== "none",
-  }));
-  results.withoutWebGpu = fallback;
-  if (fallback.state !== "no-webgpu" || !fallback.poster) {
-    fail(`without WebGPU the page should show the poster: ${JSON.stringify(fallback)}`);
+    // Without WebGPU the page keeps the poster and says why.
+    const plain = await browser.newPage();
+    await plain.addInitScript(() =>
+      Object.defineProperty(Navigator.prototype, "gpu", { get: () => undefined }));
+    await plain.goto(base + "index.html");
+    await plain.waitForFunction(() => document.body.dataset.state, null, { timeout: 60_000 });
+    const fallback = await plain.evaluate(() => ({
+      state: document.body.dataset.state,
+      poster: document.getElementById("poster").complete &&
+              document.getElementById("poster").naturalWidth > 0 &&
+              getComputedStyle(document.getElementById("poster")).display !== "none",
+    }));
+    results.withoutWebGpu = fallback;
+    if (fallback.state !== "no-webgpu" || !fallback.poster) {
+      fail(`without WebGPU the page should show the poster: ${JSON.stringify(fallback)}`);
+    }
   }
+  if (full) await interact();
 } catch (e) {
   fail(e.message);
 } finally {
