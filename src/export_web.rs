@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use hatchery_graph::{ParamKind, ParamValue};
+use hatchery_graph::ParamKind;
 use hatchery_nodes::Session;
 
 use crate::FrameArgs;
@@ -56,9 +56,16 @@ pub fn run(args: &Args) -> Result<()> {
         .save(out.join("poster.png"))
         .with_context(|| format!("cannot write {}", out.join("poster.png").display()))?;
 
-    let files = copy_data(&mut session, reads, out)?;
+    let (files, moved) = copy_data(reads, out)?;
     let mut doc = session.document();
     doc.base_dir = None;
+    // The copies' paths are written into the document, not set on the graph: a CustomShader's
+    // file decides its ports, so the graph refuses to change it while open.
+    for ((node, param), path) in moved {
+        if let Some(n) = doc.nodes.iter_mut().find(|n| n.id == node) {
+            n.params.insert(param, ron::Value::String(path));
+        }
+    }
     write(out, "figure.ron", &doc.to_ron_string())?;
     let manifest = serde_json::json!({
         "graph": "figure.ron",
@@ -172,10 +179,13 @@ fn data_reads(session: &Session) -> Result<Vec<Read>> {
     Ok(reads)
 }
 
+/// Each (node, parameter) reading a file, and the path of its copy in the folder.
+type Moved = Vec<((String, String), String)>;
+
 /// Copies the files the graph reads into `out/data/N/` (one folder per file, with the files it
-/// names beside it) and points the graph's parameters there. Returns the copied paths,
-/// relative to `out`.
-fn copy_data(session: &mut Session, reads: Vec<Read>, out: &Path) -> Result<Vec<String>> {
+/// names beside it). Returns the copied paths relative to `out`, and where each read moved.
+fn copy_data(reads: Vec<Read>, out: &Path) -> Result<(Vec<String>, Moved)> {
+    let mut moved = Moved::new();
     let mut copied: BTreeMap<PathBuf, String> = BTreeMap::new();
     let mut files = Vec::new();
     for (node, param, path) in reads {
@@ -203,12 +213,9 @@ fn copy_data(session: &mut Session, reads: Vec<Read>, out: &Path) -> Result<Vec<
                 target
             }
         };
-        session
-            .graph
-            .set_param(&session.registry, &node, &param, ParamValue::Path(target))
-            .with_context(|| format!("node `{node}`: {param}"))?;
+        moved.push(((node, param), target));
     }
-    Ok(files)
+    Ok((files, moved))
 }
 
 fn file_name(path: &Path) -> Result<String> {

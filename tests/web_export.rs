@@ -137,6 +137,36 @@ fn the_data_a_graph_reads_is_copied_and_the_graph_points_at_the_copies() {
     assert_eq!(poster, render(&out.join("figure.ron"), "96x72", dir.path()));
 }
 
+/// A CustomShader's file decides its ports, so the graph refuses to change it while open; the
+/// export writes the copy's path into the document instead.
+#[test]
+fn a_custom_shader_travels_with_the_figure() {
+    if !common::shared_data("volumes/mni152_t1.nii.gz").is_file() {
+        eprintln!("skipped: ../shared/data is missing");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = fake_pkg(dir.path());
+    let out = dir.path().join("shader");
+    ok(&export(
+        "graphs/custom_shader_brain.ron",
+        &out,
+        &pkg,
+        &["--size", "96x72"],
+    ));
+    assert_eq!(
+        manifest(&out)["files"],
+        serde_json::json!(["data/1/depth_darkening.wgsl", "data/2/mni152_t1.nii.gz"])
+    );
+    let exported = std::fs::read_to_string(out.join("figure.ron")).unwrap();
+    assert!(
+        exported.contains(r#""shader": "data/1/depth_darkening.wgsl""#),
+        "{exported}"
+    );
+    let poster = read_png(&out.join("poster.png"));
+    assert_eq!(poster, render(&out.join("figure.ron"), "96x72", dir.path()));
+}
+
 #[test]
 fn a_metaimage_header_travels_with_the_voxel_file_it_names() {
     let dir = tempfile::tempdir().unwrap();

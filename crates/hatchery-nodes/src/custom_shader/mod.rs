@@ -26,6 +26,7 @@ use std::time::SystemTime;
 pub type Stamp = (SystemTime, i64, i64, u64, u64);
 
 /// The file's stamp; `None` if it cannot be looked at.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn stamp(path: &Path) -> Option<Stamp> {
     let m = std::fs::metadata(path).ok()?;
     let modified = m.modified().unwrap_or(SystemTime::UNIX_EPOCH);
@@ -38,6 +39,12 @@ pub fn stamp(path: &Path) -> Option<Stamp> {
     {
         Some((modified, 0, 0, m.len(), 0))
     }
+}
+
+/// In the browser a file is what the page fetched (hatchery_data::files): it never changes.
+#[cfg(target_arch = "wasm32")]
+pub fn stamp(path: &Path) -> Option<Stamp> {
+    hatchery_data::files::is_file(path).then_some((SystemTime::UNIX_EPOCH, 0, 0, 0, 0))
 }
 
 /// Shader files larger than this are refused (a device file or a log picked by mistake).
@@ -260,7 +267,22 @@ impl Node<Value, Ctx> for CustomShaderNode {
     }
 }
 
+/// The text of a shader file the page fetched, at most [`MAX_SOURCE_BYTES`], UTF-8.
+#[cfg(target_arch = "wasm32")]
+fn read_source(path: &Path) -> Result<String, String> {
+    let fail = |why: String| format!("{}: cannot read the shader: {why}", path.display());
+    let bytes = hatchery_data::files::read(path).map_err(|e| fail(e.to_string()))?;
+    if bytes.len() as u64 > MAX_SOURCE_BYTES {
+        return Err(fail(format!(
+            "{} bytes; a shader file has at most {MAX_SOURCE_BYTES}",
+            bytes.len()
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| fail(e.to_string()))
+}
+
 /// The text of a shader file: a regular file of at most [`MAX_SOURCE_BYTES`], UTF-8.
+#[cfg(not(target_arch = "wasm32"))]
 fn read_source(path: &Path) -> Result<String, String> {
     let fail = |why: String| format!("{}: cannot read the shader: {why}", path.display());
     let meta = std::fs::metadata(path).map_err(|e| fail(e.to_string()))?;
