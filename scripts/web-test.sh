@@ -66,5 +66,9 @@ fi
 mkdir -p "$out/brain"
 "$target_dir/release/hatchery" export-web graphs/brain_surface.ron -o "$out/brain/figure" --size 320x240
 "$target_dir/release/hatchery" render graphs/brain_surface.ron --size 320x240 -o "$out/brain/native.png" 2>&1 | tail -1
+# Then the white-matter map dropped on the page, as a reader gives the figure their own data.
+wm=../shared/data/volumes/mni152_wm.nii.gz
+"$target_dir/release/hatchery" render graphs/brain_surface.ron --size 320x240 --input "volume=$wm" \
+    -o "$out/brain/native-dropped.png" 2>&1 | tail -1
 WEB_TOOLS="$tools" node tests/web/check.mjs --dir "$out/brain/figure" --out "$out/brain" \
-    --native "$out/brain/native.png" --opened-only
+    --native "$out/brain/native.png" --opened-only --drop "$wm" --drop-native "$out/brain/native-dropped.png"

@@ -61,10 +61,19 @@ pub fn run(args: &Args) -> Result<()> {
     doc.base_dir = None;
     // The copies' paths are written into the document, not set on the graph: a CustomShader's
     // file decides its ports, so the graph refuses to change it while open.
-    for ((node, param), path) in moved {
-        if let Some(n) = doc.nodes.iter_mut().find(|n| n.id == node) {
-            n.params.insert(param, ron::Value::String(path));
-        }
+    for (node, param, entry, path) in moved {
+        let Some(n) = doc.nodes.iter_mut().find(|n| n.id == node) else {
+            continue;
+        };
+        let value = match entry {
+            // A StyleSet's entry: its name replaced within the text.
+            Some(entry) => match n.params.get(&param) {
+                Some(ron::Value::String(text)) => text.replace(&entry, &path),
+                _ => continue,
+            },
+            None => path,
+        };
+        n.params.insert(param, ron::Value::String(value));
     }
     write(out, "figure.ron", &doc.to_ron_string())?;
     let manifest = serde_json::json!({
@@ -142,12 +151,20 @@ fn web_pkg(given: Option<&Path>) -> Result<PathBuf> {
     )
 }
 
-/// A file a node reads: (node, parameter, path as resolved).
-type Read = (String, String, PathBuf);
+/// A file a node reads.
+struct Read {
+    node: String,
+    param: String,
+    /// As the graph resolves it (relative to its folder).
+    path: PathBuf,
+    /// For a file named inside a text parameter (a StyleSet's lit-sphere images): the entry
+    /// as written there, which the copy's path replaces.
+    entry: Option<String>,
+}
 
-/// The files the graph reads (its non-empty path parameters, savers' excepted). Errors: a
-/// folder (DICOM series, TIFF stack, OME-Zarr), which the browser build does not read, or a
-/// missing file, naming the node.
+/// The files the graph reads: its non-empty path parameters (savers' excepted) and the images
+/// a StyleSet names. Errors, naming the node: a folder or a file whose format the browser build
+/// reads as a folder (a DICOM series, OME-Zarr), or a missing file.
 fn data_reads(session: &Session) -> Result<Vec<Read>> {
     let mut reads: Vec<Read> = Vec::new();
     for node in session.graph.nodes() {
@@ -160,15 +177,52 @@ fn data_reads(session: &Session) -> Result<Vec<Read>> {
         for spec in schema.params.iter().filter(|p| p.kind == ParamKind::Path) {
             let path = node.params.path(spec.name);
             if !path.as_os_str().is_empty() {
-                reads.push((node.id.clone(), spec.name.to_owned(), path));
+                reads.push(Read {
+                    node: node.id.clone(),
+                    param: spec.name.to_owned(),
+                    path,
+                    entry: None,
+                });
+            }
+        }
+        if node.kind == "StyleSet" {
+            for entry in hatchery_nodes::style_set::split_entries(node.params.text("styles")) {
+                let lower = entry.to_ascii_lowercase();
+                if [".png", ".jpg", ".jpeg"].iter().any(|e| lower.ends_with(e)) {
+                    let path = match node.params.base_dir() {
+                        Some(base) if Path::new(&entry).is_relative() => base.join(&entry),
+                        _ => PathBuf::from(&entry),
+                    };
+                    reads.push(Read {
+                        node: node.id.clone(),
+                        param: "styles".into(),
+                        path,
+                        entry: Some(entry),
+                    });
+                }
             }
         }
     }
-    for (node, param, path) in &reads {
+    for Read {
+        node, param, path, ..
+    } in &reads
+    {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
         if path.is_dir() {
             bail!(
                 "node `{node}` reads the folder {} ({param}); the browser build reads single \
                  files only: convert it to NIfTI or NRRD first",
+                path.display()
+            );
+        }
+        if name.ends_with(".dcm") || ["zarr.json", ".zattrs", ".zgroup"].contains(&name.as_str()) {
+            bail!(
+                "node `{node}` reads {} ({param}), which means its whole folder (a DICOM series, \
+                 an OME-Zarr image); the browser build reads single files only: convert it to \
+                 NIfTI or NRRD first",
                 path.display()
             );
         }
@@ -179,41 +233,57 @@ fn data_reads(session: &Session) -> Result<Vec<Read>> {
     Ok(reads)
 }
 
-/// Each (node, parameter) reading a file, and the path of its copy in the folder.
-type Moved = Vec<((String, String), String)>;
+/// Each read's node and parameter, the entry it replaces (if any) and its copy's path.
+type Moved = Vec<(String, String, Option<String>, String)>;
 
 /// Copies the files the graph reads into `out/data/N/` (one folder per file, with the files it
 /// names beside it). Returns the copied paths relative to `out`, and where each read moved.
+/// Errors: a file it names that cannot travel with it (see [`companions`]), an unwritable
+/// folder.
 fn copy_data(reads: Vec<Read>, out: &Path) -> Result<(Vec<String>, Moved)> {
     let mut moved = Moved::new();
+    // By the file's canonical path, so that a file read twice is copied once; names and
+    // companions come from the path as given (a symlinked data store's target is a hash).
     let mut copied: BTreeMap<PathBuf, String> = BTreeMap::new();
     let mut files = Vec::new();
-    for (node, param, path) in reads {
-        let source = std::fs::canonicalize(&path)
+    for read in reads {
+        let Read {
+            node, param, path, ..
+        } = &read;
+        let key = std::fs::canonicalize(path)
             .with_context(|| format!("node `{node}`: cannot read {}", path.display()))?;
-        let target = match copied.get(&source) {
+        let target = match copied.get(&key) {
             Some(target) => target.clone(),
             None => {
                 let folder = format!("data/{}", copied.len() + 1);
-                let mut names = vec![file_name(&source)?];
-                names.extend(companions(&source));
+                let mut names = vec![file_name(path)?];
+                names.extend(
+                    companions(path)
+                        .with_context(|| format!("node `{node}` ({param}): {}", path.display()))?,
+                );
                 for name in &names {
-                    let from = source.parent().unwrap_or(Path::new("")).join(name);
+                    let from = path.parent().unwrap_or(Path::new("")).join(name);
                     let to = out.join(&folder).join(name);
                     if let Some(parent) = to.parent() {
                         std::fs::create_dir_all(parent)?;
                     }
-                    std::fs::copy(&from, &to).with_context(|| {
-                        format!("node `{node}`: cannot copy {}", from.display())
-                    })?;
+                    // Exporting a figure into its own folder: the file is already there (a copy
+                    // onto itself would empty it).
+                    let same = std::fs::canonicalize(&to)
+                        .is_ok_and(|t| std::fs::canonicalize(&from).is_ok_and(|f| f == t));
+                    if !same {
+                        std::fs::copy(&from, &to).with_context(|| {
+                            format!("node `{node}`: cannot copy {}", from.display())
+                        })?;
+                    }
                     files.push(format!("{folder}/{name}"));
                 }
                 let target = format!("{folder}/{}", names[0]);
-                copied.insert(source, target.clone());
+                copied.insert(key, target.clone());
                 target
             }
         };
-        moved.push(((node, param), target));
+        moved.push((read.node, read.param, read.entry, target));
     }
     Ok((files, moved))
 }
@@ -224,63 +294,70 @@ fn file_name(path: &Path) -> Result<String> {
         .with_context(|| format!("{} names no file", path.display()))
 }
 
-/// The files a data file names beside it: a MetaImage header's `ElementDataFile`, a detached
-/// NRRD header's `data file`, an Analyze/NIfTI pair's `.img`, an OBJ's material libraries. Only
-/// names within the file's folder (no `..`); what is missing is left to the loader to report.
-fn companions(path: &Path) -> Vec<String> {
+/// The files a data file names beside it: a MetaImage header's `ElementDataFile`, an NRRD
+/// header's `data file`, an OBJ's material libraries. Errors: a name the copy could not keep
+/// beside it (absolute, through `..`), a file list or pattern, a missing file — the page would
+/// not find it.
+fn companions(path: &Path) -> Result<Vec<String>> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let text = || std::fs::read(path).map(|b| String::from_utf8_lossy(&b).into_owned());
+    // Headers are text up to the data; their first 1 MiB is enough.
+    let text = || -> Result<String> {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(std::fs::File::open(path)?, 1 << 20),
+            &mut bytes,
+        )?;
+        Ok(String::from_utf8_lossy(&bytes).into_owned())
+    };
     let value_after = |line: &str, keys: &[&str], sep: char| {
         let (key, value) = line.split_once(sep)?;
         keys.iter()
             .any(|k| key.trim().eq_ignore_ascii_case(k))
             .then(|| value.trim().to_owned())
     };
-    let mut names: Vec<String> = match ext.as_str() {
-        "mhd" => text()
-            .map(|t| {
-                t.lines()
-                    .filter_map(|l| value_after(l, &["ElementDataFile"], '='))
-                    .filter(|v| !v.eq_ignore_ascii_case("LOCAL"))
-                    .collect()
-            })
-            .unwrap_or_default(),
-        "nhdr" => text()
-            .map(|t| {
-                t.lines()
-                    .filter_map(|l| value_after(l, &["data file", "datafile"], ':'))
-                    .collect()
-            })
-            .unwrap_or_default(),
-        "hdr" => vec![
-            path.with_extension("img")
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-        ],
-        "obj" => text()
-            .map(|t| {
-                t.lines()
-                    .filter_map(|l| l.trim().strip_prefix("mtllib "))
-                    .map(|v| v.trim().to_owned())
-                    .collect()
-            })
-            .unwrap_or_default(),
+    let names: Vec<String> = match ext.as_str() {
+        "mhd" | "mha" => text()?
+            .lines()
+            .filter_map(|l| value_after(l, &["ElementDataFile"], '='))
+            .filter(|v| !v.eq_ignore_ascii_case("LOCAL"))
+            .collect(),
+        // The header ends at its first empty line (attached data follows).
+        "nhdr" | "nrrd" => text()?
+            .lines()
+            .take_while(|l| !l.trim().is_empty())
+            .filter_map(|l| value_after(l, &["data file", "datafile"], ':'))
+            .collect(),
+        "obj" => text()?
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix("mtllib "))
+            .map(|v| v.trim().to_owned())
+            .collect(),
         _ => Vec::new(),
     };
     let folder = path.parent().unwrap_or(Path::new(""));
-    names.retain(|n| {
-        !n.is_empty()
-            && Path::new(n).is_relative()
-            && !Path::new(n)
+    for name in &names {
+        let p = Path::new(name);
+        let travels = !name.is_empty()
+            && !name.contains('%')
+            && !name.to_ascii_uppercase().starts_with("LIST")
+            && p.is_relative()
+            && !p
                 .components()
-                .any(|c| matches!(c, std::path::Component::ParentDir))
-            && folder.join(n).is_file()
-    });
-    names
+                .any(|c| matches!(c, std::path::Component::ParentDir));
+        if !travels {
+            bail!(
+                "it names its data as `{name}`, which cannot travel with it (only a file beside \
+                 it or below its folder): convert it to a single file (.nii.gz, .nrrd, .mha)"
+            );
+        }
+        if !folder.join(p).is_file() {
+            bail!("the file `{name}` it names is missing");
+        }
+    }
+    Ok(names)
 }
 
 fn write(out: &Path, name: &str, text: &str) -> Result<()> {

@@ -173,6 +173,10 @@ fn wrong_controls_are_refused_naming_the_control_and_its_line() {
             "must be increasing",
         ),
         (
+            r#"(node: "cubes", param: "resolution", min: Some(8.5)),"#,
+            "must be whole numbers for an integer",
+        ),
+        (
             r#"(node: "tint", param: "color", max: Some(1.0)),"#,
             "`min` and `max` are for numbers; `color` is a color parameter",
         ),
@@ -193,4 +197,21 @@ fn wrong_controls_are_refused_naming_the_control_and_its_line() {
     );
     let err = graph(&twice).unwrap_err();
     assert!(err.contains("declared twice"), "{err}");
+}
+
+/// Deleting a node also deletes the input bindings to it (an input left bound to nothing goes),
+/// so the saved file stays loadable; renaming it renames its bindings.
+#[test]
+fn removing_or_renaming_a_bound_node_keeps_the_inputs_valid() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/graphs/brain_surface.ron"
+    ))
+    .unwrap();
+    let (mut doc, _) = GraphDocument::parse(&text, None).unwrap();
+    assert_eq!(doc.inputs[0].to, [("mri".to_owned(), "path".to_owned())]);
+    edit::rename_node(&mut doc, "mri", "scan").unwrap();
+    assert_eq!(doc.inputs[0].to, [("scan".to_owned(), "path".to_owned())]);
+    edit::remove_node(&mut doc, "scan").unwrap();
+    assert!(doc.inputs.is_empty(), "{:?}", doc.inputs);
 }

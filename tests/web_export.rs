@@ -206,8 +206,20 @@ fn a_metaimage_header_travels_with_the_voxel_file_it_names() {
         serde_json::json!(["data/1/ball.mhd", "data/1/ball.raw"])
     );
     assert_eq!(std::fs::read(out.join("data/1/ball.raw")).unwrap(), voxels);
+    // Self-contained: with the original files gone the folder still renders its poster.
+    std::fs::remove_dir_all(&data).unwrap();
     let poster = read_png(&out.join("poster.png"));
     assert_eq!(poster, render(&out.join("figure.ron"), "64x48", dir.path()));
+
+    // Exported again into its own folder, from its own graph: the copies stay whole.
+    ok(&export(
+        out.join("figure.ron").to_str().unwrap(),
+        &out,
+        &pkg,
+        &["--size", "64x48"],
+    ));
+    assert_eq!(std::fs::read(out.join("data/1/ball.raw")).unwrap(), voxels);
+    assert_eq!(read_png(&out.join("poster.png")), poster);
 }
 
 #[test]
@@ -224,6 +236,33 @@ fn a_folder_and_a_missing_build_are_refused_in_one_line() {
         "{err}"
     );
     assert!(!out.exists(), "nothing written for a refused export");
+
+    // A file that means its folder (a DICOM series), and a header whose data lies outside its
+    // folder: the page could fetch neither.
+    let slice = dir.path().join("series/slice_001.dcm");
+    std::fs::create_dir_all(slice.parent().unwrap()).unwrap();
+    std::fs::write(&slice, b"not read").unwrap();
+    let outside = dir.path().join("headers/ball.mhd");
+    std::fs::create_dir_all(outside.parent().unwrap()).unwrap();
+    std::fs::write(dir.path().join("ball.raw"), [0u8; 8]).unwrap();
+    std::fs::write(
+        &outside,
+        "NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = ../ball.raw\n",
+    )
+    .unwrap();
+    for (file, needle) in [
+        (&slice, "which means its whole folder (a DICOM series"),
+        (
+            &outside,
+            "names its data as `../ball.raw`, which cannot travel with it",
+        ),
+    ] {
+        let set = format!("mri.path={}", file.display());
+        let o = export("graphs/brain_surface.ron", &out, &pkg, &["--set", &set]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(needle), "{err}");
+        assert!(err.contains("node `mri`"), "{err}");
+    }
 
     let o = export(
         "graphs/default.ron",

@@ -15,6 +15,7 @@
 // node check.mjs --dir EXPORT --native A.png --control N.P=V --control-native B.png
 //                --drag DX,DY --drag-port NODE.PORT --drag-native C.png --out FOLDER
 // node check.mjs --dir EXPORT --native A.png --out FOLDER --opened-only
+//                [--drop FILE --drop-native D.png]
 // Writes FOLDER/web.png, control.png, dragged.png and web-test.json; exits 1 naming the failed
 // check.
 import http from "node:http";
@@ -148,6 +149,25 @@ try {
 
   const web = await shot("web.png");
   against("as opened", web, native);
+
+  // --drop FILE: the file dropped on the figure, as a reader drops their own data, against
+  // --drop-native (rendered with --input NAME=FILE).
+  const dropIndex = process.argv.indexOf("--drop");
+  if (dropIndex > 0) {
+    const file = process.argv[dropIndex + 1];
+    const frames = await page.evaluate(() => window.hatchery.frames);
+    await page.evaluate(({ name, b64 }) => {
+      const bytes = Uint8Array.from(atob(b64), c => c.charCodeAt(0));
+      const data = new DataTransfer();
+      data.items.add(new File([bytes], name));
+      document.getElementById("view").dispatchEvent(
+        new DragEvent("drop", { dataTransfer: data, bubbles: true, cancelable: true }));
+    }, { name: path.basename(file), b64: fs.readFileSync(file).toString("base64") });
+    await settled(frames + 1);
+    const dropped = await shot("dropped.png");
+    changedFrom(`dropping ${path.basename(file)}`, dropped, web);
+    against(`after dropping ${path.basename(file)}`, dropped, arg("drop-native"));
+  }
 
   // Steps 2–4: a nested function so that --opened-only can leave them out.
   async function interact() {

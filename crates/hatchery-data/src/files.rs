@@ -36,31 +36,72 @@ fn normal(path: &Path) -> PathBuf {
         .collect()
 }
 
-/// The whole file at `path`. Errors: as `std::fs::read`, and `InvalidInput` for what is not a
-/// regular file (a device such as /dev/zero, a pipe: reading them would never end); in the
-/// browser, a path the figure did not fetch is `NotFound`.
+/// The whole file at `path` (for formats read whole: meshes, `.vti`, name tables). Errors: as
+/// `std::fs::read`; in the browser, a path the figure did not fetch is `NotFound`.
 pub fn read(path: &Path) -> io::Result<Vec<u8>> {
     #[cfg(target_arch = "wasm32")]
     {
-        let mounted = MOUNTED.lock().unwrap_or_else(|e| e.into_inner());
-        match mounted.as_ref().and_then(|m| m.get(&normal(path))) {
-            Some(bytes) => Ok(bytes.to_vec()),
-            None => Err(io::Error::new(
-                io::ErrorKind::NotFound,
-                "not one of the files this figure fetched (export it with `hatchery export-web`)",
-            )),
-        }
+        mounted(path).map(|bytes| bytes.to_vec())
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    std::fs::read(path)
+}
+
+/// An open data file: natively a `std::fs::File`; in the browser the mounted bytes. Loaders
+/// read headers and voxels from it as they come, so natively nothing is read whole.
+#[cfg(not(target_arch = "wasm32"))]
+pub type DataFile = std::fs::File;
+#[cfg(target_arch = "wasm32")]
+pub type DataFile = io::Cursor<std::sync::Arc<[u8]>>;
+
+/// Opens `path` for reading. Errors: as `std::fs::File::open`; in the browser `NotFound` for a
+/// path the figure did not fetch.
+pub fn open(path: &Path) -> io::Result<DataFile> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        mounted(path).map(io::Cursor::new)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    std::fs::File::open(path)
+}
+
+/// The length of an open file in bytes. Errors: as `std::fs::File::metadata`.
+pub fn len_of(file: &DataFile) -> io::Result<u64> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        Ok(file.get_ref().len() as u64)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    Ok(file.metadata()?.len())
+}
+
+/// Whether `path` is a regular file, and its length in bytes (a device, a pipe or a folder is
+/// not). Errors: as `std::fs::metadata`.
+pub fn regular_file_len(path: &Path) -> io::Result<Option<u64>> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        mounted(path).map(|bytes| Some(bytes.len() as u64))
     }
     #[cfg(not(target_arch = "wasm32"))]
     {
-        if !std::fs::metadata(path)?.is_file() {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidInput,
-                "is not a regular file",
-            ));
-        }
-        std::fs::read(path)
+        let metadata = std::fs::metadata(path)?;
+        Ok(metadata.is_file().then_some(metadata.len()))
     }
+}
+
+#[cfg(target_arch = "wasm32")]
+fn mounted(path: &Path) -> io::Result<std::sync::Arc<[u8]>> {
+    let mounted = MOUNTED.lock().unwrap_or_else(|e| e.into_inner());
+    mounted
+        .as_ref()
+        .and_then(|m| m.get(&normal(path)))
+        .cloned()
+        .ok_or_else(|| {
+            io::Error::new(
+                io::ErrorKind::NotFound,
+                "not one of the files this figure fetched (export it with `hatchery export-web`)",
+            )
+        })
 }
 
 /// Whether `path` is a file [`read`] can read.

@@ -2,8 +2,7 @@
 //! `.mhd` (header naming a data file). The header is `Key = Value` lines ending with
 //! `ElementDataFile`; the layout and the geometry rules below were checked against SimpleITK.
 
-use std::fs::File;
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 use glam::DMat3;
@@ -41,10 +40,10 @@ const MAX_HEADER_BYTES: u64 = 1 << 20;
 /// [`crate::nifti_file::MAX_VOXELS`] voxels (checked before anything is allocated),
 /// [`DataError::Io`] when a file cannot be read.
 pub fn load_metaimage(path: &Path) -> Result<VolumeData, DataError> {
-    let file = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
-    let header = read_header(path, &mut &file[..])?;
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    let header = read_header(path, &mut BufReader::new(file))?;
     let layout = check_header(path, &header, crate::voxels::MAX_VOXELS)?;
-    let bytes = read_data(path, file, &layout)?;
+    let bytes = read_data(path, &layout)?;
     let voxels = raw_voxels::decode(&bytes, layout.element, layout.big_endian);
     let mut volume = VolumeData::from_voxels(layout.dims, layout.geometry, voxels)
         .map_err(|e| e.in_file(path))?;
@@ -57,7 +56,7 @@ pub fn load_metaimage(path: &Path) -> Result<VolumeData, DataError> {
 /// them (streaming, [`crate::brick_source`]); any size. Errors: as [`load_metaimage`];
 /// compressed data (which cannot be read a box at a time: convert it to OME-Zarr).
 pub fn metaimage_source(path: &Path) -> Result<crate::raw_source::RawSource, DataError> {
-    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
     let header = read_header(path, &mut BufReader::new(file))?;
     // 2⁴⁸ voxels: far beyond any disk, low enough that byte counts cannot overflow.
     let layout = check_header(path, &header, 1 << 48)?;
@@ -302,8 +301,7 @@ fn geometry(path: &Path, h: &Header) -> Result<(Geometry, String), DataError> {
     ))
 }
 
-/// The voxel bytes, from the data file or (LOCAL data) from `file`, the header's own bytes.
-fn read_data(path: &Path, file: Vec<u8>, layout: &Layout) -> Result<Vec<u8>, DataError> {
+fn read_data(path: &Path, layout: &Layout) -> Result<Vec<u8>, DataError> {
     let data_path = layout.data_file.as_path();
     // Errors name the data file when it is not the header itself.
     let what = if data_path == path {
@@ -312,13 +310,7 @@ fn read_data(path: &Path, file: Vec<u8>, layout: &Layout) -> Result<Vec<u8>, Dat
         "the data file"
     };
     let io = |e| DataError::io(data_path, e);
-    let file = if data_path == path {
-        file
-    } else {
-        drop(file);
-        raw_voxels::read_data_file(data_path, what)?
-    };
-    let len = file.len() as u64;
+    let (mut file, len) = raw_voxels::open_data_file(data_path, what)?;
     let start = match layout.offset {
         Some(offset) => offset,
         None => len.checked_sub(layout.byte_count as u64).ok_or_else(|| {
@@ -331,15 +323,13 @@ fn read_data(path: &Path, file: Vec<u8>, layout: &Layout) -> Result<Vec<u8>, Dat
             )
         })?,
     };
-    if !layout.compressed {
-        // Cut out of the file's bytes in place, not copied.
-        return raw_voxels::cut_bytes(data_path, file, start, layout.byte_count, what);
-    }
-    let rest = file
-        .get(usize::try_from(start).unwrap_or(usize::MAX)..)
-        .unwrap_or_default();
-    let mut source = raw_voxels::inflate(Box::new(rest)).map_err(io)?;
-    let available = raw_voxels::decoded_bound(len.saturating_sub(start), true);
+    file.seek(SeekFrom::Start(start)).map_err(io)?;
+    let mut source: Box<dyn Read> = if layout.compressed {
+        raw_voxels::inflate(Box::new(BufReader::new(file))).map_err(io)?
+    } else {
+        Box::new(file)
+    };
+    let available = raw_voxels::decoded_bound(len.saturating_sub(start), layout.compressed);
     raw_voxels::read_bytes(data_path, &mut source, layout.byte_count, what, available)
 }
 

@@ -7,7 +7,7 @@
 //! y_s, z_r z_a z_s: one row per voxel axis) and the world position `Pxyz_c` of the volume's centre
 //! (float32); voxels start at byte 284, x fastest.
 
-use std::io::{self, Read};
+use std::io::{self, BufRead, BufReader, Read};
 use std::path::Path;
 
 use glam::{DMat3, DVec3};
@@ -34,13 +34,17 @@ const DATA_OFFSET: usize = 284;
 /// Errors: not an MGH file (version ≠ 1), dims under 2 or too many voxels, an unknown type,
 /// truncated data.
 pub fn load_mgh(path: &Path) -> Result<VolumeData, DataError> {
-    let bytes = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
-    let file_len = bytes.len() as u64;
-    let gzip = bytes.starts_with(&[0x1f, 0x8b]);
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = crate::files::len_of(&file).map_err(|e| DataError::io(path, e))?;
+    let mut buffered = BufReader::new(file);
+    let gzip = buffered
+        .fill_buf()
+        .map_err(|e| DataError::io(path, e))?
+        .starts_with(&[0x1f, 0x8b]);
     let mut source: Box<dyn Read> = if gzip {
-        Box::new(flate2::bufread::MultiGzDecoder::new(&bytes[..]))
+        Box::new(flate2::bufread::MultiGzDecoder::new(buffered))
     } else {
-        Box::new(&bytes[..])
+        Box::new(buffered)
     };
     let mut head = [0u8; DATA_OFFSET];
     source
@@ -104,25 +108,19 @@ pub fn load_mgh(path: &Path) -> Result<VolumeData, DataError> {
     }
 
     let byte_count = voxels as usize * size;
-    let raw = if gzip {
-        // Reserve no more than the file can hold (a gzip stream at deflate's best ratio).
-        let available = raw_voxels::decoded_bound(file_len, true);
-        let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
-        let mut raw = Vec::new();
-        raw.try_reserve_exact(room)
-            .map_err(|_| DataError::format(path, format!("cannot allocate {room} bytes")))?;
-        (&mut source)
-            .take(byte_count as u64)
-            .read_to_end(&mut raw)
-            .map_err(|e: io::Error| stream_error(path, gzip, e))?;
-        // Decoding needs no compressed bytes.
-        drop(source);
-        drop(bytes);
-        raw
+    let available = if gzip {
+        raw_voxels::decoded_bound(file_len, true)
     } else {
-        drop(source);
-        raw_voxels::cut(bytes, DATA_OFFSET, byte_count)
+        file_len.saturating_sub(DATA_OFFSET as u64)
     };
+    let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
+    let mut raw = Vec::new();
+    raw.try_reserve_exact(room)
+        .map_err(|_| DataError::format(path, format!("cannot allocate {room} bytes")))?;
+    (&mut source)
+        .take(byte_count as u64)
+        .read_to_end(&mut raw)
+        .map_err(|e: io::Error| stream_error(path, gzip, e))?;
     if raw.len() < byte_count {
         return Err(truncated(path, gzip));
     }

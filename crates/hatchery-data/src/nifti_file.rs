@@ -1,6 +1,5 @@
 //! NIfTI-1 and NIfTI-2 volumes (`.nii`, `.nii.gz`).
 
-use std::fs::File;
 use std::io::{self, BufRead, BufReader, Read};
 use std::path::Path;
 
@@ -31,13 +30,15 @@ pub use crate::voxels::MAX_VOXELS;
 ///   refuses the qform); only `qfac` (or the sform) mirrors an axis.
 /// * Non-finite voxel values (NaN is common in float maps) are kept: they mean "no data".
 pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
-    let bytes = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
-    let file_len = bytes.len() as u64;
-    let gzip = bytes.starts_with(&[0x1f, 0x8b]);
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = crate::files::len_of(&file).map_err(|e| DataError::io(path, e))?;
+    let mut buffered = BufReader::new(file);
+    let head = buffered.fill_buf().map_err(|e| DataError::io(path, e))?;
+    let gzip = head.starts_with(&[0x1f, 0x8b]);
     let mut source: Box<dyn Read> = if gzip {
-        Box::new(flate2::bufread::MultiGzDecoder::new(&bytes[..]))
+        Box::new(flate2::bufread::MultiGzDecoder::new(buffered))
     } else {
-        Box::new(&bytes[..])
+        Box::new(buffered)
     };
     let read_error = |e: io::Error| stream_error(path, gzip, e);
 
@@ -63,30 +64,25 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
     }
 
     let byte_count = layout.voxels as usize * layout.datatype.size_of();
-    let raw = if gzip {
-        // Reserve no more than the file can hold (a gzip stream at deflate's best ratio): a
-        // header may promise gigabytes that are not there.
-        let available = raw_voxels::decoded_bound(file_len, true);
-        let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
-        let mut raw = Vec::new();
-        raw.try_reserve_exact(room).map_err(|_| {
-            DataError::format(
-                path,
-                format!("cannot allocate {room} bytes for the voxel data"),
-            )
-        })?;
-        (&mut source)
-            .take(byte_count as u64)
-            .read_to_end(&mut raw)
-            .map_err(read_error)?;
-        // Decoding needs no compressed bytes.
-        drop(source);
-        drop(bytes);
-        raw
+    // Reserve no more than the file can hold (a gzip stream at deflate's best ratio): a header
+    // may promise gigabytes that are not there.
+    let available = if gzip {
+        raw_voxels::decoded_bound(file_len, true)
     } else {
-        drop(source);
-        raw_voxels::cut(bytes, layout.data_offset as usize, byte_count)
+        file_len.saturating_sub(layout.data_offset)
     };
+    let room = usize::try_from(available).map_or(byte_count, |a| a.min(byte_count));
+    let mut raw = Vec::new();
+    raw.try_reserve_exact(room).map_err(|_| {
+        DataError::format(
+            path,
+            format!("cannot allocate {room} bytes for the voxel data"),
+        )
+    })?;
+    (&mut source)
+        .take(byte_count as u64)
+        .read_to_end(&mut raw)
+        .map_err(read_error)?;
     if raw.len() < byte_count {
         return Err(DataError::format(
             path,
@@ -125,7 +121,7 @@ pub fn load_nifti(path: &Path) -> Result<VolumeData, DataError> {
 /// `scl_inter` as [`load_nifti`] does. Errors: as [`load_nifti`]; a gzip-compressed file (which
 /// cannot be read a box at a time: `gunzip` it, or `hatchery convert` it to OME-Zarr).
 pub fn nifti_source(path: &Path) -> Result<crate::raw_source::RawSource, DataError> {
-    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
     let mut buffered = BufReader::new(file);
     let head = buffered.fill_buf().map_err(|e| DataError::io(path, e))?;
     if head.starts_with(&[0x1f, 0x8b]) {

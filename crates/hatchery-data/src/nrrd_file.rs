@@ -7,8 +7,7 @@
 //! here, following teem's format definition (<https://teem.sourceforge.net/nrrd/format.html>)
 //! and checked against ITK's NrrdImageIO (through SimpleITK) for the geometry.
 
-use std::fs::File;
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 use crate::geometry::Geometry;
@@ -56,20 +55,14 @@ const KNOWN_FIELDS: &str = "content number type blocksize dimension space spaced
 /// spaces, components, a data file that is not a regular file such as `/dev/zero`), [`DataError::TooLarge`] above [`crate::nifti_file::MAX_VOXELS`] values
 /// (checked before anything is allocated), [`DataError::Io`] when a file cannot be read.
 pub fn load_nrrd(path: &Path) -> Result<VolumeData, DataError> {
-    let file = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
-    let header = read_header(path, &mut &file[..])?;
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    let header = read_header(path, &mut BufReader::new(file))?;
     let layout = check_header(path, &header, crate::voxels::MAX_VOXELS)?;
 
-    // Attached data is in the bytes just read: the file is not read twice.
-    let mut attached = Some(file);
     let mut bytes = Vec::new();
     let per_file = layout.element_count * layout.element.size() / layout.sources.len();
     for source in &layout.sources {
-        let file = match attached.take() {
-            Some(file) if source.path == path => file,
-            _ => raw_voxels::read_data_file(&source.path, data_name(path, source))?,
-        };
-        bytes.extend(read_source(path, &layout, source, file, per_file)?);
+        bytes.extend(read_source(path, &layout, source, per_file)?);
         if layout.encoding == Encoding::Text {
             bytes.push(b'\n'); // values of consecutive files must not run together
         }
@@ -94,7 +87,7 @@ pub fn load_nrrd(path: &Path) -> Result<VolumeData, DataError> {
 /// Errors: as [`load_nrrd`]; encodings other than raw (gzip, text cannot be read a box at a
 /// time: `hatchery convert` to OME-Zarr), several data files, a `line skip`, a 4-D file.
 pub fn nrrd_source(path: &Path) -> Result<crate::raw_source::RawSource, DataError> {
-    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
     let header = read_header(path, &mut BufReader::new(file))?;
     // 2⁴⁸ voxels: far beyond any disk, low enough that byte counts cannot overflow.
     let layout = check_header(path, &header, 1 << 48)?;
@@ -464,27 +457,21 @@ fn format_name(path: &Path, pattern: &str, n: i64) -> Result<String, DataError> 
     Ok(format!("{}{number}{}", &pattern[..start], &rest[end + 1..]))
 }
 
-/// What errors call a data file: the header's own file holds the attached data.
-fn data_name(header: &Path, source: &Source) -> &'static str {
-    if source.path == header {
-        "the attached data"
-    } else {
-        "the data file"
-    }
-}
-
-/// One data file's share (`len` bytes once decoded; text is read whole) of its bytes, `file`.
+/// Reads one data file's share (`len` bytes once decoded; text is read whole).
 fn read_source(
     header: &Path,
     layout: &Layout,
     source: &Source,
-    file: Vec<u8>,
     len: usize,
 ) -> Result<Vec<u8>, DataError> {
     // Errors name the data file when it is not the header itself.
     let path = source.path.as_path();
-    let what = data_name(header, source);
-    let file_len = file.len() as u64;
+    let what = if path == header {
+        "the attached data"
+    } else {
+        "the data file"
+    };
+    let (mut file, file_len) = raw_voxels::open_data_file(path, what)?;
     if layout.byte_skip.is_none() {
         let start = file_len
             .checked_sub(len as u64)
@@ -495,30 +482,26 @@ fn read_source(
                 format!("truncated data: {what} is shorter than {len} bytes"),
             )
         })?;
-        return raw_voxels::cut_bytes(path, file, start, len, what);
+        file.seek(SeekFrom::Start(start))
+            .map_err(|e| DataError::io(path, e))?;
+        return raw_voxels::read_bytes(path, &mut file, len, what, len as u64);
     }
     // What the file can hold after the offset (line and byte skips only take from it).
     let available = raw_voxels::decoded_bound(
         file_len.saturating_sub(source.offset),
         layout.encoding == Encoding::Gzip,
     );
-    let offset = usize::try_from(source.offset).unwrap_or(usize::MAX);
-    let mut reader = file.get(offset..).unwrap_or_default();
+    file.seek(SeekFrom::Start(source.offset))
+        .map_err(|e| DataError::io(path, e))?;
+    let mut reader = BufReader::new(file);
     raw_voxels::skip_lines(path, &mut reader, layout.line_skip, what)?;
-    let byte_skip = layout.byte_skip.unwrap_or(0);
-    if layout.encoding == Encoding::Raw {
-        raw_voxels::skip_bytes(path, &mut reader, byte_skip, what)?;
-        // The voxels are cut out of the file's bytes in place, not copied.
-        let start = file_len - reader.len() as u64;
-        return raw_voxels::cut_bytes(path, file, start, len, what);
-    }
     let mut data: Box<dyn Read> = match layout.encoding {
         Encoding::Gzip => {
             raw_voxels::inflate(Box::new(reader)).map_err(|e| DataError::io(path, e))?
         }
         _ => Box::new(reader),
     };
-    raw_voxels::skip_bytes(path, &mut data, byte_skip, what)?;
+    raw_voxels::skip_bytes(path, &mut data, layout.byte_skip.unwrap_or(0), what)?;
     if layout.encoding == Encoding::Text {
         // Enough for any number in text form; a shorter read is found by the value count.
         let mut text = Vec::new();

@@ -175,44 +175,22 @@ pub(crate) fn decoded_bound(n: u64, deflate: bool) -> u64 {
     }
 }
 
-/// Reads a data file named by a header, whole (through [`crate::files`]). Anything but a regular
-/// file is refused before it is read: a header may name `/dev/zero` or `/dev/urandom` (which
+/// Opens a data file named by a header and returns it with its length. Anything but a regular
+/// file is refused before it is opened: a header may name `/dev/zero` or `/dev/urandom` (which
 /// never end), a pipe or a terminal (which block).
-pub(crate) fn read_data_file(path: &Path, what: &str) -> Result<Vec<u8>, DataError> {
-    // A missing file is left to the read, whose error says so.
-    if !crate::files::is_file(path) && std::fs::metadata(path).is_ok() {
+pub(crate) fn open_data_file(
+    path: &Path,
+    what: &str,
+) -> Result<(crate::files::DataFile, u64), DataError> {
+    let Some(len) = crate::files::regular_file_len(path).map_err(|e| DataError::io(path, e))?
+    else {
         return Err(DataError::unsupported(
             path,
             format!("{what} is not a regular file"),
         ));
-    }
-    crate::files::read(path).map_err(|e| DataError::io(path, e))
-}
-
-/// `len` bytes of a file's `bytes` from `start`, or as many as it holds from there, cut out in
-/// place: the voxels are most of a file, and a copy would double the memory a load takes. The
-/// rest (the header, a 4-D file's other volumes) is freed.
-pub(crate) fn cut(mut bytes: Vec<u8>, start: usize, len: usize) -> Vec<u8> {
-    bytes.truncate(start.saturating_add(len));
-    bytes.drain(..start.min(bytes.len()));
-    bytes.shrink_to_fit();
-    bytes
-}
-
-/// [`cut`], or says how many bytes there were (`what` names the data source), as
-/// [`read_bytes`] does.
-pub(crate) fn cut_bytes(
-    path: &Path,
-    bytes: Vec<u8>,
-    start: u64,
-    len: usize,
-    what: &str,
-) -> Result<Vec<u8>, DataError> {
-    let bytes = cut(bytes, usize::try_from(start).unwrap_or(usize::MAX), len);
-    if bytes.len() < len {
-        return Err(truncated_data(path, what, bytes.len(), len));
-    }
-    Ok(bytes)
+    };
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    Ok((file, len))
 }
 
 /// Reads exactly `len` bytes, or says how many there were (`what` names the data source).
@@ -235,16 +213,15 @@ pub(crate) fn read_bytes(
         .read_to_end(&mut bytes)
         .map_err(|e| stream_error(path, what, e))?;
     if bytes.len() < len {
-        return Err(truncated_data(path, what, bytes.len(), len));
+        return Err(DataError::format(
+            path,
+            format!(
+                "truncated data: {what} has {} of the {len} bytes the header promises",
+                bytes.len()
+            ),
+        ));
     }
     Ok(bytes)
-}
-
-fn truncated_data(path: &Path, what: &str, found: usize, len: usize) -> DataError {
-    DataError::format(
-        path,
-        format!("truncated data: {what} has {found} of the {len} bytes the header promises"),
-    )
 }
 
 /// Skips `n` bytes of `source`; running out is a truncated file.

@@ -197,11 +197,11 @@ pub fn read_names(path: &Path) -> Result<BTreeMap<u16, String>, DataError> {
 
 /// Object names a NRRD header carries as 3D Slicer writes segmentations (`.seg.nrrd`):
 /// `SegmentK_Name:=NAME` with `SegmentK_LabelValue:=ID` (Slicer's default id is K + 1).
-/// Empty for other files; parses the header only (up to its blank line, at most 1 MiB).
+/// Empty for other files; reads the header only (up to its blank line, at most 1 MiB).
 pub fn nrrd_segment_names(path: &Path) -> Result<BTreeMap<u16, String>, DataError> {
-    use std::io::BufRead;
-    let bytes = crate::files::read(path).map_err(|e| DataError::io(path, e))?;
-    let mut reader = &bytes[..bytes.len().min(1 << 20)];
+    use std::io::{BufRead, BufReader, Read};
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    let mut reader = BufReader::new(file.take(1 << 20));
     let (mut names, mut values) = (BTreeMap::new(), BTreeMap::new());
     let mut line = Vec::new();
     loop {

@@ -1,7 +1,6 @@
 //! Multi-page TIFF stacks (`.tif`, `.tiff`): one page per slice, as ImageJ/Fiji and tifffile
 //! write them. Decoded with the `tiff` crate.
 
-use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
 
@@ -34,8 +33,8 @@ use crate::{DataError, VolumeData};
 /// above [`crate::nifti_file::MAX_VOXELS`] voxels (checked on the page headers, before any
 /// pixel is decoded), [`DataError::Io`] when the file cannot be read.
 pub fn load_tiff_stack(path: &Path) -> Result<VolumeData, DataError> {
-    let file = File::open(path).map_err(|e| DataError::io(path, e))?;
-    let file_len = file.metadata().map_err(|e| DataError::io(path, e))?.len();
+    let file = crate::files::open(path).map_err(|e| DataError::io(path, e))?;
+    let file_len = crate::files::len_of(&file).map_err(|e| DataError::io(path, e))?;
     let terr = |e: TiffError| tiff_error(path, e);
     let mut decoder = Decoder::new(BufReader::new(file))
         .map_err(terr)?

@@ -210,6 +210,28 @@ impl GpuContext {
     }
 }
 
+/// Read-backs in the browser, between passes (see [`crate::web_readback`]).
+#[cfg(target_arch = "wasm32")]
+impl GpuContext {
+    /// Whether the last pass asked for read-backs that have not been collected.
+    pub fn readbacks_pending(&self) -> bool {
+        self.web_readbacks.pending()
+    }
+
+    /// Keeps the read-backs that have arrived for the next pass. Returns whether every one has
+    /// (call again after letting the page's event loop run). Errors: a failed mapping.
+    pub fn collect_readbacks(&self) -> Result<bool, GpuError> {
+        self.web_readbacks
+            .collect()
+            .map_err(|(what, message)| GpuError::Readback { what, message })
+    }
+
+    /// Forgets the arrived read-backs: the next picture reads afresh.
+    pub fn forget_readbacks(&self) {
+        self.web_readbacks.forget();
+    }
+}
+
 fn buffer_name(buffer: &wgpu::Buffer) -> String {
     format!("a buffer of {} bytes", buffer.size())
 }

@@ -4,11 +4,11 @@
 //! places labels around). Natively the pass waits for the copy. A page cannot wait: a buffer's
 //! mapping resolves only after the running task returns. So in the browser a read-back that has
 //! not arrived yet starts the copy and fails the node with a message saying so; the page then
-//! awaits the copies ([`GpuContext::collect_readbacks`]) and runs the pass again. The executor
+//! awaits the copies (`GpuContext::collect_readbacks`) and runs the pass again. The executor
 //! keeps every node that succeeded, so the second pass re-runs only the node that read and what
 //! follows it, and its read finds the copy by what it read (the same texture or buffer, since
 //! the nodes before it were not run again). The copies are forgotten when a new picture starts
-//! ([`GpuContext::forget_readbacks`]): a changed view renders new contents.
+//! (`GpuContext::forget_readbacks`): a changed view renders new contents.
 
 /// What a read-back copied: a texture, or the first bytes of a buffer.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -23,7 +23,6 @@ pub use web::WebReadbacks;
 #[cfg(target_arch = "wasm32")]
 mod web {
     use super::ReadKey;
-    use crate::{GpuContext, GpuError};
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex};
 
@@ -77,38 +76,30 @@ mod web {
     }
 
     /// The message of a read-back that has not arrived (the page recognises none: it asks
-    /// [`GpuContext::readbacks_pending`]).
+    /// `GpuContext::readbacks_pending`).
     const READ_AGAIN: &str = "waiting for a GPU read-back (in the browser these arrive between passes; run the pass again)";
 
-    impl GpuContext {
+    impl WebReadbacks {
         /// Whether the last pass asked for read-backs that have not been collected.
-        pub fn readbacks_pending(&self) -> bool {
-            !self.web_readbacks.state().pending.is_empty()
+        pub(crate) fn pending(&self) -> bool {
+            !self.state().pending.is_empty()
         }
 
         /// Keeps the read-backs that have arrived for the next pass. Returns whether every one
-        /// has (call again after letting the page's event loop run). Errors: a failed mapping.
-        pub fn collect_readbacks(&self) -> Result<bool, GpuError> {
-            let mut state = self.web_readbacks.state();
+        /// has. Errors: a failed mapping, as (what was read, why).
+        pub(crate) fn collect(&self) -> Result<bool, (String, String)> {
+            let mut state = self.state();
             let pending = std::mem::take(&mut state.pending);
             for p in pending {
                 let outcome = p.mapped.lock().unwrap_or_else(|e| e.into_inner()).take();
                 match outcome {
                     None => state.pending.push(p),
-                    Some(Err(message)) => {
-                        return Err(GpuError::Readback {
-                            what: format!("{:?}", p.key),
-                            message,
-                        });
-                    }
+                    Some(Err(message)) => return Err((format!("{:?}", p.key), message)),
                     Some(Ok(())) => {
                         let bytes = p
                             .staging
                             .get_mapped_range(..)
-                            .map_err(|e| GpuError::Readback {
-                                what: format!("{:?}", p.key),
-                                message: e.to_string(),
-                            })?
+                            .map_err(|e| (format!("{:?}", p.key), e.to_string()))?
                             .to_vec();
                         p.staging.unmap();
                         state.ready.insert(p.key, bytes);
@@ -119,8 +110,8 @@ mod web {
         }
 
         /// Forgets the arrived read-backs: the next picture reads afresh.
-        pub fn forget_readbacks(&self) {
-            let mut state = self.web_readbacks.state();
+        pub(crate) fn forget(&self) {
+            let mut state = self.state();
             state.ready.clear();
             state.pending.clear();
         }

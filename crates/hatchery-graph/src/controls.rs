@@ -115,6 +115,11 @@ fn control_kind(
                  [{lo}, {hi}]"
             ));
         }
+        if integer && (min.fract() != 0.0 || max.fract() != 0.0) {
+            return Err(format!(
+                "min {min} and max {max} must be whole numbers for an integer"
+            ));
+        }
         Ok(ControlKind::Slider { min, max, integer })
     };
     let no_range = || {

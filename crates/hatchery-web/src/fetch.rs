@@ -13,6 +13,14 @@ pub fn folder_of(url: &str) -> String {
     }
 }
 
+/// A relative path as a URL: each segment percent-encoded (`#`, `?`, `%` in file names).
+pub fn encode_path(path: &str) -> String {
+    path.split('/')
+        .map(|segment| String::from(js_sys::encode_uri_component(segment)))
+        .collect::<Vec<_>>()
+        .join("/")
+}
+
 async fn response(url: &str) -> Result<Response, JsError> {
     let window = web_sys::window().ok_or_else(|| JsError::new("no window"))?;
     let fail =

@@ -37,6 +37,9 @@ struct Manifest {
     files: Vec<String>,
 }
 
+/// Where files dropped on the page are mounted.
+const DROPPED: &str = "dropped";
+
 fn one() -> f64 {
     1.0
 }
@@ -81,12 +84,19 @@ impl Figure {
         console_error_panic_hook::set_once();
         let manifest: Manifest = serde_json::from_str(&fetch::text(&manifest_url).await?)
             .map_err(|e| js_error(format!("{manifest_url}: {e}")))?;
+        if !(1..=16384).contains(&manifest.width) || !(1..=16384).contains(&manifest.height) {
+            return Err(js_error(format!(
+                "{manifest_url}: a frame of {}×{} pixels (1 to 16384 per side)",
+                manifest.width, manifest.height
+            )));
+        }
         let base = fetch::folder_of(&manifest_url);
         for file in &manifest.files {
-            let bytes = fetch::bytes(&format!("{base}{file}")).await?;
+            let bytes = fetch::bytes(&format!("{base}{}", fetch::encode_path(file))).await?;
             hatchery_data::files::mount(Path::new(file), bytes);
         }
-        let graph_text = fetch::text(&format!("{base}{}", manifest.graph)).await?;
+        let graph_text =
+            fetch::text(&format!("{base}{}", fetch::encode_path(&manifest.graph))).await?;
 
         canvas.set_width(manifest.width);
         canvas.set_height(manifest.height);
@@ -258,6 +268,33 @@ impl Figure {
             .picture_port(Some(node), port)
             .map_err(js_error)?;
         Ok(())
+    }
+
+    /// The graph's inputs (the data files it reads, by name) as JSON `[{name, type, doc}]`: the
+    /// page offers to replace them with files dropped on it.
+    pub fn inputs(&self) -> String {
+        let inputs: Vec<serde_json::Value> = self
+            .session
+            .graph
+            .inputs()
+            .iter()
+            .map(|i| serde_json::json!({ "name": i.name, "type": i.kind.name(), "doc": i.doc }))
+            .collect();
+        serde_json::Value::Array(inputs).to_string()
+    }
+
+    /// Makes `bytes` the file `dropped/<file_name>` (a file dropped on the page, or a companion
+    /// of one: a MetaImage's voxels beside its header).
+    pub fn mount(&mut self, file_name: &str, bytes: Vec<u8>) {
+        hatchery_data::files::mount(&Path::new(DROPPED).join(file_name), bytes);
+    }
+
+    /// Gives graph input `name` the mounted file `file_name` (see [`Self::mount`]). Errors: no
+    /// such input, or a file of another kind (a mesh for a volume), in one line.
+    pub fn set_input(&mut self, name: &str, file_name: &str) -> Result<(), JsError> {
+        self.session
+            .set_input(name, &Path::new(DROPPED).join(file_name))
+            .map_err(js_error)
     }
 
     /// The adapter, for the page's status line.

@@ -93,12 +93,16 @@ pub fn add_reroute(doc: &mut GraphDocument, position: EditorPos) -> String {
     id
 }
 
-/// Removes a node, every edge touching it and its controls; returns the node, or `None` if
-/// there was none.
+/// Removes a node, every edge touching it, its controls and the input bindings to it (an input
+/// left bound to nothing goes too); returns the node, or `None` if there was none.
 pub fn remove_node(doc: &mut GraphDocument, id: &str) -> Option<NodeDoc> {
     let index = doc.nodes.iter().position(|n| n.id == id)?;
     doc.edges.retain(|e| e.from.0 != id && e.to.0 != id);
     doc.controls.retain(|c| c.node != id);
+    for input in &mut doc.inputs {
+        input.to.retain(|(node, _)| node != id);
+    }
+    doc.inputs.retain(|i| !i.to.is_empty());
     Some(doc.nodes.remove(index))
 }
 
