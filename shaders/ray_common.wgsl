@@ -263,8 +263,19 @@ fn trilinear_value(q: vec3<f32>) -> f32 {
     return ray.texel_values.x + normalised * (ray.texel_values.y - ray.texel_values.x);
 }
 
+// A hash of the pixel at `p` in [0, 1): PCG (O'Neill 2014) of the integer pixel, the same bits
+// on every device. The usual fract(sin(x)·43758) rests on each driver's sin at large arguments,
+// so the jitter, and the pictures, differed between drivers (lavapipe natively, SwiftShader in
+// the browser, each real GPU).
 fn hash(p: vec2<f32>) -> f32 {
-    return fract(sin(dot(p, vec2<f32>(12.9898, 78.233))) * 43758.5453);
+    let q = bitcast<vec2<u32>>(vec2<i32>(floor(p)));
+    return f32(ray_pcg(q.x ^ ray_pcg(q.y)) >> 8u) / 16777216.0;
+}
+
+fn ray_pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
 }
 
 fn to_window_depth(p: vec3<f32>) -> f32 {

@@ -45,8 +45,18 @@ fn silhouette_normal_at(layer_normal: texture_2d<f32>, q: vec2<f32>) -> vec3<f32
     return mix(top, bottom, f.y);
 }
 
+// A lattice point's value in [0, 1): PCG (O'Neill 2014) of its integer coordinates and the seed's
+// bits, the same on every device (fract(sin(x)·43758) rests on each driver's sin precision).
 fn silhouette_hash2(p: vec2<f32>, seed: f32) -> f32 {
-    return fract(sin(dot(p, vec2<f32>(127.1, 311.7)) + seed * 74.7) * 43758.5453);
+    let q = bitcast<vec2<u32>>(vec2<i32>(p));
+    let s = silhouette_pcg(bitcast<u32>(seed));
+    return f32(silhouette_pcg(q.x ^ silhouette_pcg(q.y ^ s)) >> 8u) / 16777216.0;
+}
+
+fn silhouette_pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
 }
 
 // Smooth value noise in [0, 1] with cells of `scale` pixels.

@@ -41,7 +41,11 @@ fn every_preset_loads_validates_and_renders() {
 
 /// The presets on the shared MRI and frog render as they did before volumes carried a full
 /// voxel → world transform and kept their native voxel types: 256×192 renders by the binary of
-/// commit 96c2639 are in tests/fixtures/before_world_space/. Their cameras are held at the fixed
+/// commit 96c2639 are in tests/fixtures/before_world_space/, the five ray-cast ones
+/// (context_preserving_brain, style_tf_*, tf1d_phong_brain, volume_toon) re-drawn when the first
+/// sample's jitter changed hash (issue 33, PCG instead of fract(sin(x)·43758), whose bits rested
+/// on each driver's sin): only the jitter noise moved, worst 15–30/255 on the brains, single
+/// pixels on the frog's thin bones and the toon outline; the other five still match 96c2639's. Their cameras are held at the fixed
 /// target and distance they were written with (`framing` "fixed"; they frame their data now), so
 /// this also shows that their data-relative values (iso "range(80/255)", …) resolve to the
 /// numbers they replaced.

@@ -299,6 +299,12 @@ impl Figure {
 
     /// The adapter, for the page's status line.
     pub fn adapter(&self) -> String {
-        self.session.ctx.gpu.describe()
+        let info = &self.session.ctx.gpu.adapter_info;
+        if info.name.is_empty() {
+            // Browsers keep the adapter's name to themselves unless asked.
+            format!("WebGPU ({:?} adapter)", info.device_type)
+        } else {
+            format!("WebGPU on {}", info.name)
+        }
     }
 }

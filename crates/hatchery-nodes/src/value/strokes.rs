@@ -31,20 +31,23 @@ pub struct Strokes {
     pub taper: f32,
     /// Frame width × height, px.
     pub frame: (u32, u32),
-    pub(crate) lines: OnceLock<Result<Vec<StrokeLine>, String>>,
+    /// Kept once read; a failed read is not kept (in the browser the first read only starts the
+    /// copy, hatchery_gpu::web_readback).
+    pub(crate) lines: OnceLock<Vec<StrokeLine>>,
 }
 
 impl Strokes {
     /// The strokes as polylines of at least three points (read back from the GPU once).
     /// Errors: [`GpuError::Readback`] when the buffers cannot be read back.
     pub fn lines(&self, gpu: &GpuContext) -> Result<&[StrokeLine], GpuError> {
-        self.lines
-            .get_or_init(|| self.read_back(gpu))
-            .as_deref()
-            .map_err(|message| GpuError::Readback {
-                what: "the strokes".into(),
-                message: message.clone(),
-            })
+        if let Some(lines) = self.lines.get() {
+            return Ok(lines);
+        }
+        let lines = self.read_back(gpu).map_err(|message| GpuError::Readback {
+            what: "the strokes".into(),
+            message,
+        })?;
+        Ok(self.lines.get_or_init(|| lines))
     }
 
     fn read_back(&self, gpu: &GpuContext) -> Result<Vec<StrokeLine>, String> {
