@@ -27,7 +27,7 @@ const WRITERS: [&str; 2] = ["SaveImage", "SaveSvg"];
 pub struct Args {
     /// The graph to export.
     graph: PathBuf,
-    /// The folder to write (created; files of an earlier export in it are replaced).
+    /// The folder to write (created; an earlier export in it is replaced, its data/ too).
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]
@@ -44,19 +44,32 @@ pub fn run(args: &Args) -> Result<()> {
     let mut session = crate::open(&args.graph, &args.frame)?;
     let (width, height) = session.ctx.size();
     let out = &args.output;
-    // Refuse what the page cannot read before writing anything.
-    let reads = data_reads(&session)?;
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-
-    // The poster first, from the graph as the user's paths have it.
+    // Everything that can be refused is refused before anything is written: data the page
+    // cannot read, files it names that cannot travel with it, a graph that does not render.
+    let plan = plan_data(data_reads(&session)?)?;
     let poster = session
         .render_picture(None, None)
         .context("rendering the poster")?;
+    let data = out.join("data");
+    if data.exists() && !out.join("figure.json").is_file() {
+        bail!(
+            "{} exists and is not an earlier export's (no figure.json beside it): choose another \
+             folder",
+            data.display()
+        );
+    }
+    let created = !out.exists();
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    if let Err(e) = copy_data(&plan, out) {
+        if created {
+            let _ = std::fs::remove_dir_all(out);
+        }
+        return Err(e);
+    }
     poster
         .save(out.join("poster.png"))
         .with_context(|| format!("cannot write {}", out.join("poster.png").display()))?;
-
-    let (files, moved) = copy_data(reads, out)?;
+    let (files, moved) = (plan.files(), plan.moved);
     let mut doc = session.document();
     doc.base_dir = None;
     // The copies' paths are written into the document, not set on the graph: a CustomShader's
@@ -236,26 +249,41 @@ fn data_reads(session: &Session) -> Result<Vec<Read>> {
 /// Each read's node and parameter, the entry it replaces (if any) and its copy's path.
 type Moved = Vec<(String, String, Option<String>, String)>;
 
-/// Copies the files the graph reads into `out/data/N/` (one folder per file, with the files it
-/// names beside it). Returns the copied paths relative to `out`, and where each read moved.
-/// Errors: a file it names that cannot travel with it (see [`companions`]), an unwritable
-/// folder.
-fn copy_data(reads: Vec<Read>, out: &Path) -> Result<(Vec<String>, Moved)> {
-    let mut moved = Moved::new();
+/// What the folder's data/ will hold: each file the graph reads in `data/N/` (one folder per
+/// file, with the files it names beside it).
+struct DataPlan {
+    /// Source, and the copy's path relative to the folder.
+    copies: Vec<(PathBuf, String)>,
+    moved: Moved,
+}
+
+impl DataPlan {
+    /// The copies' paths relative to the folder, for the page to fetch.
+    fn files(&self) -> Vec<String> {
+        self.copies.iter().map(|(_, to)| to.clone()).collect()
+    }
+}
+
+/// Plans the copies of the files the graph reads, reading only headers. Errors: an unreadable
+/// file, a file it names that cannot travel with it (see [`companions`]).
+fn plan_data(reads: Vec<Read>) -> Result<DataPlan> {
+    let mut plan = DataPlan {
+        copies: Vec::new(),
+        moved: Moved::new(),
+    };
     // By the file's canonical path, so that a file read twice is copied once; names and
     // companions come from the path as given (a symlinked data store's target is a hash).
-    let mut copied: BTreeMap<PathBuf, String> = BTreeMap::new();
-    let mut files = Vec::new();
+    let mut planned: BTreeMap<PathBuf, String> = BTreeMap::new();
     for read in reads {
         let Read {
             node, param, path, ..
         } = &read;
         let key = std::fs::canonicalize(path)
             .with_context(|| format!("node `{node}`: cannot read {}", path.display()))?;
-        let target = match copied.get(&key) {
+        let target = match planned.get(&key) {
             Some(target) => target.clone(),
             None => {
-                let folder = format!("data/{}", copied.len() + 1);
+                let folder = format!("data/{}", planned.len() + 1);
                 let mut names = vec![file_name(path)?];
                 names.extend(
                     companions(path)
@@ -263,29 +291,52 @@ fn copy_data(reads: Vec<Read>, out: &Path) -> Result<(Vec<String>, Moved)> {
                 );
                 for name in &names {
                     let from = path.parent().unwrap_or(Path::new("")).join(name);
-                    let to = out.join(&folder).join(name);
-                    if let Some(parent) = to.parent() {
-                        std::fs::create_dir_all(parent)?;
-                    }
-                    // Exporting a figure into its own folder: the file is already there (a copy
-                    // onto itself would empty it).
-                    let same = std::fs::canonicalize(&to)
-                        .is_ok_and(|t| std::fs::canonicalize(&from).is_ok_and(|f| f == t));
-                    if !same {
-                        std::fs::copy(&from, &to).with_context(|| {
-                            format!("node `{node}`: cannot copy {}", from.display())
-                        })?;
-                    }
-                    files.push(format!("{folder}/{name}"));
+                    plan.copies.push((from, format!("{folder}/{name}")));
                 }
                 let target = format!("{folder}/{}", names[0]);
-                copied.insert(key, target.clone());
+                planned.insert(key, target.clone());
                 target
             }
         };
-        moved.push((read.node, read.param, read.entry, target));
+        plan.moved.push((read.node, read.param, read.entry, target));
     }
-    Ok((files, moved))
+    Ok(plan)
+}
+
+/// Makes `out/data` hold exactly the planned copies: copied into a new folder first, which then
+/// replaces an earlier export's data/ (the sources may lie in it: a figure re-exported in
+/// place). Errors: an unreadable source or unwritable folder; data/ is then as it was.
+fn copy_data(plan: &DataPlan, out: &Path) -> Result<()> {
+    let staging = out.join(".data-new");
+    if staging.exists() {
+        std::fs::remove_dir_all(&staging)
+            .with_context(|| format!("cannot remove {}", staging.display()))?;
+    }
+    let copied = plan.copies.iter().try_for_each(|(from, to)| {
+        let to = staging.join(to.strip_prefix("data/").unwrap_or(to));
+        if let Some(parent) = to.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("cannot create {}", parent.display()))?;
+        }
+        std::fs::copy(from, &to)
+            .map(drop)
+            .with_context(|| format!("cannot copy {}", from.display()))
+    });
+    if let Err(e) = copied {
+        let _ = std::fs::remove_dir_all(&staging);
+        return Err(e);
+    }
+    let data = out.join("data");
+    if data.exists() {
+        std::fs::remove_dir_all(&data)
+            .with_context(|| format!("cannot replace {}", data.display()))?;
+    }
+    if plan.copies.is_empty() {
+        let _ = std::fs::remove_dir_all(&staging);
+        return Ok(());
+    }
+    std::fs::rename(&staging, &data)
+        .with_context(|| format!("cannot move {} to {}", staging.display(), data.display()))
 }
 
 fn file_name(path: &Path) -> Result<String> {

@@ -215,12 +215,16 @@ fn main() {
     logging::init(cli.verbose);
 
     if let Err(error) = run(cli) {
-        // One line: the chain of causes joined.
-        let message = error
-            .chain()
-            .map(|c| c.to_string())
-            .collect::<Vec<_>>()
-            .join(": ");
+        // One line: the chain of causes joined, leaving out a cause whose text is already there
+        // (the library's errors name their source in their own message).
+        let mut message = String::new();
+        for cause in error.chain().map(|c| c.to_string()) {
+            if message.is_empty() {
+                message = cause;
+            } else if !message.contains(&cause) {
+                message = format!("{message}: {cause}");
+            }
+        }
         eprintln!("error: {}", message.replace('\n', " "));
         std::process::exit(1);
     }

@@ -24,6 +24,15 @@ fn assert_clean_failure(output: &Output, needles: &[&str]) {
     );
     let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
     assert_eq!(lines.len(), 1, "expected one error line, got: {err}");
+    // Said once: a cause whose text its error already holds is not repeated.
+    let parts: Vec<&str> = lines[0].split(": ").filter(|p| p.len() >= 12).collect();
+    for (i, part) in parts.iter().enumerate() {
+        assert!(
+            !parts[i + 1..].contains(part),
+            "`{part}` said twice in: {}",
+            lines[0]
+        );
+    }
     for needle in needles {
         assert!(
             lines[0].contains(needle),

@@ -262,6 +262,7 @@ fn a_folder_and_a_missing_build_are_refused_in_one_line() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success() && err.contains(needle), "{err}");
         assert!(err.contains("node `mri`"), "{err}");
+        assert!(!out.exists(), "nothing written for a refused export");
     }
 
     let o = export(
@@ -279,4 +280,101 @@ fn a_folder_and_a_missing_build_are_refused_in_one_line() {
     );
     assert!(err.contains("run scripts/build-web.sh"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
+}
+
+/// A 2³ MetaImage beside its voxels, `data` naming them as `data_file`.
+fn tiny_metaimage(dir: &Path, name: &str, data_file: &str) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(dir.join("tiny.raw"), [0u8, 50, 100, 150, 200, 250, 25, 75]).unwrap();
+    let header = dir.join(name);
+    std::fs::write(
+        &header,
+        format!(
+            "NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = {data_file}\n"
+        ),
+    )
+    .unwrap();
+    header
+}
+
+#[test]
+fn a_refused_export_leaves_an_earlier_figure_as_it_was_and_a_new_one_replaces_its_data() {
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = fake_pkg(dir.path());
+    let out = dir.path().join("figure");
+    let good = tiny_metaimage(&dir.path().join("good"), "tiny.mhd", "tiny.raw");
+    let set = format!("mri.path={}", good.display());
+    ok(&export(
+        "graphs/brain_surface.ron",
+        &out,
+        &pkg,
+        &["--size", "32x24", "--set", &set],
+    ));
+    let poster = std::fs::read(out.join("poster.png")).unwrap();
+    let graph = std::fs::read_to_string(out.join("figure.ron")).unwrap();
+
+    // Refused after the graph opened (its header names voxels by a path that cannot travel):
+    // the figure already there keeps its poster, graph and data.
+    let raw = dir.path().join("bad/tiny.raw");
+    let bad = tiny_metaimage(&dir.path().join("bad"), "tiny.mhd", raw.to_str().unwrap());
+    std::fs::write(&raw, [250u8, 250, 250, 250, 250, 250, 250, 0]).unwrap();
+    let set = format!("mri.path={}", bad.display());
+    // Its poster would differ from the one there (so a poster written before the refusal shows).
+    let bad_render = dir.path().join("bad.png");
+    ok(&hatchery(&[
+        "render",
+        "graphs/brain_surface.ron",
+        "--size",
+        "32x24",
+        "--set",
+        &set,
+        "-o",
+        bad_render.to_str().unwrap(),
+    ]));
+    assert_ne!(read_png(&bad_render), read_png(&out.join("poster.png")));
+    let o = export(
+        "graphs/brain_surface.ron",
+        &out,
+        &pkg,
+        &["--size", "32x24", "--set", &set],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("cannot travel"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(out.join("poster.png")).unwrap(), poster);
+    assert_eq!(
+        std::fs::read_to_string(out.join("figure.ron")).unwrap(),
+        graph
+    );
+    assert!(out.join("data/1/tiny.raw").is_file());
+
+    // Another graph exported over it: none of the earlier data stays behind.
+    ok(&export(
+        "graphs/default.ron",
+        &out,
+        &pkg,
+        &["--size", "32x24"],
+    ));
+    assert_eq!(manifest(&out)["files"], serde_json::json!([]));
+    assert!(
+        !out.join("data").exists(),
+        "the earlier export's data/ is left"
+    );
+
+    // A folder holding its own data/ (not an export's) is not emptied.
+    let project = dir.path().join("project");
+    std::fs::create_dir_all(project.join("data")).unwrap();
+    std::fs::write(project.join("data/notes.txt"), "mine").unwrap();
+    let o = export("graphs/default.ron", &project, &pkg, &["--size", "32x24"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("not an earlier export's"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(project.join("data/notes.txt")).unwrap(),
+        "mine"
+    );
 }

@@ -227,25 +227,92 @@ try {
     await page.evaluate(([n, p]) => { window.hatchery.figure.show(n, p); window.hatchery.changed(); },
                         [shownNode, shownPort]);
     await settled(frames + 1);
-    against(`${shownNode}.${shownPort} after a drag of (${dragX}, ${dragY})`,
-            await shot("dragged-port.png"), arg("drag-native"));
+    const turned = await shot("dragged-port.png");
+    against(`${shownNode}.${shownPort} after a drag of (${dragX}, ${dragY})`, turned,
+            arg("drag-native"));
 
-    // Without WebGPU the page keeps the poster and says why.
-    const plain = await browser.newPage();
-    await plain.addInitScript(() =>
-      Object.defineProperty(Navigator.prototype, "gpu", { get: () => undefined }));
-    await plain.goto(base + "index.html");
-    await plain.waitForFunction(() => document.body.dataset.state, null, { timeout: 60_000 });
-    const fallback = await plain.evaluate(() => ({
-      state: document.body.dataset.state,
-      poster: document.getElementById("poster").complete &&
-              document.getElementById("poster").naturalWidth > 0 &&
-              getComputedStyle(document.getElementById("poster")).display !== "none",
-    }));
-    results.withoutWebGpu = fallback;
-    if (fallback.state !== "no-webgpu" || !fallback.poster) {
-      fail(`without WebGPU the page should show the poster: ${JSON.stringify(fallback)}`);
+    // The wheel: one mouse notch (100 px) zooms in; a trackpad's twenty small events of 5 px
+    // zoom as far as that notch, not twenty notches.
+    const wheel = async deltas => {
+      frames = await page.evaluate(() => window.hatchery.frames);
+      await page.mouse.move(cx, cy);
+      for (const d of deltas) await page.mouse.wheel(0, d);
+      await settled(frames + 1);
+    };
+    await wheel([-100]);
+    const notch = await shot("wheel-notch.png");
+    changedFrom("a wheel notch", notch, turned);
+    await wheel([100]);
+    await wheel(Array(20).fill(-5));
+    against("twenty 5 px wheel events against one 100 px notch", await shot("wheel-pad.png"),
+            path.join(out, "wheel-notch.png"));
+
+    // Without WebGPU, or with WebGPU but no adapter, the page keeps the poster and says why.
+    const setups = {
+      withoutWebGpu: () =>
+        Object.defineProperty(Navigator.prototype, "gpu", { get: () => undefined }),
+      withoutAdapter: () => { GPU.prototype.requestAdapter = async () => null; },
+    };
+    for (const [name, setup] of Object.entries(setups)) {
+      const plain = await browser.newPage();
+      await plain.addInitScript(setup);
+      await plain.goto(base + "index.html");
+      await plain.waitForFunction(() => document.body.dataset.state, null, { timeout: 60_000 });
+      const fallback = await plain.evaluate(() => ({
+        state: document.body.dataset.state,
+        status: document.getElementById("status").textContent,
+        poster: document.getElementById("poster").complete &&
+                document.getElementById("poster").naturalWidth > 0 &&
+                getComputedStyle(document.getElementById("poster")).display !== "none",
+      }));
+      results[name] = fallback;
+      if (fallback.state !== "no-webgpu" || !fallback.poster) {
+        fail(`${name}: the page should show the poster: ${JSON.stringify(fallback)}`);
+      }
+      await plain.close();
     }
+
+    // Embedded with docs/web.md's snippet: the iframe, written too short, grows to the page's
+    // height (the status line below the controls in view, nothing to scroll).
+    const host = await browser.newPage({ viewport: { width: 1400, height: 1100 } });
+    await host.goto(base + "figure.json");  // the figure's origin, to look inside the iframe
+    await host.setContent(`<iframe src="${base}index.html" width="600" height="200"
+      style="border: 0"></iframe>
+      <script>
+      addEventListener("message", e => {
+        if (e.data?.hatchery !== "size") return;
+        for (const f of document.querySelectorAll("iframe"))
+          if (f.contentWindow === e.source) f.height = e.data.height;
+      });
+      </script>`);
+    await host.waitForFunction(
+      () => document.querySelector("iframe").contentDocument?.body?.dataset.state === "ready",
+      null, { timeout: 300_000 });
+    await host.waitForTimeout(200);
+    const embed = await host.evaluate(() => {
+      const f = document.querySelector("iframe"), d = f.contentDocument;
+      return { iframe: f.clientHeight, needs: d.documentElement.scrollHeight,
+               status: Math.ceil(d.getElementById("status").getBoundingClientRect().bottom) };
+    });
+    results.embedded = embed;
+    if (embed.iframe < embed.needs || embed.status > embed.iframe || embed.iframe <= 200) {
+      fail(`the embedded page should size its iframe: ${JSON.stringify(embed)}`);
+    }
+    await host.close();
+
+    // A ?show= naming no output of the graph: the figure as it is, and a line saying why.
+    const shown = await browser.newPage({ viewport: { width: 1400, height: 1100 } });
+    await shown.goto(base + "index.html?show=hatching.no_such_port");
+    await shown.waitForFunction(
+      () => ["ready", "error"].includes(document.body.dataset.state), null, { timeout: 300_000 });
+    const showStatus = await shown.evaluate(
+      () => [document.body.dataset.state, document.getElementById("status").textContent]);
+    results.badShow = showStatus;
+    if (showStatus[0] !== "ready" || !showStatus[1].includes("?show=hatching.no_such_port") ||
+        !showStatus[1].includes("no output port `no_such_port`")) {
+      fail(`?show= of a missing port should say so and show the figure: ${showStatus}`);
+    }
+    await shown.close();
   }
   if (full) await interact();
 } catch (e) {

@@ -97,10 +97,14 @@ fn mounted(path: &Path) -> io::Result<std::sync::Arc<[u8]>> {
         .and_then(|m| m.get(&normal(path)))
         .cloned()
         .ok_or_else(|| {
-            io::Error::new(
-                io::ErrorKind::NotFound,
-                "not one of the files this figure fetched (export it with `hatchery export-web`)",
-            )
+            // The page mounts dropped files under dropped/ (hatchery-web): a missing one is a
+            // file another names (a MetaImage header's voxels) that was not dropped with it.
+            let message = if path.starts_with("dropped") {
+                "not dropped: drop it together with the file that names it"
+            } else {
+                "not one of the files this figure fetched (export it with `hatchery export-web`)"
+            };
+            io::Error::new(io::ErrorKind::NotFound, message)
         })
 }
 

@@ -65,12 +65,16 @@ pub fn check_input_file(input: &str, kind: InputKind, path: &Path) -> Result<(),
         Err(_) if hatchery_data::files::is_file(path) => false,
         Err(e) => return Err(unreadable(e)),
     };
-    let (wanted, endings): (&str, Vec<&str>) = match kind {
+    let (wanted, mut endings): (&str, Vec<&str>) = match kind {
         InputKind::Volume => ("volume", VOLUME_ENDINGS.to_vec()),
         InputKind::Labels => ("volume", VOLUME_ENDINGS.to_vec()),
         InputKind::Mesh => ("mesh", MESH_ENDINGS.to_vec()),
         InputKind::Names => ("names table", NAMES_ENDINGS.to_vec()),
     };
+    // The browser reads single files: a DICOM series and OME-Zarr are folders.
+    if cfg!(target_arch = "wasm32") {
+        endings.retain(|e| ![".dcm", ".zarr"].contains(e));
+    }
     if folder && kind != InputKind::Volume && kind != InputKind::Labels {
         return Err(InputFileError::WrongKind(format!(
             "input `{input}`: {shown} is a folder, not a {kind} file ({})",

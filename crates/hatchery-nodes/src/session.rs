@@ -310,7 +310,8 @@ impl Session {
 
     /// The node and port a picture of the graph shows: `node`'s `port` (its first output when
     /// not given), else what the graph's one SaveImage node writes. Errors (one line): an
-    /// unknown node, no or several SaveImage nodes, a SaveImage with nothing connected.
+    /// unknown node or output, no or several SaveImage nodes, a SaveImage with nothing
+    /// connected.
     pub fn picture_port(
         &self,
         node: Option<&str>,
@@ -323,7 +324,14 @@ impl Session {
                 .ok_or_else(|| SessionError::NotFound(format!("no node `{node}` in the graph")))?;
             let schema = instance.schema(&self.registry).expect("validated kind");
             let port = match port {
-                Some(p) => p.to_owned(),
+                Some(p) if schema.output_index(p).is_some() => p.to_owned(),
+                Some(p) => {
+                    return Err(SessionError::NotFound(format!(
+                        "node `{node}` ({}) has no output port `{p}` (its outputs are: {})",
+                        instance.kind,
+                        schema.output_names().join(", ")
+                    )));
+                }
                 None => schema
                     .outputs
                     .first()
