@@ -37,6 +37,10 @@ pub struct Args {
     /// writes it there).
     #[arg(long, value_name = "DIR")]
     web_pkg: Option<PathBuf>,
+    /// The page's title and the poster's alternative text. Default: the graph's description,
+    /// else its file name.
+    #[arg(long)]
+    title: Option<String>,
 }
 
 pub fn run(args: &Args) -> Result<()> {
@@ -50,45 +54,26 @@ pub fn run(args: &Args) -> Result<()> {
     let poster = session
         .render_picture(None, None)
         .context("rendering the poster")?;
-    let data = out.join("data");
-    if data.exists() && !out.join("figure.json").is_file() {
-        bail!(
-            "{} exists and is not an earlier export's (no figure.json beside it): choose another \
-             folder",
-            data.display()
-        );
-    }
-    let created = !out.exists();
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    if let Err(e) = copy_data(&plan, out) {
-        if created {
-            let _ = std::fs::remove_dir_all(out);
-        }
-        return Err(e);
-    }
-    poster
-        .save(out.join("poster.png"))
-        .with_context(|| format!("cannot write {}", out.join("poster.png").display()))?;
-    let (files, moved) = (plan.files(), plan.moved);
+    refuse_foreign_data(out)?;
+    let files = plan.files();
     let mut doc = session.document();
     doc.base_dir = None;
     // The copies' paths are written into the document, not set on the graph: a CustomShader's
     // file decides its ports, so the graph refuses to change it while open.
-    for (node, param, entry, path) in moved {
-        let Some(n) = doc.nodes.iter_mut().find(|n| n.id == node) else {
+    for (node, param, entry, path) in &plan.moved {
+        let Some(n) = doc.nodes.iter_mut().find(|n| &n.id == node) else {
             continue;
         };
         let value = match entry {
             // A StyleSet's entry: its name replaced within the text.
-            Some(entry) => match n.params.get(&param) {
-                Some(ron::Value::String(text)) => text.replace(&entry, &path),
+            Some(entry) => match n.params.get(param) {
+                Some(ron::Value::String(text)) => text.replace(entry, path),
                 _ => continue,
             },
-            None => path,
+            None => path.clone(),
         };
-        n.params.insert(param, ron::Value::String(value));
+        n.params.insert(param.clone(), ron::Value::String(value));
     }
-    write(out, "figure.ron", &doc.to_ron_string())?;
     let manifest = serde_json::json!({
         "graph": "figure.ron",
         "width": width,
@@ -96,12 +81,7 @@ pub fn run(args: &Args) -> Result<()> {
         "scale": args.frame.scale,
         "files": files,
     });
-    write(
-        out,
-        "figure.json",
-        &serde_json::to_string_pretty(&manifest)?,
-    )?;
-    let title = match session.graph.description() {
+    let title = match args.title.as_deref().unwrap_or(session.graph.description()) {
         "" => args
             .graph
             .file_stem()
@@ -113,15 +93,48 @@ pub fn run(args: &Args) -> Result<()> {
         .replace("{{TITLE}}", &html_escape(&title))
         .replace("{{WIDTH}}", &width.to_string())
         .replace("{{HEIGHT}}", &height.to_string());
-    write(out, "index.html", &page)?;
-    let mut wasm_bytes = 0;
-    for name in WEB_FILES {
-        let bytes = std::fs::copy(pkg.join(name), out.join(name))
-            .with_context(|| format!("cannot copy {} into {}", name, out.display()))?;
-        if name.ends_with(".wasm") {
-            wasm_bytes = bytes;
+
+    // Everything is written into a new folder beside the figure's files first, then moved in:
+    // a failure leaves an earlier figure as it was.
+    let created = !out.exists();
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let staging = out.join(".export-new");
+    let written = (|| -> Result<u64> {
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging)
+                .with_context(|| format!("cannot remove {}", staging.display()))?;
         }
-    }
+        std::fs::create_dir_all(&staging)
+            .with_context(|| format!("cannot create {}", staging.display()))?;
+        copy_data(&plan, &staging)?;
+        poster
+            .save(staging.join("poster.png"))
+            .with_context(|| format!("cannot write {}", staging.join("poster.png").display()))?;
+        write(&staging, "figure.ron", &doc.to_ron_string())?;
+        write(
+            &staging,
+            "figure.json",
+            &serde_json::to_string_pretty(&manifest)?,
+        )?;
+        write(&staging, "index.html", &page)?;
+        let mut wasm_bytes = 0;
+        for name in WEB_FILES {
+            let bytes = std::fs::copy(pkg.join(name), staging.join(name))
+                .with_context(|| format!("cannot copy {} into {}", name, staging.display()))?;
+            if name.ends_with(".wasm") {
+                wasm_bytes = bytes;
+            }
+        }
+        move_in(&staging, out)?;
+        Ok(wasm_bytes)
+    })();
+    let wasm_bytes = match written {
+        Ok(bytes) => bytes,
+        Err(e) => {
+            let _ = std::fs::remove_dir_all(if created { out } else { &staging });
+            return Err(e);
+        }
+    };
     eprintln!(
         "wrote {} ({width}×{height}, {} data file{}, wasm {:.1} MB); host it on any static web \
          server, e.g. `python3 -m http.server -d {}`",
@@ -303,40 +316,101 @@ fn plan_data(reads: Vec<Read>) -> Result<DataPlan> {
     Ok(plan)
 }
 
-/// Makes `out/data` hold exactly the planned copies: copied into a new folder first, which then
-/// replaces an earlier export's data/ (the sources may lie in it: a figure re-exported in
-/// place). Errors: an unreadable source or unwritable folder; data/ is then as it was.
-fn copy_data(plan: &DataPlan, out: &Path) -> Result<()> {
-    let staging = out.join(".data-new");
-    if staging.exists() {
-        std::fs::remove_dir_all(&staging)
-            .with_context(|| format!("cannot remove {}", staging.display()))?;
-    }
-    let copied = plan.copies.iter().try_for_each(|(from, to)| {
-        let to = staging.join(to.strip_prefix("data/").unwrap_or(to));
+/// Copies the planned files into `dir/data/N/`. Errors: an unreadable source, an unwritable
+/// folder.
+fn copy_data(plan: &DataPlan, dir: &Path) -> Result<()> {
+    for (from, to) in &plan.copies {
+        let to = dir.join(to);
         if let Some(parent) = to.parent() {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("cannot create {}", parent.display()))?;
         }
-        std::fs::copy(from, &to)
-            .map(drop)
-            .with_context(|| format!("cannot copy {}", from.display()))
-    });
-    if let Err(e) = copied {
-        let _ = std::fs::remove_dir_all(&staging);
-        return Err(e);
+        std::fs::copy(from, &to).with_context(|| format!("cannot copy {}", from.display()))?;
     }
-    let data = out.join("data");
+    Ok(())
+}
+
+/// The files an export writes beside data/.
+const FIGURE_FILES: [&str; 6] = [
+    "poster.png",
+    "figure.ron",
+    "figure.json",
+    "index.html",
+    WEB_FILES[0],
+    WEB_FILES[1],
+];
+
+/// Moves a written figure from `staging` into `out`, replacing an earlier export's files and
+/// its data/ (whose files may be the sources just copied: a figure re-exported in place). The
+/// earlier data/ is moved aside first and back if the new one cannot take its place.
+fn move_in(staging: &Path, out: &Path) -> Result<()> {
+    let (data, aside) = (out.join("data"), out.join(".data-old"));
+    if aside.exists() {
+        std::fs::remove_dir_all(&aside)
+            .with_context(|| format!("cannot remove {}", aside.display()))?;
+    }
     if data.exists() {
-        std::fs::remove_dir_all(&data)
-            .with_context(|| format!("cannot replace {}", data.display()))?;
+        std::fs::rename(&data, &aside)
+            .with_context(|| format!("cannot move {} aside", data.display()))?;
     }
-    if plan.copies.is_empty() {
-        let _ = std::fs::remove_dir_all(&staging);
+    let new_data = staging.join("data");
+    if new_data.exists()
+        && let Err(e) = std::fs::rename(&new_data, &data)
+    {
+        let _ = std::fs::rename(&aside, &data);
+        return Err(e).with_context(|| format!("cannot move {}", new_data.display()));
+    }
+    for name in FIGURE_FILES {
+        std::fs::rename(staging.join(name), out.join(name))
+            .with_context(|| format!("cannot move {name} into {}", out.display()))?;
+    }
+    let _ = std::fs::remove_dir_all(&aside);
+    let _ = std::fs::remove_dir(staging);
+    Ok(())
+}
+
+/// Refuses a folder whose data/ an export did not write: one beside a figure.json manifest
+/// that lists every file in it. Errors name the folder and, where there is one, a file the
+/// manifest does not list.
+fn refuse_foreign_data(out: &Path) -> Result<()> {
+    let data = out.join("data");
+    let Ok(meta) = std::fs::symlink_metadata(&data) else {
         return Ok(());
+    };
+    let listed: Option<Vec<String>> = std::fs::read_to_string(out.join("figure.json"))
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .filter(|m| m["graph"] == "figure.ron")
+        .and_then(|m| serde_json::from_value(m["files"].clone()).ok());
+    let (Some(listed), true) = (listed, meta.is_dir()) else {
+        bail!(
+            "{} exists and is not an earlier export's (no figure.json manifest of one beside \
+             it): choose another folder",
+            data.display()
+        );
+    };
+    let mut folders = vec![data.clone()];
+    while let Some(folder) = folders.pop() {
+        let entries = std::fs::read_dir(&folder)
+            .with_context(|| format!("cannot read {}", folder.display()))?;
+        for entry in entries {
+            let path = entry?.path();
+            if path.is_dir() && !path.is_symlink() {
+                folders.push(path);
+                continue;
+            }
+            let relative = path.strip_prefix(out).unwrap_or(&path);
+            let name = relative.to_string_lossy().replace('\\', "/");
+            if !listed.contains(&name) {
+                bail!(
+                    "{} holds {name}, which the export beside it did not write: choose another \
+                     folder",
+                    data.display()
+                );
+            }
+        }
     }
-    std::fs::rename(&staging, &data)
-        .with_context(|| format!("cannot move {} to {}", staging.display(), data.display()))
+    Ok(())
 }
 
 fn file_name(path: &Path) -> Result<String> {

@@ -221,7 +221,7 @@ fn main() {
         for cause in error.chain().map(|c| c.to_string()) {
             if message.is_empty() {
                 message = cause;
-            } else if !message.contains(&cause) {
+            } else if !message.ends_with(&cause) {
                 message = format!("{message}: {cause}");
             }
         }

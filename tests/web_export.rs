@@ -220,6 +220,7 @@ fn a_metaimage_header_travels_with_the_voxel_file_it_names() {
     ));
     assert_eq!(std::fs::read(out.join("data/1/ball.raw")).unwrap(), voxels);
     assert_eq!(read_png(&out.join("poster.png")), poster);
+    assert!(!out.join(".export-new").exists() && !out.join(".data-old").exists());
 }
 
 #[test]
@@ -355,15 +356,18 @@ fn a_refused_export_leaves_an_earlier_figure_as_it_was_and_a_new_one_replaces_it
         "graphs/default.ron",
         &out,
         &pkg,
-        &["--size", "32x24"],
+        &["--size", "32x24", "--title", "Engine & <pistons>"],
     ));
     assert_eq!(manifest(&out)["files"], serde_json::json!([]));
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(page.contains("<title>Engine &amp; &lt;pistons&gt;</title>"));
     assert!(
         !out.join("data").exists(),
         "the earlier export's data/ is left"
     );
 
-    // A folder holding its own data/ (not an export's) is not emptied.
+    // A folder holding its own data/ (not an export's: no figure.json, another program's
+    // figure.json) is not emptied, nor is a file added to an export's data/.
     let project = dir.path().join("project");
     std::fs::create_dir_all(project.join("data")).unwrap();
     std::fs::write(project.join("data/notes.txt"), "mine").unwrap();
@@ -373,6 +377,26 @@ fn a_refused_export_leaves_an_earlier_figure_as_it_was_and_a_new_one_replaces_it
         !o.status.success() && err.contains("not an earlier export's"),
         "{err}"
     );
+    std::fs::write(project.join("figure.json"), r#"{"name": "my figure"}"#).unwrap();
+    let o = export("graphs/default.ron", &project, &pkg, &["--size", "32x24"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("not an earlier export's"),
+        "{err}"
+    );
+    std::fs::create_dir_all(out.join("data/1")).unwrap();
+    std::fs::write(out.join("data/1/notes.txt"), "mine").unwrap();
+    let o = export("graphs/default.ron", &out, &pkg, &["--size", "32x24"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("holds data/1/notes.txt"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("data/1/notes.txt")).unwrap(),
+        "mine"
+    );
+    assert!(!out.join(".export-new").exists() && !out.join(".data-old").exists());
     assert_eq!(
         std::fs::read_to_string(project.join("data/notes.txt")).unwrap(),
         "mine"
