@@ -283,6 +283,13 @@ fn a_folder_and_a_missing_build_are_refused_in_one_line() {
     assert!(!err.contains("panicked"), "{err}");
 }
 
+/// Exports default.ron into `out` and expects a refusal saying `needle`.
+fn refused_over(out: &Path, pkg: &Path, needle: &str) {
+    let o = export("graphs/default.ron", out, pkg, &["--size", "32x24"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains(needle), "{err}");
+}
+
 /// A 2³ MetaImage beside its voxels, `data` naming them as `data_file`.
 fn tiny_metaimage(dir: &Path, name: &str, data_file: &str) -> PathBuf {
     std::fs::create_dir_all(dir).unwrap();
@@ -371,27 +378,12 @@ fn a_refused_export_leaves_an_earlier_figure_as_it_was_and_a_new_one_replaces_it
     let project = dir.path().join("project");
     std::fs::create_dir_all(project.join("data")).unwrap();
     std::fs::write(project.join("data/notes.txt"), "mine").unwrap();
-    let o = export("graphs/default.ron", &project, &pkg, &["--size", "32x24"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("not an earlier export's"),
-        "{err}"
-    );
+    refused_over(&project, &pkg, "not an earlier export's");
     std::fs::write(project.join("figure.json"), r#"{"name": "my figure"}"#).unwrap();
-    let o = export("graphs/default.ron", &project, &pkg, &["--size", "32x24"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("not an earlier export's"),
-        "{err}"
-    );
+    refused_over(&project, &pkg, "not an earlier export's");
     std::fs::create_dir_all(out.join("data/1")).unwrap();
     std::fs::write(out.join("data/1/notes.txt"), "mine").unwrap();
-    let o = export("graphs/default.ron", &out, &pkg, &["--size", "32x24"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("holds data/1/notes.txt"),
-        "{err}"
-    );
+    refused_over(&out, &pkg, "holds data/1/notes.txt");
     assert_eq!(
         std::fs::read_to_string(out.join("data/1/notes.txt")).unwrap(),
         "mine"
