@@ -180,6 +180,11 @@ fn wrong_controls_are_refused_naming_the_control_and_its_line() {
             r#"(node: "tint", param: "color", max: Some(1.0)),"#,
             "`min` and `max` are for numbers; `color` is a color parameter",
         ),
+        // Fields in another order: still found on its line.
+        (
+            r#"(param: "angle", label: "angle", node: "hatching"),"#,
+            "Halftone has no parameter `angle`",
+        ),
     ];
     for (control, needle) in cases {
         let text = with_controls(&format!("        {control}"));

@@ -41,16 +41,17 @@ pub(crate) fn input_offset(text: &str, input: &str) -> Option<usize> {
     })
 }
 
-/// Where the control of `node.param` is written: its `node: "node"` followed by `"param"`.
+/// Where the control of `node.param` is written: its `node: "node"` within the parentheses
+/// that also hold `"param"` (fields in any order).
 pub(crate) fn control_offset(text: &str, node: &str, param: &str) -> Option<usize> {
     let section = text.find("controls:")?;
     quoted(text, node).into_iter().find(|&i| {
-        i > section
-            && before(text, i).ends_with(':')
-            && text[i..]
-                .split(')')
-                .next()
-                .is_some_and(|c| c.contains(&format!("\"{param}\"")))
+        if i <= section || !before(text, i).ends_with(':') {
+            return false;
+        }
+        let open = text[section..i].rfind('(').map_or(section, |o| section + o);
+        let close = text[i..].find(')').map_or(text.len(), |c| i + c);
+        text[open..close].contains(&format!("\"{param}\""))
     })
 }
 
