@@ -4,6 +4,7 @@
 use hatchery_data::mesh_file::MESH_ENDINGS;
 use hatchery_data::volume_file::VOLUME_ENDINGS;
 use hatchery_graph::InputKind;
+use hatchery_graph::inputs::GraphInput;
 use std::path::Path;
 
 /// Endings of object-name tables (`LabelFile.names`).
@@ -105,9 +106,57 @@ fn kind_word(kind: InputKind) -> &'static str {
     }
 }
 
+/// The input a file named `path` goes to when a reader drops it on a figure (the browser
+/// page): the graph's first input of its kind — a volume file to a volume input, else to a
+/// label-map input; a mesh to a mesh input; a names table to a names input. `None`: the file is
+/// of no kind the graph's inputs take.
+pub fn input_for<'a>(inputs: &'a [GraphInput], path: &Path) -> Option<&'a str> {
+    let first = |kind: InputKind| {
+        inputs
+            .iter()
+            .find(|i| i.kind == kind)
+            .map(|i| i.name.as_str())
+    };
+    match kind_of_name(path)? {
+        "volume" => first(InputKind::Volume).or_else(|| first(InputKind::Labels)),
+        "mesh" => first(InputKind::Mesh),
+        _ => first(InputKind::Names),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_dropped_file_goes_to_the_input_of_its_kind() {
+        let input = |name: &str, kind| GraphInput {
+            name: name.into(),
+            kind,
+            doc: String::new(),
+            to: Vec::new(),
+            default: String::new(),
+        };
+        // As the frog presets declare them: a label map and its names, no volume.
+        let frog = [
+            input("labels", InputKind::Labels),
+            input("names", InputKind::Names),
+        ];
+        let to = |inputs: &[GraphInput], name: &str| {
+            input_for(inputs, Path::new(name)).map(str::to_owned)
+        };
+        assert_eq!(to(&frog, "my_labels.nii.gz").as_deref(), Some("labels"));
+        assert_eq!(to(&frog, "organs.CSV").as_deref(), Some("names"));
+        assert_eq!(to(&frog, "bunny.obj"), None);
+        assert_eq!(to(&frog, "notes.pdf"), None);
+        let both = [
+            input("mri", InputKind::Volume),
+            input("seg", InputKind::Labels),
+        ];
+        assert_eq!(to(&both, "t1.mhd").as_deref(), Some("mri"));
+        let mesh = [input("surface", InputKind::Mesh)];
+        assert_eq!(to(&mesh, "part.STL").as_deref(), Some("surface"));
+    }
 
     #[test]
     fn wrong_kinds_and_missing_files_name_the_input() {

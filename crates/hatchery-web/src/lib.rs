@@ -283,6 +283,14 @@ impl Figure {
         serde_json::Value::Array(inputs).to_string()
     }
 
+    /// The graph input a file named `file_name` goes to when dropped on the figure (the first
+    /// input of its kind: a volume file to a volume input, else to a label map's; a mesh, a
+    /// names table likewise); `undefined` where no input takes its kind.
+    pub fn input_for(&self, file_name: &str) -> Option<String> {
+        hatchery_nodes::graph_inputs::input_for(self.session.graph.inputs(), Path::new(file_name))
+            .map(str::to_owned)
+    }
+
     /// Makes `bytes` the file `dropped/<file_name>` (a file dropped on the page, or a companion
     /// of one: a MetaImage's voxels beside its header).
     pub fn mount(&mut self, file_name: &str, bytes: Vec<u8>) {
