@@ -22,26 +22,37 @@ pub fn stamp(path: &std::path::Path) -> Stamp {
 
 /// The watching thread's handle; the thread ends when this is dropped.
 pub struct FileWatch {
-    files: Arc<Mutex<Vec<PathBuf>>>,
+    /// The files to watch, each with the stamp the editor last saw.
+    files: Arc<Mutex<Vec<(PathBuf, Stamp)>>>,
 }
 
 impl FileWatch {
     /// Starts watching nothing; `ctx` is asked to repaint on a change.
     pub fn spawn(ctx: egui::Context) -> Self {
-        let files: Arc<Mutex<Vec<PathBuf>>> = Arc::default();
-        let weak: Weak<Mutex<Vec<PathBuf>>> = Arc::downgrade(&files);
+        let files: Arc<Mutex<Vec<(PathBuf, Stamp)>>> = Arc::default();
+        let weak: Weak<Mutex<Vec<(PathBuf, Stamp)>>> = Arc::downgrade(&files);
         let _ = std::thread::Builder::new()
             .name("hatchery-file-watch".into())
             .spawn(move || {
                 let mut seen: Vec<(PathBuf, Stamp)> = Vec::new();
                 while let Some(files) = weak.upgrade() {
                     // Copied out first: a slow file system must not hold the UI's lock.
-                    let paths: Vec<PathBuf> = files.lock().map(|f| f.clone()).unwrap_or_default();
+                    let watched = files.lock().map(|f| f.clone()).unwrap_or_default();
                     drop(files);
                     let now: Vec<(PathBuf, Stamp)> =
-                        paths.into_iter().map(|p| (p.clone(), stamp(&p))).collect();
-                    if now != seen {
-                        seen = now;
+                        watched.iter().map(|(p, _)| (p.clone(), stamp(p))).collect();
+                    // Against the stamp this thread saw last, or for a file new to it the
+                    // editor's: a file newly watched wakes nobody unless it changed since the
+                    // editor looked (waking on the list alone woke tests mid-frame).
+                    let changed = now.iter().zip(&watched).any(|((path, now), (_, editor))| {
+                        let before = seen
+                            .iter()
+                            .find(|(p, _)| p == path)
+                            .map_or(editor, |(_, s)| s);
+                        now != before
+                    });
+                    seen = now;
+                    if changed {
                         ctx.request_repaint();
                     }
                     std::thread::sleep(INTERVAL);
@@ -50,12 +61,64 @@ impl FileWatch {
         Self { files }
     }
 
-    /// The files to watch (called every frame with the graph's current list).
-    pub fn set(&self, paths: Vec<PathBuf>) {
+    /// The files to watch with the stamps the editor saw (called every frame with the graph's
+    /// current list).
+    pub fn set(&self, paths: Vec<(PathBuf, Stamp)>) {
         if let Ok(mut files) = self.files.lock()
             && *files != paths
         {
             *files = paths;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// A watcher on a new context, and how often it asked for a repaint (egui calls back once
+    /// until a frame runs; none runs here, so each watcher shows whether it woke at all).
+    fn watcher() -> (FileWatch, Arc<AtomicUsize>) {
+        let ctx = egui::Context::default();
+        let woken = Arc::new(AtomicUsize::new(0));
+        let counter = woken.clone();
+        ctx.set_request_repaint_callback(move |_| {
+            counter.fetch_add(1, Ordering::SeqCst);
+        });
+        (FileWatch::spawn(ctx), woken)
+    }
+
+    fn after_a_few_polls(woken: &AtomicUsize) -> usize {
+        std::thread::sleep(INTERVAL * 4);
+        woken.load(Ordering::SeqCst)
+    }
+
+    #[test]
+    fn a_changed_file_wakes_the_editor_and_a_newly_watched_one_does_not() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.wgsl"), dir.path().join("b.wgsl"));
+        std::fs::write(&a, "// a").unwrap();
+        std::fs::write(&b, "// b").unwrap();
+        // Watched as the editor last saw it: nothing to wake for; then changed on disk: a wake.
+        let (watch, woken) = watcher();
+        watch.set(vec![(a.clone(), stamp(&a))]);
+        assert_eq!(
+            after_a_few_polls(&woken),
+            0,
+            "an unchanged file woke the editor"
+        );
+        std::fs::write(&a, "// a, longer").unwrap();
+        assert!(
+            after_a_few_polls(&woken) >= 1,
+            "a changed file did not wake the editor"
+        );
+        // Newly watched but changed since the editor looked (its stamp is another's): a wake.
+        let (watch, woken) = watcher();
+        watch.set(vec![(b.clone(), stamp(&a))]);
+        assert!(
+            after_a_few_polls(&woken) >= 1,
+            "a file changed before it was watched did not wake the editor"
+        );
     }
 }

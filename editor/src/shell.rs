@@ -19,7 +19,7 @@ impl EditorApp {
         let watch = self
             .file_watch
             .get_or_insert_with(|| crate::file_watch::FileWatch::spawn(ui.ctx().clone()));
-        watch.set(self.state.watched_files());
+        watch.set(self.state.watched_stamps());
         if self.synced_revision != Some(self.state.revision()) {
             canvas::rebuild_snarl(self);
         }

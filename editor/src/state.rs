@@ -226,6 +226,11 @@ impl EditorState {
         any
     }
 
+    /// The watched files with the stamps [`Self::poll_watched_files`] last saw.
+    pub fn watched_stamps(&self) -> Vec<(PathBuf, Option<hatchery_nodes::custom_shader::Stamp>)> {
+        self.watched.iter().map(|(p, s)| (p.clone(), *s)).collect()
+    }
+
     /// Validates the document; on success returns the runtime graph.
     pub fn validate(&mut self) -> Option<Graph> {
         self.errors.clear();
