@@ -18,10 +18,10 @@
 //                [--drop FILE --drop-native D.png]
 // Writes FOLDER/web.png, control.png, dragged.png and web-test.json; exits 1 naming the failed
 // check.
-import http from "node:http";
 import fs from "node:fs";
 import path from "node:path";
 import { createRequire } from "node:module";
+import { serve, launch } from "./harness.mjs";
 
 const require = createRequire(path.resolve(process.env.WEB_TOOLS ?? ".", "node_modules", "x.js"));
 const { chromium } = require("playwright-core");
@@ -46,20 +46,7 @@ const MEAN_LIMIT = 1.0, FAR = 16, FAR_FRACTION_LIMIT = 0.005;
 // Each change (a control, a drag) must change more than 2 % of the pixels.
 const CHANGED_LIMIT = 0.02;
 
-const types = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm",
-                ".json": "application/json", ".png": "image/png" };
-const server = http.createServer((req, res) => {
-  const url = decodeURIComponent(new URL(req.url, "http://x").pathname);
-  const file = path.resolve(dir, "." + (url === "/" ? "/index.html" : url));
-  if (!file.startsWith(path.resolve(dir)) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
-    res.writeHead(404).end();
-    return;
-  }
-  res.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
-  fs.createReadStream(file).pipe(res);
-});
-await new Promise(r => server.listen(0, "127.0.0.1", r));
-const base = `http://127.0.0.1:${server.address().port}/`;
+const { server, base } = await serve(dir);
 
 const read = file => PNG.sync.read(fs.readFileSync(file));
 function compare(a, b) {
@@ -90,14 +77,7 @@ const fail = message => {
   process.exitCode = 1;
 };
 
-// SwiftShader's Vulkan for WebGPU and for compositing: with Chromium's default (GL) compositor
-// the WebGPU canvas reaches the page but not screenshots.
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  args: ["--headless=new", "--enable-unsafe-webgpu", "--enable-features=Vulkan",
-         "--use-vulkan=swiftshader", "--use-angle=vulkan", "--no-sandbox", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const browser = await launch(chromium);
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 1100 }, deviceScaleFactor: 1 });
   const log = [];

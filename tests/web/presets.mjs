@@ -4,36 +4,18 @@
 // Each canvas is left beside its poster as web.png.
 //
 // node presets.mjs EXPORT_DIR...
-import http from "node:http";
 import fs from "node:fs";
 import path from "node:path";
 import { createRequire } from "node:module";
+import { serve, launch } from "./harness.mjs";
 
 const require = createRequire(path.resolve(process.env.WEB_TOOLS ?? ".", "node_modules", "x.js"));
 const { chromium } = require("playwright-core");
 const { PNG } = require("pngjs");
 
 const root = path.resolve(path.dirname(process.argv[2] ?? "."));
-const types = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm",
-                ".json": "application/json", ".png": "image/png" };
-const server = http.createServer((req, res) => {
-  const file = path.resolve(root, "." + decodeURIComponent(new URL(req.url, "http://x").pathname));
-  if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) {
-    res.writeHead(404).end();
-    return;
-  }
-  res.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
-  fs.createReadStream(file).pipe(res);
-});
-await new Promise(r => server.listen(0, "127.0.0.1", r));
-const base = `http://127.0.0.1:${server.address().port}/`;
-
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  args: ["--headless=new", "--enable-unsafe-webgpu", "--enable-features=Vulkan",
-         "--use-vulkan=swiftshader", "--use-angle=vulkan", "--no-sandbox", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const { server, base } = await serve(root);
+const browser = await launch(chromium);
 console.log("| graph | in the browser | first picture | against the poster |");
 console.log("|---|---|---|---|");
 for (const dir of process.argv.slice(2)) {
